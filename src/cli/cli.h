@@ -1,0 +1,58 @@
+/*
+ * cli.h - shared pieces of the seislide command line: the command table,
+ * message printing, strict number and list parsing.
+ *
+ * Exit codes (documented in --help and docs/seislide.1):
+ *   0 success, 1 error in input or in the run, 2 usage error.
+ */
+#ifndef SL_CLI_H
+#define SL_CLI_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "status.h"
+#include "units.h"
+
+#define CLI_EXIT_OK 0
+#define CLI_EXIT_ERROR 1
+#define CLI_EXIT_USAGE 2
+
+#ifndef SEISLIDE_VERSION
+#define SEISLIDE_VERSION "0.1.0"
+#endif
+
+/* Commands: each takes argc/argv with argv[0] the command name. */
+int cmd_slide(int argc, char **argv);
+int cmd_spectrum(int argc, char **argv);
+int cmd_rg160(int argc, char **argv);
+int cmd_asce(int argc, char **argv);
+int cmd_bench(int argc, char **argv);
+
+/* Print "seislide: FILE:LINE: message" for a library error. */
+void cli_print_error(const sl_error *err);
+/* Print "seislide: " + message to stderr. */
+void cli_msg(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+/* Print a usage error "seislide CMD: message (try 'seislide CMD --help')";
+ * returns CLI_EXIT_USAGE. */
+int cli_usage(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Strict parse of a finite double (whole string). Returns 0 on success. */
+int cli_parse_double(const char *s, double *out);
+/* Strict parse of a non-negative integer. Returns 0 on success. */
+int cli_parse_ulong(const char *s, unsigned long *out);
+/* "0.05,0.1,0.2": comma list of finite doubles; *vals malloc'd. */
+int cli_parse_list(const char *s, double **vals, size_t *n);
+/* "A:B:S": A, A+S, ..., up to B inclusive (B included when within
+ * 1e-9 S); S > 0, B >= A. *vals malloc'd. */
+int cli_parse_range(const char *s, double **vals, size_t *n);
+
+#endif

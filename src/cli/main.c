@@ -1,0 +1,59 @@
+/* main.c - seislide: dispatch to a command. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+typedef struct command {
+    const char *name;
+    int (*run)(int, char **);
+    const char *summary;
+} command;
+
+static const command commands[] = {
+    {"slide", cmd_slide, "sliding of a rigid block under one 1-3 component motion"},
+    {"spectrum", cmd_spectrum, "response spectra of motions"},
+    {"rg160", cmd_rg160, "Regulatory Guide 1.60 design spectra"},
+    {"asce", cmd_asce, "ASCE/SEI 43-05 approximate sliding displacement"},
+    {"bench", cmd_bench, "speed against error of the engine"},
+};
+#define N_COMMANDS (sizeof commands / sizeof commands[0])
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: seislide COMMAND [options]\n"
+            "\n"
+            "Peak sliding displacement of unanchored rigid components on a floor in an\n"
+            "earthquake, by nonlinear time-history analysis and the ASCE/SEI 43-05 method.\n"
+            "\n"
+            "commands:\n");
+    for (size_t i = 0; i < N_COMMANDS; i++)
+        fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f,
+            "\n"
+            "'seislide COMMAND --help' describes a command. Units: SI inside; every\n"
+            "file and column names its unit. Exit status: 0 success, 1 error in the\n"
+            "input or the run, 2 usage error. See docs/ and 'man seislide'.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return CLI_EXIT_USAGE;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("seislide %s\n", SEISLIDE_VERSION);
+        return CLI_EXIT_OK;
+    }
+    for (size_t i = 0; i < N_COMMANDS; i++)
+        if (!strcmp(argv[1], commands[i].name))
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "seislide: unknown command '%s' (try 'seislide --help')\n", argv[1]);
+    return CLI_EXIT_USAGE;
+}

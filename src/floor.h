@@ -1,0 +1,102 @@
+/*
+ * floor.h - floor response spectrum files: one INI file per floor, read with
+ * inih (Debian libinih). Layout (docs/formats-floor.md, templates/floor.ini):
+ *
+ *     [floor]
+ *     name        = Reactor building, el. 30.0 m   ; required, free text
+ *     elevation_m = 30.0                           ; optional, m
+ *     units       = g                              ; required: g, m/s2, cm/s2, gal, mm/s2
+ *     h2          = same_as_h1                     ; only when there is no [h2]
+ *     description = ...                            ; optional, free text
+ *
+ *     [h1]                    ; also [h2] and [v]
+ *     f_hz    = 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 33, 50
+ *     sa_0.05 = ...           ; pseudo-spectral acceleration at 5 % damping
+ *     sa_0.10 = ...           ; one key per damping ratio, in (0, 1)
+ *     zpa     = 0.30          ; optional; else the high-frequency end
+ *
+ * Lists are separated by commas and/or blanks and may continue on indented
+ * lines (inih multi-line values); a line holds at most 200 characters
+ * (inih's line buffer). Comments start with ';' or '#' at the start of a
+ * line, or ' ;' after a value.
+ *
+ * Validation (every error names the file and the line): known sections
+ * [floor] [h1] [h2] [v] each at most once and [floor], [h1], [v] present;
+ * [h2] present or `h2 = same_as_h1` declared (never assumed), not both;
+ * known keys only, each once; frequencies positive and strictly increasing
+ * (at least SL_FLOOR_MIN_POINTS); values positive and finite, as many as
+ * frequencies; damping ratios in (0, 1), each once per section; units
+ * known; name not empty.
+ *
+ * Zero-period acceleration of a component: the `zpa` key when given, else
+ * the largest over its dampings of the value at its highest frequency.
+ *
+ * Memory: sl_floor_load() returns a floor the caller frees with
+ * sl_floor_free(). The struct is plain data; its spectra are owned by it.
+ * Values are stored in SI (m/s^2), whatever the file's units.
+ */
+#ifndef SL_FLOOR_H
+#define SL_FLOOR_H
+
+#include <stddef.h>
+
+#include "spectrum.h"
+#include "status.h"
+#include "units.h"
+
+/* Fewest frequencies a spectrum may have. */
+#define SL_FLOOR_MIN_POINTS 2
+/* Most damping ratios per component. */
+#define SL_FLOOR_MAX_DAMPINGS 16
+/* Two damping ratios closer than this are the same (sa_0.1 = sa_0.10). */
+#define SL_FLOOR_DAMPING_TOL 1e-9
+/* The damping of the spectra the ASCE/SEI 43-05 method uses. */
+#define SL_FLOOR_ASCE_DAMPING 0.10
+
+typedef enum sl_floor_comp {
+    SL_FLOOR_H1 = 0,
+    SL_FLOOR_H2,
+    SL_FLOOR_V,
+    SL_FLOOR_NCOMP
+} sl_floor_comp;
+
+/* One direction of a floor. */
+typedef struct sl_floor_component {
+    size_t nspec;       /* number of damping ratios given */
+    sl_spectrum *spec;  /* nspec spectra, ascending damping, same frequencies, m/s^2 */
+    double zpa_ms2;     /* zero-period acceleration, m/s^2 */
+    int zpa_given;      /* 1: from the `zpa` key; 0: from the high-frequency end */
+    long line;          /* line of the section header (H2 = H1: that of [h1]) */
+} sl_floor_component;
+
+typedef struct sl_floor {
+    char *path;         /* the file read */
+    char *name;         /* the floor's name */
+    char *description;  /* free text, "" when not given */
+    double elevation_m; /* NAN when not given */
+    sl_unit units;      /* units of the file (values stored in m/s^2) */
+    int h2_same_as_h1;  /* 1 when the file declared `h2 = same_as_h1` (H2 copies H1) */
+    sl_floor_component comp[SL_FLOOR_NCOMP];
+} sl_floor;
+
+/* Read and validate a floor file. Returns NULL and fills err (file, line,
+ * message; SL_EIO, SL_EPARSE, SL_EINVAL or SL_ENOMEM) on failure. */
+sl_floor *sl_floor_load(const char *path, sl_error *err);
+
+/* Free a floor; harmless on NULL. */
+void sl_floor_free(sl_floor *fl);
+
+/* Section name of a component: "h1", "h2", "v". */
+const char *sl_floor_comp_name(sl_floor_comp c);
+
+/* The spectrum of component c at damping ratio `damping` (matched within
+ * SL_FLOOR_DAMPING_TOL), or NULL when the file does not give it. Borrowed
+ * pointer, valid until sl_floor_free(). */
+const sl_spectrum *sl_floor_spectrum(const sl_floor *fl, sl_floor_comp c, double damping);
+
+/* The 10 %-damped spectrum of component c (SL_FLOOR_ASCE_DAMPING), or NULL
+ * when it is missing: the caller must then say so in its output and use its
+ * documented fallback; the library never substitutes one silently. */
+const sl_spectrum *sl_floor_sa10(const sl_floor *fl, sl_floor_comp c);
+
+#endif

@@ -1,0 +1,174 @@
+/*
+ * spectrum.h - linear elastic response spectra of acceleration records by
+ * the exact piecewise-linear recurrence of Nigam and Jennings (1969).
+ *
+ * The oscillator (natural frequency f, circular frequency w = 2 pi f,
+ * damping ratio z, relative displacement u) obeys
+ *
+ *     u'' + 2 z w u' + w^2 u = -a(t),                                   (1)
+ *
+ * with a(t) the ground (floor) acceleration taken as piecewise linear
+ * between samples. Over a step h the exact solution is a linear map
+ *
+ *     [u1]   [a11 a12] [u0]   [bu0 bu1] [a0]
+ *     [v1] = [a21 a22] [v0] + [bv0 bv1] [a1],                           (2)
+ *
+ * (Nigam and Jennings 1969, "Calculation of response spectra from
+ * strong-motion earthquake records", BSSA 59(2), eq. 4-6). The oscillator
+ * starts at rest. Quantities returned, all peaks over time of absolute
+ * values:
+ *     SD     = max |u|                      spectral displacement, m
+ *     PSA    = w^2 SD                       pseudo-spectral acceleration, m/s^2
+ *     SA_abs = max |u'' + a| = max |2 z w u' + w^2 u|
+ *                                           absolute acceleration, m/s^2
+ *
+ * Sampled peak. A peak taken over samples spaced h underestimates the true
+ * peak of an oscillation of period T by up to 1 - cos(pi h/T). Each
+ * frequency therefore runs on sub-steps h = dt/m with m = ceil(dt f N) and
+ * N = SL_SPECTRUM_STEPS_PER_PERIOD (20): h <= T/20, error <= 1.2 %. The
+ * sub-step input is the linear interpolation of the samples, which is exact
+ * for the piecewise-linear reading of the record, so resampling changes
+ * nothing but where the peak is sampled.
+ *
+ * End of record. As in slide.h, the input ends at the last sample and the
+ * floor is at rest afterwards (a = 0). The oscillator then vibrates freely;
+ * the largest |u| (and |u''|) of a free damped vibration occurs at its first
+ * extremum, within half a damped period T_d/2 = T/(2 sqrt(1 - z^2)), since
+ * later extrema decay. The run therefore continues for ceil(T_d/(2 h)) + 1
+ * free sub-steps, so a peak after the record end is never cut off.
+ *
+ * Speed. Coefficients are computed once per (frequency, sub-step); the
+ * frequencies are grouped by m and each group is stepped together over
+ * structure-of-arrays state (the inner loop over frequencies vectorises).
+ * sl_spectrum_batch() runs motions in parallel with OpenMP.
+ *
+ * Units: SI (s, Hz, m, m/s^2). Damping as a ratio of critical, in [0, 1).
+ */
+#ifndef SL_SPECTRUM_H
+#define SL_SPECTRUM_H
+
+#include <stddef.h>
+
+#include "motion.h"
+#include "status.h"
+
+/* Sub-steps per natural period for the sampled peak (REFERENCE.md 4:
+ * dt <= T/20, error <= 1 - cos(pi/20) = 1.23 %). */
+#define SL_SPECTRUM_STEPS_PER_PERIOD 20.0
+
+/* Default frequency grid (US NRC SRP 3.7.1): 100 log-spaced points per
+ * decade from 0.1 to 50 Hz. */
+#define SL_SPECTRUM_FMIN_HZ 0.1
+#define SL_SPECTRUM_FMAX_HZ 50.0
+#define SL_SPECTRUM_PER_DECADE 100.0
+
+/* Below this w h the recurrence coefficients come from the Taylor series of
+ * the matrix exponential and phi functions (no cancellation); at and above
+ * it from the closed form. Both are the same exact map (2). */
+#define SL_SPECTRUM_SERIES_WH 0.2
+
+/* A spectrum at one damping: plain data. Each struct owns its two arrays
+ * (free with sl_spectrum_free). */
+typedef struct sl_spectrum {
+    size_t n;        /* number of frequencies */
+    double damping;  /* ratio of critical damping */
+    double *f_hz;    /* n frequencies, Hz, strictly increasing, > 0 */
+    double *sa_ms2;  /* n pseudo-spectral accelerations, m/s^2 */
+} sl_spectrum;
+
+/* Allocate a spectrum of n points (arrays zeroed), damping set. Returns NULL
+ * on n == 0 or allocation failure. Free with sl_spectrum_free(). */
+sl_spectrum *sl_spectrum_alloc(size_t n, double damping);
+
+/* Free a spectrum and its arrays; harmless on NULL. */
+void sl_spectrum_free(sl_spectrum *s);
+
+/* Free only the arrays of a spectrum embedded in another struct (sets them
+ * to NULL and n to 0); harmless on NULL. */
+void sl_spectrum_clear(sl_spectrum *s);
+
+/* Log-log interpolation of a spectrum at f_hz (power law between points):
+ * SA(f) = SA_i (f/f_i)^p, p = ln(SA_{i+1}/SA_i)/ln(f_{i+1}/f_i).
+ * Outside [f_0, f_{n-1}] returns NAN. Values must be positive. */
+double sl_spectrum_interp(const sl_spectrum *s, double f_hz);
+
+/* Options of a spectrum computation. */
+typedef struct sl_spectrum_opts {
+    double steps_per_period; /* sub-steps per natural period, >= 1
+                                (SL_SPECTRUM_STEPS_PER_PERIOD) */
+    int free_vibration;      /* 1 (default): continue after the record until
+                                the first free-vibration extremum; 0: stop at
+                                the last sample */
+} sl_spectrum_opts;
+
+/* Fill defaults (steps_per_period = 20, free_vibration = 1). */
+void sl_spectrum_opts_default(sl_spectrum_opts *o);
+
+/* Log-spaced frequency grid from fmin_hz to fmax_hz inclusive with at least
+ * per_decade points per decade: k = ceil(per_decade log10(fmax/fmin))
+ * intervals of equal log width, k + 1 points (271 for the default 0.1-50 Hz
+ * at 100 per decade). fmin == fmax gives one point. Returns a malloc'd array
+ * the caller frees, and its length in *n; NULL (and *n = 0) on bad input
+ * (non-positive, non-finite, fmax < fmin, per_decade <= 0) or allocation
+ * failure. */
+double *sl_spectrum_grid(double fmin_hz, double fmax_hz, double per_decade, size_t *n);
+
+/* Spectrum of one record at one damping, default options.
+ *   acc_ms2, n, dt_s : the record (n >= 1 samples, dt_s > 0), m/s^2, s
+ *   f_hz, nf         : frequencies (> 0, any order), Hz
+ *   zeta             : damping ratio in [0, 1)
+ *   psa_ms2, sd_m, sa_abs_ms2 : outputs of nf values each (any may be NULL)
+ * Returns SL_OK; SL_EINVAL for bad arguments or a non-finite sample;
+ * SL_ENOMEM. Equation (1)-(2); peak definitions above. Thread-safe. */
+sl_status sl_spectrum_compute(const double *acc_ms2, size_t n, double dt_s,
+                              const double *f_hz, size_t nf, double zeta,
+                              double *psa_ms2, double *sd_m, double *sa_abs_ms2,
+                              sl_error *err);
+
+/* As sl_spectrum_compute() with explicit options (NULL = defaults). */
+sl_status sl_spectrum_compute_opts(const double *acc_ms2, size_t n, double dt_s,
+                                   const double *f_hz, size_t nf, double zeta,
+                                   const sl_spectrum_opts *opts, double *psa_ms2,
+                                   double *sd_m, double *sa_abs_ms2, sl_error *err);
+
+/* Spectra of nm motions at one damping, in parallel over motions (OpenMP).
+ * Outputs are row-major nm x nf: psa_ms2[i * nf + j] is motion i at
+ * f_hz[j]; any output may be NULL. opts may be NULL. On failure returns the
+ * status of the first failing motion (in index order) with its message,
+ * prefixed by its path. Results do not depend on the thread count. */
+sl_status sl_spectrum_batch(const sl_motion *const *motions, size_t nm,
+                            const double *f_hz, size_t nf, double zeta,
+                            const sl_spectrum_opts *opts, double *psa_ms2,
+                            double *sd_m, double *sa_abs_ms2, sl_error *err);
+
+/* Response history of one oscillator, at the record's samples: u_m[i] and
+ * v_ms[i] (relative displacement, m, and velocity, m/s) at t = i dt_s,
+ * i = 0..n-1, from rest, on sub-steps h <= T/steps_per_period (opts may be
+ * NULL). Either output may be NULL. Returns SL_OK, SL_EINVAL. For tests and
+ * plots; the spectrum functions do not store histories. */
+sl_status sl_spectrum_history(const double *acc_ms2, size_t n, double dt_s,
+                              double f_hz, double zeta, const sl_spectrum_opts *opts,
+                              double *u_m, double *v_ms, sl_error *err);
+
+/* How to compute the recurrence coefficients. */
+typedef enum sl_spectrum_method {
+    SL_SPECTRUM_AUTO = 0, /* series below SL_SPECTRUM_SERIES_WH, else closed form */
+    SL_SPECTRUM_CLOSED,   /* closed form (trigonometric), needs zeta < 1 */
+    SL_SPECTRUM_SERIES    /* Taylor series of exp and phi functions */
+} sl_spectrum_method;
+
+/* Coefficients of map (2) for one oscillator and one step h_s:
+ * c[0..7] = a11, a12, a21, a22, bu0, bu1, bv0, bv1.
+ * Closed form: with wd = w sqrt(1-z^2), E = exp(-z w h), q = z/sqrt(1-z^2),
+ *   a11 = E (cos wd h + q sin wd h),  a12 = E sin(wd h)/wd,
+ *   a21 = -w^2 a12,                   a22 = E (cos wd h - q sin wd h),
+ * and the load terms from the particular solution of (1) for linear a,
+ * u_p = -a/w^2 + 2 z a'/w^3, v_p = -a'/w^2:  x1 = x_p(h) + A (x0 - x_p(0)).
+ * Series: x1 = phi0(Mh) x0 - h (phi1 - phi2)(Mh) e a0 - h phi2(Mh) e a1,
+ * M = [0 1; -w^2 -2zw], e = [0 1]^T, phi_k(Z) = sum_j Z^j/(j+k)!, evaluated
+ * on the balanced matrix w h [0 1; -1 -2z].
+ * Returns SL_OK, or SL_EINVAL (f <= 0, h <= 0, zeta outside [0, 1)). */
+sl_status sl_spectrum_coefs(double f_hz, double zeta, double h_s,
+                            sl_spectrum_method method, double c[8], sl_error *err);
+
+#endif

@@ -1,0 +1,548 @@
+/*
+ * test_slide.c - the sliding engine against closed forms and invariants
+ * (../shared/docs/REFERENCE.md section 4). Every input is built here.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+#include "slide.h"
+
+static const double g = SL_G;
+
+/* A motion over a caller-owned array (no file). */
+static sl_motion mk(double *a, size_t n, double dt)
+{
+    sl_motion m = {NULL, NULL, n, dt, a};
+    return m;
+}
+
+static double *alloc_n(size_t n) { return calloc(n, sizeof(double)); }
+
+static sl_slide_opts opts_default(void)
+{
+    sl_slide_opts o;
+    sl_slide_opts_default(&o);
+    return o;
+}
+
+/* Ground velocity and displacement of a piecewise-linear record at time t,
+ * integrated independently of the engine (exact for linear pieces). */
+static void ground_vd(const double *a, size_t n, double dt, double t, double *v, double *d)
+{
+    double V = 0, D = 0;
+    for (size_t i = 0; i + 1 < n; i++) {
+        double t0 = (double)i * dt;
+        if (t <= t0)
+            break;
+        double h = fmin(dt, t - t0), s = (a[i + 1] - a[i]) / dt;
+        D += V * h + a[i] * h * h / 2 + s * h * h * h / 6;
+        V += a[i] * h + s * h * h / 2;
+    }
+    double tend = (double)(n - 1) * dt;
+    if (t > tend)
+        D += V * (t - tend);
+    *v = V;
+    *d = D;
+}
+
+/* Rectangular pulse as samples: 0, A x p, 0 ... (ramps of one dt). The block
+ * slides one way from the onset t_on (a = mu g on the first ramp) until
+ * V_g(t) - V_g(t_on) = mu g (t - t_on); the slide is
+ *   U = D_g(t_s) - D_g(t_on) - V_g(t_on)(t_s - t_on) - mu g (t_s - t_on)^2/2. */
+static void test_rect_pulse_exact(void)
+{
+    const double A = 3.0, dt = 0.01, mu = 0.1;
+    const size_t p = 50, n = 400;
+    double *a = alloc_n(n);
+    for (size_t i = 1; i <= p; i++)
+        a[i] = A;
+    sl_motion m = mk(a, n, dt);
+    sl_set set = {&m, NULL, NULL};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r;
+    CHECK(sl_slide_run(&set, &mu, 1, &o, &r, NULL) == SL_OK, "run");
+    double ton = dt * mu * g / A, Von, Don, V, D;
+    ground_vd(a, n, dt, ton, &Von, &Don);
+    ground_vd(a, n, dt, 1e9, &V, &D);
+    double ts = ton + (V - Von) / (mu * g);
+    double Vs, Ds;
+    ground_vd(a, n, dt, ts, &Vs, &Ds);
+    double U = Ds - Don - Von * (ts - ton) - mu * g * (ts - ton) * (ts - ton) / 2;
+    CHECK_CLOSE(r.peak_m, U, 0, 1e-12);
+    CHECK_CLOSE(r.residual_x_m, -U, 0, 1e-12);
+    CHECK_CLOSE(r.t_rest_s, ts, 1e-12, 1e-12);
+    CHECK_CLOSE(r.path_m, U, 0, 1e-12);
+    CHECK(r.episodes == 1, "episodes %ld", r.episodes);
+    /* and the textbook rectangle V^2/(2 mu g)(1 - mu g/A) with V = A t0, which
+     * the ramps change by O(dt/t0) */
+    double t0 = (double)p * dt, Vr = A * t0;
+    double Ur = Vr * Vr / (2 * mu * g) * (1 - mu * g / A);
+    CHECK_CLOSE(r.peak_m, Ur, 0, 2.0 * dt / t0);
+    free(a);
+}
+
+/* Half-sine pulse A sin(pi t/T): onset theta1 = asin(r); for r < 0.7246 the
+ * slide outlasts the pulse. With w(t) = (A T/pi)(cos th1 - cos(pi t/T)) -
+ * mu g (t - t1): U = int_{t1}^{T} w + w(T)^2/(2 mu g). Sampled input is
+ * piecewise linear, so the error is O(dt^2): check it and its order. */
+static double half_sine_closed(double A, double T, double mu)
+{
+    double r = mu * g / A, th = asin(r), t1 = T * th / M_PI;
+    double I = A * T / M_PI * (cos(th) * (T - t1) + T / M_PI * r) - mu * g * (T - t1) * (T - t1) / 2;
+    double wT = A * T / M_PI * (cos(th) + 1) - mu * g * (T - t1);
+    return I + wT * wT / (2 * mu * g);
+}
+
+static double half_sine_run(double A, double T, double mu, size_t per_pulse)
+{
+    double dt = T / (double)per_pulse;
+    size_t n = per_pulse + 1 + 10;
+    double *a = alloc_n(n);
+    for (size_t i = 0; i <= per_pulse; i++)
+        a[i] = A * sin(M_PI * (double)i / (double)per_pulse);
+    sl_motion m = mk(a, n, dt);
+    sl_set set = {&m, NULL, NULL};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r;
+    sl_slide_run(&set, &mu, 1, &o, &r, NULL);
+    free(a);
+    return r.peak_m;
+}
+
+static void test_half_sine(void)
+{
+    const double A = 5.0, T = 0.5;
+    const double mus[] = {0.05, 0.2, 0.35};
+    for (int q = 0; q < 3; q++) {
+        double U = half_sine_closed(A, T, mus[q]);
+        double e1 = fabs(half_sine_run(A, T, mus[q], 500) / U - 1);
+        double e2 = fabs(half_sine_run(A, T, mus[q], 1000) / U - 1);
+        CHECK(e2 < 1e-5, "mu %g: relative error %.3g at T/1000", mus[q], e2);
+        /* second order in dt: halving dt divides the error by about 4 */
+        CHECK(e1 / e2 > 3.5 && e1 / e2 < 4.5, "mu %g: error ratio %.3f (expect 4)", mus[q], e1 / e2);
+    }
+}
+
+/* Two-way harmonic steady state a = A sin(w t), r < 0.537: amplitude
+ * X = (A/w^2) sqrt(1 - (pi r/2)^2) (Den Hartog). Measured as half the
+ * peak-to-peak of u over the last cycles. */
+static void test_harmonic_steady_state(void)
+{
+    const double A = 2.0, f = 2.0, w = 2 * M_PI * f;
+    /* the start-up transient of the mean drift dies out within ~60 cycles at
+     * r = 0.1; the piecewise-linear sine is off by (w dt)^2/12 = 1.3e-5 */
+    const size_t per = 500, cycles = 100, n = per * cycles + 1;
+    const double dt = 1.0 / (f * (double)per);
+    double *a = alloc_n(n);
+    for (size_t i = 0; i < n; i++)
+        a[i] = A * sin(w * (double)i * dt);
+    sl_motion m = mk(a, n, dt);
+    sl_set set = {&m, NULL, NULL};
+    sl_slide_opts o = opts_default();
+    const double rs[] = {0.1, 0.3, 0.5};
+    for (int q = 0; q < 3; q++) {
+        double mu = rs[q] * A / g;
+        sl_slide_result r;
+        sl_history *h = NULL;
+        CHECK(sl_slide_history(&set, mu, &o, &r, &h, NULL) == SL_OK, "history");
+        if (!h)
+            continue;
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t i = n - 1 - per; i < n; i++) {
+            lo = fmin(lo, h->ux_m[i]);
+            hi = fmax(hi, h->ux_m[i]);
+        }
+        double X = A / (w * w) * sqrt(1 - pow(M_PI * rs[q] / 2, 2));
+        CHECK_CLOSE((hi - lo) / 2, X, 0, 1e-4);
+        sl_history_free(h);
+    }
+    free(a);
+}
+
+/* Circular base motion a = A (cos wt, sin wt): steady relative speed
+ * V = (A/w) sqrt(1 - r^2) on a circle of radius V/w. Projection 2-D kernel:
+ * first order, so the error falls with the sub-steps. */
+static void test_circular(void)
+{
+    const double A = 3.0, f = 1.0, w = 2 * M_PI * f, r = 0.4, mu = r * A / g;
+    const size_t per = 200, cycles = 20, n = per * cycles + 1;
+    const double dt = 1.0 / (f * (double)per);
+    double *ax = alloc_n(n), *ay = alloc_n(n);
+    for (size_t i = 0; i < n; i++) {
+        ax[i] = A * cos(w * (double)i * dt);
+        ay[i] = A * sin(w * (double)i * dt);
+    }
+    sl_motion mx = mk(ax, n, dt), my = mk(ay, n, dt);
+    sl_set set = {&mx, &my, NULL};
+    const double V = A / w * sqrt(1 - r * r);
+    double prev_err = INFINITY;
+    const unsigned subs[] = {1, 4, 16};
+    for (int q = 0; q < 3; q++) {
+        sl_slide_opts o = opts_default();
+        o.substeps = subs[q];
+        sl_slide_result res;
+        sl_history *h = NULL;
+        CHECK(sl_slide_history(&set, mu, &o, &res, &h, NULL) == SL_OK, "history");
+        if (!h)
+            continue;
+        /* speed and orbit radius over the last cycle */
+        double cx = 0, cy = 0, sp = 0;
+        size_t i0 = n - 1 - per;
+        for (size_t i = i0; i < n - 1; i++) {
+            cx += h->ux_m[i];
+            cy += h->uy_m[i];
+            sp += hypot(h->vx_ms[i], h->vy_ms[i]);
+        }
+        cx /= (double)per;
+        cy /= (double)per;
+        sp /= (double)per;
+        double rad = 0;
+        for (size_t i = i0; i < n - 1; i++)
+            rad += hypot(h->ux_m[i] - cx, h->uy_m[i] - cy) / (double)per;
+        double err = fabs(sp / V - 1) + fabs(rad / (V / w) - 1);
+        CHECK(err < prev_err, "substeps %u: error %.3g not below %.3g", subs[q], err, prev_err);
+        prev_err = err;
+        if (subs[q] == 16) {
+            CHECK_CLOSE(sp, V, 0, 2e-3);
+            CHECK_CLOSE(rad, V / w, 0, 2e-3);
+        }
+        sl_history_free(h);
+    }
+    /* separate friction per axis would not give this: check the speed is not
+     * the per-axis answer (A/w) sqrt(1 - (pi r / 2)^2)... only as a guard */
+    free(ax);
+    free(ay);
+}
+
+/* A synthetic broadband record, deterministic. */
+static double *noise_record(size_t n, double dt, double amp, unsigned seed)
+{
+    double *a = alloc_n(n);
+    unsigned s = seed;
+    for (size_t i = 0; i < n; i++) {
+        double t = (double)i * dt, env = sin(M_PI * t / ((double)(n - 1) * dt));
+        double x = 0;
+        for (int k = 0; k < 6; k++) {
+            s = s * 1103515245u + 12345u;
+            x += (double)((s >> 8) & 0xffff) / 65535.0 - 0.5;
+        }
+        a[i] = amp * env * env * x;
+    }
+    /* a little smoothing: 3-point moving average */
+    for (size_t i = 1; i + 1 < n; i++)
+        a[i] = (a[i - 1] + 2 * a[i] + a[i + 1]) / 4;
+    a[0] = a[n - 1] = 0;
+    return a;
+}
+
+/* A 1-D record along 45 degrees through the 2-D kernel reproduces the exact
+ * 1-D answer, converging with the sub-steps. */
+static void test_rotation_45(void)
+{
+    const size_t n = 2000;
+    const double dt = 0.01, mu = 0.15;
+    double *a = noise_record(n, dt, 8.0, 7u), *ax = alloc_n(n), *ay = alloc_n(n);
+    for (size_t i = 0; i < n; i++) {
+        ax[i] = a[i] * M_SQRT1_2;
+        ay[i] = a[i] * M_SQRT1_2;
+    }
+    sl_motion m1 = mk(a, n, dt), mx = mk(ax, n, dt), my = mk(ay, n, dt);
+    sl_set s1 = {&m1, NULL, NULL}, s2 = {&mx, &my, NULL};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r1, r2;
+    sl_slide_run(&s1, &mu, 1, &o, &r1, NULL);
+    CHECK(r1.peak_m > 0.01, "record must slide: %g", r1.peak_m);
+    double prev = INFINITY;
+    const unsigned subs[] = {4, 32, 256};
+    for (int q = 0; q < 3; q++) {
+        o.substeps = subs[q];
+        sl_slide_run(&s2, &mu, 1, &o, &r2, NULL);
+        double e = fabs(r2.peak_m / r1.peak_m - 1);
+        CHECK(e < prev || e < 1e-6, "substeps %u: error %.3g", subs[q], e);
+        prev = e;
+        /* the path stays on the 45-degree line */
+        CHECK_CLOSE(r2.residual_x_m, r2.residual_y_m, 1e-12, 1e-9);
+    }
+    CHECK(prev < 1e-3, "2-D along 45 deg vs exact 1-D at 256 substeps: %.3g", prev);
+    free(a);
+    free(ax);
+    free(ay);
+}
+
+/* Constant vertical acceleration c: every answer equals the one with
+ * mu (g + c)/g and no vertical. */
+static void test_constant_vertical(void)
+{
+    const size_t n = 1500;
+    const double dt = 0.01, mu = 0.2, c = -2.5;
+    double *a = noise_record(n, dt, 9.0, 3u), *v = alloc_n(n);
+    for (size_t i = 0; i < n; i++)
+        v[i] = c;
+    sl_motion mh = mk(a, n, dt), mv = mk(v, n, dt);
+    sl_set sv = {&mh, NULL, &mv}, s0 = {&mh, NULL, NULL};
+    sl_slide_opts o = opts_default();
+    o.keep_going = 0; /* after the record the vertical is zero: compare within it */
+    double mu_eq = mu * (g + c) / g;
+    sl_slide_result r1, r2;
+    sl_slide_run(&sv, &mu, 1, &o, &r1, NULL);
+    sl_slide_run(&s0, &mu_eq, 1, &o, &r2, NULL);
+    CHECK(r2.peak_m > 0.005, "must slide: %g", r2.peak_m);
+    CHECK_CLOSE(r1.peak_m, r2.peak_m, 1e-15, 1e-9);
+    CHECK_CLOSE(r1.path_m, r2.path_m, 1e-15, 1e-9);
+    free(a);
+    free(v);
+}
+
+/* Invariants: -a gives -u; (lambda a, lambda mu) gives lambda u; mu = 0
+ * gives u = -ground displacement; mu g >= max|a| gives no sliding. */
+static void test_invariants(void)
+{
+    const size_t n = 1200;
+    const double dt = 0.005, mu = 0.1, lam = 2.5;
+    double *a = noise_record(n, dt, 6.0, 11u), *an = alloc_n(n), *as = alloc_n(n);
+    double *b = noise_record(n, dt, 6.0, 12u), *bn = alloc_n(n), *bs = alloc_n(n);
+    for (size_t i = 0; i < n; i++) {
+        an[i] = -a[i];
+        as[i] = lam * a[i];
+        bn[i] = -b[i];
+        bs[i] = lam * b[i];
+    }
+    sl_motion ma = mk(a, n, dt), man = mk(an, n, dt), mas = mk(as, n, dt);
+    sl_motion mb = mk(b, n, dt), mbn = mk(bn, n, dt), mbs = mk(bs, n, dt);
+    sl_slide_opts o = opts_default();
+    sl_slide_result r, rn, rs;
+    /* 1-D and 2-D */
+    for (int d = 1; d <= 2; d++) {
+        sl_set s = {&ma, d == 2 ? &mb : NULL, NULL};
+        sl_set sn = {&man, d == 2 ? &mbn : NULL, NULL};
+        sl_set ss = {&mas, d == 2 ? &mbs : NULL, NULL};
+        double mus = lam * mu;
+        sl_slide_run(&s, &mu, 1, &o, &r, NULL);
+        sl_slide_run(&sn, &mu, 1, &o, &rn, NULL);
+        sl_slide_run(&ss, &mus, 1, &o, &rs, NULL);
+        CHECK(r.peak_m > 1e-3, "%d-D must slide", d);
+        CHECK_CLOSE(rn.peak_m, r.peak_m, 0, 1e-12);
+        CHECK_CLOSE(rn.residual_x_m, -r.residual_x_m, 1e-15, 1e-12);
+        CHECK_CLOSE(rn.residual_y_m, -r.residual_y_m, 1e-15, 1e-12);
+        CHECK_CLOSE(rs.peak_m, lam * r.peak_m, 0, 1e-12);
+        CHECK_CLOSE(rs.path_m, lam * r.path_m, 0, 1e-12);
+        CHECK(rs.episodes == r.episodes, "episodes %ld vs %ld", rs.episodes, r.episodes);
+    }
+    /* mu = 0: u = -D_g over the record */
+    {
+        sl_set s = {&ma, NULL, NULL};
+        double z = 0.0, V, D;
+        sl_slide_run(&s, &z, 1, &o, &r, NULL);
+        ground_vd(a, n, dt, (double)(n - 1) * dt, &V, &D);
+        CHECK_CLOSE(r.residual_x_m, -D, 1e-12, 1e-10);
+        CHECK(r.flags & SL_SLIDE_NEVER_STOPS, "mu = 0 must be flagged never_stops");
+        sl_set s2 = {&ma, &mb, NULL};
+        double Vb, Db;
+        sl_slide_run(&s2, &z, 1, &o, &r, NULL);
+        ground_vd(b, n, dt, (double)(n - 1) * dt, &Vb, &Db);
+        CHECK_CLOSE(r.residual_x_m, -D, 1e-12, 1e-10);
+        CHECK_CLOSE(r.residual_y_m, -Db, 1e-12, 1e-10);
+    }
+    /* mu g >= max |a|: no sliding; just below: slides */
+    {
+        sl_set s = {&ma, NULL, NULL};
+        double thr = sl_slide_mu_threshold(&s, &o), amax = 0;
+        for (size_t i = 0; i < n; i++)
+            amax = fmax(amax, fabs(a[i]));
+        CHECK_CLOSE(thr, amax / g, 0, 1e-15);
+        double mus[2] = {thr, thr * (1 - 1e-6)};
+        sl_slide_result rr[2];
+        sl_slide_run(&s, mus, 2, &o, rr, NULL);
+        CHECK(rr[0].peak_m == 0.0 && (rr[0].flags & SL_SLIDE_SKIPPED), "at threshold: %g", rr[0].peak_m);
+        CHECK(rr[1].peak_m > 0.0 && !(rr[1].flags & SL_SLIDE_SKIPPED), "below threshold must slide");
+        /* the skip is not a shortcut that changes answers: force integration */
+        o.keep_going = 1;
+        sl_history *h = NULL;
+        sl_slide_history(&s, thr * 1.5, &o, &rr[0], &h, NULL);
+        CHECK(rr[0].peak_m == 0.0, "integrated at 1.5 x threshold: %g", rr[0].peak_m);
+        sl_history_free(h);
+    }
+    free(a); free(an); free(as); free(b); free(bn); free(bs);
+}
+
+/* Energy: the work of the inertia force -int a_g u' dt equals the friction
+ * dissipation mu g * path when the block ends at rest (1-D exact: checked on
+ * a fine history, trapezoid error O(dt^2)). */
+static void test_energy_balance(void)
+{
+    /* smooth input so that the trapezoid rule on the history is accurate:
+     * its error is O(dt^2), measured 1.2e-5 at this dt and 5e-5 at 2 dt */
+    const size_t n = 8000;
+    const double dt = 10.0 / (double)n, mu = 0.12;
+    double *a = alloc_n(n);
+    for (size_t i = 1; i < n; i++) {
+        double t = (double)i * dt;
+        a[i] = 7 * sin(2 * M_PI * 1.3 * t) * sin(M_PI * t / 10) + 3 * sin(2 * M_PI * 4.1 * t);
+    }
+    sl_motion m = mk(a, n, dt);
+    sl_set s = {&m, NULL, NULL};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r;
+    sl_history *h = NULL;
+    sl_slide_history(&s, mu, &o, &r, &h, NULL);
+    CHECK(h != NULL && r.path_m > 0.01, "slides");
+    if (h) {
+        double W = 0;
+        for (size_t i = 0; i + 1 < n; i++)
+            W -= 0.5 * dt * (a[i] * h->vx_ms[i] + a[i + 1] * h->vx_ms[i + 1]);
+        /* after the record a = 0: the tail dissipates v_end^2/2, which the
+         * path already holds */
+        CHECK(fabs(h->vx_ms[n - 1]) > 0.01, "ends sliding: the tail is exercised");
+        CHECK_CLOSE(W, mu * g * r.path_m, 0, 1e-4);
+        sl_history_free(h);
+    }
+    free(a);
+}
+
+/* Asymmetric resistance: one-way sliding under a symmetric sine never
+ * moves upslope; a huge up_ratio converges to one-way; up_ratio 1 is the
+ * symmetric answer. Newmark (1965) asymmetric rectangular pulse: same slide
+ * as symmetric for a single pulse in the downslope direction. */
+static void test_asymmetric(void)
+{
+    const size_t n = 3001;
+    const double dt = 0.002, A = 3.0, f = 2.0, mu = 0.1;
+    double *a = alloc_n(n);
+    for (size_t i = 0; i < n; i++)
+        a[i] = A * sin(2 * M_PI * f * (double)i * dt);
+    sl_motion m = mk(a, n, dt);
+    sl_set s = {&m, NULL, NULL};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r1, rw, rb;
+    sl_history *h = NULL;
+    o.up_ratio = INFINITY;
+    CHECK(sl_slide_history(&s, mu, &o, &rw, &h, NULL) == SL_OK, "one-way");
+    if (h) {
+        int mono = 1;
+        for (size_t i = 1; i < h->n; i++)
+            mono &= h->ux_m[i] <= h->ux_m[i - 1] + 1e-15;
+        CHECK(mono, "one-way: u must never increase");
+        sl_history_free(h);
+    }
+    CHECK(rw.residual_x_m < 0 && rw.peak_m == -rw.residual_x_m, "downslope is -x");
+    o.up_ratio = 1e6;
+    sl_slide_run(&s, &mu, 1, &o, &rb, NULL);
+    CHECK_CLOSE(rb.peak_m, rw.peak_m, 0, 1e-5);
+    o.up_ratio = 1.0;
+    sl_slide_run(&s, &mu, 1, &o, &r1, NULL);
+    CHECK(rw.peak_m > r1.peak_m, "one-way accumulates more than two-way: %g vs %g", rw.peak_m, r1.peak_m);
+    /* invert: the one-way slide then comes from the negative half cycles */
+    o.up_ratio = INFINITY;
+    o.invert = 1;
+    sl_slide_result ri;
+    sl_slide_run(&s, &mu, 1, &o, &ri, NULL);
+    CHECK(ri.peak_m > 0 && ri.residual_x_m < 0, "inverted one-way slides downslope too");
+    free(a);
+}
+
+/* Lift-off: a_v <= -g means no friction: the block moves with u'' = -a_g. */
+static void test_liftoff(void)
+{
+    const size_t n = 200;
+    const double dt = 0.01, mu = 0.5;
+    double *a = alloc_n(n), *v = alloc_n(n);
+    for (size_t i = 0; i < n; i++) {
+        a[i] = 1.0; /* 0.1 g, far below mu g: no sliding without lift-off */
+        v[i] = (i >= 50 && i < 100) ? -1.5 * g : 0.0;
+    }
+    a[0] = 0.0;
+    sl_motion mh = mk(a, n, dt), mv = mk(v, n, dt);
+    sl_set s = {&mh, NULL, &mv};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r;
+    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, NULL) == SL_OK, "run");
+    CHECK(r.liftoff_samples == 50, "lift-off samples %ld", r.liftoff_samples);
+    CHECK(r.flags & SL_SLIDE_LIFTOFF, "flag");
+    CHECK(r.peak_m > 0, "slides during lift-off");
+    /* the 2-D kernel agrees (same vertical, H2 = 0) */
+    double *z = alloc_n(n);
+    sl_motion mz = mk(z, n, dt);
+    sl_set s2 = {&mh, &mz, &mv};
+    sl_slide_result r2;
+    o.substeps = 64;
+    sl_slide_run(&s2, &mu, 1, &o, &r2, NULL);
+    CHECK_CLOSE(r2.peak_m, r.peak_m, 0, 2e-2);
+    free(a);
+    free(v);
+    free(z);
+}
+
+/* Many mu at once give the same answers as one at a time; the batch is
+ * the same whatever the thread count. */
+static void test_vector_and_batch(void)
+{
+    const size_t n = 1500, nm = 37;
+    const double dt = 0.01;
+    double *a = noise_record(n, dt, 7.0, 21u), *b = noise_record(n, dt, 5.0, 22u);
+    sl_motion ma = mk(a, n, dt), mb = mk(b, n, dt);
+    double mu[37];
+    for (size_t k = 0; k < nm; k++)
+        mu[k] = 0.02 * (double)(k + 1);
+    sl_slide_opts o = opts_default();
+    for (int d = 1; d <= 2; d++) {
+        sl_set s = {&ma, d == 2 ? &mb : NULL, NULL};
+        sl_slide_result all[37], one;
+        sl_slide_run(&s, mu, nm, &o, all, NULL);
+        int same = 1;
+        for (size_t k = 0; k < nm; k++) {
+            sl_slide_run(&s, &mu[k], 1, &o, &one, NULL);
+            same &= (one.peak_m == all[k].peak_m && one.residual_x_m == all[k].residual_x_m);
+        }
+        CHECK(same, "%d-D: vector of mu differs from one at a time", d);
+        sl_set sets[3] = {s, s, s};
+        sl_slide_result bt[3 * 37];
+        CHECK(sl_slide_batch(sets, 3, mu, nm, &o, bt, NULL) == SL_OK, "batch");
+        same = 1;
+        for (size_t k = 0; k < 3 * nm; k++)
+            same &= (bt[k].peak_m == all[k % nm].peak_m);
+        CHECK(same, "%d-D: batch differs from single runs", d);
+    }
+    free(a);
+    free(b);
+}
+
+/* Bad options are errors, never silent. */
+static void test_bad_options(void)
+{
+    double a[4] = {0, 1, 2, 0};
+    sl_motion m = mk(a, 4, 0.01);
+    sl_set s = {&m, &m, NULL};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r;
+    sl_error e;
+    double mu = -0.1;
+    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "negative mu");
+    mu = NAN;
+    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "NaN mu");
+    mu = 0.1;
+    o.up_ratio = INFINITY;
+    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "one-way in 2-D");
+    CHECK(strstr(e.msg, "1-D") != NULL, "message: %s", e.msg);
+    o = opts_default();
+    o.substeps = 0;
+    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "substeps 0");
+}
+
+int main(void)
+{
+    RUN(test_rect_pulse_exact);
+    RUN(test_half_sine);
+    RUN(test_harmonic_steady_state);
+    RUN(test_circular);
+    RUN(test_rotation_45);
+    RUN(test_constant_vertical);
+    RUN(test_invariants);
+    RUN(test_energy_balance);
+    RUN(test_asymmetric);
+    RUN(test_liftoff);
+    RUN(test_vector_and_batch);
+    RUN(test_bad_options);
+    return HARNESS_END("slide");
+}
