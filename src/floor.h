@@ -16,8 +16,8 @@
  *     zpa     = 0.30          ; optional; else the high-frequency end
  *
  * Lists are separated by commas and/or blanks and may continue on indented
- * lines (inih multi-line values); a line holds at most 200 characters
- * (inih's line buffer). Comments start with ';' or '#' at the start of a
+ * lines (inih multi-line values); a line holds at most 197 characters
+ * (inih's 200-byte line buffer; a longer line is an error, never split). Comments start with ';' or '#' at the start of a
  * line, or ' ;' after a value.
  *
  * Validation (every error names the file and the line): known sections

@@ -495,28 +495,23 @@ static int at2_npts_dt(const char *s, size_t n, long *npts, double *dt,
     return 1;
 }
 
-/* Units on line 3: "... IN UNITS OF G", "The units are (g)". Sets *u
- * (SL_UNIT_NONE when the line names no unit); error if it names one we do
- * not understand. */
+/* Units on line 3: "... IN UNITS OF G", "The units are (g)", "UNITS: G".
+ * Sets *u (SL_UNIT_NONE when the line does not mention units); error if it
+ * mentions units we cannot read. */
 static sl_status at2_units(const char *s, size_t n, sl_unit *u, const char *path,
                            long line, sl_error *err)
 {
     *u = SL_UNIT_NONE;
-    long at = find_ci(s, n, "UNITS OF");
-    size_t skip = 8;
-    if (at < 0) {
-        at = find_ci(s, n, "UNITS ARE");
-        skip = 9;
-    }
-    if (at < 0) {
-        if (find_ci(s, n, "UNITS") >= 0) {
-            quoted q = quote(s, n);
-            return sl_error_set(err, SL_EPARSE, path, line,
-                                "AT2 header: cannot read the units in '%s'", q.s);
-        }
+    long at = find_ci(s, n, "UNITS");
+    if (at < 0)
         return SL_OK;
-    }
-    size_t i = (size_t)at + skip;
+    size_t i = (size_t)at + 5;
+    while (i < n && (is_space(s[i]) || s[i] == ':' || s[i] == '='))
+        i++;
+    if (i + 2 <= n && find_ci(s + i, 2, "OF") == 0 && (i + 2 == n || is_space(s[i + 2])))
+        i += 2;
+    else if (i + 3 <= n && find_ci(s + i, 3, "ARE") == 0 && (i + 3 == n || is_space(s[i + 3])))
+        i += 3;
     while (i < n && (is_space(s[i]) || s[i] == '(' || s[i] == '['))
         i++;
     const char *tok = s + i;
@@ -525,6 +520,11 @@ static sl_status at2_units(const char *s, size_t n, sl_unit *u, const char *path
     size_t len = (size_t)(s + i - tok);
     while (len > 0 && tok[len - 1] == '.')
         len--;
+    if (len == 0) {
+        quoted q = quote(s, n);
+        return sl_error_set(err, SL_EPARSE, path, line,
+                            "AT2 header: cannot read the units in '%s'", q.s);
+    }
     *u = unit_from_text(tok, len);
     if (*u == SL_UNIT_NONE) {
         quoted q = quote(tok, len);
@@ -851,8 +851,9 @@ static sl_motion *read_columns(const char *path, text *t, sl_format fmt,
                 file_u = cu;
             }
         }
-        if (a_col < 0) {
-            sl_error_set(err, SL_EPARSE, path, first_line, "no acceleration column in the CSV header");
+        if (a_col < 0 || t_col < 0) {
+            sl_error_set(err, SL_EPARSE, path, first_line, "no %s column in the CSV header",
+                         a_col < 0 ? "acceleration" : "time");
             return NULL;
         }
     } else {

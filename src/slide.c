@@ -436,11 +436,29 @@ static void kernel_2d(const input *in, unsigned substeps, state2d *S, sl_history
                 const double mx = yx * sm - vx[k], my = yy * sm - vy[k];
                 const int was = (vx[k] != 0.0) | (vy[k] != 0.0);
                 const int mid = was & (yn > f) & (mx * vx[k] + my * vy[k] > 0.0);
-                const double nvx = mid ? mx : wx * se, nvy = mid ? my : wy * se;
+                /* (5) stop or reversal inside the sub-step: slide with the old
+                 * direction e until the speed along e vanishes at tau, then
+                 * project (2) over the rest. Keeps reversals second order. */
+                const double vn = sqrt(vx[k] * vx[k] + vy[k] * vy[k]);
+                const double ex = vx[k] / fmax(vn, 1e-300), ey = vy[k] / fmax(vn, 1e-300);
+                const double dec = (hax * ex + hay * ey + f) / h; /* deceleration along e */
+                const double tau = dec > 0.0 ? fmin(vn / fmax(dec, 1e-300), h) : h;
+                const double q = tau / h, rest = 1.0 - q;
+                const double tx = vx[k] - q * (hax + f * ex), ty = vy[k] - q * (hay + f * ey);
+                const double w2x = tx - rest * hax, w2y = ty - rest * hay;
+                const double w2n = sqrt(w2x * w2x + w2y * w2y);
+                const double s2 = w2n > rest * f ? 1.0 - rest * f / fmax(w2n, 1e-300) : 0.0;
+                const int split = was & !mid;
+                const double nvx = mid ? mx : split ? w2x * s2 : wx * se;
+                const double nvy = mid ? my : split ? w2y * s2 : wy * se;
                 /* (4) trapezoid + h^2/12 (a_1 - a_0): exact for a linear in time
                  * and a constant friction force */
-                ux[k] += 0.5 * h * (vx[k] + nvx) + (mid ? h2_12 * dax : 0.0);
-                uy[k] += 0.5 * h * (vy[k] + nvy) + (mid ? h2_12 * day : 0.0);
+                const double dux = split ? 0.5 * (tau * (vx[k] + tx) + (h - tau) * (tx + nvx))
+                                         : 0.5 * h * (vx[k] + nvx) + (mid ? h2_12 * dax : 0.0);
+                const double duy = split ? 0.5 * (tau * (vy[k] + ty) + (h - tau) * (ty + nvy))
+                                         : 0.5 * h * (vy[k] + nvy) + (mid ? h2_12 * day : 0.0);
+                ux[k] += dux;
+                uy[k] += duy;
                 const double sp_old = sqrt(vx[k] * vx[k] + vy[k] * vy[k]);
                 const double sp2 = nvx * nvx + nvy * nvy;
                 const int now = sp2 > 0.0;

@@ -7,7 +7,7 @@
 
 #include "harness.h"
 
-#include <ctype.h>
+#include <dirent.h>
 #include <errno.h>
 #include <strings.h>
 
@@ -135,6 +135,47 @@ static void test_at2_units_variants(void)
     sl_motion_free(m);
 }
 
+/* Line 3 spellings of the units. */
+static void test_at2_units_line(void)
+{
+    static const struct {
+        const char *line3;
+        sl_unit u; /* SL_UNIT_NONE: an error is expected */
+    } cases[] = {
+        {"ACCELERATION TIME SERIES IN UNITS OF G", SL_UNIT_G},
+        {"ACCELERATION TIME HISTORY IN UNITS OF G.", SL_UNIT_G},
+        {"ACCELERATION IN UNITS OF CM/SEC/SEC", SL_UNIT_CMS2},
+        {"acceleration in units of cm/s/s", SL_UNIT_CMS2},
+        {"ACCELERATION, UNITS OF  CM/SEC2, FILTERED", SL_UNIT_CMS2},
+        {"UNITS: GAL", SL_UNIT_CMS2},
+        {"The units are (g)", SL_UNIT_G},
+        {"The units are (m/s^2)", SL_UNIT_MS2},
+        {"IN UNITS OF M/SEC**2", SL_UNIT_MS2},
+        {"IN UNITS OF MM/S/S", SL_UNIT_MMS2},
+        {"IN UNITS OF INCHES", SL_UNIT_NONE},
+        {"UNITS", SL_UNIT_NONE},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char text[512];
+        snprintf(text, sizeof text, "T\nE\n%s\nNPTS= 2, DT= .01 SEC\n 1.0 -2.0\n",
+                 cases[k].line3);
+        const char *p = harness_tmpfile("u.AT2", text);
+        sl_error err;
+        sl_motion *m = read_auto(p, SL_UNIT_NONE, 0, &err);
+        if (cases[k].u == SL_UNIT_NONE) {
+            CHECK(m == NULL && err.code == SL_EPARSE && err.line == 3, "'%s': %s",
+                  cases[k].line3, err.msg);
+        } else {
+            CHECK(m != NULL, "'%s': %s", cases[k].line3, err.msg);
+            if (m)
+                CHECK_CLOSE(m->acc_ms2[1], -2.0 * sl_unit_to_ms2(cases[k].u), 0, TOL_EXACT);
+        }
+        sl_motion_free(m);
+        if (p)
+            remove(p);
+    }
+}
+
 static void test_onecol(void)
 {
     sl_error err;
@@ -220,12 +261,16 @@ static void test_number_syntax(void)
         check_values(m, exp, 4, 1);
     }
     sl_motion_free(m);
+    if (p)
+        remove(p);
     p = harness_tmpfile("comma2.txt", "0.0, 1\n0.5, 2\n1.0, 3\n");
     m = read_auto(p, SL_UNIT_MS2, 0, &err);
     CHECK(m != NULL && m->n == 3, "%s", err.msg);
     if (m)
         CHECK_CLOSE(m->dt_s, 0.5, 0, 0);
     sl_motion_free(m);
+    if (p)
+        remove(p);
     p = harness_tmpfile("cr_only.txt", "0.0 1\r0.5 2\r1.0 3\r");
     m = read_auto(p, SL_UNIT_MS2, 0, &err);
     CHECK(m != NULL && m->n == 3, "%s", err.msg);
@@ -307,6 +352,38 @@ static void test_bad_tokens(void)
     EXPECT_FAIL(m, err, SL_EPARSE, DATA "bad_header.AT2", 4, "AT2 header: expected");
 }
 
+static void test_csv_header_errors(void)
+{
+    static const struct {
+        const char *text;
+        long line;
+        const char *frag;
+    } cases[] = {
+        {"acc_g,acc_m/s2\n1,2\n", 1, "more than one acceleration column"},
+        {"time_s,time\n0,1\n", 1, "more than one time column"},
+        {"time_s,t,acc_g\n0,0,1\n", 1, "more than one time column"},
+        {"time_ms,acc_g\n0,1\n", 1, "time column 'time_ms': unit must be seconds"},
+        {"time,acc_furlong\n0,1\n", 1, "unknown units 'furlong' in column 'acc_furlong'"},
+        {"# c\ntime_s,acc_g\n0,1\n0.01,\n", 4, "empty field 2"},
+        {"time_s,acc_g\n0,1\n", 2, "need at least 2 samples"},
+        {"time_s,acc_g\n0,1\n0.01,2,3\n", 3, "expected 2 fields, found 3"},
+        {"time_s,acc_g\n0,1\n0.01,abc\n", 3, "non-numeric value 'abc'"},
+        {"time_s,acc_g\n", 1, "no data"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        const char *p = harness_tmpfile("hdr.csv", cases[k].text);
+        sl_error err;
+        sl_motion *m = read_auto(p, SL_UNIT_NONE, 0, &err);
+        CHECK(m == NULL && err.code == SL_EPARSE && err.line == cases[k].line &&
+                  strstr(err.msg, cases[k].frag) != NULL,
+              "case %zu: code %d line %ld '%s', expected line %ld '%s'", k, (int)err.code,
+              err.line, err.msg, cases[k].line, cases[k].frag);
+        sl_motion_free(m);
+        if (p)
+            remove(p);
+    }
+}
+
 static void test_bad_dt(void)
 {
     sl_error err;
@@ -335,6 +412,8 @@ static void test_nonuniform_time(void)
     const char *p = harness_tmpfile("late.txt", "0 1\n0.01 1\n0.02 1\n0.0301 1\n0.04 1\n");
     m = read_auto(p, SL_UNIT_G, 0, &err);
     EXPECT_FAIL(m, err, SL_EINVAL, p, 4, "t = 0.0301");
+    if (p)
+        remove(p);
     /* rounding far below 1e-6 relative is accepted */
     p = harness_tmpfile("round.txt", "0 1\n0.0100000000001 1\n0.02 1\n");
     m = read_auto(p, SL_UNIT_G, 0, &err);
@@ -654,8 +733,10 @@ static int tsv_read(const char *path, tsv *t)
         tabs += *p == '\t';
     }
     t->f = calloc(tabs + lines + 2, sizeof *t->f);
-    if (!t->f)
-        return tsv_free(t), -1;
+    if (!t->f) {
+        tsv_free(t);
+        return -1;
+    }
     size_t k = 0, ncol = 0, col = 0;
     char *p = t->buf;
     while (*p) {
@@ -668,8 +749,10 @@ static int tsv_read(const char *path, tsv *t)
         if (c != '\t') {
             if (ncol == 0)
                 ncol = col;
-            if (col != ncol)
-                return tsv_free(t), -1;
+            if (col != ncol) {
+                tsv_free(t);
+                return -1;
+            }
             col = 0;
         }
     }
@@ -799,10 +882,48 @@ static void check_summary(const char *shared, dir_peak *peaks, size_t np, int *c
     tsv_free(&s);
 }
 
+/* Every "*.AT2" under records/DIR/ must be a MANIFEST row of format AT2;
+ * returns how many there are. */
+static size_t scan_at2(const char *shared, const tsv *man, long c_path, long c_fmt)
+{
+    char path[2048];
+    size_t count = 0;
+    snprintf(path, sizeof path, "%s/records", shared);
+    DIR *top = opendir(path);
+    CHECK(top != NULL, "cannot list %s", path);
+    if (!top)
+        return 0;
+    struct dirent *d;
+    while ((d = readdir(top)) != NULL) {
+        if (d->d_name[0] == '.')
+            continue;
+        snprintf(path, sizeof path, "%s/records/%s", shared, d->d_name);
+        DIR *sub = opendir(path);
+        if (!sub)
+            continue; /* a file, not a directory */
+        struct dirent *e;
+        while ((e = readdir(sub)) != NULL) {
+            size_t n = strlen(e->d_name);
+            if (n < 4 || strcasecmp(e->d_name + n - 4, ".AT2"))
+                continue;
+            count++;
+            snprintf(path, sizeof path, "%s/%s", d->d_name, e->d_name);
+            int listed = 0;
+            for (size_t r = 1; r < man->nrow && !listed; r++)
+                listed = !strcmp(tsv_get(man, r, c_path), path) &&
+                         !strcmp(tsv_get(man, r, c_fmt), "AT2");
+            CHECK(listed, "%s is not an AT2 row of MANIFEST.tsv", path);
+        }
+        closedir(sub);
+    }
+    closedir(top);
+    return count;
+}
+
 /* Read every file of format `fmt_name` in MANIFEST.tsv (units and format
  * as given to sl_motion_read), check n and dt against MANIFEST and the
  * peak accelerations per directory against SUMMARY. */
-static void check_records(const char *fmt_name, sl_unit units, size_t expect_files)
+static void check_records(const char *fmt_name, sl_unit units, size_t min_files)
 {
     const char *shared = harness_shared_dir();
     char path[2048];
@@ -861,8 +982,15 @@ static void check_records(const char *fmt_name, sl_unit units, size_t expect_fil
         }
         sl_motion_free(m);
     }
-    CHECK(files == expect_files, "%zu %s files read, expected %zu", files, fmt_name,
-          expect_files);
+    size_t rows = 0;
+    for (size_t r = 1; r < man.nrow; r++)
+        rows += !strcmp(tsv_get(&man, r, c_fmt), fmt_name);
+    CHECK(files == rows && files >= min_files, "%zu %s files read of %zu in MANIFEST (at least %zu expected)",
+          files, fmt_name, rows, min_files);
+    if (!strcmp(fmt_name, "AT2")) {
+        size_t on_disk = scan_at2(shared, &man, c_path, c_fmt);
+        CHECK(on_disk == rows, "%zu .AT2 files under records/, %zu in MANIFEST", on_disk, rows);
+    }
     int checked = 0;
     check_summary(shared, peaks, np, &checked);
     CHECK(checked == (int)np, "%d of %zu directories found in SUMMARY.tsv", checked, np);
@@ -871,13 +999,13 @@ done:
     tsv_free(&man);
 }
 
-/* Every .AT2 of the collection (432 files). */
+/* Every .AT2 of the collection (432 files when written). */
 static void test_records_at2(void)
 {
     check_records("AT2", SL_UNIT_NONE, 432);
 }
 
-/* The two-column m/s2 records (CWA 2022 Chihshang, 18 files). */
+/* The two-column m/s2 records (CWA 2022 Chihshang, 18 files when written). */
 static void test_records_twocol(void)
 {
     check_records("TWOCOL_MS2", SL_UNIT_MS2, 18);
@@ -889,6 +1017,7 @@ int main(void)
     RUN(test_at2_old_layout);
     RUN(test_at2_crlf_bom_padding);
     RUN(test_at2_units_variants);
+    RUN(test_at2_units_line);
     RUN(test_onecol);
     RUN(test_twocol_crlf_bom);
     RUN(test_csv_units_from_header);
@@ -897,6 +1026,7 @@ int main(void)
     RUN(test_at2_truncated);
     RUN(test_at2_npts_vs_data);
     RUN(test_bad_tokens);
+    RUN(test_csv_header_errors);
     RUN(test_bad_dt);
     RUN(test_nonuniform_time);
     RUN(test_units_rules);
