@@ -89,6 +89,7 @@ typedef struct ctx {
     char cur_key[64];
     sl_error *err;
     int failed;
+    long fail_line;     /* line of the first error we found */
     long floor_line, name_line, elev_line, units_line, h2_line, desc_line;
     char *name, *description;
     double elevation_m;
@@ -113,6 +114,7 @@ static int fail(ctx *c, sl_status code, long line, const char *fmt, ...)
     va_end(ap);
     sl_error_set(c->err, code, c->path, line, "%s", msg);
     c->failed = 1;
+    c->fail_line = line;
     return 0;
 }
 
@@ -559,11 +561,14 @@ sl_floor *sl_floor_load(const char *path, sl_error *err)
     }
     int rc = ini_parse_stream(reader, &c, handler, &c);
     fclose(c.f);
-    if (!c.failed && rc == -2)
+    if (!c.failed && rc == -2) {
         fail(&c, SL_ENOMEM, 0, "out of memory");
-    else if (!c.failed && rc != 0)
-        fail(&c, SL_EPARSE, rc > 0 ? rc : 0,
+    } else if (rc > 0 && (!c.failed || rc < c.fail_line)) {
+        /* inih keeps going after a syntax error: report whichever came first */
+        c.failed = 0;
+        fail(&c, SL_EPARSE, rc,
              "syntax error: expected '[section]', 'key = value' or a comment");
+    }
     if (!c.failed)
         check_complete(&c);
     sl_floor *fl = NULL;

@@ -1,6 +1,7 @@
 # lib.sh - helpers for end-to-end tests of the seislide command line.
 # Source it, call `t_begin NAME`, then `t_ok`/`t_fail MSG` per check, `t_end`.
 : "${SEISLIDE_BIN:=./seislide}"
+: "${SEISLIDE_SHARED:=../shared}"
 T_PASS=0; T_FAIL=0; T_SKIP=0; T_SUITE=cli
 T_TMP=$(mktemp -d) || exit 2
 trap 'rm -rf "$T_TMP"' EXIT
