@@ -777,8 +777,9 @@ unknown:
                         q.s);
 }
 
-/* Read a column file whose first non-comment line is [s, s+n) at line
- * `first_line`; `fmt` is SL_FORMAT_AUTO, ONECOL, TWOCOL or CSV. */
+/* Read a column file from the start of `t`: one column, two columns, or
+ * CSV with a header; `fmt` is SL_FORMAT_AUTO (decide from the first
+ * non-comment line), ONECOL, TWOCOL or CSV. */
 static sl_motion *read_columns(const char *path, text *t, sl_format fmt,
                                const sl_read_opts *o, sl_error *err)
 {

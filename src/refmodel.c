@@ -408,13 +408,15 @@ static sl_status smooth_init(model *m, const sl_slide_opts *o, sl_error *err)
     m->sys.dimension = (size_t)n;
     m->sys.params = &m->par;
     /* Absolute tolerance per component: atol (m) on u, atol (m/s) on u',
-     * atol / U_y on Z (i.e. atol on the elastic displacement U_y Z), atol
-     * (m) on the path; smooth_rtol relative to |y| on all of them. */
+     * min(atol / U_y, rtol) on Z (atol on the elastic displacement U_y Z,
+     * but never looser than rtol on the friction force mu N Z), atol (m) on
+     * the path; smooth_rtol relative to |y| on all of them. */
     double scale[7];
+    const double ztol = fmin(o->smooth_atol / m->uy, o->smooth_rtol);
     for (int i = 0; i < d; i++) {
         scale[i] = 1.0;
         scale[d + i] = 1.0;
-        scale[2 * d + i] = 1.0 / m->uy;
+        scale[2 * d + i] = ztol / o->smooth_atol;
     }
     scale[3 * d] = 1.0;
     m->drv = gsl_odeiv2_driver_alloc_scaled_new(&m->sys, smooth_step_type(o->smooth_solver),

@@ -12,13 +12,15 @@
  *    onsets roots of the linear stick conditions, lift-off instants roots of
  *    the linear N(s). Between events the velocity keeps its sign, so |u| is
  *    monotone and its peak lies on an event or a step end.
- *  - kernel_2d: implicit (Moreau-Jean) velocity projection onto the friction
- *    disk on `substeps` sub-steps h per input step:
+ *  - kernel_2d: on `substeps` sub-steps h per input step, from rest the
+ *    implicit (Moreau-Jean) velocity projection onto the friction disk:
  *        w = v_n - h a*,   v_{n+1} = w (1 - h mu N* / |w|)  if |w| > h mu N*,
  *                          v_{n+1} = 0                     otherwise,       (2)
  *        u_{n+1} = u_n + h (v_n + v_{n+1}) / 2,
  *    with a* and N* the exact means of the piecewise-linear a and max(N, 0)
- *    over the sub-step. Branch-free in mu, so the inner loop vectorises.
+ *    over the sub-step; while sliding on, the implicit midpoint rule (3)
+ *    with the position correction (4); at a stop or reversal inside the
+ *    sub-step, the split step (5). Blocks at rest and held cost one compare.
  *
  * After the record the floor is at rest: a block still sliding decelerates
  * at mu g along a straight line, so the rest of the motion is closed-form
@@ -424,48 +426,61 @@ static void kernel_2d(const input *in, unsigned substeps, state2d *S, sl_history
             const double t = (double)i * dt + (double)(j + 1) * h;
             for (size_t k = 0; k < m; k++) {
                 const double f = hN * mu[k];
-                const double wx = vx[k] - hax, wy = vy[k] - hay;
-                /* (2) implicit Euler: projection of w onto the friction disk */
-                const double wn = sqrt(wx * wx + wy * wy);
-                const double se = wn > f ? 1.0 - f / fmax(wn, 1e-300) : 0.0;
-                /* (3) implicit midpoint: friction along v_n + v_{n+1} = y (1 - f/|y|),
-                 * y = v_n + w; kept only while sliding on through the sub-step */
-                const double yx = vx[k] + wx, yy = vy[k] + wy;
-                const double yn = sqrt(yx * yx + yy * yy);
-                const double sm = 1.0 - f / fmax(yn, 1e-300);
-                const double mx = yx * sm - vx[k], my = yy * sm - vy[k];
-                const int was = (vx[k] != 0.0) | (vy[k] != 0.0);
-                const int mid = was & (yn > f) & (mx * vx[k] + my * vy[k] > 0.0);
-                /* (5) stop or reversal inside the sub-step: slide with the old
-                 * direction e until the speed along e vanishes at tau, then
-                 * project (2) over the rest. Keeps reversals second order. */
-                const double vn = sqrt(vx[k] * vx[k] + vy[k] * vy[k]);
-                const double ex = vx[k] / fmax(vn, 1e-300), ey = vy[k] / fmax(vn, 1e-300);
-                const double dec = (hax * ex + hay * ey + f) / h; /* deceleration along e */
-                const double tau = dec > 0.0 ? fmin(vn / fmax(dec, 1e-300), h) : h;
-                const double q = tau / h, rest = 1.0 - q;
-                const double tx = vx[k] - q * (hax + f * ex), ty = vy[k] - q * (hay + f * ey);
-                const double w2x = tx - rest * hax, w2y = ty - rest * hay;
-                const double w2n = sqrt(w2x * w2x + w2y * w2y);
-                const double s2 = w2n > rest * f ? 1.0 - rest * f / fmax(w2n, 1e-300) : 0.0;
-                const int split = was & !mid;
-                const double nvx = mid ? mx : split ? w2x * s2 : wx * se;
-                const double nvy = mid ? my : split ? w2y * s2 : wy * se;
-                /* (4) trapezoid + h^2/12 (a_1 - a_0): exact for a linear in time
-                 * and a constant friction force */
-                const double dux = split ? 0.5 * (tau * (vx[k] + tx) + (h - tau) * (tx + nvx))
-                                         : 0.5 * h * (vx[k] + nvx) + (mid ? h2_12 * dax : 0.0);
-                const double duy = split ? 0.5 * (tau * (vy[k] + ty) + (h - tau) * (ty + nvy))
-                                         : 0.5 * h * (vy[k] + nvy) + (mid ? h2_12 * day : 0.0);
+                const double vx0 = vx[k], vy0 = vy[k];
+                double nvx, nvy, dux, duy;
+                if (vx0 == 0.0 && vy0 == 0.0) {
+                    /* at rest: (2) with v_n = 0; held while |h a*| <= h mu N* */
+                    const double w2 = hax * hax + hay * hay;
+                    if (w2 <= f * f)
+                        continue; /* stays stuck: nothing moves */
+                    const double sc = 1.0 - f / sqrt(w2);
+                    nvx = -hax * sc;
+                    nvy = -hay * sc;
+                    dux = 0.5 * h * nvx;
+                    duy = 0.5 * h * nvy;
+                    episodes[k]++;
+                } else {
+                    const double wx = vx0 - hax, wy = vy0 - hay;
+                    /* (3) implicit midpoint: friction along v_n + v_{n+1} =
+                     * y (1 - f/|y|), y = v_n + w; kept while sliding on */
+                    const double yx = vx0 + wx, yy = vy0 + wy;
+                    const double yn = sqrt(yx * yx + yy * yy);
+                    const double sm = yn > f ? 1.0 - f / yn : 0.0;
+                    const double mx = yx * sm - vx0, my = yy * sm - vy0;
+                    if (yn > f && mx * vx0 + my * vy0 > 0.0) {
+                        nvx = mx;
+                        nvy = my;
+                        /* (4) trapezoid + h^2/12 (a_1 - a_0): exact for a
+                         * linear in time and a constant friction force */
+                        dux = 0.5 * h * (vx0 + nvx) + h2_12 * dax;
+                        duy = 0.5 * h * (vy0 + nvy) + h2_12 * day;
+                    } else {
+                        /* (5) stop or reversal inside the sub-step: slide with
+                         * the old direction e until the speed along e vanishes
+                         * at tau, then project (2) over the rest */
+                        const double vn = sqrt(vx0 * vx0 + vy0 * vy0);
+                        const double ex = vx0 / vn, ey = vy0 / vn;
+                        const double dec = (hax * ex + hay * ey + f) / h;
+                        const double tau = dec > 0.0 ? fmin(vn / dec, h) : h;
+                        const double q = tau / h, rest = 1.0 - q;
+                        const double tx = vx0 - q * (hax + f * ex), ty = vy0 - q * (hay + f * ey);
+                        const double w2x = tx - rest * hax, w2y = ty - rest * hay;
+                        const double w2n = sqrt(w2x * w2x + w2y * w2y);
+                        const double s2 = w2n > rest * f ? 1.0 - rest * f / w2n : 0.0;
+                        nvx = w2x * s2;
+                        nvy = w2y * s2;
+                        dux = 0.5 * (tau * (vx0 + tx) + (h - tau) * (tx + nvx));
+                        duy = 0.5 * (tau * (vy0 + ty) + (h - tau) * (ty + nvy));
+                    }
+                }
                 ux[k] += dux;
                 uy[k] += duy;
-                const double sp_old = sqrt(vx[k] * vx[k] + vy[k] * vy[k]);
+                const double sp_old = sqrt(vx0 * vx0 + vy0 * vy0);
                 const double sp2 = nvx * nvx + nvy * nvy;
-                const int now = sp2 > 0.0;
                 path[k] += 0.5 * h * (sp_old + sqrt(sp2));
                 vmax2[k] = fmax(vmax2[k], sp2);
-                episodes[k] += (long)((!was) & now);
-                tstop[k] = (was & !now) ? t : tstop[k];
+                if (sp2 == 0.0)
+                    tstop[k] = t;
                 vx[k] = nvx;
                 vy[k] = nvy;
                 const double r2 = ux[k] * ux[k] + uy[k] * uy[k];

@@ -1,0 +1,369 @@
+/* test_spectrum.c - response spectra against closed forms (REFERENCE.md 4):
+ * step input, harmonic steady state, rectangular-pulse shock spectrum,
+ * convergence of the sampled peak, and the invariants. */
+#include <time.h>
+
+#include "harness.h"
+#include "motion.h"
+#include "spectrum.h"
+
+#define PI 3.14159265358979323846
+
+/* PSA of a step a0 H(t): a0 (1 + exp(-pi z/sqrt(1 - z^2))). */
+static double step_factor(double z)
+{
+    return 1.0 + exp(-PI * z / sqrt(1.0 - z * z));
+}
+
+static double *constant(size_t n, double a)
+{
+    double *x = malloc(n * sizeof *x);
+    for (size_t i = 0; i < n; i++)
+        x[i] = a;
+    return x;
+}
+
+/* Step input with the first peak (t = T_d/2) on a sample: exact. */
+static void test_step_oracle_exact(void)
+{
+    const double z[] = {0.05, 0.10, 0.02, 0.0};
+    const double printed[] = {1.854468, 1.729248};
+    const double dt = 0.01, a0 = 2.5, fd = 2.5; /* T_d = 0.4 s = 40 dt */
+    size_t n = 200;
+    double *a = constant(n, a0);
+    for (int k = 0; k < 4; k++) {
+        double f = fd / sqrt(1.0 - z[k] * z[k]);
+        double psa, sd, sa;
+        CHECK(sl_spectrum_compute(a, n, dt, &f, 1, z[k], &psa, &sd, &sa, NULL) == SL_OK, "ok");
+        CHECK_CLOSE(psa, a0 * step_factor(z[k]), 0, 1e-10);
+        double w = 2 * PI * f;
+        CHECK_CLOSE(sd, psa / (w * w), 0, 1e-14);
+        if (k < 2)
+            CHECK_CLOSE(psa / a0, printed[k], 5e-7, 0);
+        if (z[k] == 0.0)
+            CHECK_CLOSE(sa, psa, 0, 1e-12); /* undamped: |u''+a| = w^2 |u| */
+    }
+    free(a);
+}
+
+/* Step input on the default grid: the sampled peak is never above the true
+ * one and below it by at most 1 - cos(pi h/T) with h <= T/20. */
+static void test_step_default_grid(void)
+{
+    size_t nf, n = 2000;
+    double *f = sl_spectrum_grid(SL_SPECTRUM_FMIN_HZ, SL_SPECTRUM_FMAX_HZ,
+                                 SL_SPECTRUM_PER_DECADE, &nf);
+    double *a = constant(n, 1.0), *psa = malloc(nf * sizeof *psa);
+    double dt = 0.01; /* 20 s: the first peak of 0.1 Hz (5 s) is inside */
+    double bound = 1.0 - cos(PI / SL_SPECTRUM_STEPS_PER_PERIOD);
+    for (int k = 0; k < 2; k++) {
+        double z = k ? 0.10 : 0.05;
+        CHECK(sl_spectrum_compute(a, n, dt, f, nf, z, psa, NULL, NULL, NULL) == SL_OK, "ok");
+        double worst = 0;
+        for (size_t j = 0; j < nf; j++) {
+            double rel = 1.0 - psa[j] / step_factor(z);
+            CHECK(rel >= -1e-12, "f %g: sampled peak %.17g above the true %.17g", f[j], psa[j],
+                  step_factor(z));
+            worst = rel > worst ? rel : worst;
+        }
+        CHECK(worst <= bound, "worst relative error %g above 1 - cos(pi/20) = %g", worst, bound);
+        if (getenv("SEISLIDE_TEST_VERBOSE"))
+            fprintf(stderr, "  step, z = %.2f, default grid: worst sampled-peak error %.3g "
+                            "(bound %.3g)\n", z, worst, bound);
+    }
+    free(f);
+    free(a);
+    free(psa);
+}
+
+/* Closed-form and series coefficients are the same map (where the closed
+ * form is accurate: its load terms cancel as (w h)^-2 for small w h, which
+ * is why the series takes over below SL_SPECTRUM_SERIES_WH). */
+static void test_coefs_agree(void)
+{
+    const double z[] = {0.0, 0.02, 0.05, 0.1, 0.5, 0.9};
+    for (int k = 0; k < 6; k++)
+        for (double wh = 0.1; wh < 1.0; wh *= 1.3) {
+            double f = 1.7, h = wh / (2 * PI * f);
+            double c1[8], c2[8];
+            CHECK(!sl_spectrum_coefs(f, z[k], h, SL_SPECTRUM_CLOSED, c1, NULL), "closed");
+            CHECK(!sl_spectrum_coefs(f, z[k], h, SL_SPECTRUM_SERIES, c2, NULL), "series");
+            for (int q = 0; q < 8; q++)
+                CHECK_CLOSE(c1[q], c2[q], 0, 1e-11);
+        }
+    /* small-step limit: u'' = -a with a linear, so u1 = u0 + h v0 - h^2 (a0/3 + a1/6),
+     * v1 = v0 - h (a0 + a1)/2, to O(w h) */
+    double f = 1.0, h = 1e-5, c[8];
+    CHECK(!sl_spectrum_coefs(f, 0.05, h, SL_SPECTRUM_AUTO, c, NULL), "auto");
+    double wh = 2 * PI * f * h;
+    CHECK_CLOSE(c[0], 1.0, wh * wh, 0);
+    CHECK_CLOSE(c[1], h, 0, 2 * wh);
+    CHECK_CLOSE(c[4], -h * h / 3, 0, 2 * wh);
+    CHECK_CLOSE(c[5], -h * h / 6, 0, 2 * wh);
+    CHECK_CLOSE(c[6], -h / 2, 0, 2 * wh);
+    CHECK_CLOSE(c[7], -h / 2, 0, 2 * wh);
+    CHECK(sl_spectrum_coefs(1.0, 1.0, 0.01, SL_SPECTRUM_AUTO, c, NULL) == SL_EINVAL, "z = 1");
+    CHECK(sl_spectrum_coefs(0.0, 0.05, 0.01, SL_SPECTRUM_AUTO, c, NULL) == SL_EINVAL, "f = 0");
+    CHECK(sl_spectrum_coefs(1.0, 0.05, 0.0, SL_SPECTRUM_AUTO, c, NULL) == SL_EINVAL, "h = 0");
+}
+
+/* Harmonic steady state: after the transient has decayed, the amplitude is
+ * X = A / sqrt((w^2 - W^2)^2 + (2 z w W)^2); from one state
+ * X = sqrt(u^2 + (v/W)^2). Resonant and off-resonant. The recurrence is
+ * exact for the piecewise-linear interpolant of the samples, whose
+ * fundamental is the sine times sinc^2(W dt/2) (linear interpolation is a
+ * convolution with a triangle): the test checks both that factor (to
+ * 1e-7, the size of the aliased harmonics) and the raw difference. */
+static void test_harmonic_steady_state(void)
+{
+    const double ratio[] = {1.0, 0.5, 2.0, 0.9};
+    const double z = 0.05, f = 1.0, A = 3.0, dt = 0.001;
+    double w = 2 * PI * f;
+    size_t n = 120001; /* 120 s: exp(-z w t) = 4e-17 */
+    double *a = malloc(n * sizeof *a), *u = malloc(n * sizeof *u), *v = malloc(n * sizeof *v);
+    for (int k = 0; k < 4; k++) {
+        double W = ratio[k] * w;
+        for (size_t i = 0; i < n; i++)
+            a[i] = A * sin(W * dt * (double)i);
+        CHECK(sl_spectrum_history(a, n, dt, f, z, NULL, u, v, NULL) == SL_OK, "ok");
+        double X = A / sqrt(pow(w * w - W * W, 2) + pow(2 * z * w * W, 2));
+        double x = 0.5 * W * dt, sinc2 = pow(sin(x) / x, 2);
+        for (size_t i = n - 2000; i < n; i += 137) {
+            double amp = sqrt(u[i] * u[i] + v[i] * v[i] / (W * W));
+            CHECK_CLOSE(amp, X * sinc2, 0, 1e-7);
+            CHECK_CLOSE(amp, X, 0, 1.1 * x * x / 3); /* 1 - sinc^2 = x^2/3 + ... */
+        }
+    }
+    free(a);
+    free(u);
+    free(v);
+}
+
+/* The oscillator is linear in the input and odd. */
+static void test_linearity(void)
+{
+    size_t n = 1500, nf = 7;
+    double f[] = {0.3, 1, 2.2, 5, 13, 33, 50};
+    double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    for (size_t i = 0; i < n; i++) {
+        double t = 0.01 * (double)i;
+        a[i] = sin(7.0 * t) * exp(-0.3 * t) + 0.4 * sin(31.0 * t + 1.0);
+    }
+    double p1[7], p2[7], d1[7], d2[7];
+    sl_spectrum_compute(a, n, 0.01, f, nf, 0.05, p1, d1, NULL, NULL);
+    for (size_t i = 0; i < n; i++)
+        b[i] = -2.5 * a[i];
+    sl_spectrum_compute(b, n, 0.01, f, nf, 0.05, p2, d2, NULL, NULL);
+    for (size_t j = 0; j < nf; j++) {
+        CHECK_CLOSE(p2[j], 2.5 * p1[j], 0, 1e-12);
+        CHECK_CLOSE(d2[j], 2.5 * d1[j], 0, 1e-12);
+    }
+    free(a);
+    free(b);
+}
+
+/* Frequencies in any order give the same values as one at a time. */
+static void test_order_and_groups(void)
+{
+    size_t n = 800;
+    double *a = malloc(n * sizeof *a);
+    for (size_t i = 0; i < n; i++)
+        a[i] = sin(0.05 * (double)(i * i % 997)) * 2.0;
+    double f[] = {40, 0.5, 12, 3, 49, 0.11, 7.5, 25};
+    size_t nf = sizeof f / sizeof f[0];
+    double psa[8], sd[8], sa[8];
+    CHECK(sl_spectrum_compute(a, n, 0.02, f, nf, 0.07, psa, sd, sa, NULL) == SL_OK, "ok");
+    for (size_t j = 0; j < nf; j++) {
+        double p1, d1, s1;
+        sl_spectrum_compute(a, n, 0.02, &f[j], 1, 0.07, &p1, &d1, &s1, NULL);
+        CHECK(p1 == psa[j] && d1 == sd[j] && s1 == sa[j], "f %g: batch %.17g single %.17g",
+              f[j], psa[j], p1);
+    }
+    free(a);
+}
+
+/* Rectangular pulse a0 for t_d < T/2 (the record ends at its last sample,
+ * then a = 0), undamped: the peak comes after the record,
+ * PSA = 2 a0 sin(pi t_d/T), at t = T/4 + t_d/2 (here a sample). */
+static void test_peak_after_record(void)
+{
+    double dt = 0.01, a0 = 1.3, f = 0.5, td = 0.1;
+    size_t n = 11; /* samples 0..10: t_d = 0.1 s */
+    double *a = constant(n, a0);
+    double psa, psa_cut, T = 1.0 / f, w = 2 * PI * f;
+    CHECK(sl_spectrum_compute(a, n, dt, &f, 1, 0.0, &psa, NULL, NULL, NULL) == SL_OK, "ok");
+    CHECK_CLOSE(psa, 2 * a0 * sin(PI * td / T), 0, 1e-10);
+    sl_spectrum_opts o;
+    sl_spectrum_opts_default(&o);
+    o.free_vibration = 0;
+    sl_spectrum_compute_opts(a, n, dt, &f, 1, 0.0, &o, &psa_cut, NULL, NULL, NULL);
+    CHECK_CLOSE(psa_cut, a0 * (1 - cos(w * td)), 0, 1e-10);
+    CHECK(psa_cut < 0.2 * psa, "stopping at the record end misses the peak");
+    free(a);
+}
+
+/* Sampled peak against dt/T: the step's first peak placed half-way between
+ * samples (T_d/2 = (k + 1/2) h), no resampling. Error <= 1 - cos(pi h/T),
+ * and second order. */
+static void test_sampled_peak_convergence(void)
+{
+    const int ks[] = {2, 5, 10, 20, 40};
+    double z = 0.05, fd = 1.0, Td = 1.0 / fd, f = fd / sqrt(1 - z * z);
+    double prev = 0;
+    sl_spectrum_opts o;
+    sl_spectrum_opts_default(&o);
+    o.steps_per_period = 1; /* sample at the record's dt only */
+    for (int q = 0; q < 5; q++) {
+        double h = Td / (2.0 * ks[q] + 1.0);
+        size_t n = (size_t)(2.0 * Td / h) + 2;
+        double *a = constant(n, 1.0);
+        double psa;
+        sl_spectrum_compute_opts(a, n, h, &f, 1, z, &o, &psa, NULL, NULL, NULL);
+        double err = 1.0 - psa / step_factor(z);
+        double bound = 1.0 - cos(PI * h * f);
+        CHECK(err > 0 && err <= bound, "h/T %.4f: error %.3g bound %.3g", h * f, err, bound);
+        if (q > 0)
+            CHECK(err < prev * 0.3, "h halved-ish: error %.3g after %.3g", err, prev);
+        if (getenv("SEISLIDE_TEST_VERBOSE"))
+            fprintf(stderr, "  sampled peak: h/T = %.4f error %.3e bound 1-cos(pi h/T) = %.3e\n",
+                    h * f, err, bound);
+        prev = err;
+        free(a);
+    }
+    /* With the default resampling the same coarse record is within 1.2 %. */
+    double h = Td / 5.0;
+    size_t n = 12;
+    double *a = constant(n, 1.0), psa;
+    sl_spectrum_compute(a, n, h, &f, 1, z, &psa, NULL, NULL, NULL);
+    CHECK(1.0 - psa / step_factor(z) <= 1.0 - cos(PI / SL_SPECTRUM_STEPS_PER_PERIOD),
+          "resampled error %g", 1.0 - psa / step_factor(z));
+    free(a);
+}
+
+static void test_grid(void)
+{
+    size_t n;
+    double *f = sl_spectrum_grid(0.1, 50, 100, &n);
+    CHECK(n == 271, "n = %zu", n);
+    CHECK(f[0] == 0.1 && f[n - 1] == 50.0, "ends %g %g", f[0], f[n - 1]);
+    for (size_t i = 1; i < n; i++)
+        CHECK(f[i] > f[i - 1] && log10(f[i] / f[i - 1]) <= 0.01 + 1e-12, "spacing at %zu", i);
+    free(f);
+    f = sl_spectrum_grid(1, 10, 10, &n);
+    CHECK(n == 11 && fabs(f[5] - sqrt(10.0)) < 1e-12, "decade: n %zu f5 %g", n, f[5]);
+    free(f);
+    f = sl_spectrum_grid(2, 2, 100, &n);
+    CHECK(n == 1 && f[0] == 2, "single point");
+    free(f);
+    CHECK(sl_spectrum_grid(0, 10, 10, &n) == NULL && n == 0, "fmin 0");
+    CHECK(sl_spectrum_grid(5, 1, 10, &n) == NULL, "fmax < fmin");
+}
+
+static void test_bad_arguments(void)
+{
+    double a[3] = {0, 1, 0}, f = 1, psa;
+    sl_error e;
+    sl_error_clear(&e);
+    CHECK(sl_spectrum_compute(a, 3, 0.01, &f, 1, 1.0, &psa, 0, 0, &e) == SL_EINVAL, "z 1");
+    CHECK(strstr(e.msg, "damping") != NULL, "message '%s'", e.msg);
+    CHECK(sl_spectrum_compute(a, 3, 0.0, &f, 1, 0.05, &psa, 0, 0, &e) == SL_EINVAL, "dt 0");
+    CHECK(sl_spectrum_compute(a, 0, 0.01, &f, 1, 0.05, &psa, 0, 0, &e) == SL_EINVAL, "n 0");
+    double bad_f = -1;
+    CHECK(sl_spectrum_compute(a, 3, 0.01, &bad_f, 1, 0.05, &psa, 0, 0, &e) == SL_EINVAL, "f<0");
+    a[1] = NAN;
+    CHECK(sl_spectrum_compute(a, 3, 0.01, &f, 1, 0.05, &psa, 0, 0, &e) == SL_EINVAL, "NaN");
+    CHECK(strstr(e.msg, "sample 1") != NULL, "message '%s'", e.msg);
+}
+
+/* Batch over motions: same numbers as one by one; errors name the motion. */
+static void test_batch(void)
+{
+    size_t n = 600, nf = 5;
+    double f[] = {0.5, 2, 8, 20, 45};
+    sl_motion ms[3];
+    const sl_motion *mp[3];
+    double *buf[3];
+    for (int k = 0; k < 3; k++) {
+        buf[k] = malloc(n * sizeof *buf[k]);
+        for (size_t i = 0; i < n; i++)
+            buf[k][i] = sin((double)(k + 1) * 0.1 * (double)i) * (1.0 + k);
+        ms[k] = (sl_motion){(char *)"m.txt", (char *)"", n, 0.01 * (k + 1), buf[k]};
+        mp[k] = &ms[k];
+    }
+    double psa[15], sd[15], one[5];
+    CHECK(sl_spectrum_batch(mp, 3, f, nf, 0.05, NULL, psa, sd, NULL, NULL) == SL_OK, "ok");
+    for (int k = 0; k < 3; k++) {
+        sl_spectrum_compute(buf[k], n, ms[k].dt_s, f, nf, 0.05, one, NULL, NULL, NULL);
+        for (size_t j = 0; j < nf; j++)
+            CHECK(one[j] == psa[(size_t)k * nf + j], "motion %d f %g", k, f[j]);
+    }
+    ms[1].dt_s = -1;
+    ms[1].path = (char *)"bad-motion.at2";
+    sl_error e;
+    sl_error_clear(&e);
+    CHECK(sl_spectrum_batch(mp, 3, f, nf, 0.05, NULL, psa, NULL, NULL, &e) == SL_EINVAL, "bad");
+    CHECK(!strcmp(e.file, "bad-motion.at2"), "file '%s'", e.file);
+    for (int k = 0; k < 3; k++)
+        free(buf[k]);
+}
+
+static void test_interp(void)
+{
+    sl_spectrum *s = sl_spectrum_alloc(3, 0.05);
+    s->f_hz[0] = 1;
+    s->f_hz[1] = 4;
+    s->f_hz[2] = 10;
+    s->sa_ms2[0] = 1;
+    s->sa_ms2[1] = 16; /* SA = f^2 */
+    s->sa_ms2[2] = 16;
+    CHECK_CLOSE(sl_spectrum_interp(s, 2.0), 4.0, 0, 1e-14);
+    CHECK_CLOSE(sl_spectrum_interp(s, 7.0), 16.0, 0, 1e-14);
+    CHECK(sl_spectrum_interp(s, 10.0) == 16.0 && sl_spectrum_interp(s, 1.0) == 1.0, "ends");
+    CHECK(isnan(sl_spectrum_interp(s, 0.5)) && isnan(sl_spectrum_interp(s, 11)), "outside");
+    sl_spectrum_free(s);
+    sl_spectrum_free(NULL);
+    CHECK(sl_spectrum_alloc(0, 0.05) == NULL, "n 0");
+}
+
+/* Speed: a 4000-sample record on the default grid (shown with
+ * SEISLIDE_TEST_VERBOSE; no pass/fail on time). */
+static void speed_info(void)
+{
+    size_t n = 4000, nf;
+    double *f = sl_spectrum_grid(0.1, 50, 100, &nf);
+    double *a = malloc(n * sizeof *a), *psa = malloc(nf * sizeof *psa);
+    for (size_t i = 0; i < n; i++)
+        a[i] = sin(0.37 * (double)i) + 0.5 * sin(0.011 * (double)(i * i % 1013));
+    struct timespec t0, t1;
+    int reps = 20;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (int r = 0; r < reps; r++)
+        sl_spectrum_compute(a, n, 0.01, f, nf, 0.05, psa, NULL, NULL, NULL);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double ms = ((double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) / 1e6) /
+                reps;
+    fprintf(stderr, "  speed: %zu samples x %zu frequencies at dt 0.01 s: %.2f ms per spectrum\n",
+            n, nf, ms);
+    free(f);
+    free(a);
+    free(psa);
+}
+
+int main(void)
+{
+    RUN(test_step_oracle_exact);
+    RUN(test_step_default_grid);
+    RUN(test_coefs_agree);
+    RUN(test_harmonic_steady_state);
+    RUN(test_linearity);
+    RUN(test_order_and_groups);
+    RUN(test_peak_after_record);
+    RUN(test_sampled_peak_convergence);
+    RUN(test_grid);
+    RUN(test_bad_arguments);
+    RUN(test_batch);
+    RUN(test_interp);
+    if (getenv("SEISLIDE_TEST_VERBOSE"))
+        speed_info();
+    return HARNESS_END("spectrum");
+}
