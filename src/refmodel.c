@@ -53,8 +53,11 @@
  *    (a_g = a_v = 0 from t_{n-1} on).
  *  - Slip: the part of the relative motion not stored in the spring,
  *    u_p' = u' - U_y Z' / A (smooth) or du_p (plastic). path_m integrates
- *    |u_p'|, episodes counts rises of |u_p'| above SL_REF_SLIP_SPEED_MS, and
- *    t_rest_s is the last instant it was above. These tend to the
+ *    |u_p'|; a slip interval is where |u_p'| > SL_REF_SLIP_SPEED_MS (a turn
+ *    of u_p' by more than 90 degrees between two points also starts a new
+ *    one), and counts as an episode once it has slipped
+ *    SL_REF_EPISODE_SLIP_UY U_y; t_rest_s is the last instant of a counted
+ *    interval. These tend to the
  *    rigid-plastic path, episodes and stop time as U_y -> 0, while |u'|
  *    also carries the elastic ringing of speed up to sqrt(mu N U_y).
  *  - Rest (keep_going): the floor is at rest (N = g) and the elastic orbit
@@ -107,6 +110,10 @@
  * U_y = 1e-7: 1e-4 reproduces its episodes within 1-3 and its stop time
  * within 0.05 s; 1e-5 and below count solver chatter as episodes. */
 #define SL_REF_SLIP_SPEED_MS 1e-4
+/* A slip interval counts as an episode once it has slipped this many U_y:
+ * the elastic rebound of a block that has just stopped touches the yield
+ * surface and slips by a small fraction of U_y in the smooth model. */
+#define SL_REF_EPISODE_SLIP_UY 0.5
 /* Rest test (at_rest): margin on the squared largest |Z| of the elastic
  * orbit, and the speed, m/s, below which a block with no friction (mu = 0)
  * counts as at rest. */
@@ -175,12 +182,21 @@ static void feed_seg(const feed *f, size_t i, seg *s)
 
 typedef struct track {
     double peak2, t_peak, px, py, vmax2, t_slip;
+    double min_slip_m;  /* SL_REF_EPISODE_SLIP_UY * U_y */
+    double slip0;       /* slip path when the current slip interval began */
+    double w[2];        /* slip velocity at the previous point */
     long episodes;
-    int slipping;
+    int slipping, counted;
 } track;
 
+/* Record one (sub)step end: time, displacement u, velocity v, slip velocity
+ * w and accumulated slip path. A slip interval begins when |w| rises above
+ * SL_REF_SLIP_SPEED_MS, or when w turns by more than 90 degrees from one
+ * point to the next (a reversal, i.e. a stop, passed inside the step); it
+ * counts as an episode once it has slipped min_slip_m, and t_slip is the
+ * last instant of a counted interval. */
 static void track_point(track *k, double t, const double u[2], const double v[2],
-                        double slip_speed)
+                        const double w[2], double path)
 {
     double m2 = u[0] * u[0] + u[1] * u[1];
     if (m2 > k->peak2) {
@@ -190,12 +206,21 @@ static void track_point(track *k, double t, const double u[2], const double v[2]
     k->px = fmax(k->px, fabs(u[0]));
     k->py = fmax(k->py, fabs(u[1]));
     k->vmax2 = fmax(k->vmax2, v[0] * v[0] + v[1] * v[1]);
-    int now = slip_speed > SL_REF_SLIP_SPEED_MS;
-    if (now && !k->slipping)
+    int now = hypot(w[0], w[1]) > SL_REF_SLIP_SPEED_MS;
+    int reversed = k->slipping && now && w[0] * k->w[0] + w[1] * k->w[1] < 0.0;
+    if (now && (!k->slipping || reversed)) { /* a slip interval begins */
+        k->slip0 = path;
+        k->counted = 0;
+    }
+    if (now && !k->counted && path - k->slip0 >= k->min_slip_m) {
         k->episodes++;
-    if (now)
+        k->counted = 1;
+    }
+    if (now && k->counted)
         k->t_slip = t;
     k->slipping = now;
+    k->w[0] = w[0];
+    k->w[1] = w[1];
 }
 
 /* ---- history ------------------------------------------------------------ */
@@ -388,12 +413,13 @@ static void smooth_unpack(model *m)
     m->path = m->y[3 * d];
 }
 
-/* Slip speed |P Z S| of the current smooth state. */
-static double smooth_slip(const model *m)
+/* Slip velocity w = P Z S of the current smooth state. */
+static void smooth_slip(const model *m, double w[2])
 {
     double P, S, r2;
     smooth_terms(&m->par, m->v, m->z, &P, &S, &r2);
-    return P * S * sqrt(r2);
+    w[0] = P * S * m->z[0];
+    w[1] = P * S * m->z[1];
 }
 
 static sl_status smooth_init(model *m, const sl_slide_opts *o, sl_error *err)
@@ -468,7 +494,9 @@ static sl_status smooth_advance(model *m, const feed *f, size_t i, track *k, sl_
                                     "smooth model: GSL %s produced a non-finite state at "
                                     "t = %.6g s (sample %zu), mu = %g",
                                     gsl_odeiv2_step_name(dr->s), m->t, i + 1, m->mu);
-        track_point(k, m->t, m->u, m->v, smooth_slip(m));
+        double w[2];
+        smooth_slip(m, w);
+        track_point(k, m->t, m->u, m->v, w, m->path);
     }
     m->t = t1;
     return SL_OK;
@@ -484,12 +512,13 @@ static sl_status smooth_advance(model *m, const feed *f, size_t i, track *k, sl_
  *   |w| <= c + mu N:  elastic, Z' = w / (c + mu N);
  *   otherwise:        Z' = w / |w|, trial length lambda = (|w| - mu N) / c,
  *                     slip du_p = U_y (lambda - 1) Z'.
- * Returns the slip length |du_p|. */
-static double plastic_step(model *m, double h, const double ag[2], double N)
+ * Stores the slip du_p in dup. */
+static void plastic_step(model *m, double h, const double ag[2], double N, double dup[2])
 {
     const int d = m->d;
     const double c = 4.0 * m->uy / (h * h), muN = m->mu * N;
     double w[2] = {0.0, 0.0}, wn = 0.0, znew[2] = {0.0, 0.0}, slip = 0.0;
+    dup[0] = dup[1] = 0.0;
     for (int i = 0; i < d; i++) {
         double r = 4.0 / h * m->v[i] + m->a[i] - ag[i];
         w[i] = r + c * m->z[i];
@@ -504,8 +533,10 @@ static double plastic_step(model *m, double h, const double ag[2], double N)
         for (int i = 0; i < d; i++)
             znew[i] = w[i] / wn;
         slip = m->uy * (lam - 1.0);
-        for (int i = 0; i < d; i++)
+        for (int i = 0; i < d; i++) {
             m->u[i] += m->uy * (lam * znew[i] - m->z[i]);
+            dup[i] = slip * znew[i];
+        }
     }
     for (int i = 0; i < d; i++) {
         if (wn <= c + muN)
@@ -516,7 +547,6 @@ static double plastic_step(model *m, double h, const double ag[2], double N)
         m->z[i] = znew[i];
     }
     m->path += slip;
-    return slip;
 }
 
 /* Acceleration consistent with the input at the start of interval i (the
@@ -540,9 +570,11 @@ static sl_status plastic_advance(model *m, const feed *f, size_t i, track *k, sl
         double x = (double)q * h;
         double ag[2] = {s.ax0 + s.ax1 * x, s.ay0 + s.ay1 * x};
         double N = fmax(s.nv0 + s.nv1 * x, 0.0);
-        double slip = plastic_step(m, h, ag, N);
+        double dup[2];
+        plastic_step(m, h, ag, N, dup);
         m->t = (q == m->sub) ? feed_t(f, i + 1) : t0 + x;
-        track_point(k, m->t, m->u, m->v, slip / h);
+        const double w[2] = {dup[0] / h, dup[1] / h};
+        track_point(k, m->t, m->u, m->v, w, m->path);
     }
     for (int j = 0; j < m->d; j++)
         if (!isfinite(m->u[j]) || !isfinite(m->v[j]))
@@ -702,8 +734,9 @@ sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opt
 
     track k;
     memset(&k, 0, sizeof k);
+    k.min_slip_m = SL_REF_EPISODE_SLIP_UY * m.uy;
     const double zero[2] = {0.0, 0.0};
-    track_point(&k, 0.0, zero, zero, 0.0);
+    track_point(&k, 0.0, zero, zero, zero, 0.0);
     if (H)
         hist_put(H, &m, feed_n_at(&f, 0));
 
