@@ -113,12 +113,12 @@ static void test_below_fmin(void)
     sl_asce_free(m);
     sl_spectrum_free(s);
 
-    /* a flat spectrum from 0.5 Hz: delta = SA_vH(f_min)/(2 pi f_min)^2 */
+    /* a spectrum from 0.5 Hz: delta = SA_vH(f_min)/(2 pi f_min)^2 */
     sl_spectrum *flat = sl_spectrum_alloc(3, 0.10);
-    double ff[3] = {0.5, 2, 10};
+    double ff[3] = {0.5, 2, 10}, fs[3] = {2, 4, 3};
     for (int i = 0; i < 3; i++) {
         flat->f_hz[i] = ff[i];
-        flat->sa_ms2[i] = 2.0;
+        flat->sa_ms2[i] = fs[i];
     }
     sl_asce_input in;
     sl_asce_input_default(&in);
