@@ -104,7 +104,6 @@
 #define SL_REF_SMOOTH_MAX_STEPS_PER_SAMPLE 200000UL
 /* Sub-steps per sample accepted for the plastic model. */
 #define SL_REF_PLASTIC_SUBSTEPS_MAX 100000u
-/* Slip speed above which the block counts as sliding, m/s. */
 /* Slip speed above which the block counts as sliding, m/s (episodes,
  * t_rest_s). Measured against the exact engine on a 20 s 2-D record at
  * U_y = 1e-7: 1e-4 reproduces its episodes within 1-3 and its stop time

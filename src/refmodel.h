@@ -8,6 +8,16 @@
  *  - SL_MODEL_PLASTIC: elastic-perfectly-plastic spring with a high initial
  *    stiffness, Newmark average acceleration with return mapping (what
  *    OpenSees' flat slider bearing does).
+ *
+ * Unlike the engine, every mu is integrated (no SL_SLIDE_SKIPPED shortcut).
+ * path_m, episodes and t_rest_s count the slip (the motion not stored in
+ * the elastic spring), so the ringing of a stuck block on a spring of
+ * stiffness mu N / U_y adds neither path nor episodes. After the record the
+ * block is at rest when its elastic orbit can no longer reach the friction
+ * limit; the extension is capped at 60 s + v/(mu g) (then NEVER_STOPS).
+ * The plastic model needs plastic_substeps >= 2 dt sqrt(mu g / U_y) to
+ * resolve the elastic period; it is not raised automatically.
+ * Equations, sources and measured accuracy: docs/refmodels.md.
  */
 #ifndef SL_REFMODEL_H
 #define SL_REFMODEL_H

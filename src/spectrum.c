@@ -216,10 +216,16 @@ static sl_status check_args(const double *acc, size_t n, double dt, const double
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "spectrum: steps per period %g must be at least 1",
                             o->steps_per_period);
-    for (size_t j = 0; j < nf; j++)
+    for (size_t j = 0; j < nf; j++) {
         if (!(f[j] > 0) || !isfinite(f[j]))
             return sl_error_set(err, SL_EINVAL, NULL, 0,
                                 "spectrum: frequency %g Hz must be positive and finite", f[j]);
+        if (!(dt * f[j] * o->steps_per_period <= SL_SPECTRUM_MAX_SUBSTEPS))
+            return sl_error_set(err, SL_EINVAL, NULL, 0,
+                                "spectrum: %g Hz at dt %g s needs more than %g sub-steps per "
+                                "sample",
+                                f[j], dt, SL_SPECTRUM_MAX_SUBSTEPS);
+    }
     for (size_t i = 0; i < n; i++)
         if (!isfinite(acc[i]))
             return sl_error_set(err, SL_EINVAL, NULL, 0,

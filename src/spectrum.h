@@ -67,6 +67,10 @@
  * it from the closed form. Both are the same exact map (2). */
 #define SL_SPECTRUM_SERIES_WH 0.2
 
+/* Most sub-steps per input step (a guard against absurd options): a
+ * frequency needing more is refused with SL_EINVAL. */
+#define SL_SPECTRUM_MAX_SUBSTEPS 1e6
+
 /* A spectrum at one damping: plain data. Each struct owns its two arrays
  * (free with sl_spectrum_free). */
 typedef struct sl_spectrum {
