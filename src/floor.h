@@ -17,8 +17,9 @@
  *
  * Lists are separated by commas and/or blanks and may continue on indented
  * lines (inih multi-line values); a line holds at most 197 characters
- * (inih's 200-byte line buffer; a longer line is an error, never split). Comments start with ';' or '#' at the start of a
- * line, or ' ;' after a value.
+ * (inih's 200-byte line buffer; a longer line is an error, never split).
+ * Comments start with ';' or '#' at the start of a line, or ' ;' after a
+ * value.
  *
  * Validation (every error names the file and the line): known sections
  * [floor] [h1] [h2] [v] each at most once and [floor], [h1], [v] present;

@@ -209,7 +209,8 @@ static sl_status check_args(const double *acc, size_t n, double dt, const double
     if (!acc || n == 0)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: empty record");
     if (!(dt > 0) || !isfinite(dt))
-        return sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: time step %g s must be positive", dt);
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: time step %g s must be positive",
+                            dt);
     if (!(zeta >= 0 && zeta < 1))
         return sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: damping %g outside [0, 1)", zeta);
     if (!(o->steps_per_period >= 1) || !isfinite(o->steps_per_period))
