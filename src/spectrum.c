@@ -256,7 +256,9 @@ typedef struct work {
     size_t *m;      /* sub-steps per input step, per position */
     double *block;
     double *c[NCOEF];
-    double *u, *v, *umax, *amax, *w2, *tzw;
+    double *w2, *tzw;          /* follow the coefficients in block */
+    double *state;             /* u, v, umax, amax (after w2, tzw) */
+    double *u, *v, *umax, *amax;
 } work;
 
 static void work_free(work *wk)
@@ -298,13 +300,13 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
     }
     for (int k = 0; k < NCOEF; k++)
         wk->c[k] = wk->block + (size_t)k * nf;
-    double *rest = wk->block + (size_t)NCOEF * nf;
-    wk->u = rest;
-    wk->v = rest + nf;
-    wk->umax = rest + 2 * nf;
-    wk->amax = rest + 3 * nf;
-    wk->w2 = rest + 4 * nf;
-    wk->tzw = rest + 5 * nf;
+    wk->w2 = wk->block + (size_t)NCOEF * nf;
+    wk->tzw = wk->w2 + nf;
+    wk->state = wk->tzw + nf;
+    wk->u = wk->state;
+    wk->v = wk->state + nf;
+    wk->umax = wk->state + 2 * nf;
+    wk->amax = wk->state + 3 * nf;
     for (size_t j = 0; j < nf; j++) {
         m_of[j] = substeps_for(f[j], dt, spp);
         wk->perm[j] = j;
@@ -327,16 +329,18 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
     return SL_OK;
 }
 
-/* One sub-step for positions [p0, p1) with input a0 -> a1. */
-static inline void step_group(work *wk, size_t p0, size_t p1, double a0, double a1)
+/* One sub-step for positions [p0, p1) with input a0 -> a1. `co` holds the
+ * NCOEF coefficient arrays then w^2 and 2 z w (stride nf); `st` holds u, v,
+ * max|u| and max|u''+a| (stride nf). Separate restrict arguments let the
+ * compiler vectorise the loop over frequencies. */
+static void step_group(size_t p0, size_t p1, size_t nf, double a0, double a1,
+                       const double *restrict co, double *restrict st)
 {
-    const double *restrict c11 = wk->c[C11], *restrict c12 = wk->c[C12];
-    const double *restrict c21 = wk->c[C21], *restrict c22 = wk->c[C22];
-    const double *restrict bu0 = wk->c[BU0], *restrict bu1 = wk->c[BU1];
-    const double *restrict bv0 = wk->c[BV0], *restrict bv1 = wk->c[BV1];
-    const double *restrict w2 = wk->w2, *restrict tzw = wk->tzw;
-    double *restrict u = wk->u, *restrict v = wk->v;
-    double *restrict umax = wk->umax, *restrict amax = wk->amax;
+    const double *c11 = co + C11 * nf, *c12 = co + C12 * nf, *c21 = co + C21 * nf;
+    const double *c22 = co + C22 * nf, *bu0 = co + BU0 * nf, *bu1 = co + BU1 * nf;
+    const double *bv0 = co + BV0 * nf, *bv1 = co + BV1 * nf;
+    const double *w2 = co + NCOEF * nf, *tzw = co + (NCOEF + 1) * nf;
+    double *u = st, *v = st + nf, *umax = st + 2 * nf, *amax = st + 3 * nf;
     for (size_t p = p0; p < p1; p++) {
         double un = c11[p] * u[p] + c12[p] * v[p] + bu0[p] * a0 + bu1[p] * a1;
         double vn = c21[p] * u[p] + c22[p] * v[p] + bv0[p] * a0 + bv1[p] * a1;
@@ -365,7 +369,7 @@ static void run_groups(work *wk, const double *acc, size_t n, const double *f, d
             for (size_t s = 1; s <= m; s++) {
                 /* linear interpolation, endpoint exact */
                 double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);
-                step_group(wk, p0, p1, as, as1);
+                step_group(p0, p1, nf, as, as1, wk->block, wk->state);
                 as = as1;
             }
         }
@@ -377,7 +381,7 @@ static void run_groups(work *wk, const double *acc, size_t n, const double *f, d
                 nfree = k > nfree ? k : nfree;
             }
             for (size_t k = 0; k < nfree; k++)
-                step_group(wk, p0, p1, 0.0, 0.0);
+                step_group(p0, p1, nf, 0.0, 0.0, wk->block, wk->state);
         }
         p0 = p1;
     }

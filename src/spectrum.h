@@ -138,8 +138,9 @@ sl_status sl_spectrum_compute_opts(const double *acc_ms2, size_t n, double dt_s,
 /* Spectra of nm motions at one damping, in parallel over motions (OpenMP).
  * Outputs are row-major nm x nf: psa_ms2[i * nf + j] is motion i at
  * f_hz[j]; any output may be NULL. opts may be NULL. On failure returns the
- * status of the first failing motion (in index order) with its message,
- * prefixed by its path. Results do not depend on the thread count. */
+ * status of the first failing motion (in index order) with its message and
+ * the motion's path as the error's file. Results do not depend on the
+ * thread count. Memory: the caller owns every array. */
 sl_status sl_spectrum_batch(const sl_motion *const *motions, size_t nm,
                             const double *f_hz, size_t nf, double zeta,
                             const sl_spectrum_opts *opts, double *psa_ms2,
