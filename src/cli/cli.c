@@ -131,3 +131,13 @@ int cli_parse_range(const char *s, double **vals, size_t *n)
     *n = m;
     return 0;
 }
+
+int cli_positive(const char *cmd, const char *opt, const char *arg, const char *unit, double *out)
+{
+    double v;
+    if (cli_parse_double(arg, &v) || !(v > 0))
+        return cli_usage(cmd, "%s '%s' must be a number > 0%s%s%s", opt, arg, unit ? " (" : "",
+                         unit ? unit : "", unit ? ")" : "");
+    *out = v;
+    return CLI_EXIT_OK;
+}

@@ -47,6 +47,11 @@ int cli_usage(const char *cmd, const char *fmt, ...)
 
 /* Strict parse of a finite double (whole string). Returns 0 on success. */
 int cli_parse_double(const char *s, double *out);
+/* Parse option `opt` of command `cmd` as a finite number > 0 (in `unit`,
+ * NULL if dimensionless) into *out. Returns CLI_EXIT_OK, or prints a usage
+ * error naming the option and value and returns CLI_EXIT_USAGE. */
+int cli_positive(const char *cmd, const char *opt, const char *arg, const char *unit,
+                 double *out);
 /* Strict parse of a non-negative integer. Returns 0 on success. */
 int cli_parse_ulong(const char *s, unsigned long *out);
 /* "0.05,0.1,0.2": comma list of finite doubles; *vals malloc'd. */

@@ -244,8 +244,8 @@ int cmd_asce(int argc, char **argv)
         const char *arg = optarg;
         switch (c) {
         case OPT_RG160:
-            if (cli_parse_double(arg, &rg_pga_g) || !(rg_pga_g > 0)) {
-                rc = cli_usage("asce", "--rg160 '%s' must be a PGA > 0 (g)", arg);
+            if (cli_positive("asce", "--rg160", arg, "g", &rg_pga_g)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -261,8 +261,8 @@ int cmd_asce(int argc, char **argv)
             }
             break;
         case OPT_DT:
-            if (cli_parse_double(arg, &ro.dt_s) || !(ro.dt_s > 0)) {
-                rc = cli_usage("asce", "--dt '%s' must be a number > 0", arg);
+            if (cli_positive("asce", "--dt", arg, NULL, &ro.dt_s)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -277,20 +277,20 @@ int cmd_asce(int argc, char **argv)
             }
             break;
         case OPT_FS:
-            if (cli_parse_double(arg, &fs) || !(fs > 0)) {
-                rc = cli_usage("asce", "--fs '%s' must be a number > 0", arg);
+            if (cli_positive("asce", "--fs", arg, NULL, &fs)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
         case OPT_PGD:
-            if (cli_parse_double(arg, &pgd_opt) || !(pgd_opt > 0)) {
-                rc = cli_usage("asce", "--pgd '%s' must be a number > 0 (m)", arg);
+            if (cli_positive("asce", "--pgd", arg, "m", &pgd_opt)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
         case OPT_PGV:
-            if (cli_parse_double(arg, &pgv_opt) || !(pgv_opt > 0)) {
-                rc = cli_usage("asce", "--pgv '%s' must be a number > 0 (m/s)", arg);
+            if (cli_positive("asce", "--pgv", arg, "m/s", &pgv_opt)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;

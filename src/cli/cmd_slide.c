@@ -154,8 +154,8 @@ int cmd_slide(int argc, char **argv)
             }
             break;
         case OPT_DT:
-            if (cli_parse_double(arg, &ro.dt_s) || !(ro.dt_s > 0)) {
-                rc = cli_usage("slide", "--dt '%s' must be a number > 0", arg);
+            if (cli_positive("slide", "--dt", arg, NULL, &ro.dt_s)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -168,15 +168,15 @@ int cmd_slide(int argc, char **argv)
             }
             break;
         case OPT_SCALE:
-            if (cli_parse_double(arg, &scale_g) || !(scale_g > 0)) {
-                rc = cli_usage("slide", "--scale-pga '%s' must be a number > 0 (g)", arg);
+            if (cli_positive("slide", "--scale-pga", arg, "g", &scale_g)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
         case OPT_ONE_WAY: one_way = 1; break;
         case OPT_UP_RATIO:
-            if (cli_parse_double(arg, &so.up_ratio) || !(so.up_ratio > 0)) {
-                rc = cli_usage("slide", "--up-ratio '%s' must be a number > 0", arg);
+            if (cli_positive("slide", "--up-ratio", arg, NULL, &so.up_ratio)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             have_ratio = 1;
@@ -211,20 +211,20 @@ int cmd_slide(int argc, char **argv)
             }
             break;
         case OPT_UY:
-            if (cli_parse_double(arg, &so.smooth_uy_m) || !(so.smooth_uy_m > 0)) {
-                rc = cli_usage("slide", "--uy '%s' must be a number > 0 (m)", arg);
+            if (cli_positive("slide", "--uy", arg, "m", &so.smooth_uy_m)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
         case OPT_RTOL:
-            if (cli_parse_double(arg, &so.smooth_rtol) || !(so.smooth_rtol > 0)) {
-                rc = cli_usage("slide", "--rtol '%s' must be a number > 0", arg);
+            if (cli_positive("slide", "--rtol", arg, NULL, &so.smooth_rtol)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
         case OPT_ATOL:
-            if (cli_parse_double(arg, &so.smooth_atol) || !(so.smooth_atol > 0)) {
-                rc = cli_usage("slide", "--atol '%s' must be a number > 0 (m)", arg);
+            if (cli_positive("slide", "--atol", arg, "m", &so.smooth_atol)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -242,8 +242,8 @@ int cmd_slide(int argc, char **argv)
             break;
         }
         case OPT_PUY:
-            if (cli_parse_double(arg, &so.plastic_uy_m) || !(so.plastic_uy_m > 0)) {
-                rc = cli_usage("slide", "--plastic-uy '%s' must be a number > 0 (m)", arg);
+            if (cli_positive("slide", "--plastic-uy", arg, "m", &so.plastic_uy_m)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;

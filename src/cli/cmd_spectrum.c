@@ -119,8 +119,8 @@ int cmd_spectrum(int argc, char **argv)
             }
             break;
         case OPT_DT:
-            if (cli_parse_double(arg, &ro.dt_s) || !(ro.dt_s > 0)) {
-                rc = cli_usage("spectrum", "--dt '%s' must be a number > 0", arg);
+            if (cli_positive("spectrum", "--dt", arg, NULL, &ro.dt_s)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
