@@ -181,6 +181,7 @@ static void feed_seg(const feed *f, size_t i, seg *s)
 
 typedef struct track {
     double peak2, t_peak, px, py, vmax2, t_slip;
+    double t_prev, t_sliding; /* time of the previous point; time spent slipping */
     double min_slip_m;  /* SL_REF_EPISODE_SLIP_UY * U_y */
     double slip0;       /* slip path when the current slip interval began */
     double w[2];        /* slip velocity at the previous point */
@@ -206,6 +207,9 @@ static void track_point(track *k, double t, const double u[2], const double v[2]
     k->py = fmax(k->py, fabs(u[1]));
     k->vmax2 = fmax(k->vmax2, v[0] * v[0] + v[1] * v[1]);
     int now = hypot(w[0], w[1]) > SL_REF_SLIP_SPEED_MS;
+    if (now && k->slipping)
+        k->t_sliding += t - k->t_prev;
+    k->t_prev = t;
     int reversed = k->slipping && now && w[0] * k->w[0] + w[1] * k->w[1] < 0.0;
     if (now && (!k->slipping || reversed)) { /* a slip interval begins */
         k->slip0 = path;
@@ -790,6 +794,7 @@ sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opt
     res->max_speed_ms = sqrt(k.vmax2);
     res->t_rest_s = rest ? k.t_slip : m.t;
     res->episodes = k.episodes;
+    res->slide_time_s = k.t_sliding;
     if (hist)
         *hist = H;
     return SL_OK;

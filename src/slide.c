@@ -205,7 +205,7 @@ typedef struct state1d {
     double *mu_d, *mu_u;     /* friction against -x and against +x */
     double *u, *v;           /* displacement, velocity */
     signed char *dir;        /* 0 stuck, +1 / -1 sliding direction */
-    double *peak, *tpeak, *path, *vmax, *tstop;
+    double *peak, *tpeak, *path, *vmax, *tstop, *tslide;
     long *episodes, *overflow;
 } state1d;
 
@@ -306,6 +306,7 @@ static void advance_1d(state1d *S, size_t k, double t0, double H, double a0, dou
             }
         }
         double du = v * xe + 0.5 * r0 * xe * xe + r1 * xe * xe * xe / 6.0;
+        S->tslide[k] += xe;
         u += du;
         S->path[k] += fabs(du);
         s += xe;
@@ -385,7 +386,7 @@ typedef struct state2d {
     size_t m;
     double *mu;
     double *ux, *uy, *vx, *vy;
-    double *peak2, *tpeak, *px, *py, *path, *vmax2, *tstop;
+    double *peak2, *tpeak, *px, *py, *path, *vmax2, *tstop, *spd, *tslide;
     long *episodes;
 } state2d;
 
@@ -408,7 +409,8 @@ static void kernel_2d(const input *in, unsigned substeps, state2d *S, sl_history
                      *restrict vy = S->vy, *restrict peak2 = S->peak2,
                      *restrict tpeak = S->tpeak, *restrict px = S->px, *restrict py = S->py,
                      *restrict path = S->path, *restrict vmax2 = S->vmax2,
-                     *restrict tstop = S->tstop;
+                     *restrict tstop = S->tstop, *restrict spd = S->spd,
+                     *restrict tslide = S->tslide;
     const double *restrict mu = S->mu;
     long *restrict episodes = S->episodes;
     for (size_t i = 0; i + 1 < in->n; i++) {
@@ -475,9 +477,10 @@ static void kernel_2d(const input *in, unsigned substeps, state2d *S, sl_history
                 }
                 ux[k] += dux;
                 uy[k] += duy;
-                const double sp_old = sqrt(vx0 * vx0 + vy0 * vy0);
-                const double sp2 = nvx * nvx + nvy * nvy;
-                path[k] += 0.5 * h * (sp_old + sqrt(sp2));
+                const double sp2 = nvx * nvx + nvy * nvy, sp = sqrt(sp2);
+                path[k] += 0.5 * h * (spd[k] + sp);
+                spd[k] = sp;
+                tslide[k] += h;
                 vmax2[k] = fmax(vmax2[k], sp2);
                 if (sp2 == 0.0)
                     tstop[k] = t;
@@ -560,6 +563,7 @@ static void finish(sl_slide_result *r, double t_end, double t_stop, double ux, d
             ux += vx / sp * d;
             uy += vy / sp * d;
             r->path_m += d;
+            r->slide_time_s += T;
             r->t_rest_s = t_end + T;
         } else {
             r->flags |= SL_SLIDE_NEVER_STOPS;
@@ -610,7 +614,7 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
     sl_status st = SL_OK;
     if (m > 0 && !in->ay) {
         state1d S = {.m = m};
-        double *buf = calloc(11 * m, sizeof *buf);
+        double *buf = calloc(12 * m, sizeof *buf);
         S.dir = calloc(m, 1);
         S.episodes = calloc(2 * m, sizeof(long));
         if (!buf || !S.dir || !S.episodes) {
@@ -625,6 +629,7 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
             S.path = buf + 6 * m;
             S.vmax = buf + 7 * m;
             S.tstop = buf + 8 * m;
+            S.tslide = buf + 9 * m;
             S.overflow = S.episodes + m;
             for (size_t j = 0; j < m; j++) {
                 S.mu_d[j] = mu[act[j]];
@@ -638,6 +643,7 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
                 r->peak_x_m = S.peak[j];
                 r->path_m = S.path[j];
                 r->max_speed_ms = S.vmax[j];
+                r->slide_time_s = S.tslide[j];
                 r->episodes = S.episodes[j];
                 double mus = S.v[j] > 0.0 ? S.mu_u[j] : S.mu_d[j];
                 finish(r, t_end, S.tstop[j], S.u[j], 0.0, S.v[j], 0.0, mus * in->g, o->keep_going);
@@ -656,13 +662,13 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
         free(S.episodes);
     } else if (m > 0) {
         state2d S = {.m = m};
-        double *buf = calloc(13 * m, sizeof *buf);
+        double *buf = calloc(15 * m, sizeof *buf);
         S.episodes = calloc(m, sizeof(long));
         if (!buf || !S.episodes) {
             st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
         } else {
             double **f[] = {&S.mu, &S.ux, &S.uy, &S.vx, &S.vy, &S.peak2,
-                            &S.tpeak, &S.px, &S.py, &S.path, &S.vmax2, &S.tstop};
+                            &S.tpeak, &S.px, &S.py, &S.path, &S.vmax2, &S.tstop, &S.spd, &S.tslide};
             for (size_t q = 0; q < sizeof f / sizeof f[0]; q++)
                 *f[q] = buf + q * m;
             for (size_t j = 0; j < m; j++)
@@ -676,6 +682,7 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
                 r->peak_y_m = S.py[j];
                 r->path_m = S.path[j];
                 r->max_speed_ms = sqrt(S.vmax2[j]);
+                r->slide_time_s = S.tslide[j];
                 r->episodes = S.episodes[j];
                 finish(r, t_end, S.tstop[j], S.ux[j], S.uy[j], S.vx[j], S.vy[j], S.mu[j] * in->g,
                        o->keep_going);

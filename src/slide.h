@@ -90,6 +90,7 @@ typedef struct sl_slide_result {
     double path_m;        /* sliding path length, integral of |u'| dt */
     double max_speed_ms;  /* max |u'| */
     double t_rest_s;      /* time the block came to rest for good */
+    double slide_time_s;  /* total time spent sliding (2-D: to the sub-step) */
     long episodes;        /* number of stick-to-slip transitions */
     long liftoff_samples; /* samples with a_v <= -g */
     int flags;            /* SL_SLIDE_* */

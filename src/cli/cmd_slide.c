@@ -51,7 +51,7 @@ static const char slide_help[] =
     "  --csv                  one CSV row per mu on stdout: mu, peak_m, residual_m,\n"
     "                         peak_x_m, peak_y_m, t_peak_s, residual_x_m,\n"
     "                         residual_y_m, path_m, max_speed_m_s, t_rest_s,\n"
-    "                         episodes, liftoff_samples, status\n"
+    "                         slide_time_s, episodes, liftoff_samples, status\n"
     "  --history OUT.csv      time history of u, u' and F/W per axis (one mu only)\n"
     "\n"
     "status: ok; no_sliding (mu g at or above the largest demand: not integrated);\n"
@@ -333,13 +333,13 @@ int cmd_slide(int argc, char **argv)
 
     if (csv) {
         printf("mu,peak_m,residual_m,peak_x_m,peak_y_m,t_peak_s,residual_x_m,residual_y_m,"
-               "path_m,max_speed_m_s,t_rest_s,episodes,liftoff_samples,status\n");
+               "path_m,max_speed_m_s,t_rest_s,slide_time_s,episodes,liftoff_samples,status\n");
         for (size_t k = 0; k < n_mu; k++) {
             const sl_slide_result *r = &res[k];
-            printf("%.6g,%.9g,%.9g,%.9g,%.9g,%.4f,%.9g,%.9g,%.9g,%.9g,%.4f,%ld,%ld,%s\n", r->mu,
-                   r->peak_m, r->residual_m, r->peak_x_m, r->peak_y_m, r->t_peak_s,
+            printf("%.6g,%.9g,%.9g,%.9g,%.9g,%.4f,%.9g,%.9g,%.9g,%.9g,%.4f,%.4f,%ld,%ld,%s\n",
+                   r->mu, r->peak_m, r->residual_m, r->peak_x_m, r->peak_y_m, r->t_peak_s,
                    r->residual_x_m, r->residual_y_m, r->path_m, r->max_speed_ms, r->t_rest_s,
-                   r->episodes, r->liftoff_samples, status_word(r));
+                   r->slide_time_s, r->episodes, r->liftoff_samples, status_word(r));
         }
     } else {
         printf("# seislide slide: %s%s%s%s%s, %zu samples at dt = %g s\n", path[0],

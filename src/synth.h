@@ -1,0 +1,363 @@
+/*
+ * synth.h - spectrum-compatible acceleration histories synthesized with FFTW
+ * (random phases, intensity envelope, iterative correction of the Fourier
+ * amplitudes: the SIMQKE scheme, Gasparini and Vanmarcke 1976), and the same
+ * correction applied to a recorded motion, keeping its Fourier phases.
+ * Method, defaults and measured results: docs/synthesis.md.
+ *
+ * A motion of n samples at dt is built from a complex "base" spectrum B_k on
+ * the N-point DFT grid f_k = k/(N dt), k = 0..N/2, N >= n + pad (pad = one
+ * period of the lowest checked frequency, so low-frequency corrections spread
+ * into padding rather than wrapping round). Iteration i:
+ *
+ *     s_j   = (1/N) sum_k M_k B_k exp(2 pi i j k/N)   (FFTW c2r, divided by N)
+ *     a_j   = E(t_j) s_j,  j < n                      envelope (synthetic only)
+ *     a    -= (c0 + c1 t/T) (t/T)(1 - t/T)             baseline, v(T) = d(T) = 0
+ *     a    *= ZPA / max|a|                            peak = target ZPA
+ *     S_m   = PSA of a at grid frequency f_m          (spectrum.h)
+ *     r_m   = aim T_m / S_m                           T = target PSA
+ *     M_k  *= r(f_k)                                  log-log interpolation of r
+ *
+ * B_k = A_k exp(i phi_k) with phi_k uniform in [0, 2 pi) from GSL's mt19937
+ * and A_k = T(f_k)/sqrt(f_k) (the Fourier amplitude of a stationary motion
+ * whose spectrum is proportional to T, Vanmarcke 1976) for a synthetic
+ * motion; B_k = DFT of the zero-padded record (FFTW r2c, unnormalised) for a
+ * recorded one. The phases are never changed: only the real factors M_k.
+ *
+ * Envelope (Jennings, Housner and Tsai 1968), T = (n - 1) dt:
+ *     E(t) = (t/t1)^2 for t < t1;  1 for t1 <= t <= t2;
+ *     E(t) = exp(-c (t - t2)) after, c = ln(1/e_end)/(T - t2), so E(T) = e_end,
+ * with t1 = rise_frac T and t2 = hold_frac T.
+ *
+ * Acceptance checks (US NRC SRP 3.7.1, ../shared/docs/REFERENCE.md 5), each
+ * a field of sl_synth_params with that default, computed per motion on the
+ * grid of sl_spectrum_grid(fmin_hz, fmax_hz, per_decade) restricted to the
+ * target's frequency range, at the target's damping:
+ *     S/T >= 1 - tol_below            (no point more than 10 % below)
+ *     S/T <= 1 + tol_above            (no point more than 30 % above)
+ *     run of consecutive S < T points <= max_run_below (9)
+ *     D5-75 (sl_motion_d5_75)         >= min_d5_75_s (6 s)
+ *     duration (n - 1) dt             >= min_duration_s (20 s)
+ *     |v(T)| <= end_vel_frac PGV, |d(T)| <= end_disp_frac PGD (1 %)
+ *     |peak - ZPA| <= pga_rel_tol ZPA
+ *     |rho| of each pair of the set <= max_corr (0.16), rho the Pearson
+ *     correlation coefficient of the accelerations at zero lag.
+ * The iteration stops when the spectral checks pass; it keeps the best
+ * iterate (smallest violation). A motion that fails any check is reported as
+ * failed (pass = 0) and the set functions return SL_ENOCONV.
+ *
+ * Reproducibility. The random stream of a motion is GSL's mt19937 seeded with
+ * the low 32 bits of a SplitMix64 hash of (seed, set index, component,
+ * attempt) (sl_synth_stream_seed). FFTW plans are made with FFTW_ESTIMATE
+ * (no timing, the same algorithm every run) and executed on fftw_malloc'd
+ * arrays, so the same seed gives the same bits whatever the thread count.
+ *
+ * Threads. An sl_synth plan is read-only after sl_synth_alloc() and may be
+ * shared by threads, each with its own sl_synth_motion. FFTW's planner is
+ * not thread-safe: sl_synth_alloc()/sl_synth_free() plan and destroy inside
+ * "#pragma omp critical(sl_fftw_planner)"; other code planning FFTW in
+ * OpenMP threads must use the same critical name.
+ *
+ * Units: SI (s, Hz, m, m/s, m/s^2). Damping as a ratio of critical.
+ */
+#ifndef SL_SYNTH_H
+#define SL_SYNTH_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "floor.h"
+#include "motion.h"
+#include "spectrum.h"
+#include "status.h"
+
+/* ---- Defaults of the acceptance checks (SRP 3.7.1; REFERENCE.md 5) ---- */
+#define SL_SYNTH_TOL_BELOW 0.10      /* no point more than 10 % below the target */
+#define SL_SYNTH_TOL_ABOVE 0.30      /* no point more than 30 % above the target */
+#define SL_SYNTH_MAX_RUN_BELOW 9     /* most consecutive grid points below the target */
+#define SL_SYNTH_MIN_D5_75_S 6.0     /* strong-motion duration (5-75 % Arias), s */
+#define SL_SYNTH_MIN_DURATION_S 20.0 /* total duration, s */
+#define SL_SYNTH_MAX_CORR 0.16       /* |correlation coefficient| of two components */
+#define SL_SYNTH_MAX_DT_S 0.01       /* largest time step (Nyquist >= 50 Hz), s */
+/* "Velocity and displacement end near zero": |v(T)| and |d(T)| at most this
+ * fraction of the motion's own PGV and PGD. */
+#define SL_SYNTH_END_VEL_FRAC 0.01
+#define SL_SYNTH_END_DISP_FRAC 0.01
+/* Peak acceleration equal to the target ZPA within this relative tolerance. */
+#define SL_SYNTH_PGA_REL_TOL 1e-9
+
+/* ---- Defaults of the method ---- */
+#define SL_SYNTH_DAMPING 0.05        /* damping matched (SRP practice: 5 %) */
+#define SL_SYNTH_DT_S 0.005          /* time step of synthetic motions, s (200/s) */
+#define SL_SYNTH_DURATION_S 20.0     /* duration of synthetic motions, s */
+#define SL_SYNTH_MAX_ITER 30         /* correction iterations per attempt */
+#define SL_SYNTH_MAX_ATTEMPTS 4      /* phase sets tried per synthetic component */
+/* The correction aims at aim x target, inside the band [1 - 10 %, 1 + 30 %],
+ * so that the spectrum ends above the target and few points fall below it. */
+#define SL_SYNTH_AIM 1.05
+/* A correction factor per iteration is clamped to [1/CLAMP, CLAMP]. */
+#define SL_SYNTH_RATIO_CLAMP 4.0
+/* Envelope: rise to 10 % of T, hold to 50 % of T, then exponential decay to
+ * 5 % amplitude at T (D5-75 about 0.37 T: 7.3 s for 20 s). */
+#define SL_SYNTH_RISE_FRAC 0.10
+#define SL_SYNTH_HOLD_FRAC 0.50
+#define SL_SYNTH_END_AMP 0.05
+
+/* Components of a set, in file and report order. */
+typedef enum sl_synth_comp {
+    SL_SYNTH_H1 = 0,
+    SL_SYNTH_H2,
+    SL_SYNTH_V,
+    SL_SYNTH_NCOMP
+} sl_synth_comp;
+
+/* Pairs of a set for the correlation check: (H1,H2), (H1,V), (H2,V). */
+#define SL_SYNTH_NPAIR 3
+
+/* Every limit and knob. Fill with sl_synth_params_default(), then change. */
+typedef struct sl_synth_params {
+    /* check (and correction) grid, Hz; points per decade */
+    double fmin_hz, fmax_hz, per_decade;
+    /* acceptance limits */
+    double tol_below;       /* fraction, SL_SYNTH_TOL_BELOW */
+    double tol_above;       /* fraction, SL_SYNTH_TOL_ABOVE */
+    size_t max_run_below;   /* points, SL_SYNTH_MAX_RUN_BELOW */
+    double min_d5_75_s;     /* s, SL_SYNTH_MIN_D5_75_S */
+    double min_duration_s;  /* s, SL_SYNTH_MIN_DURATION_S */
+    double max_corr;        /* SL_SYNTH_MAX_CORR */
+    double end_vel_frac;    /* of PGV, SL_SYNTH_END_VEL_FRAC */
+    double end_disp_frac;   /* of PGD, SL_SYNTH_END_DISP_FRAC */
+    double pga_rel_tol;     /* SL_SYNTH_PGA_REL_TOL */
+    /* iteration */
+    unsigned max_iter;      /* >= 0; 0 = the initial motion only */
+    unsigned max_attempts;  /* >= 1 */
+    double aim;             /* > 0 */
+    /* envelope (fractions of the duration; end amplitude) */
+    double rise_frac, hold_frac, end_amp;
+} sl_synth_params;
+
+/* Fill p with the defaults above (grid: SL_SPECTRUM_FMIN_HZ..FMAX_HZ at
+ * SL_SPECTRUM_PER_DECADE, 271 points). */
+void sl_synth_params_default(sl_synth_params *p);
+
+/* Check a parameter set: SL_OK or SL_EINVAL naming the bad field. */
+sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err);
+
+/* A target: a spectrum (borrowed; values > 0, damping in (0, 1)) and the
+ * zero-period acceleration the motion's peak is scaled to, m/s^2. */
+typedef struct sl_synth_target {
+    const sl_spectrum *spec;
+    double zpa_ms2;
+} sl_synth_target;
+
+/* ------------------------------------------------------------------ */
+/* Targets                                                             */
+/* ------------------------------------------------------------------ */
+
+/* The RG 1.60 targets at PGA pga_ms2 (> 0) and damping zeta (in the guide's
+ * range): H1 and H2 the horizontal spectrum, V the vertical (rg160.h), each
+ * on sl_rg160_grid(dir, p->fmin_hz, p->fmax_hz, p->per_decade) so the
+ * log-log interpolation is exact; zpa = PGA for all three. spec[c] are
+ * allocated (free each with sl_spectrum_free). Returns SL_OK, SL_EINVAL,
+ * SL_ENOMEM; on failure nothing is left allocated. */
+sl_status sl_synth_targets_rg160(double pga_ms2, double zeta, const sl_synth_params *p,
+                                 sl_spectrum *spec[SL_SYNTH_NCOMP],
+                                 sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err);
+
+/* The damping a floor component is matched at: SL_SYNTH_DAMPING (5 %) when
+ * the file gives it, else the lowest damping given (SRP practice matches
+ * the 5 % spectrum). Returns the damping ratio (> 0). */
+double sl_synth_floor_damping(const sl_floor *fl, sl_floor_comp c);
+
+/* The targets of a floor: component c's spectrum at zeta (> 0, must be given
+ * in the file) or, when zeta <= 0, at sl_synth_floor_damping(); zpa from
+ * comp[c].zpa_ms2. Borrowed pointers into fl. Returns SL_OK or SL_EINVAL
+ * (damping not given; err names the file and component). */
+sl_status sl_synth_targets_floor(const sl_floor *fl, double zeta,
+                                 sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err);
+
+/* ------------------------------------------------------------------ */
+/* The plan: FFTW plans, buffers and tables for one length             */
+/* ------------------------------------------------------------------ */
+
+typedef struct sl_synth sl_synth;
+
+/* A plan for motions of n samples (>= 16) at dt_s (> 0), with parameters p
+ * (copied; NULL = defaults). Makes the FFTW r2c and c2r plans of length
+ * N = the smallest 2^a 3^b 5^c 7^d >= n + ceil(1/(fmin dt)) (FFTW_ESTIMATE,
+ * under the planner lock), the check grid, the bin-to-grid interpolation
+ * table, the envelope and the baseline shapes. Returns NULL and fills err
+ * (SL_EINVAL, SL_ENOMEM, SL_ESOLVER) on failure. Free with sl_synth_free. */
+sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_error *err);
+
+/* Free a plan; harmless on NULL. Every sl_synth_motion of it must be freed
+ * first. */
+void sl_synth_free(sl_synth *s);
+
+size_t sl_synth_n(const sl_synth *s);        /* motion samples */
+double sl_synth_dt(const sl_synth *s);       /* s */
+size_t sl_synth_nfft(const sl_synth *s);     /* FFT length N */
+const sl_synth_params *sl_synth_params_of(const sl_synth *s);
+/* The check grid: *nf points, Hz, borrowed from the plan. */
+const double *sl_synth_grid(const sl_synth *s, size_t *nf);
+/* The envelope E(t_j), n values, borrowed. */
+const double *sl_synth_envelope(const sl_synth *s);
+
+/* SplitMix64 hash of (seed, set, comp, attempt), low 32 bits: the seed of
+ * the motion's mt19937 stream. Pure function. */
+unsigned long sl_synth_stream_seed(uint64_t seed, size_t set, sl_synth_comp comp,
+                                   unsigned attempt);
+
+/* ------------------------------------------------------------------ */
+/* One motion: set / iterate / test (STYLE 5)                          */
+/* ------------------------------------------------------------------ */
+
+/* Result of the checks of one motion. Ratios are computed / target PSA. */
+typedef struct sl_synth_check {
+    double damping;          /* damping matched */
+    double f_lo_hz, f_hi_hz; /* grid range checked (grid inside the target's range) */
+    size_t npoints;          /* grid points checked */
+    double min_ratio, f_min_ratio_hz;  /* lowest S/T and where */
+    double max_ratio, f_max_ratio_hz;  /* highest S/T and where */
+    size_t run_below;        /* longest run of consecutive points with S < T */
+    size_t n_below;          /* points with S < T */
+    double d5_75_s;          /* strong-motion duration, s */
+    double duration_s;       /* (n - 1) dt, s */
+    double pga_ms2, zpa_ms2; /* peak |a| and the target ZPA, m/s^2 */
+    double pgv_ms, pgd_m;    /* peaks of velocity and displacement */
+    double v_end_ms, d_end_m;/* velocity and displacement at the end */
+    double max_corr;         /* largest |rho| with the other components (NAN alone) */
+    unsigned iterations;     /* correction iterations done (of the best iterate) */
+    unsigned attempt;        /* phase set used (0 = first; records: 0) */
+    int ok_below, ok_above, ok_run, ok_d5_75, ok_duration, ok_end, ok_pga, ok_corr;
+    int pass;                /* all of the above */
+} sl_synth_check;
+
+typedef struct sl_synth_motion sl_synth_motion;
+
+/* A workspace for one motion at a time, for plan s (borrowed: keep s alive).
+ * Buffers are fftw_malloc'd once here and reused by every set/iterate.
+ * Returns NULL (err filled, SL_ENOMEM) on failure. */
+sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err);
+
+/* Free a workspace; harmless on NULL. */
+void sl_synth_motion_free(sl_synth_motion *m);
+
+/* Start a synthetic motion for target t: random phases from the stream
+ * sl_synth_stream_seed(seed, set, comp, attempt), amplitudes T(f)/sqrt(f)
+ * (T extended below its range at constant SD, above at its last value),
+ * multipliers 1; makes iteration 0 (motion and spectrum). Returns SL_OK,
+ * SL_EINVAL (bad target), SL_ENOMEM. */
+sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint64_t seed,
+                              size_t set, sl_synth_comp comp, unsigned attempt,
+                              sl_error *err);
+
+/* Start from a recorded motion acc_ms2[0..n-1] (n <= the plan's n, sampled
+ * at the plan's dt; zero-padded to it): its DFT is the base spectrum, no
+ * envelope; makes iteration 0. Returns SL_OK, SL_EINVAL (n == 0, too long,
+ * non-finite or all-zero samples, bad target), SL_ENOMEM. */
+sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
+                              const double *acc_ms2, size_t n, sl_error *err);
+
+/* One correction: M_k *= r(f_k) from the current spectrum, then the new
+ * motion and its spectrum. Keeps the best iterate. Returns SL_OK, SL_EINVAL
+ * (no set_* before), SL_ESOLVER (non-finite values). */
+sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err);
+
+/* 1 when the spectral checks (below, above, run) pass for the best iterate,
+ * else 0. */
+int sl_synth_test(const sl_synth_motion *m);
+
+/* Iterations done since the last set_*. */
+unsigned sl_synth_iterations(const sl_synth_motion *m);
+
+/* The best iterate so far (n samples, m/s^2) and its spectrum on the grid
+ * (NAN outside the target's range); borrowed, valid until the next call on
+ * m. */
+const double *sl_synth_acc(const sl_synth_motion *m);
+const double *sl_synth_psa(const sl_synth_motion *m);
+/* The target on the grid (NAN outside its range); borrowed. */
+const double *sl_synth_target_psa(const sl_synth_motion *m);
+
+/* Every check of the best iterate except the correlation (max_corr = NAN,
+ * ok_corr = 1), into *out. */
+void sl_synth_check_motion(const sl_synth_motion *m, sl_synth_check *out);
+
+/* Pearson correlation coefficient of a and b over n samples (means
+ * removed): sum (a - ma)(b - mb) / sqrt(sum (a - ma)^2 sum (b - mb)^2).
+ * 0 when either is constant. */
+double sl_synth_corr(const double *a, const double *b, size_t n);
+
+/* ------------------------------------------------------------------ */
+/* Whole sets                                                          */
+/* ------------------------------------------------------------------ */
+
+/* One three-component set and its checks. Motions are owned (free with
+ * sl_synth_set_clear); absent components (records) are NULL. */
+typedef struct sl_synth_set {
+    sl_motion *motion[SL_SYNTH_NCOMP];
+    sl_synth_check check[SL_SYNTH_NCOMP];
+    double corr[SL_SYNTH_NPAIR];   /* (H1,H2), (H1,V), (H2,V); NAN if absent */
+    int pass;                      /* every check of every present component */
+} sl_synth_set;
+
+/* Free the motions of a set and zero it; harmless on NULL. */
+void sl_synth_set_clear(sl_synth_set *set);
+
+/* Progress callback: `done` of `total` motion runs finished. Called from one
+ * thread at a time (inside an OpenMP critical section). */
+typedef void (*sl_synth_progress)(void *ctx, size_t done, size_t total);
+
+/* Synthesize `count` sets (indices first_set .. first_set + count - 1) for
+ * targets tgt[H1, H2, V] with plan s: for each component, set_random, then
+ * iterate until test passes or p->max_iter; a component that fails its
+ * spectral checks is redone with the next attempt (new phases), and so is
+ * the later component of a pair whose |rho| > max_corr, up to max_attempts.
+ * Runs motions in parallel with OpenMP; the results do not depend on the
+ * thread count. out[0..count-1] are filled (motions owned by out; label
+ * "setNN_h1" etc.). Returns SL_OK when every check passed, SL_ENOCONV when
+ * some motion failed a check (out complete; see pass flags), or SL_EINVAL,
+ * SL_ENOMEM, SL_ESOLVER (out cleared). progress may be NULL. */
+sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                             uint64_t seed, size_t first_set, size_t count,
+                             sl_synth_set *out, sl_synth_progress progress, void *ctx,
+                             sl_error *err);
+
+/* One set (set index `set`), on the calling thread's team: the unit timed by
+ * the benchmark. Same returns as sl_synth_make_sets. */
+sl_status sl_synth_make_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                            uint64_t seed, size_t set, sl_synth_set *out, sl_error *err);
+
+/* Match recorded components rec[H1, H2, V] (any may be NULL, at least one
+ * present; all at the plan's dt, each n <= the plan's n) to tgt: the same
+ * iteration from the records' Fourier phases. out filled as above (labels
+ * "match_h1" etc.). Same returns as sl_synth_make_sets. */
+sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                             const sl_motion *const rec[SL_SYNTH_NCOMP], sl_synth_set *out,
+                             sl_error *err);
+
+/* ------------------------------------------------------------------ */
+/* Input and output helpers                                            */
+/* ------------------------------------------------------------------ */
+
+/* Resample acc_ms2 (n samples at dt_s) to dt_new_s by linear interpolation
+ * (exact for the piecewise-linear reading of the record), over the same
+ * duration: floor((n - 1) dt/dt_new) + 1 samples, returned in *n_new.
+ * Returns a malloc'd array (caller frees) or NULL on bad input. */
+double *sl_synth_resample(const double *acc_ms2, size_t n, double dt_s, double dt_new_s,
+                          size_t *n_new);
+
+/* Write a motion as a PEER-style AT2 file readable by sl_motion_read():
+ * line 1 "SEISLIDE SYNTHETIC MOTION", line 2 the title, line 3
+ * "ACCELERATION TIME SERIES IN UNITS OF G", line 4 "NPTS= n, DT= dt SEC",
+ * then 5 values a line in g, %.9E (a relative rounding of 5e-10). Written
+ * atomically (atomic.h). Returns SL_OK or SL_EIO/SL_ENOMEM (err names the
+ * path). */
+sl_status sl_synth_write_at2(const char *path, const sl_motion *m, const char *title,
+                             sl_error *err);
+
+/* Short name of a component: "h1", "h2", "v". */
+const char *sl_synth_comp_name(sl_synth_comp c);
+
+#endif
