@@ -401,7 +401,8 @@ static double mean_positive(double n0, double n1)
     return 0.5 * p * p / (p - q);
 }
 
-static void kernel_2d(const input *in, unsigned substeps, state2d *S, sl_history *hist)
+static void kernel_2d(const input *in, unsigned substeps, state2d *S, double *sub,
+                      size_t *live, sl_history *hist)
 {
     const double dt = in->dt, h = dt / substeps, g = in->g, h2_12 = h * h / 12.0;
     const size_t m = S->m;
@@ -413,6 +414,9 @@ static void kernel_2d(const input *in, unsigned substeps, state2d *S, sl_history
                      *restrict tslide = S->tslide;
     const double *restrict mu = S->mu;
     long *restrict episodes = S->episodes;
+    /* per sub-step forcing, shared by every mu: h a*_x, h a*_y, h N*, t_end */
+    double *restrict sax = sub, *restrict say = sub + substeps, *restrict sN = sub + 2 * substeps,
+                     *restrict st = sub + 3 * substeps;
     for (size_t i = 0; i + 1 < in->n; i++) {
         const double ax0 = in_ax(in, i), ax1 = in_ax(in, i + 1);
         const double ay0 = in_ay(in, i), ay1 = in_ay(in, i + 1);
@@ -422,11 +426,25 @@ static void kernel_2d(const input *in, unsigned substeps, state2d *S, sl_history
         for (unsigned j = 0; j < substeps; j++) {
             const double x0 = (double)j / substeps, x1 = (double)(j + 1) / substeps;
             const double xm = 0.5 * (x0 + x1);
-            const double hax = h * (ax0 + (ax1 - ax0) * xm); /* h a*, exact mean */
-            const double hay = h * (ay0 + (ay1 - ay0) * xm);
-            const double hN = h * mean_positive(n0 + (n1 - n0) * x0, n0 + (n1 - n0) * x1);
-            const double t = (double)i * dt + (double)(j + 1) * h;
-            for (size_t k = 0; k < m; k++) {
+            sax[j] = h * (ax0 + (ax1 - ax0) * xm); /* h a*, exact mean */
+            say[j] = h * (ay0 + (ay1 - ay0) * xm);
+            sN[j] = h * mean_positive(n0 + (n1 - n0) * x0, n0 + (n1 - n0) * x1);
+            st[j] = (double)i * dt + (double)(j + 1) * h;
+        }
+        /* held at both ends of the step: held on every sub-step, since |a| is
+         * convex and mu N linear (one test per sample instead of per sub-step) */
+        const double a0m = sqrt(ax0 * ax0 + ay0 * ay0), a1m = sqrt(ax1 * ax1 + ay1 * ay1);
+        const double p0 = fmax(n0, 0.0), p1 = fmax(n1, 0.0);
+        size_t na = 0;
+        for (size_t k = 0; k < m; k++)
+            if (!(vx[k] == 0.0 && vy[k] == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
+                live[na++] = k;
+        /* sub-steps outer, the live blocks inner: their updates are
+         * independent, so the processor overlaps their square roots */
+        for (unsigned j = 0; j < substeps && na > 0; j++) {
+            const double hax = sax[j], hay = say[j], hN = sN[j], t = st[j];
+            for (size_t li = 0; li < na; li++) {
+                const size_t k = live[li];
                 const double f = hN * mu[k];
                 const double vx0 = vx[k], vy0 = vy[k];
                 double nvx, nvy, dux, duy;
@@ -673,7 +691,20 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
                 *f[q] = buf + q * m;
             for (size_t j = 0; j < m; j++)
                 S.mu[j] = mu[act[j]];
-            kernel_2d(in, o->substeps, &S, hist);
+            double *sub = malloc(4 * (size_t)o->substeps * sizeof *sub);
+            size_t *live = malloc(m * sizeof *live);
+            if (!sub || !live) {
+                free(sub);
+                free(live);
+                free(buf);
+                free(S.episodes);
+                free(act);
+                sl_history_free(hist);
+                return sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
+            }
+            kernel_2d(in, o->substeps, &S, sub, live, hist);
+            free(sub);
+            free(live);
             for (size_t j = 0; j < m; j++) {
                 sl_slide_result *r = &res[act[j]];
                 r->peak_m = sqrt(S.peak2[j]);

@@ -96,6 +96,12 @@
 /* The correction aims at aim x target, inside the band [1 - 10 %, 1 + 30 %],
  * so that the spectrum ends above the target and few points fall below it. */
 #define SL_SYNTH_AIM 1.05
+/* Exponent of the correction ratio (1 = full SIMQKE step; below 1 damps the
+ * overshoot of the sparse low-frequency bins). */
+#define SL_SYNTH_RELAX 0.7
+/* Outside the checked frequency range the correction fades to none over
+ * this many octaves. */
+#define SL_SYNTH_EDGE_OCTAVES 1.0
 /* A correction factor per iteration is clamped to [1/CLAMP, CLAMP]. */
 #define SL_SYNTH_RATIO_CLAMP 4.0
 /* Envelope: rise to 10 % of T, hold to 50 % of T, then exponential decay to
@@ -132,9 +138,13 @@ typedef struct sl_synth_params {
     /* iteration */
     unsigned max_iter;      /* >= 0; 0 = the initial motion only */
     unsigned max_attempts;  /* >= 1 */
-    double aim;             /* > 0 */
+    double aim;             /* > 0, SL_SYNTH_AIM */
+    double relax;           /* (0, 1], SL_SYNTH_RELAX: M_k *= r(f_k)^relax */
     /* envelope (fractions of the duration; end amplitude) */
     double rise_frac, hold_frac, end_amp;
+    /* 1: scale the half-cycles whose peak exceeds the ZPA down to it before
+     * the baseline correction (default); 0: only the final scaling */
+    int peak_limit;
 } sl_synth_params;
 
 /* Fill p with the defaults above (grid: SL_SPECTRUM_FMIN_HZ..FMAX_HZ at

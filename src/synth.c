@@ -1,0 +1,1181 @@
+/* synth.c - spectrum-compatible motions by iterative Fourier-amplitude
+ * correction (see synth.h and docs/synthesis.md). */
+#include "synth.h"
+
+#include <fftw3.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atomic.h"
+#include "rg160.h"
+#include "units.h"
+
+#define SYNTH_PI 3.14159265358979323846
+/* Smallest motion handled, samples. */
+#define SYNTH_MIN_N 16
+/* Largest FFT length accepted (a guard against absurd options). */
+#define SYNTH_MAX_NFFT ((size_t)1 << 28)
+/* The FFT length's only prime factors (FFTW's fastest codelets). */
+static const unsigned synth_small_primes[] = {2, 3, 5, 7};
+
+/* ------------------------------------------------------------------ */
+/* Parameters                                                          */
+/* ------------------------------------------------------------------ */
+
+void sl_synth_params_default(sl_synth_params *p)
+{
+    memset(p, 0, sizeof *p);
+    p->fmin_hz = SL_SPECTRUM_FMIN_HZ;
+    p->fmax_hz = SL_SPECTRUM_FMAX_HZ;
+    p->per_decade = SL_SPECTRUM_PER_DECADE;
+    p->tol_below = SL_SYNTH_TOL_BELOW;
+    p->tol_above = SL_SYNTH_TOL_ABOVE;
+    p->max_run_below = SL_SYNTH_MAX_RUN_BELOW;
+    p->min_d5_75_s = SL_SYNTH_MIN_D5_75_S;
+    p->min_duration_s = SL_SYNTH_MIN_DURATION_S;
+    p->max_corr = SL_SYNTH_MAX_CORR;
+    p->end_vel_frac = SL_SYNTH_END_VEL_FRAC;
+    p->end_disp_frac = SL_SYNTH_END_DISP_FRAC;
+    p->pga_rel_tol = SL_SYNTH_PGA_REL_TOL;
+    p->max_iter = SL_SYNTH_MAX_ITER;
+    p->max_attempts = SL_SYNTH_MAX_ATTEMPTS;
+    p->aim = SL_SYNTH_AIM;
+    p->rise_frac = SL_SYNTH_RISE_FRAC;
+    p->hold_frac = SL_SYNTH_HOLD_FRAC;
+    p->end_amp = SL_SYNTH_END_AMP;
+    p->peak_limit = 1;
+    p->relax = SL_SYNTH_RELAX;
+#ifdef SYNTH_DEBUG
+    if (getenv("RELAX")) p->relax = atof(getenv("RELAX"));
+#endif
+}
+
+sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)
+{
+#define SYNTH_REQUIRE(cond, what)                                                    \
+    do {                                                                             \
+        if (!(cond))                                                                 \
+            return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: bad parameter: %s", \
+                                what);                                               \
+    } while (0)
+    SYNTH_REQUIRE(p, "no parameters");
+    SYNTH_REQUIRE(p->fmin_hz > 0 && isfinite(p->fmin_hz), "fmin_hz must be > 0");
+    SYNTH_REQUIRE(p->fmax_hz >= p->fmin_hz && isfinite(p->fmax_hz), "fmax_hz must be >= fmin_hz");
+    SYNTH_REQUIRE(p->per_decade > 0 && isfinite(p->per_decade), "per_decade must be > 0");
+    SYNTH_REQUIRE(p->tol_below >= 0 && p->tol_below < 1, "tol_below must be in [0, 1)");
+    SYNTH_REQUIRE(p->tol_above >= 0 && isfinite(p->tol_above), "tol_above must be >= 0");
+    SYNTH_REQUIRE(p->min_d5_75_s >= 0 && isfinite(p->min_d5_75_s), "min_d5_75_s must be >= 0");
+    SYNTH_REQUIRE(p->min_duration_s >= 0 && isfinite(p->min_duration_s),
+                  "min_duration_s must be >= 0");
+    SYNTH_REQUIRE(p->max_corr >= 0 && p->max_corr <= 1, "max_corr must be in [0, 1]");
+    SYNTH_REQUIRE(p->end_vel_frac >= 0 && isfinite(p->end_vel_frac), "end_vel_frac must be >= 0");
+    SYNTH_REQUIRE(p->end_disp_frac >= 0 && isfinite(p->end_disp_frac),
+                  "end_disp_frac must be >= 0");
+    SYNTH_REQUIRE(p->pga_rel_tol >= 0 && isfinite(p->pga_rel_tol), "pga_rel_tol must be >= 0");
+    SYNTH_REQUIRE(p->max_attempts >= 1, "max_attempts must be >= 1");
+    SYNTH_REQUIRE(p->aim > 0 && isfinite(p->aim), "aim must be > 0");
+    SYNTH_REQUIRE(p->relax > 0 && p->relax <= 1, "relax must be in (0, 1]");
+    SYNTH_REQUIRE(p->rise_frac > 0 && p->rise_frac <= p->hold_frac && p->hold_frac < 1,
+                  "envelope needs 0 < rise_frac <= hold_frac < 1");
+    SYNTH_REQUIRE(p->end_amp > 0 && p->end_amp <= 1, "end_amp must be in (0, 1]");
+#undef SYNTH_REQUIRE
+    return SL_OK;
+}
+
+const char *sl_synth_comp_name(sl_synth_comp c)
+{
+    static const char *const names[SL_SYNTH_NCOMP] = {"h1", "h2", "v"};
+    return (unsigned)c < SL_SYNTH_NCOMP ? names[c] : "?";
+}
+
+/* ------------------------------------------------------------------ */
+/* Targets                                                             */
+/* ------------------------------------------------------------------ */
+
+sl_status sl_synth_targets_rg160(double pga_ms2, double zeta, const sl_synth_params *p,
+                                 sl_spectrum *spec[SL_SYNTH_NCOMP],
+                                 sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err)
+{
+    sl_synth_params def;
+    if (!p) {
+        sl_synth_params_default(&def);
+        p = &def;
+    }
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        spec[c] = NULL;
+    if (!(pga_ms2 > 0) || !isfinite(pga_ms2))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: RG 1.60 PGA must be > 0");
+    sl_status st = SL_OK;
+    for (int c = 0; c < SL_SYNTH_NCOMP && !st; c++) {
+        sl_rg160_dir dir = c == SL_SYNTH_V ? SL_RG160_VERTICAL : SL_RG160_HORIZONTAL;
+        size_t nf = 0;
+        double *f = sl_rg160_grid(dir, p->fmin_hz, p->fmax_hz, p->per_decade, &nf);
+        spec[c] = f ? sl_spectrum_alloc(nf, zeta) : NULL;
+        if (!spec[c]) {
+            free(f);
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+            break;
+        }
+        memcpy(spec[c]->f_hz, f, nf * sizeof *f);
+        free(f);
+        st = sl_rg160_psa(dir, zeta, pga_ms2, spec[c]->f_hz, nf, spec[c]->sa_ms2, err);
+        tgt[c].spec = spec[c];
+        tgt[c].zpa_ms2 = pga_ms2;
+    }
+    if (st)
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+            sl_spectrum_free(spec[c]);
+            spec[c] = NULL;
+        }
+    return st;
+}
+
+double sl_synth_floor_damping(const sl_floor *fl, sl_floor_comp c)
+{
+    const sl_floor_component *fc = &fl->comp[c];
+    if (sl_floor_spectrum(fl, c, SL_SYNTH_DAMPING))
+        return SL_SYNTH_DAMPING;
+    return fc->nspec > 0 ? fc->spec[0].damping : SL_SYNTH_DAMPING; /* ascending */
+}
+
+sl_status sl_synth_targets_floor(const sl_floor *fl, double zeta,
+                                 sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err)
+{
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        sl_floor_comp fc = (sl_floor_comp)c; /* same order H1, H2, V */
+        double z = zeta > 0 ? zeta : sl_synth_floor_damping(fl, fc);
+        const sl_spectrum *s = sl_floor_spectrum(fl, fc, z);
+        if (!s)
+            return sl_error_set(err, SL_EINVAL, fl->path, fl->comp[c].line,
+                                "[%s] gives no spectrum at damping %g", sl_floor_comp_name(fc),
+                                z);
+        tgt[c].spec = s;
+        tgt[c].zpa_ms2 = fl->comp[c].zpa_ms2;
+    }
+    return SL_OK;
+}
+
+static sl_status check_target(const sl_synth_target *t, sl_error *err)
+{
+    if (!t || !t->spec || t->spec->n < 2 || !t->spec->f_hz || !t->spec->sa_ms2)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: target needs >= 2 points");
+    if (!(t->spec->damping > 0 && t->spec->damping < 1))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: target damping %g outside (0, 1)",
+                            t->spec->damping);
+    if (!(t->zpa_ms2 > 0) || !isfinite(t->zpa_ms2))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: target ZPA must be > 0");
+    for (size_t i = 0; i < t->spec->n; i++) {
+        if (!(t->spec->sa_ms2[i] > 0) || !isfinite(t->spec->sa_ms2[i]) ||
+            !(t->spec->f_hz[i] > 0) || (i > 0 && !(t->spec->f_hz[i] > t->spec->f_hz[i - 1])))
+            return sl_error_set(err, SL_EINVAL, NULL, 0,
+                                "synth: target point %zu not positive and increasing", i);
+    }
+    return SL_OK;
+}
+
+/* ------------------------------------------------------------------ */
+/* The plan                                                            */
+/* ------------------------------------------------------------------ */
+
+struct sl_synth {
+    size_t n;            /* motion samples */
+    double dt;           /* s */
+    size_t nfft;         /* N, even */
+    size_t nbin;         /* N/2 + 1 */
+    double df;           /* 1/(N dt), Hz */
+    sl_synth_params p;
+    double *grid;        /* check grid, Hz */
+    size_t ngrid;
+    size_t *bin_j;       /* bin k: r(f_k) = r_j^(1 - w) r_{j+1}^w */
+    double *bin_w;
+    double *env;         /* n: envelope */
+    double *bl[2];       /* n: baseline shapes (t/T)(1 - t/T) (t/T)^i */
+    double bl_inv[2][2]; /* inverse of the end-value matrix of the shapes */
+    fftw_plan r2c, c2r;  /* on fftw_malloc'd arrays of N reals, N/2 + 1 complexes */
+};
+
+/* Smallest even 2^a 3^b 5^c 7^d >= n (0 when above SYNTH_MAX_NFFT). */
+static size_t good_size(size_t n)
+{
+    for (size_t m = n + (n & 1); m <= SYNTH_MAX_NFFT; m += 2) {
+        size_t r = m;
+        for (size_t q = 0; q < sizeof synth_small_primes / sizeof synth_small_primes[0]; q++)
+            while (r % synth_small_primes[q] == 0)
+                r /= synth_small_primes[q];
+        if (r == 1)
+            return m;
+    }
+    return 0;
+}
+
+/* End values (v(T), d(T)) of a from rest by the exact piecewise-linear
+ * integration of motion.h. */
+static void end_values(const double *a, size_t n, double dt, double *v_end, double *d_end)
+{
+    double v = 0, d = 0;
+    for (size_t i = 0; i + 1 < n; i++) {
+        d += dt * v + dt * dt * (2 * a[i] + a[i + 1]) / 6;
+        v += dt * (a[i] + a[i + 1]) / 2;
+    }
+    *v_end = v;
+    *d_end = d;
+}
+
+void sl_synth_free(sl_synth *s)
+{
+    if (!s)
+        return;
+#pragma omp critical(sl_fftw_planner)
+    {
+        if (s->r2c)
+            fftw_destroy_plan(s->r2c);
+        if (s->c2r)
+            fftw_destroy_plan(s->c2r);
+    }
+    free(s->grid);
+    free(s->bin_j);
+    free(s->bin_w);
+    free(s->env);
+    free(s->bl[0]);
+    free(s->bl[1]);
+    free(s);
+}
+
+static void make_envelope(sl_synth *s)
+{
+    double T = s->dt * (double)(s->n - 1);
+    double t1 = s->p.rise_frac * T, t2 = s->p.hold_frac * T;
+    double c = log(1.0 / s->p.end_amp) / (T - t2);
+    for (size_t j = 0; j < s->n; j++) {
+        double t = s->dt * (double)j;
+        if (t < t1)
+            s->env[j] = (t / t1) * (t / t1);
+        else if (t <= t2)
+            s->env[j] = 1.0;
+        else
+            s->env[j] = exp(-c * (t - t2));
+    }
+}
+
+static int make_bins(sl_synth *s)
+{
+    s->bin_j = malloc(s->nbin * sizeof *s->bin_j);
+    s->bin_w = malloc(s->nbin * sizeof *s->bin_w);
+    if (!s->bin_j || !s->bin_w)
+        return -1;
+    size_t j = 0;
+    for (size_t k = 0; k < s->nbin; k++) {
+        double f = s->df * (double)k;
+        if (s->ngrid == 1 || f <= s->grid[0]) {
+            s->bin_j[k] = 0;
+            s->bin_w[k] = 0;
+            continue;
+        }
+        if (f >= s->grid[s->ngrid - 1]) {
+            s->bin_j[k] = s->ngrid - 2;
+            s->bin_w[k] = 1;
+            continue;
+        }
+        while (j + 2 < s->ngrid && s->grid[j + 1] <= f)
+            j++;
+        s->bin_j[k] = j;
+        s->bin_w[k] = log(f / s->grid[j]) / log(s->grid[j + 1] / s->grid[j]);
+    }
+    return 0;
+}
+
+sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_error *err)
+{
+    sl_synth_params def;
+    if (!p) {
+        sl_synth_params_default(&def);
+        p = &def;
+    }
+    if (sl_synth_params_check(p, err))
+        return NULL;
+    if (n < SYNTH_MIN_N || !(dt_s > 0) || !isfinite(dt_s)) {
+        sl_error_set(err, SL_EINVAL, NULL, 0, "synth: need >= %d samples and dt > 0",
+                     SYNTH_MIN_N);
+        return NULL;
+    }
+    double pad = ceil(1.0 / (p->fmin_hz * dt_s));
+    size_t nfft = pad < (double)SYNTH_MAX_NFFT ? good_size(n + (size_t)pad) : 0;
+    if (nfft == 0) {
+        sl_error_set(err, SL_EINVAL, NULL, 0, "synth: motion too long for the FFT");
+        return NULL;
+    }
+    sl_synth *s = calloc(1, sizeof *s);
+    if (!s) {
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        return NULL;
+    }
+    s->n = n;
+    s->dt = dt_s;
+    s->p = *p;
+    s->nfft = nfft;
+    s->nbin = nfft / 2 + 1;
+    s->df = 1.0 / ((double)nfft * dt_s);
+    s->grid = sl_spectrum_grid(p->fmin_hz, p->fmax_hz, p->per_decade, &s->ngrid);
+    s->env = malloc(n * sizeof *s->env);
+    s->bl[0] = malloc(n * sizeof *s->bl[0]);
+    s->bl[1] = malloc(n * sizeof *s->bl[1]);
+    if (!s->grid || !s->env || !s->bl[0] || !s->bl[1] || make_bins(s)) {
+        sl_synth_free(s);
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        return NULL;
+    }
+    make_envelope(s);
+    /* Baseline shapes and the 2x2 map from their coefficients to end values. */
+    double T = dt_s * (double)(n - 1), m[2][2];
+    for (size_t j = 0; j < n; j++) {
+        double x = dt_s * (double)j / T;
+        s->bl[0][j] = x * (1 - x);
+        s->bl[1][j] = x * x * (1 - x);
+    }
+    for (int i = 0; i < 2; i++)
+        end_values(s->bl[i], n, dt_s, &m[0][i], &m[1][i]);
+    double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    if (!(fabs(det) > 0)) {
+        sl_synth_free(s);
+        sl_error_set(err, SL_ESOLVER, NULL, 0, "synth: singular baseline system");
+        return NULL;
+    }
+    s->bl_inv[0][0] = m[1][1] / det;
+    s->bl_inv[0][1] = -m[0][1] / det;
+    s->bl_inv[1][0] = -m[1][0] / det;
+    s->bl_inv[1][1] = m[0][0] / det;
+    /* FFTW plans, once, on scratch arrays of the alignment fftw_malloc gives
+     * every later array (required by fftw_execute_dft_r2c/c2r). */
+    double *r = fftw_malloc(nfft * sizeof *r);
+    fftw_complex *c = fftw_malloc(s->nbin * sizeof *c);
+    if (r && c) {
+#pragma omp critical(sl_fftw_planner)
+        {
+            s->r2c = fftw_plan_dft_r2c_1d((int)nfft, r, c, FFTW_ESTIMATE);
+            s->c2r = fftw_plan_dft_c2r_1d((int)nfft, c, r, FFTW_ESTIMATE);
+        }
+    }
+    fftw_free(r);
+    fftw_free(c);
+    if (!s->r2c || !s->c2r) {
+        sl_synth_free(s);
+        sl_error_set(err, r && c ? SL_ESOLVER : SL_ENOMEM, NULL, 0,
+                     "synth: cannot make the FFTW plans of length %zu", nfft);
+        return NULL;
+    }
+    return s;
+}
+
+size_t sl_synth_n(const sl_synth *s) { return s->n; }
+double sl_synth_dt(const sl_synth *s) { return s->dt; }
+size_t sl_synth_nfft(const sl_synth *s) { return s->nfft; }
+const sl_synth_params *sl_synth_params_of(const sl_synth *s) { return &s->p; }
+const double *sl_synth_envelope(const sl_synth *s) { return s->env; }
+
+const double *sl_synth_grid(const sl_synth *s, size_t *nf)
+{
+    *nf = s->ngrid;
+    return s->grid;
+}
+
+/* SplitMix64 (Steele, Lea and Flood 2014) finaliser. */
+static uint64_t splitmix64(uint64_t x)
+{
+    x += UINT64_C(0x9E3779B97F4A7C15);
+    x = (x ^ (x >> 30)) * UINT64_C(0xBF58476D1CE4E5B9);
+    x = (x ^ (x >> 27)) * UINT64_C(0x94D049BB133111EB);
+    return x ^ (x >> 31);
+}
+
+unsigned long sl_synth_stream_seed(uint64_t seed, size_t set, sl_synth_comp comp,
+                                   unsigned attempt)
+{
+    uint64_t h = splitmix64(seed);
+    h = splitmix64(h ^ (uint64_t)set);
+    h = splitmix64(h ^ (uint64_t)comp);
+    h = splitmix64(h ^ (uint64_t)attempt);
+    return (unsigned long)(h & UINT64_C(0xFFFFFFFF));
+}
+
+/* ------------------------------------------------------------------ */
+/* One motion                                                          */
+/* ------------------------------------------------------------------ */
+
+struct sl_synth_motion {
+    const sl_synth *s;
+    int ready;             /* a set_* succeeded */
+    int envelope;          /* 1: synthetic (multiply by E) */
+    double zpa;            /* m/s^2 */
+    double damping;
+    size_t j_lo, j_hi;     /* checked grid points [j_lo, j_hi) */
+    unsigned iter;         /* iterations since set_* */
+    unsigned attempt;
+    double *tgt;           /* grid: target (NAN outside) */
+    double *psa;           /* grid: spectrum of the current iterate */
+    double *lnr;           /* grid: ln of the correction ratio */
+    fftw_complex *base;    /* nbin: B_k */
+    fftw_complex *cwork;   /* nbin */
+    double *mult;          /* nbin: M_k */
+    double *rwork;         /* N */
+    double *acc;           /* n: current iterate */
+    double *best_acc;      /* n: best iterate */
+    double *best_psa;      /* grid */
+    double best_score;     /* violation of the best iterate (0 = passes) */
+    unsigned best_iter;
+};
+
+void sl_synth_motion_free(sl_synth_motion *m)
+{
+    if (!m)
+        return;
+    free(m->tgt);
+    free(m->psa);
+    free(m->lnr);
+    fftw_free(m->base);
+    fftw_free(m->cwork);
+    free(m->mult);
+    fftw_free(m->rwork);
+    free(m->acc);
+    free(m->best_acc);
+    free(m->best_psa);
+    free(m);
+}
+
+sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err)
+{
+    sl_synth_motion *m = calloc(1, sizeof *m);
+    if (!m) {
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        return NULL;
+    }
+    m->s = s;
+    m->tgt = malloc(s->ngrid * sizeof *m->tgt);
+    m->psa = malloc(s->ngrid * sizeof *m->psa);
+    m->lnr = malloc(s->ngrid * sizeof *m->lnr);
+    m->best_psa = malloc(s->ngrid * sizeof *m->best_psa);
+    m->base = fftw_malloc(s->nbin * sizeof *m->base);
+    m->cwork = fftw_malloc(s->nbin * sizeof *m->cwork);
+    m->mult = malloc(s->nbin * sizeof *m->mult);
+    m->rwork = fftw_malloc(s->nfft * sizeof *m->rwork);
+    m->acc = malloc(s->n * sizeof *m->acc);
+    m->best_acc = malloc(s->n * sizeof *m->best_acc);
+    if (!m->tgt || !m->psa || !m->lnr || !m->best_psa || !m->base || !m->cwork || !m->mult ||
+        !m->rwork || !m->acc || !m->best_acc) {
+        sl_synth_motion_free(m);
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        return NULL;
+    }
+    return m;
+}
+
+/* Target on the grid and the checked range. */
+static sl_status set_target(sl_synth_motion *m, const sl_synth_target *t, sl_error *err)
+{
+    sl_status st = check_target(t, err);
+    if (st)
+        return st;
+    const sl_synth *s = m->s;
+    m->zpa = t->zpa_ms2;
+    m->damping = t->spec->damping;
+    m->j_lo = s->ngrid;
+    m->j_hi = 0;
+    /* A tiny relative slack admits grid points equal to the target's end
+     * frequencies up to rounding. */
+    const double slack = 1e-12;
+    double f0 = t->spec->f_hz[0] * (1 - slack), f1 = t->spec->f_hz[t->spec->n - 1] * (1 + slack);
+    for (size_t j = 0; j < s->ngrid; j++) {
+        double f = s->grid[j];
+        if (f >= f0 && f <= f1) {
+            double fc = f < t->spec->f_hz[0] ? t->spec->f_hz[0]
+                        : f > t->spec->f_hz[t->spec->n - 1] ? t->spec->f_hz[t->spec->n - 1]
+                                                           : f;
+            m->tgt[j] = sl_spectrum_interp(t->spec, fc);
+            if (m->j_lo == s->ngrid)
+                m->j_lo = j;
+            m->j_hi = j + 1;
+        } else {
+            m->tgt[j] = NAN;
+        }
+    }
+    if (m->j_lo >= m->j_hi)
+        return sl_error_set(err, SL_EINVAL, NULL, 0,
+                            "synth: the target (%g-%g Hz) does not overlap the check grid "
+                            "(%g-%g Hz)",
+                            t->spec->f_hz[0], t->spec->f_hz[t->spec->n - 1], s->grid[0],
+                            s->grid[s->ngrid - 1]);
+    return SL_OK;
+}
+
+/* Target PSA at any frequency: log-log inside, constant SD below, constant
+ * above (for the initial amplitudes only). */
+static double target_ext(const sl_spectrum *sp, double f)
+{
+    double f0 = sp->f_hz[0], f1 = sp->f_hz[sp->n - 1];
+    if (f <= f0)
+        return sp->sa_ms2[0] * (f / f0) * (f / f0);
+    if (f >= f1)
+        return sp->sa_ms2[sp->n - 1];
+    return sl_spectrum_interp(sp, f);
+}
+
+/* Spectral checks of psa against the target over the checked range. */
+typedef struct spec_check {
+    double min_ratio, f_min, max_ratio, f_max;
+    size_t run, n_below;
+} spec_check;
+
+static void spectral_check(const sl_synth_motion *m, const double *psa, spec_check *c)
+{
+    const sl_synth *s = m->s;
+    c->min_ratio = INFINITY;
+    c->max_ratio = -INFINITY;
+    c->f_min = c->f_max = NAN;
+    c->run = c->n_below = 0;
+    size_t run = 0;
+    for (size_t j = m->j_lo; j < m->j_hi; j++) {
+        double r = psa[j] / m->tgt[j];
+        if (!(r >= c->min_ratio)) { /* also takes NaN, so NaN fails the check */
+            c->min_ratio = r;
+            c->f_min = s->grid[j];
+        }
+        if (r > c->max_ratio) {
+            c->max_ratio = r;
+            c->f_max = s->grid[j];
+        }
+        if (!(r >= 1)) {
+            run++;
+            c->n_below++;
+            if (run > c->run)
+                c->run = run;
+        } else {
+            run = 0;
+        }
+    }
+}
+
+/* Violation of the spectral limits: 0 when every one holds. */
+static double violation(const sl_synth_params *p, const spec_check *c, size_t npoints)
+{
+    double v = 0;
+    double lo = 1 - p->tol_below, hi = 1 + p->tol_above;
+    if (!(c->min_ratio >= lo))
+        v += isnan(c->min_ratio) ? INFINITY : lo - c->min_ratio;
+    if (!(c->max_ratio <= hi))
+        v += isnan(c->max_ratio) ? INFINITY : c->max_ratio - hi;
+    if (c->run > p->max_run_below)
+        v += (double)(c->run - p->max_run_below) / (double)npoints;
+    return v;
+}
+
+/* Scale every half-cycle (run of samples of one sign) whose peak exceeds
+ * `limit` down to it; returns how many were scaled. */
+static size_t limit_peaks(double *a, size_t n, double limit)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < n;) {
+        size_t j = i;
+        double peak = 0;
+        int pos = a[i] >= 0;
+        while (j < n && (a[j] >= 0) == pos) {
+            peak = fabs(a[j]) > peak ? fabs(a[j]) : peak;
+            j++;
+        }
+        if (peak > limit) {
+            double f = limit / peak;
+            for (size_t q = i; q < j; q++)
+                a[q] *= f;
+            count++;
+        }
+        i = j;
+    }
+    return count;
+}
+
+/* Motion of the current multipliers: inverse FFT, envelope, peak limiting,
+ * baseline, exact peak scaling; then its spectrum, and keep it if it is the
+ * best. With raw != 0 stop after the envelope (the level of a new motion). */
+static sl_status produce(sl_synth_motion *m, int raw, sl_error *err)
+{
+    const sl_synth *s = m->s;
+    const size_t n = s->n, nb = s->nbin;
+    for (size_t k = 0; k < nb; k++) {
+        m->cwork[k][0] = m->base[k][0] * m->mult[k];
+        m->cwork[k][1] = m->base[k][1] * m->mult[k];
+    }
+    m->cwork[0][0] = m->cwork[0][1] = 0; /* no mean */
+    m->cwork[nb - 1][1] = 0;             /* the Nyquist bin of a real signal is real */
+    /* FFTW's c2r is unnormalised: x_j = sum_k X_k e^{2 pi i jk/N}; divide by N. */
+    fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
+    const double inv_n = 1.0 / (double)s->nfft;
+    for (size_t j = 0; j < n; j++)
+        m->acc[j] = m->rwork[j] * inv_n * (m->envelope ? s->env[j] : 1.0);
+    if (!raw) {
+        if (s->p.peak_limit)
+            limit_peaks(m->acc, n, m->zpa);
+        /* Baseline: subtract c0 bl0 + c1 bl1 so that v(T) = d(T) = 0. */
+        double ve, de;
+        end_values(m->acc, n, s->dt, &ve, &de);
+        double c0 = s->bl_inv[0][0] * ve + s->bl_inv[0][1] * de;
+        double c1 = s->bl_inv[1][0] * ve + s->bl_inv[1][1] * de;
+        for (size_t j = 0; j < n; j++)
+            m->acc[j] -= c0 * s->bl[0][j] + c1 * s->bl[1][j];
+    }
+    double peak = 0;
+    for (size_t j = 0; j < n; j++) {
+        double x = fabs(m->acc[j]);
+        peak = x > peak ? x : peak;
+    }
+    if (!(peak > 0) || !isfinite(peak))
+        return sl_error_set(err, SL_ESOLVER, NULL, 0, "synth: motion vanished or overflowed");
+    if (!raw) {
+        const double scale = m->zpa / peak;
+        for (size_t j = 0; j < n; j++)
+            m->acc[j] *= scale;
+    }
+    for (size_t j = 0; j < s->ngrid; j++)
+        m->psa[j] = NAN;
+    sl_status st = sl_spectrum_compute(m->acc, n, s->dt, s->grid + m->j_lo, m->j_hi - m->j_lo,
+                                       m->damping, m->psa + m->j_lo, NULL, NULL, err);
+    if (st || raw)
+        return st;
+    spec_check c;
+    spectral_check(m, m->psa, &c);
+    double v = violation(&s->p, &c, m->j_hi - m->j_lo);
+#ifdef SYNTH_DEBUG
+    fprintf(stderr, "it %2u v %.3f min %.3f@%.2f max %.3f@%.2f run %zu nb %zu |", m->iter, v, c.min_ratio, c.f_min, c.max_ratio, c.f_max, c.run, c.n_below);
+    for (size_t jj = m->j_lo; jj < m->j_hi; jj += 20) fprintf(stderr, " %.2f", m->psa[jj] / m->tgt[jj]);
+    fprintf(stderr, "\n");
+#endif
+    if (m->iter == 0 || v < m->best_score) {
+        m->best_score = v;
+        m->best_iter = m->iter;
+        memcpy(m->best_acc, m->acc, n * sizeof *m->acc);
+        memcpy(m->best_psa, m->psa, s->ngrid * sizeof *m->psa);
+    }
+    return SL_OK;
+}
+
+/* Start a motion from its base spectrum: multipliers set to the one gain
+ * that brings the raw motion's spectrum to aim x target on average (log
+ * mean over the checked points), then iteration 0. */
+static sl_status start(sl_synth_motion *m, sl_error *err)
+{
+    const sl_synth *s = m->s;
+    for (size_t k = 0; k < s->nbin; k++)
+        m->mult[k] = 1;
+    m->iter = 0;
+    sl_status st = produce(m, 1, err);
+    if (st)
+        return st;
+    double sum = 0;
+    for (size_t j = m->j_lo; j < m->j_hi; j++)
+        sum += log(s->p.aim * m->tgt[j] / m->psa[j]);
+    double gain = exp(sum / (double)(m->j_hi - m->j_lo));
+    if (!isfinite(gain) || !(gain > 0))
+        return sl_error_set(err, SL_ESOLVER, NULL, 0, "synth: cannot set the level");
+    for (size_t k = 0; k < s->nbin; k++)
+        m->mult[k] = gain;
+    st = produce(m, 0, err);
+    m->ready = st == SL_OK;
+    return st;
+}
+
+sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint64_t seed,
+                              size_t set, sl_synth_comp comp, unsigned attempt, sl_error *err)
+{
+    m->ready = 0;
+    sl_status st = set_target(m, t, err);
+    if (st)
+        return st;
+    const sl_synth *s = m->s;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!rng)
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+    gsl_rng_set(rng, sl_synth_stream_seed(seed, set, comp, attempt));
+    m->base[0][0] = m->base[0][1] = 0;
+    m->mult[0] = 1;
+    for (size_t k = 1; k < s->nbin; k++) {
+        double f = s->df * (double)k;
+        double amp = target_ext(t->spec, f) / sqrt(f);
+        double phi = 2 * SYNTH_PI * gsl_rng_uniform(rng);
+        m->base[k][0] = amp * cos(phi);
+        m->base[k][1] = amp * sin(phi);
+        m->mult[k] = 1;
+    }
+    gsl_rng_free(rng);
+    m->envelope = 1;
+    m->attempt = attempt;
+    return start(m, err);
+}
+
+sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
+                              const double *acc_ms2, size_t n, sl_error *err)
+{
+    m->ready = 0;
+    const sl_synth *s = m->s;
+    if (!acc_ms2 || n == 0 || n > s->n)
+        return sl_error_set(err, SL_EINVAL, NULL, 0,
+                            "synth: record of %zu samples does not fit the plan (%zu)", n,
+                            s->n);
+    sl_status st = set_target(m, t, err);
+    if (st)
+        return st;
+    double amax = 0;
+    for (size_t j = 0; j < s->nfft; j++) {
+        double x = j < n ? acc_ms2[j] : 0.0;
+        if (!isfinite(x))
+            return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: record sample %zu not finite",
+                                j);
+        amax = fabs(x) > amax ? fabs(x) : amax;
+        m->rwork[j] = x;
+    }
+    if (!(amax > 0))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: record is all zeros");
+    /* B = DFT of the zero-padded record (FFTW r2c, unnormalised). */
+    fftw_execute_dft_r2c(s->r2c, m->rwork, m->base);
+    m->envelope = 0;
+    m->attempt = 0;
+    return start(m, err);
+}
+
+sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
+{
+    if (!m->ready)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: iterate before set");
+    const sl_synth *s = m->s;
+    const double lo = -log(SL_SYNTH_RATIO_CLAMP), hi = log(SL_SYNTH_RATIO_CLAMP);
+    for (size_t j = m->j_lo; j < m->j_hi; j++) {
+        double x = log(s->p.aim * m->tgt[j] / m->psa[j]);
+        if (!isfinite(x)) {
+            m->ready = 0;
+            return sl_error_set(err, SL_ESOLVER, NULL, 0, "synth: spectrum not finite at %g Hz",
+                                s->grid[j]);
+        }
+        m->lnr[j] = x < lo ? lo : x > hi ? hi : x;
+    }
+    /* Outside the checked range the correction fades out linearly in
+     * log2 f over SL_SYNTH_EDGE_OCTAVES: those bins have no check of their
+     * own, and a full correction there drifts (it is only seen through the
+     * edge point). */
+    for (size_t j = 0; j < m->j_lo; j++)
+        m->lnr[j] = m->lnr[m->j_lo];
+    for (size_t j = m->j_hi; j < s->ngrid; j++)
+        m->lnr[j] = m->lnr[m->j_hi - 1];
+    const double f_lo = s->grid[m->j_lo], f_hi = s->grid[m->j_hi - 1];
+    for (size_t k = 1; k < s->nbin; k++) {
+        size_t j = s->bin_j[k];
+        double w = s->bin_w[k], f = s->df * (double)k;
+        double x = s->ngrid == 1 ? m->lnr[0] : (1 - w) * m->lnr[j] + w * m->lnr[j + 1];
+        double oct = f < f_lo ? log2(f_lo / f) : f > f_hi ? log2(f / f_hi) : 0.0;
+        double fade = oct >= SL_SYNTH_EDGE_OCTAVES ? 0.0 : 1.0 - oct / SL_SYNTH_EDGE_OCTAVES;
+        m->mult[k] *= exp(s->p.relax * fade * x);
+    }
+    m->iter++;
+    sl_status st = produce(m, 0, err);
+    if (st)
+        m->ready = 0;
+    return st;
+}
+
+int sl_synth_test(const sl_synth_motion *m) { return m->ready && m->best_score == 0; }
+
+unsigned sl_synth_iterations(const sl_synth_motion *m) { return m->iter; }
+
+const double *sl_synth_acc(const sl_synth_motion *m) { return m->best_acc; }
+const double *sl_synth_psa(const sl_synth_motion *m) { return m->best_psa; }
+const double *sl_synth_target_psa(const sl_synth_motion *m) { return m->tgt; }
+
+void sl_synth_check_motion(const sl_synth_motion *m, sl_synth_check *out)
+{
+    const sl_synth *s = m->s;
+    const sl_synth_params *p = &s->p;
+    memset(out, 0, sizeof *out);
+    spec_check c;
+    spectral_check(m, m->best_psa, &c);
+    out->damping = m->damping;
+    out->f_lo_hz = s->grid[m->j_lo];
+    out->f_hi_hz = s->grid[m->j_hi - 1];
+    out->npoints = m->j_hi - m->j_lo;
+    out->min_ratio = c.min_ratio;
+    out->f_min_ratio_hz = c.f_min;
+    out->max_ratio = c.max_ratio;
+    out->f_max_ratio_hz = c.f_max;
+    out->run_below = c.run;
+    out->n_below = c.n_below;
+    /* Integrals and peaks of the best iterate (piecewise-linear, exact). */
+    const double *a = m->best_acc;
+    const double dt = s->dt;
+    double v = 0, d = 0, pv = 0, pd = 0, pa = fabs(a[0]);
+    for (size_t i = 0; i + 1 < s->n; i++) {
+        d += dt * v + dt * dt * (2 * a[i] + a[i + 1]) / 6;
+        v += dt * (a[i] + a[i + 1]) / 2;
+        pv = fabs(v) > pv ? fabs(v) : pv;
+        pd = fabs(d) > pd ? fabs(d) : pd;
+        pa = fabs(a[i + 1]) > pa ? fabs(a[i + 1]) : pa;
+    }
+    sl_motion tmp = {.path = NULL, .label = NULL, .n = s->n, .dt_s = dt,
+                     .acc_ms2 = m->best_acc};
+    out->d5_75_s = sl_motion_d5_75(&tmp);
+    out->duration_s = dt * (double)(s->n - 1);
+    out->pga_ms2 = pa;
+    out->zpa_ms2 = m->zpa;
+    out->pgv_ms = pv;
+    out->pgd_m = pd;
+    out->v_end_ms = v;
+    out->d_end_m = d;
+    out->max_corr = NAN;
+    out->iterations = m->best_iter;
+    out->attempt = m->attempt;
+    out->ok_below = c.min_ratio >= 1 - p->tol_below;
+    out->ok_above = c.max_ratio <= 1 + p->tol_above;
+    out->ok_run = c.run <= p->max_run_below;
+    out->ok_d5_75 = out->d5_75_s >= p->min_d5_75_s;
+    /* Compare with a tolerance of rounding so that 4000 x 0.005 passes 20 s. */
+    out->ok_duration = out->duration_s >= p->min_duration_s * (1 - 1e-9);
+    out->ok_end = fabs(v) <= p->end_vel_frac * pv && fabs(d) <= p->end_disp_frac * pd;
+    out->ok_pga = fabs(pa - m->zpa) <= p->pga_rel_tol * m->zpa;
+    out->ok_corr = 1;
+    out->pass = out->ok_below && out->ok_above && out->ok_run && out->ok_d5_75 &&
+                out->ok_duration && out->ok_end && out->ok_pga;
+}
+
+double sl_synth_corr(const double *a, const double *b, size_t n)
+{
+    if (n == 0)
+        return 0;
+    double ma = 0, mb = 0;
+    for (size_t i = 0; i < n; i++) {
+        ma += a[i];
+        mb += b[i];
+    }
+    ma /= (double)n;
+    mb /= (double)n;
+    double sab = 0, saa = 0, sbb = 0;
+    for (size_t i = 0; i < n; i++) {
+        double x = a[i] - ma, y = b[i] - mb;
+        sab += x * y;
+        saa += x * x;
+        sbb += y * y;
+    }
+    if (!(saa > 0) || !(sbb > 0))
+        return 0;
+    return sab / sqrt(saa * sbb);
+}
+
+/* ------------------------------------------------------------------ */
+/* Sets                                                                */
+/* ------------------------------------------------------------------ */
+
+void sl_synth_set_clear(sl_synth_set *set)
+{
+    if (!set)
+        return;
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        sl_motion_free(set->motion[c]);
+    memset(set, 0, sizeof *set);
+}
+
+/* One motion run: set, then iterate until the test passes or the cap. */
+typedef struct job {
+    size_t set;           /* index into out */
+    sl_synth_comp comp;
+    unsigned attempt;
+    const double *rec;    /* record samples (match), else NULL */
+    size_t rec_n;
+    double *acc;          /* result, n samples (malloc'd) */
+    sl_synth_check check;
+    sl_status st;
+    sl_error err;
+} job;
+
+static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target *t,
+                    uint64_t seed, size_t set_index, job *jb)
+{
+    sl_error_clear(&jb->err);
+    jb->st = jb->rec ? sl_synth_set_record(m, t, jb->rec, jb->rec_n, &jb->err)
+                     : sl_synth_set_random(m, t, seed, set_index, jb->comp, jb->attempt,
+                                           &jb->err);
+    while (!jb->st && !sl_synth_test(m) && sl_synth_iterations(m) < s->p.max_iter)
+        jb->st = sl_synth_iterate(m, &jb->err);
+    if (jb->st)
+        return;
+    sl_synth_check_motion(m, &jb->check);
+    if (!jb->acc)
+        jb->acc = malloc(s->n * sizeof *jb->acc);
+    if (!jb->acc) {
+        jb->st = sl_error_set(&jb->err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        return;
+    }
+    memcpy(jb->acc, sl_synth_acc(m), s->n * sizeof *jb->acc);
+}
+
+/* Run jobs[idx[0..nidx-1]] in parallel; each thread has its own workspace.
+ * Returns the first failure in index order (err filled). */
+static sl_status run_jobs(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                          uint64_t seed, size_t first_set, job *jobs, const size_t *idx,
+                          size_t nidx, size_t *done, size_t total, sl_synth_progress progress,
+                          void *ctx, sl_error *err)
+{
+    long long nj = (long long)nidx;
+#pragma omp parallel
+    {
+        sl_error e;
+        sl_synth_motion *m = sl_synth_motion_alloc(s, &e);
+#pragma omp for schedule(dynamic, 1)
+        for (long long q = 0; q < nj; q++) {
+            job *jb = &jobs[idx[q]];
+            if (!m) {
+                jb->st = sl_error_set(&jb->err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+                continue;
+            }
+            run_job(s, m, &tgt[jb->comp], seed, first_set + jb->set, jb);
+#pragma omp critical(sl_synth_progress)
+            {
+                (*done)++;
+                if (progress)
+                    progress(ctx, *done, total);
+            }
+        }
+        sl_synth_motion_free(m);
+    }
+    for (size_t q = 0; q < nidx; q++) {
+        job *jb = &jobs[idx[q]];
+        if (jb->st)
+            return sl_error_set(err, jb->st, NULL, 0, "%s", jb->err.msg);
+    }
+    return SL_OK;
+}
+
+static const int synth_pairs[SL_SYNTH_NPAIR][2] = {
+    {SL_SYNTH_H1, SL_SYNTH_H2}, {SL_SYNTH_H1, SL_SYNTH_V}, {SL_SYNTH_H2, SL_SYNTH_V}};
+
+/* Correlations of set `k` (jobs k*3 + c); returns the pair with the largest
+ * |rho| above the limit, or -1. */
+static int set_corr(const sl_synth *s, job *jb3, double corr[SL_SYNTH_NPAIR])
+{
+    int worst = -1;
+    double worst_r = s->p.max_corr;
+    for (int q = 0; q < SL_SYNTH_NPAIR; q++) {
+        job *a = &jb3[synth_pairs[q][0]], *b = &jb3[synth_pairs[q][1]];
+        if (!a->acc || !b->acc) {
+            corr[q] = NAN;
+            continue;
+        }
+        size_t n = s->n;
+        if (a->rec && b->rec)
+            n = a->rec_n < b->rec_n ? a->rec_n : b->rec_n;
+        corr[q] = sl_synth_corr(a->acc, b->acc, n);
+        if (fabs(corr[q]) > worst_r) {
+            worst_r = fabs(corr[q]);
+            worst = q;
+        }
+    }
+    return worst;
+}
+
+/* Fill out[k] from the jobs (motions copied into sl_motion). */
+static sl_status collect(const sl_synth *s, job *jobs, size_t count, const char *prefix,
+                         size_t first_set, sl_synth_set *out, sl_error *err)
+{
+    int all_pass = 1;
+    for (size_t k = 0; k < count; k++) {
+        sl_synth_set *o = &out[k];
+        memset(o, 0, sizeof *o);
+        job *jb3 = &jobs[k * SL_SYNTH_NCOMP];
+        set_corr(s, jb3, o->corr);
+        o->pass = 1;
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+            job *jb = &jb3[c];
+            if (!jb->acc)
+                continue;
+            char label[64];
+            if (prefix)
+                snprintf(label, sizeof label, "%s_%s", prefix, sl_synth_comp_name((sl_synth_comp)c));
+            else
+                snprintf(label, sizeof label, "set%02zu_%s", first_set + k + 1,
+                         sl_synth_comp_name((sl_synth_comp)c));
+            o->motion[c] = sl_motion_from_array(jb->acc, s->n, s->dt, label);
+            if (!o->motion[c]) {
+                for (size_t q = 0; q <= k; q++)
+                    sl_synth_set_clear(&out[q]);
+                return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+            }
+            o->check[c] = jb->check;
+            double mc = NAN;
+            for (int q = 0; q < SL_SYNTH_NPAIR; q++)
+                if ((synth_pairs[q][0] == c || synth_pairs[q][1] == c) && !isnan(o->corr[q]))
+                    mc = isnan(mc) || fabs(o->corr[q]) > mc ? fabs(o->corr[q]) : mc;
+            o->check[c].max_corr = mc;
+            o->check[c].ok_corr = isnan(mc) || mc <= s->p.max_corr;
+            o->check[c].pass = o->check[c].pass && o->check[c].ok_corr;
+            o->pass = o->pass && o->check[c].pass;
+        }
+        all_pass = all_pass && o->pass;
+    }
+    return all_pass ? SL_OK : SL_ENOCONV;
+}
+
+static void free_jobs(job *jobs, size_t nj)
+{
+    if (!jobs)
+        return;
+    for (size_t i = 0; i < nj; i++)
+        free(jobs[i].acc);
+    free(jobs);
+}
+
+sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                             uint64_t seed, size_t first_set, size_t count,
+                             sl_synth_set *out, sl_synth_progress progress, void *ctx,
+                             sl_error *err)
+{
+    if (count == 0)
+        return SL_OK;
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        if (check_target(&tgt[c], err))
+            return SL_EINVAL;
+    size_t nj = count * SL_SYNTH_NCOMP;
+    job *jobs = calloc(nj, sizeof *jobs);
+    size_t *idx = malloc(nj * sizeof *idx);
+    if (!jobs || !idx) {
+        free(jobs);
+        free(idx);
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+    }
+    for (size_t i = 0; i < nj; i++) {
+        jobs[i].set = i / SL_SYNTH_NCOMP;
+        jobs[i].comp = (sl_synth_comp)(i % SL_SYNTH_NCOMP);
+        idx[i] = i;
+    }
+    size_t done = 0, total = nj, nidx = nj;
+    sl_status st = SL_OK;
+    /* Rounds: run the pending jobs, then redo (next attempt) every component
+     * that failed its spectral checks and the later component of each set's
+     * worst correlated pair, while attempts remain. Every decision depends
+     * only on results, so the rounds are the same for any thread count. */
+    while (nidx > 0) {
+        st = run_jobs(s, tgt, seed, first_set, jobs, idx, nidx, &done, total, progress, ctx,
+                      err);
+        if (st)
+            break;
+        nidx = 0;
+        for (size_t k = 0; k < count; k++) {
+            job *jb3 = &jobs[k * SL_SYNTH_NCOMP];
+            int redo[SL_SYNTH_NCOMP] = {0, 0, 0};
+            for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+                const sl_synth_check *ck = &jb3[c].check;
+                redo[c] = !(ck->ok_below && ck->ok_above && ck->ok_run);
+            }
+            double corr[SL_SYNTH_NPAIR];
+            int q = set_corr(s, jb3, corr);
+            if (q >= 0 && !redo[synth_pairs[q][0]])
+                redo[synth_pairs[q][1]] = 1;
+            for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+                if (redo[c] && jb3[c].attempt + 1 < s->p.max_attempts) {
+                    jb3[c].attempt++;
+                    idx[nidx++] = k * SL_SYNTH_NCOMP + (size_t)c;
+                }
+        }
+        total += nidx;
+    }
+    if (!st)
+        st = collect(s, jobs, count, NULL, first_set, out, err);
+    free_jobs(jobs, nj);
+    free(idx);
+    return st;
+}
+
+sl_status sl_synth_make_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                            uint64_t seed, size_t set, sl_synth_set *out, sl_error *err)
+{
+    return sl_synth_make_sets(s, tgt, seed, set, 1, out, NULL, NULL, err);
+}
+
+sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                             const sl_motion *const rec[SL_SYNTH_NCOMP], sl_synth_set *out,
+                             sl_error *err)
+{
+    job jobs[SL_SYNTH_NCOMP];
+    size_t idx[SL_SYNTH_NCOMP], nidx = 0;
+    memset(jobs, 0, sizeof jobs);
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        jobs[c].comp = (sl_synth_comp)c;
+        if (!rec[c])
+            continue;
+        if (fabs(rec[c]->dt_s - s->dt) > 1e-9 * s->dt || rec[c]->n > s->n)
+            return sl_error_set(err, SL_EINVAL, rec[c]->path, 0,
+                                "synth: record (%zu samples at %g s) does not fit the plan "
+                                "(%zu at %g s)",
+                                rec[c]->n, rec[c]->dt_s, s->n, s->dt);
+        if (check_target(&tgt[c], err))
+            return SL_EINVAL;
+        jobs[c].rec = rec[c]->acc_ms2;
+        jobs[c].rec_n = rec[c]->n;
+        idx[nidx++] = (size_t)c;
+    }
+    if (nidx == 0)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: no record to match");
+    size_t done = 0;
+    sl_status st = run_jobs(s, tgt, 0, 0, jobs, idx, nidx, &done, nidx, NULL, NULL, err);
+    if (!st)
+        st = collect(s, jobs, 1, "match", 0, out, err);
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        free(jobs[c].acc);
+    return st;
+}
+
+/* ------------------------------------------------------------------ */
+/* Input and output                                                    */
+/* ------------------------------------------------------------------ */
+
+double *sl_synth_resample(const double *acc_ms2, size_t n, double dt_s, double dt_new_s,
+                          size_t *n_new)
+{
+    *n_new = 0;
+    if (!acc_ms2 || n == 0 || !(dt_s > 0) || !(dt_new_s > 0) || !isfinite(dt_s) ||
+        !isfinite(dt_new_s))
+        return NULL;
+    double dur = dt_s * (double)(n - 1);
+    /* A relative slack keeps the last sample when dur/dt_new is whole. */
+    double cnt = floor(dur / dt_new_s * (1 + 1e-12)) + 1;
+    if (cnt > (double)SYNTH_MAX_NFFT)
+        return NULL;
+    size_t m = (size_t)cnt;
+    double *out = malloc(m * sizeof *out);
+    if (!out)
+        return NULL;
+    for (size_t j = 0; j < m; j++) {
+        double x = dt_new_s * (double)j / dt_s;
+        size_t i = (size_t)x;
+        if (i + 1 >= n) {
+            out[j] = acc_ms2[n - 1];
+            continue;
+        }
+        double w = x - (double)i;
+        out[j] = acc_ms2[i] + w * (acc_ms2[i + 1] - acc_ms2[i]);
+    }
+    *n_new = m;
+    return out;
+}
+
+sl_status sl_synth_write_at2(const char *path, const sl_motion *m, const char *title,
+                             sl_error *err)
+{
+    sl_atomic *a = sl_atomic_open(path, err);
+    if (!a)
+        return err ? err->code : SL_EIO;
+    FILE *f = sl_atomic_file(a);
+    fprintf(f, "SEISLIDE SYNTHETIC MOTION\n%s\nACCELERATION TIME SERIES IN UNITS OF G\n",
+            title && *title ? title : (m->label ? m->label : ""));
+    fprintf(f, "NPTS= %zu, DT= %.10g SEC\n", m->n, m->dt_s);
+    /* Values per line in the PEER layout. */
+    enum { PER_LINE = 5 };
+    for (size_t i = 0; i < m->n; i++) {
+        fprintf(f, " %16.9E", m->acc_ms2[i] / SL_G);
+        if ((i + 1) % PER_LINE == 0 || i + 1 == m->n)
+            fputc('\n', f);
+    }
+    return sl_atomic_commit(a, err);
+}
