@@ -47,8 +47,13 @@ void sl_synth_params_default(sl_synth_params *p)
     p->end_amp = SL_SYNTH_END_AMP;
     p->peak_limit = 1;
     p->relax = SL_SYNTH_RELAX;
+    p->smooth_cycles = SL_SYNTH_SMOOTH_CYCLES;
+    p->clip_hp_hz = SL_SYNTH_CLIP_HP_HZ;
 #ifdef SYNTH_DEBUG
     if (getenv("RELAX")) p->relax = atof(getenv("RELAX"));
+    if (getenv("NOCLIP")) p->peak_limit = 0;
+    if (getenv("SMOOTH")) p->smooth_cycles = atof(getenv("SMOOTH"));
+    if (getenv("HP")) p->clip_hp_hz = atof(getenv("HP"));
 #endif
 }
 
@@ -188,8 +193,10 @@ struct sl_synth {
     sl_synth_params p;
     double *grid;        /* check grid, Hz */
     size_t ngrid;
-    size_t *bin_j;       /* bin k: r(f_k) = r_j^(1 - w) r_{j+1}^w */
+    size_t *bin_j;       /* bin k: r(f_k) = r_j^(1 - w) r_{j+1}^w ... */
     double *bin_w;
+    size_t *bin_ja;      /* ... or, when grid points [ja, jb) fall in the */
+    size_t *bin_jb;      /* bin's cell f_k +- df/2, the mean of their ln r */
     double *env;         /* n: envelope */
     double *bl[2];       /* n: baseline shapes (t/T)(1 - t/T) (t/T)^i */
     double bl_inv[2][2]; /* inverse of the end-value matrix of the shapes */
@@ -237,6 +244,8 @@ void sl_synth_free(sl_synth *s)
     free(s->grid);
     free(s->bin_j);
     free(s->bin_w);
+    free(s->bin_ja);
+    free(s->bin_jb);
     free(s->env);
     free(s->bl[0]);
     free(s->bl[1]);
@@ -263,8 +272,26 @@ static int make_bins(sl_synth *s)
 {
     s->bin_j = malloc(s->nbin * sizeof *s->bin_j);
     s->bin_w = malloc(s->nbin * sizeof *s->bin_w);
-    if (!s->bin_j || !s->bin_w)
+    s->bin_ja = malloc(s->nbin * sizeof *s->bin_ja);
+    s->bin_jb = malloc(s->nbin * sizeof *s->bin_jb);
+    if (!s->bin_j || !s->bin_w || !s->bin_ja || !s->bin_jb)
         return -1;
+    size_t ja = 0, jb = 0;
+    double T = s->dt * (double)(s->n - 1);
+    double width = s->p.smooth_cycles / T;
+    if (width < s->df)
+        width = s->df;
+    for (size_t k = 0; k < s->nbin; k++) {
+        double lo = s->df * (double)k - 0.5 * width, hi = s->df * (double)k + 0.5 * width;
+        while (ja < s->ngrid && s->grid[ja] < lo)
+            ja++;
+        if (jb < ja)
+            jb = ja;
+        while (jb < s->ngrid && s->grid[jb] < hi)
+            jb++;
+        s->bin_ja[k] = ja;
+        s->bin_jb[k] = jb;
+    }
     size_t j = 0;
     for (size_t k = 0; k < s->nbin; k++) {
         double f = s->df * (double)k;
@@ -406,7 +433,6 @@ unsigned long sl_synth_stream_seed(uint64_t seed, size_t set, sl_synth_comp comp
 struct sl_synth_motion {
     const sl_synth *s;
     int ready;             /* a set_* succeeded */
-    int envelope;          /* 1: synthetic (multiply by E) */
     double zpa;            /* m/s^2 */
     double damping;
     size_t j_lo, j_hi;     /* checked grid points [j_lo, j_hi) */
@@ -420,6 +446,7 @@ struct sl_synth_motion {
     double *mult;          /* nbin: M_k */
     double *rwork;         /* N */
     double *acc;           /* n: current iterate */
+    double *prev;          /* n: scratch */
     double *best_acc;      /* n: best iterate */
     double *best_psa;      /* grid */
     double best_score;     /* violation of the best iterate (0 = passes) */
@@ -438,6 +465,7 @@ void sl_synth_motion_free(sl_synth_motion *m)
     free(m->mult);
     fftw_free(m->rwork);
     free(m->acc);
+    free(m->prev);
     free(m->best_acc);
     free(m->best_psa);
     free(m);
@@ -460,9 +488,10 @@ sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err)
     m->mult = malloc(s->nbin * sizeof *m->mult);
     m->rwork = fftw_malloc(s->nfft * sizeof *m->rwork);
     m->acc = malloc(s->n * sizeof *m->acc);
+    m->prev = malloc(s->n * sizeof *m->prev);
     m->best_acc = malloc(s->n * sizeof *m->best_acc);
     if (!m->tgt || !m->psa || !m->lnr || !m->best_psa || !m->base || !m->cwork || !m->mult ||
-        !m->rwork || !m->acc || !m->best_acc) {
+        !m->rwork || !m->acc || !m->prev || !m->best_acc) {
         sl_synth_motion_free(m);
         sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
         return NULL;
@@ -593,9 +622,10 @@ static size_t limit_peaks(double *a, size_t n, double limit)
     return count;
 }
 
-/* Motion of the current multipliers: inverse FFT, envelope, peak limiting,
- * baseline, exact peak scaling; then its spectrum, and keep it if it is the
- * best. With raw != 0 stop after the envelope (the level of a new motion). */
+/* Motion of the current multipliers: inverse FFT, peak limiting, baseline,
+ * exact peak scaling; then its spectrum, and keep it if it is the best.
+ * With raw != 0 only the inverse FFT and the spectrum (to set the level of a
+ * new motion). */
 static sl_status produce(sl_synth_motion *m, int raw, sl_error *err)
 {
     const sl_synth *s = m->s;
@@ -610,10 +640,29 @@ static sl_status produce(sl_synth_motion *m, int raw, sl_error *err)
     fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
     const double inv_n = 1.0 / (double)s->nfft;
     for (size_t j = 0; j < n; j++)
-        m->acc[j] = m->rwork[j] * inv_n * (m->envelope ? s->env[j] : 1.0);
+        m->acc[j] = m->rwork[j] * inv_n;
     if (!raw) {
-        if (s->p.peak_limit)
-            limit_peaks(m->acc, n, m->zpa);
+        if (s->p.peak_limit) {
+            memcpy(m->prev, m->acc, n * sizeof *m->acc);
+            size_t nclip = limit_peaks(m->acc, n, m->zpa);
+#ifdef SYNTH_DEBUG
+            fprintf(stderr, "clip %zu ", nclip);
+#endif
+            if (nclip > 0 && s->p.clip_hp_hz > 0) {
+                /* Keep only the part of the change above clip_hp_hz: the
+                 * local scaling changes the area of each half-cycle, a
+                 * velocity step whose low-frequency content would pollute
+                 * the long-period spectrum. */
+                for (size_t j = 0; j < s->nfft; j++)
+                    m->rwork[j] = j < n ? m->acc[j] - m->prev[j] : 0.0;
+                fftw_execute_dft_r2c(s->r2c, m->rwork, m->cwork);
+                for (size_t k = 0; k < nb && s->df * (double)k < s->p.clip_hp_hz; k++)
+                    m->cwork[k][0] = m->cwork[k][1] = 0;
+                fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
+                for (size_t j = 0; j < n; j++)
+                    m->acc[j] = m->prev[j] + m->rwork[j] * inv_n;
+            }
+        }
         /* Baseline: subtract c0 bl0 + c1 bl1 so that v(T) = d(T) = 0. */
         double ve, de;
         end_values(m->acc, n, s->dt, &ve, &de);
@@ -645,7 +694,7 @@ static sl_status produce(sl_synth_motion *m, int raw, sl_error *err)
     double v = violation(&s->p, &c, m->j_hi - m->j_lo);
 #ifdef SYNTH_DEBUG
     fprintf(stderr, "it %2u v %.3f min %.3f@%.2f max %.3f@%.2f run %zu nb %zu |", m->iter, v, c.min_ratio, c.f_min, c.max_ratio, c.f_max, c.run, c.n_below);
-    for (size_t jj = m->j_lo; jj < m->j_hi; jj += 20) fprintf(stderr, " %.2f", m->psa[jj] / m->tgt[jj]);
+    for (size_t jj = m->j_lo; jj < m->j_hi; jj += 10) fprintf(stderr, " %.2f", m->psa[jj] / m->tgt[jj]);
     fprintf(stderr, "\n");
 #endif
     if (m->iter == 0 || v < m->best_score) {
@@ -705,7 +754,14 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
         m->mult[k] = 1;
     }
     gsl_rng_free(rng);
-    m->envelope = 1;
+    m->base[s->nbin - 1][1] = 0; /* the Nyquist bin of a real signal is real */
+    /* The stationary motion s_j (c2r, divided by N), times the envelope,
+     * zero-padded: its DFT is the base spectrum from now on. */
+    fftw_execute_dft_c2r(s->c2r, m->base, m->rwork);
+    const double inv_n = 1.0 / (double)s->nfft;
+    for (size_t j = 0; j < s->nfft; j++)
+        m->rwork[j] = j < s->n ? m->rwork[j] * inv_n * s->env[j] : 0.0;
+    fftw_execute_dft_r2c(s->r2c, m->rwork, m->base);
     m->attempt = attempt;
     return start(m, err);
 }
@@ -735,7 +791,6 @@ sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
         return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: record is all zeros");
     /* B = DFT of the zero-padded record (FFTW r2c, unnormalised). */
     fftw_execute_dft_r2c(s->r2c, m->rwork, m->base);
-    m->envelope = 0;
     m->attempt = 0;
     return start(m, err);
 }
@@ -766,8 +821,14 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
     const double f_lo = s->grid[m->j_lo], f_hi = s->grid[m->j_hi - 1];
     for (size_t k = 1; k < s->nbin; k++) {
         size_t j = s->bin_j[k];
-        double w = s->bin_w[k], f = s->df * (double)k;
-        double x = s->ngrid == 1 ? m->lnr[0] : (1 - w) * m->lnr[j] + w * m->lnr[j + 1];
+        double w = s->bin_w[k], f = s->df * (double)k, x = 0;
+        if (s->bin_jb[k] > s->bin_ja[k]) {
+            for (size_t q = s->bin_ja[k]; q < s->bin_jb[k]; q++)
+                x += m->lnr[q];
+            x /= (double)(s->bin_jb[k] - s->bin_ja[k]);
+        } else {
+            x = s->ngrid == 1 ? m->lnr[0] : (1 - w) * m->lnr[j] + w * m->lnr[j + 1];
+        }
         double oct = f < f_lo ? log2(f_lo / f) : f > f_hi ? log2(f / f_hi) : 0.0;
         double fade = oct >= SL_SYNTH_EDGE_OCTAVES ? 0.0 : 1.0 - oct / SL_SYNTH_EDGE_OCTAVES;
         m->mult[k] *= exp(s->p.relax * fade * x);

@@ -99,6 +99,13 @@
 /* Exponent of the correction ratio (1 = full SIMQKE step; below 1 damps the
  * overshoot of the sparse low-frequency bins). */
 #define SL_SYNTH_RELAX 0.7
+/* The correction of bin k is the mean of ln r over the grid points within
+ * f_k +- W/2, W = max(df, SMOOTH_CYCLES/T): a motion of duration T cannot
+ * tell frequencies closer than about 1/T apart. */
+#define SL_SYNTH_SMOOTH_CYCLES 1.0
+/* The change made by the peak limiting is high-passed at this frequency
+ * before it is applied, Hz (0 = not filtered). */
+#define SL_SYNTH_CLIP_HP_HZ 1.0
 /* Outside the checked frequency range the correction fades to none over
  * this many octaves. */
 #define SL_SYNTH_EDGE_OCTAVES 1.0
@@ -140,11 +147,13 @@ typedef struct sl_synth_params {
     unsigned max_attempts;  /* >= 1 */
     double aim;             /* > 0, SL_SYNTH_AIM */
     double relax;           /* (0, 1], SL_SYNTH_RELAX: M_k *= r(f_k)^relax */
+    double smooth_cycles;   /* >= 0, SL_SYNTH_SMOOTH_CYCLES */
     /* envelope (fractions of the duration; end amplitude) */
     double rise_frac, hold_frac, end_amp;
     /* 1: scale the half-cycles whose peak exceeds the ZPA down to it before
      * the baseline correction (default); 0: only the final scaling */
     int peak_limit;
+    double clip_hp_hz;      /* >= 0, SL_SYNTH_CLIP_HP_HZ */
 } sl_synth_params;
 
 /* Fill p with the defaults above (grid: SL_SPECTRUM_FMIN_HZ..FMAX_HZ at
