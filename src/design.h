@@ -1,0 +1,122 @@
+/*
+ * design.h - design sliding spectra of one floor, the ASCE/NLTHA crossover
+ * and the required clearance.
+ *
+ * From the peak vector sliding displacements of N motion sets (NLTHA, the
+ * engine) and the ASCE/SEI 43-05 best estimates over the same friction grid:
+ *
+ *   NLTHA best estimate   m(mu)  = mean over sets of peak |u|
+ *   NLTHA design          D_N    = min(FS_N m, cap),   FS_N = 3.0 (ASCE 43-05
+ *                                  A.1: 3.0 x the mean of >= 5 analyses)
+ *   ASCE design           D_A    = min(FS_A delta_s, cap), FS_A = 2.0
+ *   cap                   1.5 x the mean over sets of the peak floor
+ *                         displacement by the 100-40 rule (the study's cap)
+ *   x                     = mu g / ZPA_h (the floor's horizontal ZPA)
+ *
+ * The crossover is the x where D_A - D_N changes sign from negative (ASCE
+ * below NLTHA: unconservative) to non-negative, interpolated linearly in x;
+ * every range of x where D_A < D_N is listed. The required clearance is D_N
+ * by default (ASCE 43-05 permits NLTHA everywhere), or D_A, or max(D_N, D_A).
+ *
+ * Units: SI (m, m/s^2); mu dimensionless. Plain data; the caller owns every
+ * array it passes; sl_design_free() frees what sl_design_compute() made.
+ */
+#ifndef SL_DESIGN_H
+#define SL_DESIGN_H
+
+#include <stddef.h>
+
+#include "status.h"
+
+/* ASCE/SEI 43-05 factor on the mean of the nonlinear analyses. */
+#define SL_NLTHA_FS 3.0
+/* The study's cap: the design value need not exceed 1.5 x the input's
+ * peak displacement (100-40 combination of the horizontals). */
+#define SL_DESIGN_CAP_FACTOR 1.5
+/* ASCE 43-05 minimum number of NLTHA motions. */
+#define SL_NLTHA_MIN_SETS 5
+
+typedef enum sl_clearance_policy {
+    SL_CLEARANCE_NLTHA = 0, /* D_N (default) */
+    SL_CLEARANCE_ASCE,      /* D_A */
+    SL_CLEARANCE_ENVELOPE   /* max(D_N, D_A) */
+} sl_clearance_policy;
+
+/* Name of a policy ("nltha", "asce", "envelope") and its parser (-1 if
+ * unknown). */
+const char *sl_clearance_policy_name(sl_clearance_policy p);
+int sl_clearance_policy_parse(const char *s);
+
+enum {
+    SL_DESIGN_NO_SLIDING = 1,     /* mu g at or above every set's demand: NLTHA not run, 0 */
+    SL_DESIGN_NLTHA_CAPPED = 2,   /* D_N = cap */
+    SL_DESIGN_ASCE_CAPPED = 4,    /* D_A = cap */
+    SL_DESIGN_UNCONSERVATIVE = 8, /* D_A < D_N */
+    SL_DESIGN_ASCE_UNDEFINED = 16 /* ASCE gave no value (e.g. no crossing): D_A = NAN */
+};
+
+typedef struct sl_design_row {
+    double mu;
+    double x;             /* mu g / ZPA_h */
+    double nltha_mean_m;  /* mean over sets */
+    double nltha_sd_m;    /* sample standard deviation over sets */
+    double nltha_design_m;
+    double asce_best_m;   /* delta_s (NAN when undefined) */
+    double asce_design_m;
+    double cap_m;
+    double clearance_m;   /* by the policy */
+    unsigned flags;       /* SL_DESIGN_* */
+} sl_design_row;
+
+typedef struct sl_design_range {
+    double x_from, x_to;  /* a range of mu g/ZPA where ASCE < NLTHA (grid points) */
+} sl_design_range;
+
+typedef struct sl_design {
+    size_t n;              /* rows = friction values */
+    sl_design_row *rows;
+    double zpa_h_ms2;
+    double cap_m;
+    sl_clearance_policy policy;
+    int has_crossover;     /* 1 when D_A - D_N goes from < 0 to >= 0 */
+    double crossover_x;    /* mu g / ZPA at the first such crossing (NAN if none) */
+    double crossover_mu;   /* the same as mu */
+    size_t n_ranges;       /* ranges where ASCE < NLTHA */
+    sl_design_range *ranges;
+} sl_design;
+
+/* Inputs: n_mu friction values (increasing), n_sets motion sets,
+ * peak_m[s * n_mu + k] the peak of set s at mu[k] (0 when not integrated),
+ * no_slide[k] nonzero when mu[k] g is at or above every set's demand,
+ * asce_best_m[k] the ASCE best estimate (NAN when undefined), pgd_m[s] the
+ * 100-40 peak displacement of set s, zpa_h_ms2 > 0. */
+typedef struct sl_design_input {
+    size_t n_mu, n_sets;
+    const double *mu;
+    const double *peak_m;
+    const int *no_slide;
+    const double *asce_best_m;
+    const double *pgd_m;
+    double zpa_h_ms2;
+    double g_ms2;
+    double fs_nltha;       /* SL_NLTHA_FS */
+    double fs_asce;        /* SL_ASCE_FS */
+    double cap_factor;     /* SL_DESIGN_CAP_FACTOR */
+    sl_clearance_policy policy;
+} sl_design_input;
+
+/* Defaults for the factors, g and the policy; the caller sets the rest. */
+void sl_design_input_default(sl_design_input *in);
+
+/* Compute the design spectra, crossover and clearance. Returns NULL and
+ * fills err on bad input (n_mu == 0, n_sets == 0, mu not increasing,
+ * ZPA <= 0, negative or non-finite peaks). */
+sl_design *sl_design_compute(const sl_design_input *in, sl_error *err);
+
+void sl_design_free(sl_design *d);
+
+/* Clearance at an arbitrary mu by linear interpolation of the rows (the
+ * same rule the workbook's lookup formula uses); NAN outside the grid. */
+double sl_design_clearance_at(const sl_design *d, double mu);
+
+#endif
