@@ -46,15 +46,7 @@ void sl_synth_params_default(sl_synth_params *p)
     p->hold_frac = SL_SYNTH_HOLD_FRAC;
     p->end_amp = SL_SYNTH_END_AMP;
     p->peak_limit = 1;
-    p->relax = SL_SYNTH_RELAX;
-    p->smooth_cycles = SL_SYNTH_SMOOTH_CYCLES;
-    p->clip_hp_hz = SL_SYNTH_CLIP_HP_HZ;
-#ifdef SYNTH_DEBUG
-    if (getenv("RELAX")) p->relax = atof(getenv("RELAX"));
-    if (getenv("NOCLIP")) p->peak_limit = 0;
-    if (getenv("SMOOTH")) p->smooth_cycles = atof(getenv("SMOOTH"));
-    if (getenv("HP")) p->clip_hp_hz = atof(getenv("HP"));
-#endif
+    p->taper_s = SL_SYNTH_TAPER_S;
 }
 
 sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)
@@ -81,10 +73,10 @@ sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)
     SYNTH_REQUIRE(p->pga_rel_tol >= 0 && isfinite(p->pga_rel_tol), "pga_rel_tol must be >= 0");
     SYNTH_REQUIRE(p->max_attempts >= 1, "max_attempts must be >= 1");
     SYNTH_REQUIRE(p->aim > 0 && isfinite(p->aim), "aim must be > 0");
-    SYNTH_REQUIRE(p->relax > 0 && p->relax <= 1, "relax must be in (0, 1]");
     SYNTH_REQUIRE(p->rise_frac > 0 && p->rise_frac <= p->hold_frac && p->hold_frac < 1,
                   "envelope needs 0 < rise_frac <= hold_frac < 1");
     SYNTH_REQUIRE(p->end_amp > 0 && p->end_amp <= 1, "end_amp must be in (0, 1]");
+    SYNTH_REQUIRE(p->taper_s >= 0 && isfinite(p->taper_s), "taper_s must be >= 0");
 #undef SYNTH_REQUIRE
     return SL_OK;
 }
@@ -198,6 +190,8 @@ struct sl_synth {
     size_t *bin_ja;      /* ... or, when grid points [ja, jb) fall in the */
     size_t *bin_jb;      /* bin's cell f_k +- df/2, the mean of their ln r */
     double *env;         /* n: envelope */
+    double *taper;       /* ntaper: half-cosine end taper, 0 at the end sample */
+    size_t ntaper;
     double *bl[2];       /* n: baseline shapes (t/T)(1 - t/T) (t/T)^i */
     double bl_inv[2][2]; /* inverse of the end-value matrix of the shapes */
     fftw_plan r2c, c2r;  /* on fftw_malloc'd arrays of N reals, N/2 + 1 complexes */
@@ -247,6 +241,7 @@ void sl_synth_free(sl_synth *s)
     free(s->bin_ja);
     free(s->bin_jb);
     free(s->env);
+    free(s->taper);
     free(s->bl[0]);
     free(s->bl[1]);
     free(s);
@@ -277,12 +272,8 @@ static int make_bins(sl_synth *s)
     if (!s->bin_j || !s->bin_w || !s->bin_ja || !s->bin_jb)
         return -1;
     size_t ja = 0, jb = 0;
-    double T = s->dt * (double)(s->n - 1);
-    double width = s->p.smooth_cycles / T;
-    if (width < s->df)
-        width = s->df;
     for (size_t k = 0; k < s->nbin; k++) {
-        double lo = s->df * (double)k - 0.5 * width, hi = s->df * (double)k + 0.5 * width;
+        double lo = s->df * ((double)k - 0.5), hi = s->df * ((double)k + 0.5);
         while (ja < s->ngrid && s->grid[ja] < lo)
             ja++;
         if (jb < ja)
@@ -354,6 +345,18 @@ sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_err
         return NULL;
     }
     make_envelope(s);
+    /* End taper: w_j = (1 - cos(pi j/m))/2, j < m = taper_s/dt (at most n/2). */
+    s->ntaper = (size_t)ceil(p->taper_s / dt_s);
+    if (s->ntaper > n / 2)
+        s->ntaper = n / 2;
+    s->taper = malloc((s->ntaper ? s->ntaper : 1) * sizeof *s->taper);
+    if (!s->taper) {
+        sl_synth_free(s);
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        return NULL;
+    }
+    for (size_t j = 0; j < s->ntaper; j++)
+        s->taper[j] = 0.5 * (1 - cos(SYNTH_PI * (double)j / (double)s->ntaper));
     /* Baseline shapes and the 2x2 map from their coefficients to end values. */
     double T = dt_s * (double)(n - 1), m[2][2];
     for (size_t j = 0; j < n; j++) {
@@ -377,7 +380,8 @@ sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_err
      * every later array (required by fftw_execute_dft_r2c/c2r). */
     double *r = fftw_malloc(nfft * sizeof *r);
     fftw_complex *c = fftw_malloc(s->nbin * sizeof *c);
-    if (r && c) {
+    const int have_buffers = r && c;
+    if (have_buffers) {
 #pragma omp critical(sl_fftw_planner)
         {
             s->r2c = fftw_plan_dft_r2c_1d((int)nfft, r, c, FFTW_ESTIMATE);
@@ -388,7 +392,7 @@ sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_err
     fftw_free(c);
     if (!s->r2c || !s->c2r) {
         sl_synth_free(s);
-        sl_error_set(err, r && c ? SL_ESOLVER : SL_ENOMEM, NULL, 0,
+        sl_error_set(err, have_buffers ? SL_ESOLVER : SL_ENOMEM, NULL, 0,
                      "synth: cannot make the FFTW plans of length %zu", nfft);
         return NULL;
     }
@@ -441,12 +445,9 @@ struct sl_synth_motion {
     double *tgt;           /* grid: target (NAN outside) */
     double *psa;           /* grid: spectrum of the current iterate */
     double *lnr;           /* grid: ln of the correction ratio */
-    fftw_complex *base;    /* nbin: B_k */
     fftw_complex *cwork;   /* nbin */
-    double *mult;          /* nbin: M_k */
     double *rwork;         /* N */
     double *acc;           /* n: current iterate */
-    double *prev;          /* n: scratch */
     double *best_acc;      /* n: best iterate */
     double *best_psa;      /* grid */
     double best_score;     /* violation of the best iterate (0 = passes) */
@@ -460,12 +461,9 @@ void sl_synth_motion_free(sl_synth_motion *m)
     free(m->tgt);
     free(m->psa);
     free(m->lnr);
-    fftw_free(m->base);
     fftw_free(m->cwork);
-    free(m->mult);
     fftw_free(m->rwork);
     free(m->acc);
-    free(m->prev);
     free(m->best_acc);
     free(m->best_psa);
     free(m);
@@ -483,15 +481,12 @@ sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err)
     m->psa = malloc(s->ngrid * sizeof *m->psa);
     m->lnr = malloc(s->ngrid * sizeof *m->lnr);
     m->best_psa = malloc(s->ngrid * sizeof *m->best_psa);
-    m->base = fftw_malloc(s->nbin * sizeof *m->base);
     m->cwork = fftw_malloc(s->nbin * sizeof *m->cwork);
-    m->mult = malloc(s->nbin * sizeof *m->mult);
     m->rwork = fftw_malloc(s->nfft * sizeof *m->rwork);
     m->acc = malloc(s->n * sizeof *m->acc);
-    m->prev = malloc(s->n * sizeof *m->prev);
     m->best_acc = malloc(s->n * sizeof *m->best_acc);
-    if (!m->tgt || !m->psa || !m->lnr || !m->best_psa || !m->base || !m->cwork || !m->mult ||
-        !m->rwork || !m->acc || !m->prev || !m->best_acc) {
+    if (!m->tgt || !m->psa || !m->lnr || !m->best_psa || !m->cwork || !m->rwork || !m->acc ||
+        !m->best_acc) {
         sl_synth_motion_free(m);
         sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
         return NULL;
@@ -513,13 +508,11 @@ static sl_status set_target(sl_synth_motion *m, const sl_synth_target *t, sl_err
     /* A tiny relative slack admits grid points equal to the target's end
      * frequencies up to rounding. */
     const double slack = 1e-12;
-    double f0 = t->spec->f_hz[0] * (1 - slack), f1 = t->spec->f_hz[t->spec->n - 1] * (1 + slack);
+    const double tf0 = t->spec->f_hz[0], tf1 = t->spec->f_hz[t->spec->n - 1];
     for (size_t j = 0; j < s->ngrid; j++) {
         double f = s->grid[j];
-        if (f >= f0 && f <= f1) {
-            double fc = f < t->spec->f_hz[0] ? t->spec->f_hz[0]
-                        : f > t->spec->f_hz[t->spec->n - 1] ? t->spec->f_hz[t->spec->n - 1]
-                                                           : f;
+        if (f >= tf0 * (1 - slack) && f <= tf1 * (1 + slack)) {
+            double fc = f < tf0 ? tf0 : f > tf1 ? tf1 : f;
             m->tgt[j] = sl_spectrum_interp(t->spec, fc);
             if (m->j_lo == s->ngrid)
                 m->j_lo = j;
@@ -532,8 +525,7 @@ static sl_status set_target(sl_synth_motion *m, const sl_synth_target *t, sl_err
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "synth: the target (%g-%g Hz) does not overlap the check grid "
                             "(%g-%g Hz)",
-                            t->spec->f_hz[0], t->spec->f_hz[t->spec->n - 1], s->grid[0],
-                            s->grid[s->ngrid - 1]);
+                            tf0, tf1, s->grid[0], s->grid[s->ngrid - 1]);
     return SL_OK;
 }
 
@@ -598,105 +590,68 @@ static double violation(const sl_synth_params *p, const spec_check *c, size_t np
     return v;
 }
 
-/* Scale every half-cycle (run of samples of one sign) whose peak exceeds
- * `limit` down to it; returns how many were scaled. */
-static size_t limit_peaks(double *a, size_t n, double limit)
+/* Spectrum of m->acc on the checked grid points into m->psa (NAN elsewhere). */
+static sl_status spectrum_of_acc(sl_synth_motion *m, sl_error *err)
+{
+    const sl_synth *s = m->s;
+    for (size_t j = 0; j < s->ngrid; j++)
+        m->psa[j] = NAN;
+    return sl_spectrum_compute(m->acc, s->n, s->dt, s->grid + m->j_lo, m->j_hi - m->j_lo,
+                               m->damping, m->psa + m->j_lo, NULL, NULL, err);
+}
+
+/* Peak limiting: the projection onto |a| <= limit (hard clipping). Returns
+ * how many samples were changed. */
+static size_t clip_peaks(double *a, size_t n, double limit)
 {
     size_t count = 0;
-    for (size_t i = 0; i < n;) {
-        size_t j = i;
-        double peak = 0;
-        int pos = a[i] >= 0;
-        while (j < n && (a[j] >= 0) == pos) {
-            peak = fabs(a[j]) > peak ? fabs(a[j]) : peak;
-            j++;
-        }
-        if (peak > limit) {
-            double f = limit / peak;
-            for (size_t q = i; q < j; q++)
-                a[q] *= f;
+    for (size_t i = 0; i < n; i++) {
+        if (a[i] > limit) {
+            a[i] = limit;
+            count++;
+        } else if (a[i] < -limit) {
+            a[i] = -limit;
             count++;
         }
-        i = j;
     }
     return count;
 }
 
-/* Motion of the current multipliers: inverse FFT, peak limiting, baseline,
- * exact peak scaling; then its spectrum, and keep it if it is the best.
- * With raw != 0 only the inverse FFT and the spectrum (to set the level of a
- * new motion). */
-static sl_status produce(sl_synth_motion *m, int raw, sl_error *err)
+/* Make m->acc (any level) an admissible iterate: peak limiting, baseline
+ * correction, exact peak scaling; then its spectrum, and keep it if it is
+ * the best so far. */
+static sl_status finish(sl_synth_motion *m, sl_error *err)
 {
     const sl_synth *s = m->s;
-    const size_t n = s->n, nb = s->nbin;
-    for (size_t k = 0; k < nb; k++) {
-        m->cwork[k][0] = m->base[k][0] * m->mult[k];
-        m->cwork[k][1] = m->base[k][1] * m->mult[k];
+    const size_t n = s->n;
+    for (size_t j = 0; j < s->ntaper && j < n; j++) {
+        m->acc[j] *= s->taper[j];
+        m->acc[n - 1 - j] *= s->taper[j];
     }
-    m->cwork[0][0] = m->cwork[0][1] = 0; /* no mean */
-    m->cwork[nb - 1][1] = 0;             /* the Nyquist bin of a real signal is real */
-    /* FFTW's c2r is unnormalised: x_j = sum_k X_k e^{2 pi i jk/N}; divide by N. */
-    fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
-    const double inv_n = 1.0 / (double)s->nfft;
-    for (size_t j = 0; j < n; j++)
-        m->acc[j] = m->rwork[j] * inv_n;
-    if (!raw) {
-        if (s->p.peak_limit) {
-            memcpy(m->prev, m->acc, n * sizeof *m->acc);
-            size_t nclip = limit_peaks(m->acc, n, m->zpa);
-#ifdef SYNTH_DEBUG
-            fprintf(stderr, "clip %zu ", nclip);
-#endif
-            if (nclip > 0 && s->p.clip_hp_hz > 0) {
-                /* Keep only the part of the change above clip_hp_hz: the
-                 * local scaling changes the area of each half-cycle, a
-                 * velocity step whose low-frequency content would pollute
-                 * the long-period spectrum. */
-                for (size_t j = 0; j < s->nfft; j++)
-                    m->rwork[j] = j < n ? m->acc[j] - m->prev[j] : 0.0;
-                fftw_execute_dft_r2c(s->r2c, m->rwork, m->cwork);
-                for (size_t k = 0; k < nb && s->df * (double)k < s->p.clip_hp_hz; k++)
-                    m->cwork[k][0] = m->cwork[k][1] = 0;
-                fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
-                for (size_t j = 0; j < n; j++)
-                    m->acc[j] = m->prev[j] + m->rwork[j] * inv_n;
-            }
-        }
-        /* Baseline: subtract c0 bl0 + c1 bl1 so that v(T) = d(T) = 0. */
-        double ve, de;
-        end_values(m->acc, n, s->dt, &ve, &de);
-        double c0 = s->bl_inv[0][0] * ve + s->bl_inv[0][1] * de;
-        double c1 = s->bl_inv[1][0] * ve + s->bl_inv[1][1] * de;
-        for (size_t j = 0; j < n; j++)
-            m->acc[j] -= c0 * s->bl[0][j] + c1 * s->bl[1][j];
-    }
+    if (s->p.peak_limit)
+        clip_peaks(m->acc, n, m->zpa);
+    /* Baseline: subtract c0 bl0 + c1 bl1 so that v(T) = d(T) = 0. */
+    double ve, de;
+    end_values(m->acc, n, s->dt, &ve, &de);
+    double c0 = s->bl_inv[0][0] * ve + s->bl_inv[0][1] * de;
+    double c1 = s->bl_inv[1][0] * ve + s->bl_inv[1][1] * de;
     double peak = 0;
     for (size_t j = 0; j < n; j++) {
+        m->acc[j] -= c0 * s->bl[0][j] + c1 * s->bl[1][j];
         double x = fabs(m->acc[j]);
         peak = x > peak ? x : peak;
     }
     if (!(peak > 0) || !isfinite(peak))
         return sl_error_set(err, SL_ESOLVER, NULL, 0, "synth: motion vanished or overflowed");
-    if (!raw) {
-        const double scale = m->zpa / peak;
-        for (size_t j = 0; j < n; j++)
-            m->acc[j] *= scale;
-    }
-    for (size_t j = 0; j < s->ngrid; j++)
-        m->psa[j] = NAN;
-    sl_status st = sl_spectrum_compute(m->acc, n, s->dt, s->grid + m->j_lo, m->j_hi - m->j_lo,
-                                       m->damping, m->psa + m->j_lo, NULL, NULL, err);
-    if (st || raw)
+    const double scale = m->zpa / peak;
+    for (size_t j = 0; j < n; j++)
+        m->acc[j] *= scale;
+    sl_status st = spectrum_of_acc(m, err);
+    if (st)
         return st;
     spec_check c;
     spectral_check(m, m->psa, &c);
     double v = violation(&s->p, &c, m->j_hi - m->j_lo);
-#ifdef SYNTH_DEBUG
-    fprintf(stderr, "it %2u v %.3f min %.3f@%.2f max %.3f@%.2f run %zu nb %zu |", m->iter, v, c.min_ratio, c.f_min, c.max_ratio, c.f_max, c.run, c.n_below);
-    for (size_t jj = m->j_lo; jj < m->j_hi; jj += 10) fprintf(stderr, " %.2f", m->psa[jj] / m->tgt[jj]);
-    fprintf(stderr, "\n");
-#endif
     if (m->iter == 0 || v < m->best_score) {
         m->best_score = v;
         m->best_iter = m->iter;
@@ -706,16 +661,14 @@ static sl_status produce(sl_synth_motion *m, int raw, sl_error *err)
     return SL_OK;
 }
 
-/* Start a motion from its base spectrum: multipliers set to the one gain
- * that brings the raw motion's spectrum to aim x target on average (log
- * mean over the checked points), then iteration 0. */
+/* Start a motion from m->acc at any level: scale it by the one gain that
+ * brings its spectrum to aim x target on average (log mean over the checked
+ * points), then make iteration 0. */
 static sl_status start(sl_synth_motion *m, sl_error *err)
 {
     const sl_synth *s = m->s;
-    for (size_t k = 0; k < s->nbin; k++)
-        m->mult[k] = 1;
     m->iter = 0;
-    sl_status st = produce(m, 1, err);
+    sl_status st = spectrum_of_acc(m, err);
     if (st)
         return st;
     double sum = 0;
@@ -724,9 +677,9 @@ static sl_status start(sl_synth_motion *m, sl_error *err)
     double gain = exp(sum / (double)(m->j_hi - m->j_lo));
     if (!isfinite(gain) || !(gain > 0))
         return sl_error_set(err, SL_ESOLVER, NULL, 0, "synth: cannot set the level");
-    for (size_t k = 0; k < s->nbin; k++)
-        m->mult[k] = gain;
-    st = produce(m, 0, err);
+    for (size_t j = 0; j < s->n; j++)
+        m->acc[j] *= gain;
+    st = finish(m, err);
     m->ready = st == SL_OK;
     return st;
 }
@@ -743,25 +696,22 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
     if (!rng)
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
     gsl_rng_set(rng, sl_synth_stream_seed(seed, set, comp, attempt));
-    m->base[0][0] = m->base[0][1] = 0;
-    m->mult[0] = 1;
+    m->cwork[0][0] = m->cwork[0][1] = 0;
     for (size_t k = 1; k < s->nbin; k++) {
         double f = s->df * (double)k;
         double amp = target_ext(t->spec, f) / sqrt(f);
         double phi = 2 * SYNTH_PI * gsl_rng_uniform(rng);
-        m->base[k][0] = amp * cos(phi);
-        m->base[k][1] = amp * sin(phi);
-        m->mult[k] = 1;
+        m->cwork[k][0] = amp * cos(phi);
+        m->cwork[k][1] = amp * sin(phi);
     }
     gsl_rng_free(rng);
-    m->base[s->nbin - 1][1] = 0; /* the Nyquist bin of a real signal is real */
-    /* The stationary motion s_j (c2r, divided by N), times the envelope,
-     * zero-padded: its DFT is the base spectrum from now on. */
-    fftw_execute_dft_c2r(s->c2r, m->base, m->rwork);
+    m->cwork[s->nbin - 1][1] = 0; /* the Nyquist bin of a real signal is real */
+    /* The stationary motion (FFTW c2r, unnormalised: divide by N) times the
+     * envelope. */
+    fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
     const double inv_n = 1.0 / (double)s->nfft;
-    for (size_t j = 0; j < s->nfft; j++)
-        m->rwork[j] = j < s->n ? m->rwork[j] * inv_n * s->env[j] : 0.0;
-    fftw_execute_dft_r2c(s->r2c, m->rwork, m->base);
+    for (size_t j = 0; j < s->n; j++)
+        m->acc[j] = m->rwork[j] * inv_n * s->env[j];
     m->attempt = attempt;
     return start(m, err);
 }
@@ -779,18 +729,16 @@ sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
     if (st)
         return st;
     double amax = 0;
-    for (size_t j = 0; j < s->nfft; j++) {
+    for (size_t j = 0; j < s->n; j++) {
         double x = j < n ? acc_ms2[j] : 0.0;
         if (!isfinite(x))
             return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: record sample %zu not finite",
                                 j);
         amax = fabs(x) > amax ? fabs(x) : amax;
-        m->rwork[j] = x;
+        m->acc[j] = x;
     }
     if (!(amax > 0))
         return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: record is all zeros");
-    /* B = DFT of the zero-padded record (FFTW r2c, unnormalised). */
-    fftw_execute_dft_r2c(s->r2c, m->rwork, m->base);
     m->attempt = 0;
     return start(m, err);
 }
@@ -810,14 +758,17 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
         }
         m->lnr[j] = x < lo ? lo : x > hi ? hi : x;
     }
-    /* Outside the checked range the correction fades out linearly in
-     * log2 f over SL_SYNTH_EDGE_OCTAVES: those bins have no check of their
-     * own, and a full correction there drifts (it is only seen through the
-     * edge point). */
     for (size_t j = 0; j < m->j_lo; j++)
         m->lnr[j] = m->lnr[m->j_lo];
     for (size_t j = m->j_hi; j < s->ngrid; j++)
         m->lnr[j] = m->lnr[m->j_hi - 1];
+    /* X = DFT of the current iterate, zero-padded (FFTW r2c, unnormalised). */
+    for (size_t j = 0; j < s->nfft; j++)
+        m->rwork[j] = j < s->n ? m->acc[j] : 0.0;
+    fftw_execute_dft_r2c(s->r2c, m->rwork, m->cwork);
+    /* X_k *= r(f_k). Outside the checked range the correction fades
+     * out linearly in log2 f over SL_SYNTH_EDGE_OCTAVES: those bins have no
+     * check of their own, and a full correction there drifts. */
     const double f_lo = s->grid[m->j_lo], f_hi = s->grid[m->j_hi - 1];
     for (size_t k = 1; k < s->nbin; k++) {
         size_t j = s->bin_j[k];
@@ -831,10 +782,17 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
         }
         double oct = f < f_lo ? log2(f_lo / f) : f > f_hi ? log2(f / f_hi) : 0.0;
         double fade = oct >= SL_SYNTH_EDGE_OCTAVES ? 0.0 : 1.0 - oct / SL_SYNTH_EDGE_OCTAVES;
-        m->mult[k] *= exp(s->p.relax * fade * x);
+        double g = exp(fade * x);
+        m->cwork[k][0] *= g;
+        m->cwork[k][1] *= g;
     }
+    m->cwork[0][0] = m->cwork[0][1] = 0; /* no mean */
+    fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
+    const double inv_n = 1.0 / (double)s->nfft;
+    for (size_t j = 0; j < s->n; j++)
+        m->acc[j] = m->rwork[j] * inv_n;
     m->iter++;
-    sl_status st = produce(m, 0, err);
+    sl_status st = finish(m, err);
     if (st)
         m->ready = 0;
     return st;
@@ -1113,7 +1071,7 @@ sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYN
     size_t done = 0, total = nj, nidx = nj;
     sl_status st = SL_OK;
     /* Rounds: run the pending jobs, then redo (next attempt) every component
-     * that failed its spectral checks and the later component of each set's
+     * that failed its spectral or D5-75 checks and the later component of each set's
      * worst correlated pair, while attempts remain. Every decision depends
      * only on results, so the rounds are the same for any thread count. */
     while (nidx > 0) {
@@ -1127,7 +1085,7 @@ sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYN
             int redo[SL_SYNTH_NCOMP] = {0, 0, 0};
             for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
                 const sl_synth_check *ck = &jb3[c].check;
-                redo[c] = !(ck->ok_below && ck->ok_above && ck->ok_run);
+                redo[c] = !(ck->ok_below && ck->ok_above && ck->ok_run && ck->ok_d5_75);
             }
             double corr[SL_SYNTH_NPAIR];
             int q = set_corr(s, jb3, corr);

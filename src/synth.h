@@ -1,28 +1,42 @@
 /*
- * synth.h - spectrum-compatible acceleration histories synthesized with FFTW
- * (random phases, intensity envelope, iterative correction of the Fourier
- * amplitudes: the SIMQKE scheme, Gasparini and Vanmarcke 1976), and the same
- * correction applied to a recorded motion, keeping its Fourier phases.
- * Method, defaults and measured results: docs/synthesis.md.
+ * synth.h - spectrum-compatible acceleration histories made with FFTW:
+ * seeded random-phase stationary motions shaped by an intensity envelope,
+ * then iterative correction of the Fourier amplitudes by the ratio target /
+ * computed spectrum (the SIMQKE scheme, Gasparini and Vanmarcke 1976),
+ * alternated with peak limiting to the target's zero-period acceleration
+ * (iterative clipping and filtering); the same iteration modifies a recorded
+ * motion to match a target while keeping its Fourier phases. Method,
+ * defaults and measured results: docs/synthesis.md.
  *
- * A motion of n samples at dt is built from a complex "base" spectrum B_k on
- * the N-point DFT grid f_k = k/(N dt), k = 0..N/2, N >= n + pad (pad = one
- * period of the lowest checked frequency, so low-frequency corrections spread
- * into padding rather than wrapping round). Iteration i:
+ * Start (iteration 0). Synthetic: a stationary motion
+ *     s_j = (1/N) sum_k A_k exp(i phi_k) exp(2 pi i jk/N)   (FFTW c2r / N)
+ * with phi_k uniform in [0, 2 pi) from GSL's mt19937 and A_k = T(f_k)/sqrt(f_k)
+ * (the Fourier amplitude of a stationary motion whose spectrum is
+ * proportional to the target T, Vanmarcke 1976), times the envelope:
+ * a_j = E(t_j) s_j, j < n. Recorded: a = the record. Either is scaled by one
+ * gain so that its spectrum is aim x T on average (log mean), then made
+ * admissible (below).
  *
- *     s_j   = (1/N) sum_k M_k B_k exp(2 pi i j k/N)   (FFTW c2r, divided by N)
- *     a_j   = E(t_j) s_j,  j < n                      envelope (synthetic only)
- *     a    -= (c0 + c1 t/T) (t/T)(1 - t/T)             baseline, v(T) = d(T) = 0
- *     a    *= ZPA / max|a|                            peak = target ZPA
- *     S_m   = PSA of a at grid frequency f_m          (spectrum.h)
- *     r_m   = aim T_m / S_m                           T = target PSA
- *     M_k  *= r(f_k)                                  log-log interpolation of r
- *
- * B_k = A_k exp(i phi_k) with phi_k uniform in [0, 2 pi) from GSL's mt19937
- * and A_k = T(f_k)/sqrt(f_k) (the Fourier amplitude of a stationary motion
- * whose spectrum is proportional to T, Vanmarcke 1976) for a synthetic
- * motion; B_k = DFT of the zero-padded record (FFTW r2c, unnormalised) for a
- * recorded one. The phases are never changed: only the real factors M_k.
+ * Iteration i -> i + 1, on the N-point DFT grid f_k = k/(N dt), k = 0..N/2,
+ * N >= n + pad (pad = one period of the lowest checked frequency, so that a
+ * low-frequency correction spreads into padding instead of wrapping round):
+ *     r_m   = aim T_m / S_m at grid frequency f_m, clamped to [1/4, 4]
+ *     X_k   = DFT of the zero-padded a_i (FFTW r2c, unnormalised)
+ *     X_k  *= r(f_k)   (mean of ln r over the grid points within f_k +- df/2,
+ *                       else log-log interpolation; fading to 1 one octave
+ *                       outside the checked range)
+ *     a     = first n samples of (1/N) c2r(X)
+ * then admissible:
+ *     a    *= w(t)  half-cosine taper over taper_s at each end (rest at ends)
+ *     a     = max(-ZPA, min(ZPA, a))                 peak limiting (clip)
+ *     a    -= (c0 + c1 t/T) (t/T)(1 - t/T)            baseline: v(T) = d(T) = 0
+ *     a    *= ZPA / max|a|                           peak = target ZPA
+ *     S_m   = PSA of a at f_m, at the target's damping  (spectrum.h)
+ * The phases change only through the clipping: the spectral step keeps the
+ * phases of the current iterate. Clipping alone (or spectral correction
+ * alone, with the peak pinned) cannot reach spectral ratios SA/PGA of 3-7:
+ * the random phases' peak factor is too high; alternating the two lowers it
+ * (docs/synthesis.md, "Why clipping").
  *
  * Envelope (Jennings, Housner and Tsai 1968), T = (n - 1) dt:
  *     E(t) = (t/t1)^2 for t < t1;  1 for t1 <= t <= t2;
@@ -51,6 +65,10 @@
  * attempt) (sl_synth_stream_seed). FFTW plans are made with FFTW_ESTIMATE
  * (no timing, the same algorithm every run) and executed on fftw_malloc'd
  * arrays, so the same seed gives the same bits whatever the thread count.
+ * Two caveats: FFTW uses wisdom of equal or greater rigour when it has it, so
+ * code in the same process must not import wisdom or plan these lengths with
+ * FFTW_MEASURE; and FFTW_ESTIMATE picks codelets by the CPU's SIMD support,
+ * so another CPU type may differ in the last bits.
  *
  * Threads. An sl_synth plan is read-only after sl_synth_alloc() and may be
  * shared by threads, each with its own sl_synth_motion. FFTW's planner is
@@ -65,7 +83,6 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include <stdio.h>
 
 #include "floor.h"
 #include "motion.h"
@@ -94,28 +111,26 @@
 #define SL_SYNTH_MAX_ITER 30         /* correction iterations per attempt */
 #define SL_SYNTH_MAX_ATTEMPTS 4      /* phase sets tried per synthetic component */
 /* The correction aims at aim x target, inside the band [1 - 10 %, 1 + 30 %],
- * so that the spectrum ends above the target and few points fall below it. */
-#define SL_SYNTH_AIM 1.05
-/* Exponent of the correction ratio (1 = full SIMQKE step; below 1 damps the
- * overshoot of the sparse low-frequency bins). */
-#define SL_SYNTH_RELAX 0.7
-/* The correction of bin k is the mean of ln r over the grid points within
- * f_k +- W/2, W = max(df, SMOOTH_CYCLES/T): a motion of duration T cannot
- * tell frequencies closer than about 1/T apart. */
-#define SL_SYNTH_SMOOTH_CYCLES 1.0
-/* The change made by the peak limiting is high-passed at this frequency
- * before it is applied, Hz (0 = not filtered). */
-#define SL_SYNTH_CLIP_HP_HZ 1.0
+ * so that the spectrum ends above the target and few points fall below it
+ * (1.10: fewest failed first attempts of 1.05, 1.08, 1.10, 1.12 in 600
+ * motions; docs/synthesis.md). */
+#define SL_SYNTH_AIM 1.10
 /* Outside the checked frequency range the correction fades to none over
  * this many octaves. */
 #define SL_SYNTH_EDGE_OCTAVES 1.0
 /* A correction factor per iteration is clamped to [1/CLAMP, CLAMP]. */
 #define SL_SYNTH_RATIO_CLAMP 4.0
-/* Envelope: rise to 10 % of T, hold to 50 % of T, then exponential decay to
- * 5 % amplitude at T (D5-75 about 0.37 T: 7.3 s for 20 s). */
+/* Envelope: rise to 10 % of T, hold to 55 % of T, then exponential decay to
+ * 5 % amplitude at T (D5-75 of E^2 alone: 0.38 T, 7.6 s for 20 s; the
+ * matched motions measure 7.1 s and more). */
 #define SL_SYNTH_RISE_FRAC 0.10
-#define SL_SYNTH_HOLD_FRAC 0.50
+#define SL_SYNTH_HOLD_FRAC 0.55
 #define SL_SYNTH_END_AMP 0.05
+
+/* Half-cosine taper at each end of every iterate, s: the spectral step
+ * spreads content to the ends (circular DFT); the floor starts and ends at
+ * rest. */
+#define SL_SYNTH_TAPER_S 0.5
 
 /* Components of a set, in file and report order. */
 typedef enum sl_synth_comp {
@@ -146,14 +161,14 @@ typedef struct sl_synth_params {
     unsigned max_iter;      /* >= 0; 0 = the initial motion only */
     unsigned max_attempts;  /* >= 1 */
     double aim;             /* > 0, SL_SYNTH_AIM */
-    double relax;           /* (0, 1], SL_SYNTH_RELAX: M_k *= r(f_k)^relax */
-    double smooth_cycles;   /* >= 0, SL_SYNTH_SMOOTH_CYCLES */
     /* envelope (fractions of the duration; end amplitude) */
     double rise_frac, hold_frac, end_amp;
     /* 1: scale the half-cycles whose peak exceeds the ZPA down to it before
      * the baseline correction (default); 0: only the final scaling */
     int peak_limit;
-    double clip_hp_hz;      /* >= 0, SL_SYNTH_CLIP_HP_HZ */
+    /* each end is multiplied by a half-cosine taper over this time, s, so
+     * the motion starts and ends at rest (SL_SYNTH_TAPER_S) */
+    double taper_s;
 } sl_synth_params;
 
 /* Fill p with the defaults above (grid: SL_SPECTRUM_FMIN_HZ..FMAX_HZ at
@@ -266,22 +281,23 @@ void sl_synth_motion_free(sl_synth_motion *m);
 /* Start a synthetic motion for target t: random phases from the stream
  * sl_synth_stream_seed(seed, set, comp, attempt), amplitudes T(f)/sqrt(f)
  * (T extended below its range at constant SD, above at its last value),
- * multipliers 1; makes iteration 0 (motion and spectrum). Returns SL_OK,
- * SL_EINVAL (bad target), SL_ENOMEM. */
+ * times the envelope; makes iteration 0 (motion and spectrum). Returns
+ * SL_OK, SL_EINVAL (bad target), SL_ENOMEM, SL_ESOLVER. */
 sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint64_t seed,
                               size_t set, sl_synth_comp comp, unsigned attempt,
                               sl_error *err);
 
 /* Start from a recorded motion acc_ms2[0..n-1] (n <= the plan's n, sampled
- * at the plan's dt; zero-padded to it): its DFT is the base spectrum, no
- * envelope; makes iteration 0. Returns SL_OK, SL_EINVAL (n == 0, too long,
- * non-finite or all-zero samples, bad target), SL_ENOMEM. */
+ * at the plan's dt; zero-extended to it), no envelope; makes iteration 0.
+ * Returns SL_OK, SL_EINVAL (n == 0, too long, non-finite or all-zero
+ * samples, bad target), SL_ENOMEM, SL_ESOLVER. */
 sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
                               const double *acc_ms2, size_t n, sl_error *err);
 
-/* One correction: M_k *= r(f_k) from the current spectrum, then the new
- * motion and its spectrum. Keeps the best iterate. Returns SL_OK, SL_EINVAL
- * (no set_* before), SL_ESOLVER (non-finite values). */
+/* One iteration (see above): spectral correction of the current iterate,
+ * peak limiting, baseline, scaling, spectrum. Keeps the best iterate.
+ * Returns SL_OK, SL_EINVAL (no successful set_* before), SL_ESOLVER
+ * (non-finite values). */
 sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err);
 
 /* 1 when the spectral checks (below, above, run) pass for the best iterate,
@@ -343,8 +359,10 @@ sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYN
                              sl_synth_set *out, sl_synth_progress progress, void *ctx,
                              sl_error *err);
 
-/* One set (set index `set`), on the calling thread's team: the unit timed by
- * the benchmark. Same returns as sl_synth_make_sets. */
+/* One set (set index `set`; its three components in parallel): the unit
+ * timed by the benchmark. Equal, bit for bit, to set `set` of a
+ * sl_synth_make_sets() batch with the same seed. Same returns as
+ * sl_synth_make_sets. */
 sl_status sl_synth_make_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
                             uint64_t seed, size_t set, sl_synth_set *out, sl_error *err);
 

@@ -27,6 +27,7 @@ int cmd_slide(int argc, char **argv);
 int cmd_spectrum(int argc, char **argv);
 int cmd_rg160(int argc, char **argv);
 int cmd_asce(int argc, char **argv);
+int cmd_synth(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 
 /* Print "seislide: FILE:LINE: message" for a library error. */

@@ -15,6 +15,7 @@ static const command commands[] = {
     {"spectrum", cmd_spectrum, "response spectra of motions"},
     {"rg160", cmd_rg160, "Regulatory Guide 1.60 design spectra"},
     {"asce", cmd_asce, "ASCE/SEI 43-05 approximate sliding displacement"},
+    {"synth", cmd_synth, "spectrum-compatible three-component motions (FFTW)"},
     {"bench", cmd_bench, "speed against error of the engine"},
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])

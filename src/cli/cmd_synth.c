@@ -1,0 +1,730 @@
+/* cmd_synth.c - `seislide synth`: spectrum-compatible three-component sets
+ * (or recorded motions matched to a target), their files and a match report
+ * with every acceptance check. Library: synth.h; method: docs/synthesis.md. */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "atomic.h"
+#include "cli.h"
+#include "floor.h"
+#include "motion.h"
+#include "rg160.h"
+#include "synth.h"
+
+/* Most records --match takes (H1, H2, V). */
+#define SYNTH_MAX_RECORDS SL_SYNTH_NCOMP
+/* Most sets per run (a guard against typos). */
+#define SYNTH_MAX_COUNT 1000
+/* Longest accepted motion, s (a guard against typos). */
+#define SYNTH_MAX_DURATION_S 3600.0
+/* Relative slack when a duration must be a whole number of steps. */
+#define SYNTH_STEP_SLACK 1e-9
+/* Longest path built for an output file. */
+#define SYNTH_PATH_MAX 4096
+
+/* ---- The limit and method options: one table, parsed and documented from it. */
+typedef enum opt_kind {
+    K_FRACTION_OPEN, /* [0, 1) */
+    K_FRACTION,      /* [0, 1] */
+    K_NONNEG,        /* >= 0 */
+    K_POSITIVE,      /* > 0 */
+    K_COUNT,         /* integer >= 0 (size_t field) */
+    K_UCOUNT,        /* integer >= 0 (unsigned field) */
+    K_UCOUNT1        /* integer >= 1 (unsigned field) */
+} opt_kind;
+
+typedef struct param_opt {
+    const char *name;   /* long option */
+    size_t offset;      /* field in sl_synth_params */
+    opt_kind kind;
+    const char *unit;   /* shown in help; NULL = dimensionless */
+    const char *help;
+} param_opt;
+
+#define P_OFF(field) offsetof(sl_synth_params, field)
+static const param_opt param_opts[] = {
+    {"tol-below", P_OFF(tol_below), K_FRACTION_OPEN, NULL,
+     "largest fraction a point is below target"},
+    {"tol-above", P_OFF(tol_above), K_NONNEG, NULL,
+     "largest fraction a point is above target"},
+    {"max-run", P_OFF(max_run_below), K_COUNT, "points",
+     "most consecutive points below target"},
+    {"min-d575", P_OFF(min_d5_75_s), K_NONNEG, "s", "least D5-75 strong-motion duration"},
+    {"min-duration", P_OFF(min_duration_s), K_NONNEG, "s", "least total duration"},
+    {"max-corr", P_OFF(max_corr), K_FRACTION, NULL,
+     "largest |correlation| of two components"},
+    {"end-vel-frac", P_OFF(end_vel_frac), K_NONNEG, NULL, "largest |v(end)| as a fraction of PGV"},
+    {"end-disp-frac", P_OFF(end_disp_frac), K_NONNEG, NULL,
+     "largest |d(end)| as a fraction of PGD"},
+    {"fmin", P_OFF(fmin_hz), K_POSITIVE, "Hz", "lowest frequency checked"},
+    {"fmax", P_OFF(fmax_hz), K_POSITIVE, "Hz", "highest frequency checked"},
+    {"per-decade", P_OFF(per_decade), K_POSITIVE, NULL, "grid points per decade"},
+    {"max-iter", P_OFF(max_iter), K_UCOUNT, NULL, "correction iterations per attempt"},
+    {"max-attempts", P_OFF(max_attempts), K_UCOUNT1, NULL,
+     "phase sets tried per synthetic component"},
+    {"aim", P_OFF(aim), K_POSITIVE, NULL, "the correction aims at aim x target"},
+    {"rise-frac", P_OFF(rise_frac), K_POSITIVE, NULL, "envelope rise, fraction of the duration"},
+    {"hold-frac", P_OFF(hold_frac), K_POSITIVE, NULL, "envelope end of hold, fraction"},
+    {"end-amp", P_OFF(end_amp), K_POSITIVE, NULL, "envelope amplitude at the end"},
+};
+#define N_PARAM_OPTS (sizeof param_opts / sizeof param_opts[0])
+
+static double param_get(const sl_synth_params *p, const param_opt *o)
+{
+    const char *base = (const char *)p + o->offset;
+    switch (o->kind) {
+    case K_COUNT: return (double)*(const size_t *)(const void *)base;
+    case K_UCOUNT:
+    case K_UCOUNT1: return (double)*(const unsigned *)(const void *)base;
+    default: return *(const double *)(const void *)base;
+    }
+}
+
+/* Parse one table option into p. Returns CLI_EXIT_OK or a usage error. */
+static int param_set(sl_synth_params *p, const param_opt *o, const char *arg)
+{
+    char *base = (char *)p + o->offset;
+    if (o->kind == K_COUNT || o->kind == K_UCOUNT || o->kind == K_UCOUNT1) {
+        unsigned long v;
+        if (cli_parse_ulong(arg, &v) || v > 1000000UL || (o->kind == K_UCOUNT1 && v < 1))
+            return cli_usage("synth", "--%s '%s' must be a whole number %s", o->name, arg,
+                             o->kind == K_UCOUNT1 ? ">= 1" : ">= 0");
+        if (o->kind == K_COUNT)
+            *(size_t *)(void *)base = (size_t)v;
+        else
+            *(unsigned *)(void *)base = (unsigned)v;
+        return CLI_EXIT_OK;
+    }
+    double v;
+    int bad = cli_parse_double(arg, &v);
+    const char *want = "";
+    switch (o->kind) {
+    case K_FRACTION_OPEN: bad = bad || !(v >= 0 && v < 1); want = "in [0, 1)"; break;
+    case K_FRACTION: bad = bad || !(v >= 0 && v <= 1); want = "in [0, 1]"; break;
+    case K_NONNEG: bad = bad || !(v >= 0); want = ">= 0"; break;
+    default: bad = bad || !(v > 0); want = "> 0"; break;
+    }
+    if (bad)
+        return cli_usage("synth", "--%s '%s' must be a number %s", o->name, arg, want);
+    *(double *)(void *)base = v;
+    return CLI_EXIT_OK;
+}
+
+static const char synth_help_head[] =
+    "usage: seislide synth (--floor FILE | --rg160 PGA) --count N --seed S\n"
+    "                      [--duration S] [--dt S] -o DIR [options]\n"
+    "       seislide synth --match RECORD [--match H2 [--match V]]\n"
+    "                      (--floor FILE | --rg160 PGA) -o DIR [options]\n"
+    "\n"
+    "Spectrum-compatible acceleration histories (docs/synthesis.md): random-phase\n"
+    "stationary motions shaped by an intensity envelope, then iterative correction\n"
+    "of their Fourier amplitudes by the ratio target/computed spectrum, alternated\n"
+    "with clipping to the target ZPA; baseline corrected so that velocity and\n"
+    "displacement end at zero; peak acceleration = target ZPA. Each set has three\n"
+    "independent components H1, H2, V. --match modifies recorded motions instead\n"
+    "(first to H1, then H2, then V), keeping their Fourier phases.\n"
+    "Every motion is checked as in US NRC SRP 3.7.1; the report says pass or fail\n"
+    "per check. A motion that misses a limit after the iterations is reported as\n"
+    "failed and the exit status is 1.\n"
+    "\n"
+    "target (one of):\n"
+    "  --rg160 PGA            Regulatory Guide 1.60, horizontal (H1, H2) and vertical\n"
+    "                         (V) spectra at PGA (g); ZPA = PGA\n"
+    "  --floor FILE           a floor response spectrum file (docs/formats-floor.md):\n"
+    "                         each component at 5 %% damping when given, else its\n"
+    "                         lowest damping; ZPA from the file\n"
+    "  --damping Z            match at damping Z instead (RG 1.60 default %g; with\n"
+    "                         --floor every component must give Z)\n"
+    "motions:\n"
+    "  --count N              sets to make (1-%d)\n"
+    "  --seed S               seed of the random phases (a whole number); each\n"
+    "                         motion's stream comes from (S, set, component)\n"
+    "  --duration S           duration of each motion, s (default %g)\n"
+    "  --dt S                 time step, s (default %g; at most %g s: Nyquist\n"
+    "                         >= 50 Hz); with --match the records are resampled to\n"
+    "                         it (default: the record's step divided by the smallest\n"
+    "                         whole number that makes it <= %g s)\n"
+    "  --match FILE           a recorded motion (AT2, or any format of 'seislide\n"
+    "                         slide'); up to three\n"
+    "  --units U              units of --match files that do not name them\n"
+    "output:\n"
+    "  -o, --output DIR       folder for the files (created if missing)\n"
+    "  --format at2|csv       motion files: PEER-style AT2 in g (default), or CSV\n"
+    "                         with columns time_s,acc_g\n"
+    "  -q, --quiet            no progress on stderr\n"
+    "limits and method (defaults: SRP 3.7.1, docs/synthesis.md):\n";
+
+static const char synth_help_tail[] =
+    "\n"
+    "files: DIR/setNN_h1.AT2, setNN_h2.AT2, setNN_v.AT2 (or match_h1.AT2 ...),\n"
+    "DIR/report.csv: one row per motion with every check (docs/synthesis.md).\n"
+    "Exit status: 0 every check passed, 1 bad input, failed write or a motion that\n"
+    "failed a check (files still written), 2 usage error.\n";
+
+static void print_help(void)
+{
+    sl_synth_params d;
+    sl_synth_params_default(&d);
+    printf(synth_help_head, SL_SYNTH_DAMPING, SYNTH_MAX_COUNT, SL_SYNTH_DURATION_S, SL_SYNTH_DT_S,
+           SL_SYNTH_MAX_DT_S, SL_SYNTH_MAX_DT_S);
+    for (size_t i = 0; i < N_PARAM_OPTS; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "--%s %s", param_opts[i].name,
+                 param_opts[i].kind >= K_COUNT ? "N" : "X");
+        printf("  %-22s %s (default %g%s%s)\n", name, param_opts[i].help,
+               param_get(&d, &param_opts[i]), param_opts[i].unit ? " " : "",
+               param_opts[i].unit ? param_opts[i].unit : "");
+    }
+    fputs(synth_help_tail, stdout);
+}
+
+enum { OPT_FLOOR = 256, OPT_RG160, OPT_DAMPING, OPT_COUNT, OPT_SEED, OPT_DURATION, OPT_DT,
+       OPT_MATCH, OPT_UNITS, OPT_FORMAT, OPT_HELP, OPT_PARAM0 };
+
+static const struct option base_opts[] = {
+    {"floor", required_argument, 0, OPT_FLOOR},
+    {"rg160", required_argument, 0, OPT_RG160},
+    {"damping", required_argument, 0, OPT_DAMPING},
+    {"count", required_argument, 0, OPT_COUNT},
+    {"seed", required_argument, 0, OPT_SEED},
+    {"duration", required_argument, 0, OPT_DURATION},
+    {"dt", required_argument, 0, OPT_DT},
+    {"match", required_argument, 0, OPT_MATCH},
+    {"units", required_argument, 0, OPT_UNITS},
+    {"output", required_argument, 0, 'o'},
+    {"format", required_argument, 0, OPT_FORMAT},
+    {"quiet", no_argument, 0, 'q'},
+    {"help", no_argument, 0, OPT_HELP},
+};
+#define N_BASE_OPTS (sizeof base_opts / sizeof base_opts[0])
+
+/* ---- Output ---------------------------------------------------------- */
+
+/* mkdir -p. Returns 0 or -1 with errno set. */
+static int make_dirs(const char *path)
+{
+    char buf[SYNTH_PATH_MAX];
+    size_t n = strlen(path);
+    if (n == 0 || n >= sizeof buf) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    memcpy(buf, path, n + 1);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] != '/' && buf[i] != '\0')
+            continue;
+        char c = buf[i];
+        buf[i] = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+            return -1;
+        buf[i] = c;
+    }
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return -1;
+    if (!S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return -1;
+    }
+    return 0;
+}
+
+/* Write a motion as CSV: time_s,acc_g (atomic). */
+static sl_status write_csv_motion(const char *path, const sl_motion *m, sl_error *err)
+{
+    sl_atomic *a = sl_atomic_open(path, err);
+    if (!a)
+        return SL_EIO;
+    FILE *f = sl_atomic_file(a);
+    fputs("time_s,acc_g\n", f);
+    for (size_t i = 0; i < m->n; i++)
+        fprintf(f, "%.10g,%.10E\n", m->dt_s * (double)i, m->acc_ms2[i] / SL_G);
+    return sl_atomic_commit(a, err);
+}
+
+/* One CSV field, quoted when it holds a comma, quote or line break (RFC 4180). */
+static void csv_string(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* One report row. */
+typedef struct report_row {
+    unsigned set;                 /* 1-based */
+    const char *comp;             /* h1, h2, v */
+    const char *file;             /* motion file name (in DIR) */
+    const char *source;           /* target and origin */
+    const char *seed;             /* decimal, or "" for records */
+    const sl_synth_check *k;
+    const double *corr;           /* the set's three pair values */
+    const sl_synth_params *p;
+} report_row;
+
+/* The report's columns: name, printf format, value. Header and rows come
+ * from this one list. */
+#define REPORT_NUM_COLUMNS(X)                                        \
+    X("attempt", "%u", r->k->attempt)                                \
+    X("iterations", "%u", r->k->iterations)                          \
+    X("damping", "%.4g", r->k->damping)                              \
+    X("f_lo_hz", "%.6g", r->k->f_lo_hz)                              \
+    X("f_hi_hz", "%.6g", r->k->f_hi_hz)                              \
+    X("points", "%zu", r->k->npoints)                                \
+    X("min_ratio", "%.5f", r->k->min_ratio)                          \
+    X("f_min_ratio_hz", "%.6g", r->k->f_min_ratio_hz)                \
+    X("max_ratio", "%.5f", r->k->max_ratio)                          \
+    X("f_max_ratio_hz", "%.6g", r->k->f_max_ratio_hz)                \
+    X("run_below", "%zu", r->k->run_below)                           \
+    X("points_below", "%zu", r->k->n_below)                          \
+    X("pga_g", "%.8g", r->k->pga_ms2 / SL_G)                          \
+    X("zpa_g", "%.8g", r->k->zpa_ms2 / SL_G)                          \
+    X("pgv_m_s", "%.6g", r->k->pgv_ms)                               \
+    X("pgd_m", "%.6g", r->k->pgd_m)                                  \
+    X("v_end_m_s", "%.3e", r->k->v_end_ms)                           \
+    X("d_end_m", "%.3e", r->k->d_end_m)                              \
+    X("d5_75_s", "%.4f", r->k->d5_75_s)                              \
+    X("duration_s", "%.6g", r->k->duration_s)                        \
+    X("corr_h1_h2", "%.4f", r->corr[0])                              \
+    X("corr_h1_v", "%.4f", r->corr[1])                               \
+    X("corr_h2_v", "%.4f", r->corr[2])                               \
+    X("corr_max_abs", "%.4f", r->k->max_corr)                        \
+    X("lim_min_ratio", "%.6g", 1 - r->p->tol_below)                  \
+    X("lim_max_ratio", "%.6g", 1 + r->p->tol_above)                  \
+    X("lim_run", "%zu", r->p->max_run_below)                         \
+    X("lim_d5_75_s", "%.6g", r->p->min_d5_75_s)                      \
+    X("lim_duration_s", "%.6g", r->p->min_duration_s)                \
+    X("lim_corr", "%.6g", r->p->max_corr)                            \
+    X("lim_end_vel_frac", "%.6g", r->p->end_vel_frac)                \
+    X("lim_end_disp_frac", "%.6g", r->p->end_disp_frac)              \
+    X("ok_below", "%d", r->k->ok_below)                              \
+    X("ok_above", "%d", r->k->ok_above)                              \
+    X("ok_run", "%d", r->k->ok_run)                                  \
+    X("ok_d5_75", "%d", r->k->ok_d5_75)                              \
+    X("ok_duration", "%d", r->k->ok_duration)                        \
+    X("ok_end", "%d", r->k->ok_end)                                  \
+    X("ok_pga", "%d", r->k->ok_pga)                                  \
+    X("ok_corr", "%d", r->k->ok_corr)                                \
+    X("pass", "%d", r->k->pass)
+
+static void report_header(FILE *f)
+{
+    fputs("set,component,file,target,seed", f);
+#define X(name, fmt, expr) fputs("," name, f);
+    REPORT_NUM_COLUMNS(X)
+#undef X
+    fputc('\n', f);
+}
+
+static void report_line(FILE *f, const report_row *r)
+{
+    fprintf(f, "%u,%s,", r->set, r->comp);
+    csv_string(f, r->file);
+    fputc(',', f);
+    csv_string(f, r->source);
+    fprintf(f, ",%s", r->seed);
+#define X(name, fmt, expr) fprintf(f, "," fmt, expr);
+    REPORT_NUM_COLUMNS(X)
+#undef X
+    fputc('\n', f);
+}
+
+/* ---- Progress --------------------------------------------------------- */
+
+static void progress_cb(void *ctx, size_t done, size_t total)
+{
+    (void)ctx;
+    fprintf(stderr, "\rseislide: synth: %zu/%zu motions", done, total);
+    if (done >= total)
+        fputc('\n', stderr);
+    fflush(stderr);
+}
+
+/* ---- The command ------------------------------------------------------ */
+
+typedef struct synth_run {
+    sl_synth_params p;
+    const char *floor_path, *outdir;
+    const char *match[SYNTH_MAX_RECORDS];
+    size_t nmatch;
+    double rg_pga_g, damping, duration_s, dt_s;
+    unsigned long count;
+    unsigned long long seed;
+    int have_count, have_seed, have_duration, csv, quiet;
+    sl_unit units;
+} synth_run;
+
+/* Describe each component's target for the report and the AT2 title. */
+static void describe_targets(const synth_run *o, const sl_floor *fl,
+                             const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                             char desc[SL_SYNTH_NCOMP][512])
+{
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        if (fl)
+            snprintf(desc[c], sizeof desc[c], "floor %s [%s] at %g damping; ZPA %.4g g",
+                     fl->path, sl_synth_comp_name((sl_synth_comp)c), tgt[c].spec->damping,
+                     tgt[c].zpa_ms2 / SL_G);
+        else
+            snprintf(desc[c], sizeof desc[c], "RG 1.60 %s at %g damping; PGA %g g",
+                     c == SL_SYNTH_V ? "vertical" : "horizontal", tgt[c].spec->damping,
+                     o->rg_pga_g);
+    }
+}
+
+/* Read the --match records, resampled to a common step; sets *dt_out. */
+static int read_records(const synth_run *o, sl_motion *rec[SL_SYNTH_NCOMP], double *dt_out)
+{
+    sl_error err;
+    sl_error_clear(&err);
+    sl_read_opts ro;
+    memset(&ro, 0, sizeof ro);
+    ro.units = o->units;
+    double dt = o->dt_s;
+    for (size_t i = 0; i < o->nmatch; i++) {
+        rec[i] = sl_motion_read(o->match[i], &ro, &err);
+        if (!rec[i]) {
+            cli_print_error(&err);
+            return CLI_EXIT_ERROR;
+        }
+        if (i == 0 && !(dt > 0)) {
+            /* the record's own step, divided by a whole number until it is
+             * at most SL_SYNTH_MAX_DT_S */
+            double m = ceil(rec[0]->dt_s / SL_SYNTH_MAX_DT_S * (1 - SYNTH_STEP_SLACK));
+            dt = rec[0]->dt_s / (m < 1 ? 1 : m);
+        }
+    }
+    for (size_t i = 0; i < o->nmatch; i++) {
+        if (fabs(rec[i]->dt_s - dt) <= SYNTH_STEP_SLACK * dt)
+            continue;
+        size_t n2;
+        double *a = sl_synth_resample(rec[i]->acc_ms2, rec[i]->n, rec[i]->dt_s, dt, &n2);
+        sl_motion *r2 = a ? sl_motion_from_array(a, n2, dt, rec[i]->label) : NULL;
+        free(a);
+        if (!r2) {
+            cli_msg("%s: cannot resample to dt %g s", o->match[i], dt);
+            return CLI_EXIT_ERROR;
+        }
+        free(r2->path);
+        r2->path = strdup(rec[i]->path ? rec[i]->path : o->match[i]);
+        sl_motion_free(rec[i]);
+        rec[i] = r2;
+        if (!o->quiet)
+            cli_msg("%s: resampled to dt %g s (linear interpolation)", o->match[i], dt);
+    }
+    *dt_out = dt;
+    return CLI_EXIT_OK;
+}
+
+/* Write the motions and the report. Returns CLI_EXIT_OK or CLI_EXIT_ERROR. */
+static int write_outputs(const synth_run *o, const sl_synth_set *sets, size_t nsets, int match,
+                         char desc[SL_SYNTH_NCOMP][512])
+{
+    sl_error err;
+    sl_error_clear(&err);
+    char path[SYNTH_PATH_MAX], file[256], title[1024], seed[32];
+    if (match)
+        seed[0] = '\0';
+    else
+        snprintf(seed, sizeof seed, "%llu", o->seed);
+    snprintf(path, sizeof path, "%s/report.csv", o->outdir);
+    sl_atomic *rep = sl_atomic_open(path, &err);
+    if (!rep) {
+        cli_print_error(&err);
+        return CLI_EXIT_ERROR;
+    }
+    FILE *rf = sl_atomic_file(rep);
+    report_header(rf);
+    for (size_t k = 0; k < nsets; k++) {
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+            const sl_motion *m = sets[k].motion[c];
+            if (!m)
+                continue;
+            const char *cn = sl_synth_comp_name((sl_synth_comp)c);
+            const char *ext = o->csv ? "csv" : "AT2";
+            if (match)
+                snprintf(file, sizeof file, "match_%s.%s", cn, ext);
+            else
+                snprintf(file, sizeof file, "set%02lu_%s.%s", (unsigned long)(k + 1), cn, ext);
+            int w = snprintf(path, sizeof path, "%s/%s", o->outdir, file);
+            if (w < 0 || (size_t)w >= sizeof path) {
+                cli_msg("%s: output path too long", o->outdir);
+                sl_atomic_abort(rep);
+                return CLI_EXIT_ERROR;
+            }
+            /* A title too long for one line is cut (it is free text). */
+            int tw = match ? snprintf(title, sizeof title, "%s matched to %s (seislide %s)",
+                                      o->match[c], desc[c], SEISLIDE_VERSION)
+                           : snprintf(title, sizeof title,
+                                      "set %02lu %s: %s, seed %s (seislide %s)",
+                                      (unsigned long)(k + 1), cn, desc[c], seed,
+                                      SEISLIDE_VERSION);
+            if (tw < 0)
+                title[0] = '\0';
+            sl_status st = o->csv ? write_csv_motion(path, m, &err)
+                                  : sl_synth_write_at2(path, m, title, &err);
+            if (st) {
+                cli_print_error(&err);
+                sl_atomic_abort(rep);
+                return CLI_EXIT_ERROR;
+            }
+            report_row row = {(unsigned)(k + 1), cn, file, desc[c], seed,
+                              &sets[k].check[c], sets[k].corr, &o->p};
+            report_line(rf, &row);
+        }
+    }
+    if (sl_atomic_commit(rep, &err)) {
+        cli_print_error(&err);
+        return CLI_EXIT_ERROR;
+    }
+    return CLI_EXIT_OK;
+}
+
+/* Parse the options into o. Returns CLI_EXIT_OK, or an exit code to return
+ * (-1 for --help done). */
+static int parse(int argc, char **argv, synth_run *o)
+{
+    struct option longopts[N_BASE_OPTS + N_PARAM_OPTS + 1];
+    memcpy(longopts, base_opts, sizeof base_opts);
+    for (size_t i = 0; i < N_PARAM_OPTS; i++) {
+        longopts[N_BASE_OPTS + i].name = param_opts[i].name;
+        longopts[N_BASE_OPTS + i].has_arg = required_argument;
+        longopts[N_BASE_OPTS + i].flag = NULL;
+        longopts[N_BASE_OPTS + i].val = OPT_PARAM0 + (int)i;
+    }
+    memset(&longopts[N_BASE_OPTS + N_PARAM_OPTS], 0, sizeof longopts[0]);
+    optind = 1;
+    opterr = 0;
+    int c, rc;
+    while ((c = getopt_long(argc, argv, ":o:q", longopts, NULL)) != -1) {
+        const char *arg = optarg;
+        switch (c) {
+        case OPT_FLOOR: o->floor_path = arg; break;
+        case OPT_RG160:
+            if ((rc = cli_positive("synth", "--rg160", arg, "g", &o->rg_pga_g)))
+                return rc;
+            break;
+        case OPT_DAMPING:
+            if (cli_parse_double(arg, &o->damping) || !(o->damping > 0 && o->damping < 1))
+                return cli_usage("synth", "--damping '%s' must be a number in (0, 1)", arg);
+            break;
+        case OPT_COUNT:
+            if (cli_parse_ulong(arg, &o->count) || o->count < 1 || o->count > SYNTH_MAX_COUNT)
+                return cli_usage("synth", "--count '%s' must be a whole number in [1, %d]", arg,
+                                 SYNTH_MAX_COUNT);
+            o->have_count = 1;
+            break;
+        case OPT_SEED: {
+            unsigned long v;
+            if (cli_parse_ulong(arg, &v))
+                return cli_usage("synth", "--seed '%s' must be a whole number >= 0", arg);
+            o->seed = v;
+            o->have_seed = 1;
+            break;
+        }
+        case OPT_DURATION:
+            if ((rc = cli_positive("synth", "--duration", arg, "s", &o->duration_s)))
+                return rc;
+            if (o->duration_s > SYNTH_MAX_DURATION_S)
+                return cli_usage("synth", "--duration %g above %g s", o->duration_s,
+                                 SYNTH_MAX_DURATION_S);
+            o->have_duration = 1;
+            break;
+        case OPT_DT:
+            if ((rc = cli_positive("synth", "--dt", arg, "s", &o->dt_s)))
+                return rc;
+            if (o->dt_s > SL_SYNTH_MAX_DT_S * (1 + SYNTH_STEP_SLACK))
+                return cli_usage("synth",
+                                 "--dt %g above %g s (SRP 3.7.1: Nyquist frequency >= 50 Hz)",
+                                 o->dt_s, SL_SYNTH_MAX_DT_S);
+            break;
+        case OPT_MATCH:
+            if (o->nmatch == SYNTH_MAX_RECORDS)
+                return cli_usage("synth", "at most %d --match records (H1, H2, V)",
+                                 SYNTH_MAX_RECORDS);
+            o->match[o->nmatch++] = arg;
+            break;
+        case OPT_UNITS:
+            o->units = sl_unit_parse(arg);
+            if (o->units == SL_UNIT_NONE)
+                return cli_usage("synth", "unknown unit '%s' (g, m/s2, cm/s2, gal, mm/s2)", arg);
+            break;
+        case 'o': o->outdir = arg; break;
+        case OPT_FORMAT:
+            if (!strcmp(arg, "csv"))
+                o->csv = 1;
+            else if (!strcmp(arg, "at2") || !strcmp(arg, "AT2"))
+                o->csv = 0;
+            else
+                return cli_usage("synth", "--format '%s' must be at2 or csv", arg);
+            break;
+        case 'q': o->quiet = 1; break;
+        case OPT_HELP: print_help(); return -1;
+        case ':': return cli_usage("synth", "option '%s' needs a value", argv[optind - 1]);
+        case '?': return cli_usage("synth", "unknown option '%s'", argv[optind - 1]);
+        default:
+            if (c >= OPT_PARAM0 && c < OPT_PARAM0 + (int)N_PARAM_OPTS) {
+                if ((rc = param_set(&o->p, &param_opts[c - OPT_PARAM0], arg)))
+                    return rc;
+                break;
+            }
+            return cli_usage("synth", "unknown option '%s'", argv[optind - 1]);
+        }
+    }
+    if (optind < argc)
+        return cli_usage("synth", "unexpected argument '%s'", argv[optind]);
+    if (!o->floor_path == isnan(o->rg_pga_g))
+        return cli_usage("synth", "give exactly one target: --floor FILE or --rg160 PGA");
+    if (!o->outdir)
+        return cli_usage("synth", "-o DIR is required");
+    if (o->nmatch > 0) {
+        if (o->have_count || o->have_seed || o->have_duration)
+            return cli_usage("synth", "--match takes no --count, --seed or --duration");
+    } else {
+        if (!o->have_count)
+            return cli_usage("synth", "--count N is required (or --match FILE)");
+        if (!o->have_seed)
+            return cli_usage("synth", "--seed S is required: it makes the motions reproducible");
+        if (o->units != SL_UNIT_NONE)
+            return cli_usage("synth", "--units applies to --match files only");
+    }
+    sl_error err;
+    if (sl_synth_params_check(&o->p, &err))
+        return cli_usage("synth", "%s", err.msg);
+    return CLI_EXIT_OK;
+}
+
+int cmd_synth(int argc, char **argv)
+{
+    synth_run o;
+    memset(&o, 0, sizeof o);
+    sl_synth_params_default(&o.p);
+    o.rg_pga_g = NAN;
+    o.duration_s = SL_SYNTH_DURATION_S;
+    o.dt_s = NAN;
+    int rc = parse(argc, argv, &o);
+    if (rc)
+        return rc < 0 ? CLI_EXIT_OK : rc;
+
+    sl_error err;
+    sl_error_clear(&err);
+    sl_floor *fl = NULL;
+    sl_spectrum *own[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
+    sl_motion *rec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
+    sl_synth *plan = NULL;
+    sl_synth_set *sets = NULL;
+    size_t nsets = 0;
+    sl_synth_target tgt[SL_SYNTH_NCOMP];
+    char desc[SL_SYNTH_NCOMP][512];
+    rc = CLI_EXIT_ERROR;
+
+    /* Targets. */
+    if (o.floor_path) {
+        fl = sl_floor_load(o.floor_path, &err);
+        if (!fl || sl_synth_targets_floor(fl, o.damping, tgt, &err)) {
+            cli_print_error(&err);
+            goto done;
+        }
+    } else {
+        double z = o.damping > 0 ? o.damping : SL_SYNTH_DAMPING;
+        if (!(z >= SL_RG160_ZETA_MIN && z <= SL_RG160_ZETA_MAX)) {
+            rc = cli_usage("synth", "--damping %g outside RG 1.60's range [%g, %g]", z,
+                           SL_RG160_ZETA_MIN, SL_RG160_ZETA_MAX);
+            goto done;
+        }
+        if (sl_synth_targets_rg160(o.rg_pga_g * SL_G, z, &o.p, own, tgt, &err)) {
+            cli_print_error(&err);
+            goto done;
+        }
+    }
+    describe_targets(&o, fl, tgt, desc);
+
+    /* Plan and motions. */
+    double dt = o.dt_s > 0 ? o.dt_s : SL_SYNTH_DT_S;
+    size_t n;
+    if (o.nmatch > 0) {
+        if ((rc = read_records(&o, rec, &dt)) != CLI_EXIT_OK)
+            goto done;
+        rc = CLI_EXIT_ERROR;
+        n = 0;
+        for (size_t i = 0; i < o.nmatch; i++)
+            n = rec[i]->n > n ? rec[i]->n : n;
+    } else {
+        n = (size_t)llround(o.duration_s / dt) + 1;
+    }
+    plan = sl_synth_alloc(n, dt, &o.p, &err);
+    if (!plan) {
+        cli_print_error(&err);
+        goto done;
+    }
+    if (make_dirs(o.outdir) != 0) {
+        cli_msg("%s: cannot create the output folder: %s", o.outdir, strerror(errno));
+        goto done;
+    }
+    nsets = o.nmatch > 0 ? 1 : (size_t)o.count;
+    sets = calloc(nsets, sizeof *sets);
+    if (!sets) {
+        cli_msg("out of memory");
+        goto done;
+    }
+    int show = !o.quiet && isatty(STDERR_FILENO);
+    sl_status st;
+    if (o.nmatch > 0) {
+        const sl_motion *r3[SL_SYNTH_NCOMP] = {rec[0], rec[1], rec[2]};
+        st = sl_synth_match_set(plan, tgt, r3, sets, &err);
+    } else {
+        st = sl_synth_make_sets(plan, tgt, (uint64_t)o.seed, 0, nsets, sets,
+                                show ? progress_cb : NULL, NULL, &err);
+    }
+    if (st && st != SL_ENOCONV) {
+        cli_print_error(&err);
+        goto done;
+    }
+    if (write_outputs(&o, sets, nsets, o.nmatch > 0, desc) != CLI_EXIT_OK)
+        goto done;
+    size_t total = 0, failed = 0;
+    for (size_t k = 0; k < nsets; k++)
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+            if (sets[k].motion[c]) {
+                total++;
+                failed += !sets[k].check[c].pass;
+            }
+    if (failed) {
+        cli_msg("synth: %zu of %zu motions failed a check (see %s/report.csv)", failed, total,
+                o.outdir);
+        goto done;
+    }
+    if (!o.quiet) {
+        if (o.nmatch > 0)
+            cli_msg("synth: %zu motions matched, every check passed; %s/report.csv", total,
+                    o.outdir);
+        else
+            cli_msg("synth: %zu motions, every check passed (seed %llu); %s/report.csv", total,
+                    o.seed, o.outdir);
+    }
+    rc = CLI_EXIT_OK;
+done:
+    for (size_t k = 0; sets && k < nsets; k++)
+        sl_synth_set_clear(&sets[k]);
+    free(sets);
+    sl_synth_free(plan);
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        sl_spectrum_free(own[c]);
+        sl_motion_free(rec[c]);
+    }
+    sl_floor_free(fl);
+    return rc;
+}
