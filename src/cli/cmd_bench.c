@@ -15,7 +15,9 @@
  *     model at equal error;
  *  4. response spectra: error of the sampled peak against steps per period
  *     and speed;
- *  5. the arithmetic limit of the 2-D update on this machine, measured by a
+ *  5. motion synthesis: time to synthesize and verify one three-component
+ *     set, 20 s at 200 samples/s, one core, and how well it matches;
+ *  6. the arithmetic limit of the 2-D update on this machine, measured by a
  *     branch-free, vectorisable loop doing the update's arithmetic only, and
  *     how far the engine is from it.
  * Timing: best of --repeat runs, one thread (the engine's inner loops are
@@ -33,6 +35,9 @@
 #include "motion.h"
 #include "slide.h"
 #include "spectrum.h"
+#include "synth.h"
+
+#include <omp.h>
 
 /* Relative errors are taken where the reference peak is at least this:
  * below a millimetre a clearance table rounds to zero anyway. */
@@ -394,6 +399,24 @@ int cmd_bench(int argc, char **argv)
                 snprintf(x->label, sizeof x->label, "U_y %.0e, eta %.0f, rtol %.0e, msbdf",
                          uys[iu], etas[ie], rtols[ir]);
             }
+    /* the other stiff solvers at the study's eta = 20 and the tight tolerance */
+    static const char *const solver_names[] = {"msbdf", "rk4imp", "bsimp", "rkf45"};
+    for (int iu = 0; iu < 4 && !quick; iu++)
+        for (int sv = 1; sv <= 2; sv++) {
+            if (sv == 1 && iu >= 3)
+                continue; /* rk4imp at U_y = 1e-7: seconds to minutes per run */
+            setting *x = &st[nst++];
+            sl_slide_opts_default(&x->o);
+            x->o.model = SL_MODEL_SMOOTH;
+            x->o.smooth_uy_m = uys[iu];
+            x->o.smooth_eta = 20;
+            x->o.smooth_rtol = 1e-6;
+            x->o.smooth_atol = uys[iu] * 1e-2;
+            x->o.smooth_solver = sv;
+            snprintf(x->model, sizeof x->model, "smooth");
+            snprintf(x->label, sizeof x->label, "U_y %.0e, eta 20, rtol 1e-06, %s", uys[iu],
+                     solver_names[sv]);
+        }
     for (int iu = 0; iu < 4; iu++)
         for (unsigned sub = 8; sub <= 512; sub *= 8) {
             setting *x = &st[nst++];
@@ -405,16 +428,19 @@ int cmd_bench(int argc, char **argv)
             snprintf(x->label, sizeof x->label, "U_y %.0e, %u sub-steps", uys[iu], sub);
         }
     out("\n## 2. Every model and setting (mu = 0.05, 0.1, 0.2, 0.4; all motions)\n\n");
-    out("| model | setting | ms per (motion, mu) | max rel. error | max abs. error, mm |\n");
-    out("|---|---|---|---|---|\n");
+    double mean_n = 0;
+    for (int s2 = 0; s2 < ns; s2++)
+        mean_n += (double)sets[s2].m[0]->n / ns;
+    out("| model | setting | ms per (motion, mu) | Msamples x mu / s | max rel. error | max abs. error, mm |\n");
+    out("|---|---|---|---|---|---|\n");
     for (int i = 0; i < nst; i++) {
         fprintf(stderr, "seislide: bench: %s %s\n", st[i].model, st[i].label);
         time_setting(&st[i], sets, ns, mref, repeat);
         if (st[i].failed)
-            out("| %s | %s | solver failed | | |\n", st[i].model, st[i].label);
+            out("| %s | %s | solver failed | | | |\n", st[i].model, st[i].label);
         else
-            out("| %s | %s | %.3f | %.2e | %.3f |\n", st[i].model, st[i].label,
-                1e-3 * st[i].us_per, st[i].rel, 1e3 * st[i].abs_m);
+            out("| %s | %s | %.3f | %.3g | %.2e | %.3f |\n", st[i].model, st[i].label,
+                1e-3 * st[i].us_per, mean_n / st[i].us_per, st[i].rel, 1e3 * st[i].abs_m);
     }
 
     /* 3. Pareto */
@@ -485,10 +511,58 @@ int cmd_bench(int argc, char **argv)
         free(p);
     }
 
-    /* 5. arithmetic limit */
+    /* 5. synthesis */
+    {
+        const int nseeds = 10;
+        out("\n## 5. Motion synthesis: one three-component set, 20 s at 200 samples/s\n\n");
+        out("RG 1.60 at 0.3 g, 5 %% damping; each set synthesized and verified (every check of\n"
+            "../shared/docs/REFERENCE.md section 5) on one thread; %d seeds.\n\n", nseeds);
+        sl_synth_params sp;
+        sl_synth_params_default(&sp);
+        sl_spectrum *spec[SL_SYNTH_NCOMP] = {NULL};
+        sl_synth_target tgt[SL_SYNTH_NCOMP];
+        sl_synth *sy = NULL;
+        size_t n = (size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1;
+        if (sl_synth_targets_rg160(0.3 * SL_G, SL_SYNTH_DAMPING, &sp, spec, tgt, &err) == SL_OK)
+            sy = sl_synth_alloc(n, SL_SYNTH_DT_S, &sp, &err);
+        if (!sy) {
+            out("synthesis unavailable: %s\n", err.msg);
+        } else {
+            int saved = omp_get_max_threads(), passed = 0;
+            omp_set_num_threads(1);
+            double tsum = 0, tmax = 0, worst_lo = INFINITY, worst_hi = 0, worst_corr = 0;
+            for (int q = 0; q < nseeds; q++) {
+                sl_synth_set set;
+                double t0 = now_s();
+                sl_status sst = sl_synth_make_set(sy, tgt, 1000u + (uint64_t)q, 0, &set, NULL);
+                double t = now_s() - t0;
+                tsum += t;
+                tmax = fmax(tmax, t);
+                passed += (sst == SL_OK && set.pass);
+                for (int cc = 0; cc < SL_SYNTH_NCOMP; cc++) {
+                    worst_lo = fmin(worst_lo, set.check[cc].min_ratio);
+                    worst_hi = fmax(worst_hi, set.check[cc].max_ratio);
+                }
+                for (int cc = 0; cc < SL_SYNTH_NPAIR; cc++)
+                    if (isfinite(set.corr[cc]))
+                        worst_corr = fmax(worst_corr, fabs(set.corr[cc]));
+                sl_synth_set_clear(&set);
+            }
+            omp_set_num_threads(saved);
+            out("| sets passed | mean s per set | max s per set | spectrum / target (min, max) | max abs. correlation |\n");
+            out("|---|---|---|---|---|\n");
+            out("| %d / %d | %.3f | %.3f | %.3f, %.3f | %.3f |\n", passed, nseeds, tsum / nseeds,
+                tmax, worst_lo, worst_hi, worst_corr);
+            sl_synth_free(sy);
+        }
+        for (int cc = 0; cc < SL_SYNTH_NCOMP; cc++)
+            sl_spectrum_free(spec[cc]);
+    }
+
+    /* 6. arithmetic limit */
     {
         double tl = limit_time_per_update();
-        out("\n## 5. How close the engine comes to this machine's arithmetic limit\n\n");
+        out("\n## 6. How close the engine comes to this machine's arithmetic limit\n\n");
         out("The limit is measured, not guessed: a branch-free loop over 4096 independent\n"
             "blocks doing only the arithmetic of one 2-D sliding update (midpoint friction\n"
             "direction: 2 square roots, 1 division, about 30 other flops; the compiler\n"
