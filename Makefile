@@ -4,7 +4,7 @@ PREFIX  ?= /usr/local
 DESTDIR ?=
 BUILD   ?= build
 OPT     ?= -O2 -g -fno-math-errno -ftree-vectorize
-PKGS    := gsl fftw3 xlsxwriter inih
+PKGS    := gsl fftw3 xlsxwriter inih zlib
 WARN    := -std=c11 -Wall -Wextra -Wpedantic -Wshadow
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS))
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS))

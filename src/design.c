@@ -139,7 +139,9 @@ sl_design *sl_design_compute(const sl_design_input *in, sl_error *err)
         d->ranges[d->n_ranges].x_from = d->rows[k].x;
         d->ranges[d->n_ranges].x_to = d->rows[e].x;
         d->n_ranges++;
-        if (!d->has_crossover && e + 1 < d->n && isfinite(d->rows[e + 1].asce_design_m)) {
+        /* the crossover (the study's sense): the end of an unconservative range
+         * that starts at the lowest mu of the grid */
+        if (k == 0 && e + 1 < d->n && isfinite(d->rows[e + 1].asce_design_m)) {
             /* D_A - D_N: negative at e, >= 0 at e + 1: linear interpolation in x */
             const sl_design_row *p = &d->rows[e], *q = &d->rows[e + 1];
             double fp = p->asce_design_m - p->nltha_design_m;

@@ -13,9 +13,13 @@
  *                         displacement by the 100-40 rule (the study's cap)
  *   x                     = mu g / ZPA_h (the floor's horizontal ZPA)
  *
- * The crossover is the x where D_A - D_N changes sign from negative (ASCE
- * below NLTHA: unconservative) to non-negative, interpolated linearly in x;
- * every range of x where D_A < D_N is listed. The required clearance is D_N
+ * The crossover (the source study's quantity) is the x below which ASCE is
+ * unconservative: when D_A < D_N at the lowest mu of the grid, the x where
+ * D_A - D_N first becomes non-negative, interpolated linearly in x; when
+ * ASCE is conservative at the lowest mu there is no crossover in the grid.
+ * Every range of x where D_A < D_N is listed, wherever it lies (e.g. at
+ * high x, where ASCE's "no sliding" rule ignores the vector sum of the
+ * horizontals and the vertical, and NLTHA still gives millimetres). The required clearance is D_N
  * by default (ASCE 43-05 permits NLTHA everywhere), or D_A, or max(D_N, D_A).
  *
  * Units: SI (m, m/s^2); mu dimensionless. Plain data; the caller owns every
@@ -78,8 +82,9 @@ typedef struct sl_design {
     double zpa_h_ms2;
     double cap_m;
     sl_clearance_policy policy;
-    int has_crossover;     /* 1 when D_A - D_N goes from < 0 to >= 0 */
-    double crossover_x;    /* mu g / ZPA at the first such crossing (NAN if none) */
+    int has_crossover;     /* 1 when ASCE is unconservative at the lowest mu and
+                              becomes conservative within the grid */
+    double crossover_x;    /* mu g / ZPA there (NAN if none) */
     double crossover_mu;   /* the same as mu */
     size_t n_ranges;       /* ranges where ASCE < NLTHA */
     sl_design_range *ranges;

@@ -102,6 +102,29 @@ static void test_crossover_on_curves(void)
     sl_design_free(d);
 }
 
+/* ASCE conservative at the lowest mu: no crossover, even if an
+ * unconservative range follows; the range is still listed. */
+static void test_no_crossover_when_conservative_low(void)
+{
+    const double mu[4] = {0.1, 0.2, 0.3, 0.4}, peak[4] = {0.1, 0.05, 0.01, 0.0};
+    const double asce[4] = {0.2, 0.01, 0.0, 0.0}, pgd[1] = {10};
+    sl_design_input in;
+    sl_design_input_default(&in);
+    in.n_mu = 4;
+    in.n_sets = 1;
+    in.mu = mu;
+    in.peak_m = peak;
+    in.asce_best_m = asce;
+    in.pgd_m = pgd;
+    in.zpa_h_ms2 = SL_G;
+    sl_design *d = sl_design_compute(&in, NULL);
+    CHECK(d && !d->has_crossover && isnan(d->crossover_x), "no crossover expected");
+    CHECK(d && d->n_ranges == 1, "one unconservative range");
+    if (d)
+        CHECK_CLOSE(d->ranges[0].x_from, 0.2, 0, 1e-12);
+    sl_design_free(d);
+}
+
 static void test_policies(void)
 {
     const double mu[2] = {0.1, 0.2}, peak[2] = {0.1, 0.01}, asce[2] = {0.01, NAN}, pgd[1] = {1};
@@ -156,6 +179,7 @@ int main(void)
 {
     RUN(test_hand_example);
     RUN(test_crossover_on_curves);
+    RUN(test_no_crossover_when_conservative_low);
     RUN(test_policies);
     RUN(test_bad_input);
     return HARNESS_END("design");
