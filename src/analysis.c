@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <zlib.h>
 
 #include "asce.h"
@@ -14,6 +15,13 @@
 
 /* Damping of the ASCE/SEI 43-05 spectra. */
 #define ASCE_DAMPING 0.10
+
+static double wall_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 void sl_analysis_opts_default(sl_analysis_opts *o)
 {
@@ -116,6 +124,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->av_ms2 = fl->comp[SL_FLOOR_V].zpa_ms2;
 
     /* 1. synthesis */
+    double t0 = wall_s();
     sl_synth_params sp;
     sl_synth_params_default(&sp);
     sl_synth_target tgt[SL_SYNTH_NCOMP];
@@ -134,6 +143,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         for (int c = 0; c < SL_SYNTH_NCOMP; c++)
             a->n_failed_motions += !a->sets[s].check[c].pass;
 
+    a->time_synth_s = wall_s() - t0;
+    t0 = wall_s();
     /* 2. NLTHA */
     sets = calloc(o->n_sets, sizeof *sets);
     res = calloc(o->n_sets * o->n_mu, sizeof *res);
@@ -168,6 +179,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         a->n_mu_skipped += (size_t)all;
     }
 
+    a->time_nltha_s = wall_s() - t0;
+    t0 = wall_s();
     /* 3. ASCE on the 10 % spectra (or the documented fallback) */
     const sl_spectrum *s10[2] = {sl_floor_sa10(fl, SL_FLOOR_H1), sl_floor_sa10(fl, SL_FLOOR_H2)};
     if (!s10[0] || !s10[1]) {
@@ -214,6 +227,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     if (!a->design)
         goto fail;
 
+    a->time_asce_s = wall_s() - t0;
     size_t used = 0;
     a->note[0] = '\0';
 #define NOTE(...)                                                                          \

@@ -54,6 +54,7 @@ typedef struct sl_analysis {
     size_t n_failed_motions;    /* components that failed a quality check */
     size_t n_mu_skipped;        /* friction values not integrated for any set */
     int sa10_fallback;          /* 1: ASCE used the motions' mean 10 % spectra */
+    double time_synth_s, time_nltha_s, time_asce_s; /* wall time of each step, s */
     char note[512];             /* what a reader must know ("" when nothing) */
 } sl_analysis;
 

@@ -139,6 +139,41 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     }
     if (sl_atomic_commit(a, err))
         return err ? err->code : SL_EIO;
+    /* per floor: ZPA, crossover, unconservative ranges, note */
+    if (csv_open(dir, "floors.csv", &a, err))
+        return err ? err->code : SL_EIO;
+    f = sl_atomic_file(a);
+    fputs("floor,file,zpa_h_g,crossover_mu_g_over_zpa,crossover_mu,asce_below_nltha_mu_g_over_zpa,"
+          "clearance_policy,note\r\n", f);
+    for (size_t i = 0; i < r->n_floors; i++) {
+        const sl_report_floor *fl = &r->floors[i];
+        const sl_design *d = fl->design;
+        char ranges[512] = "";
+        size_t used = 0;
+        for (size_t q = 0; q < d->n_ranges; q++) {
+            int w = snprintf(ranges + used, sizeof ranges - used, "%s%.4g-%.4g", q ? " " : "",
+                             d->ranges[q].x_from, d->ranges[q].x_to);
+            if (w < 0 || (size_t)w >= sizeof ranges - used)
+                break;
+            used += (size_t)w;
+        }
+        csv_field(f, fl->name);
+        fputc(',', f);
+        csv_field(f, fl->path);
+        fprintf(f, ",%.4f,", fl->zpa_h_ms2 / SL_G);
+        csv_num(f, d->crossover_x, "%.4f");
+        fputc(',', f);
+        csv_num(f, d->crossover_mu, "%.4f");
+        fputc(',', f);
+        csv_field(f, ranges);
+        fputc(',', f);
+        csv_field(f, sl_clearance_policy_name(d->policy));
+        fputc(',', f);
+        csv_field(f, fl->note ? fl->note : "");
+        fputs("\r\n", f);
+    }
+    if (sl_atomic_commit(a, err))
+        return err ? err->code : SL_EIO;
     /* motion quality */
     if (csv_open(dir, "motion_quality.csv", &a, err))
         return err ? err->code : SL_EIO;

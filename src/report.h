@@ -15,7 +15,8 @@
  *  - "Inputs": what reproduces the run (version, command, floor files with
  *    size and CRC-32, seed, settings).
  * CSV (RFC 4180: CRLF line ends, fields quoted when needed; units in the
- * column names): floor_<name>.csv per floor, summary.csv, motion_quality.csv.
+ * column names): floor_<name>.csv per floor, summary.csv, floors.csv (ZPA,
+ * crossover, ranges, notes per floor), motion_quality.csv.
  *
  * Every file is written atomically (atomic.h): a failure leaves no partial
  * file under its final name. The workbook's creation date is
@@ -76,7 +77,8 @@ typedef struct sl_report {
  * path and libxlsxwriter's message. All floors must share the mu grid. */
 sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *err);
 
-/* Write floor_<name>.csv per floor, summary.csv and motion_quality.csv into
+/* Write floor_<name>.csv per floor, summary.csv, floors.csv and
+ * motion_quality.csv into
  * dir (which must exist). Floor names are made safe for file names
  * (letters, digits, '-', '_'; others become '_'). */
 sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err);

@@ -36,7 +36,8 @@ static const char run_help[] =
     "the mu g/ZPA crossover and the required clearance, and write:\n"
     "  DIR/" RUN_WORKBOOK "   lookup (floor drop-down + mu -> clearance),\n"
     "      summary, one sheet and chart per floor, motion quality, inputs\n"
-    "  DIR/floor_<name>.csv, DIR/summary.csv, DIR/motion_quality.csv (RFC 4180)\n"
+    "  DIR/floor_<name>.csv, DIR/summary.csv, DIR/floors.csv,\n"
+    "      DIR/motion_quality.csv (RFC 4180, units in the column names)\n"
     "\n"
     "  -o, --output DIR     output folder (default output/; created if missing)\n"
     "  -q, --quiet          no progress on stderr\n"
@@ -50,6 +51,8 @@ static const char run_help[] =
     "  --accuracy E         relative accuracy of the 2-D integration: 0.01 -> 1 sub-step,\n"
     "                       0.001 (default) -> 8, 0.0001 -> 32 (docs/performance.md)\n"
     "  --substeps N         set the 2-D sub-steps directly\n"
+    "  --motions            also write every synthesized motion (AT2, in g) to\n"
+    "                       DIR/motions/<floor>/setNN_{h1,h2,v}.AT2, for audit\n"
     "  --created EPOCH      workbook creation time, s since 1970 (default: the\n"
     "                       SOURCE_DATE_EPOCH environment variable, else now)\n"
     "\n"
@@ -144,7 +147,8 @@ static int add_inputs(const char *arg, char **paths, size_t *n)
 
 int cmd_run(int argc, char **argv)
 {
-    enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED, O_HELP };
+    enum { O_MOTIONS = 300 };
+enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED, O_HELP };
     static const struct option lo[] = {{"output", required_argument, 0, 'o'},
                                        {"quiet", no_argument, 0, 'q'},
                                        {"sets", required_argument, 0, O_SETS},
@@ -155,10 +159,11 @@ int cmd_run(int argc, char **argv)
                                        {"accuracy", required_argument, 0, O_ACC},
                                        {"substeps", required_argument, 0, O_SUB},
                                        {"created", required_argument, 0, O_CREATED},
+                                       {"motions", no_argument, 0, O_MOTIONS},
                                        {"help", no_argument, 0, O_HELP},
                                        {0, 0, 0, 0}};
     const char *outdir = RUN_DEFAULT_OUT;
-    int quiet = 0, rc = CLI_EXIT_ERROR;
+    int quiet = 0, rc = CLI_EXIT_ERROR, write_motions = 0;
     unsigned long ul, seed = 1, n_sets = SL_ANALYSIS_DEFAULT_SETS;
     unsigned substeps = 0;
     double acc = 1e-3, *mu = NULL;
@@ -232,6 +237,7 @@ int cmd_run(int argc, char **argv)
             created = (long long)v;
             break;
         }
+        case O_MOTIONS: write_motions = 1; break;
         case O_HELP:
             fputs(run_help, stdout);
             rc = CLI_EXIT_OK;
@@ -397,8 +403,36 @@ int cmd_run(int argc, char **argv)
         cli_print_error(&err);
         goto done;
     }
+    if (write_motions) {
+        char dir[4096], safe[256], path[4400];
+        static const char *const cn[SL_SYNTH_NCOMP] = {"h1", "h2", "v"};
+        snprintf(dir, sizeof dir, "%s/motions", outdir);
+        if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+            cli_msg("%s: cannot create: %s", dir, strerror(errno));
+            goto done;
+        }
+        for (size_t i = 0; i < np; i++) {
+            snprintf(dir, sizeof dir, "%s/motions/%s", outdir,
+                     sl_report_safe_name(floors[i]->name, safe, sizeof safe));
+            if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+                cli_msg("%s: cannot create: %s", dir, strerror(errno));
+                goto done;
+            }
+            for (size_t s = 0; s < an[i]->n_sets; s++)
+                for (int cc = 0; cc < SL_SYNTH_NCOMP; cc++) {
+                    char title[512];
+                    snprintf(path, sizeof path, "%s/set%02zu_%s.AT2", dir, s + 1, cn[cc]);
+                    snprintf(title, sizeof title, "%s, set %zu, %s, seed %lu", floors[i]->name,
+                             s + 1, cn[cc], seed);
+                    if (sl_synth_write_at2(path, an[i]->sets[s].motion[cc], title, &err)) {
+                        cli_print_error(&err);
+                        goto done;
+                    }
+                }
+        }
+    }
     if (!quiet)
-        cli_msg("run: wrote %s and %zu CSV files in %s", wb, np + 2, outdir);
+        cli_msg("run: wrote %s and %zu CSV files in %s", wb, np + 3, outdir);
     rc = CLI_EXIT_OK;
 done:
     free(mu);

@@ -1,0 +1,102 @@
+#!/bin/sh
+# End-to-end tests of `seislide run`, the main job: outputs, workbook
+# structure (sheets, tables, charts, lookup formulas), CSV values against the
+# library's own commands, byte-identical reruns, bad floor files.
+. "$(dirname "$0")/lib.sh"
+t_suite cli_run
+D=$T_TMP
+mkdir -p "$D/floors"
+cp floors/01-ground.ini floors/04-roof36.ini "$D/floors/"
+OPTS="--sets 5 --mu-range 0.05:0.80:0.05 --created 1700000000 -q"
+
+t_run run --help; t_expect_rc help 0; t_expect_out help "usage: seislide run"
+t_run run "$D/floors" -o "$D/out1" $OPTS --motions; t_expect_rc run 0
+[ ! -s "$T_ERR" ] && t_pass || t_fail "-q must silence stderr: $(head -c 300 "$T_ERR")"
+for f in seislide-clearance.xlsx summary.csv floors.csv motion_quality.csv \
+         floor_Ground_level__RG_1_60__0_3_g_.csv floor_Roof_el__36_m.csv; do
+  [ -s "$D/out1/$f" ] && t_pass || t_fail "missing output $f"
+done
+ls -a "$D/out1" | grep -q '\.tmp-' && t_fail "temporary file left" || t_pass
+
+# CSV: RFC 4180 line ends and units in the column names
+head -1 "$D/out1/summary.csv" | grep -q "clearance_mm" && t_pass || t_fail "summary header"
+head -1 "$D/out1/summary.csv" | od -c | grep -q '\\r  \\n' && t_pass || t_fail "CRLF line ends"
+F="$D/out1/floor_Roof_el__36_m.csv"
+head -1 "$F" | grep -q "^mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,asce_best_mm,asce_design_mm,cap_mm,clearance_mm,flags" && t_pass || t_fail "floor CSV header: $(head -1 "$F")"
+
+# NLTHA mean at mu = 0.30 against `seislide slide` on the written motions
+M="$D/out1/motions/Roof_el__36_m"
+sum=0
+for s in 01 02 03 04 05; do
+  t_run slide --h1 "$M/set${s}_h1.AT2" --h2 "$M/set${s}_h2.AT2" --v "$M/set${s}_v.AT2" --mu 0.3 --csv
+  p=$(awk -F, 'NR == 2 { print $2 }' "$T_OUT")
+  sum=$(awk -v a="$sum" -v b="$p" 'BEGIN { printf "%.12g", a + b }')
+done
+mean=$(awk -F, '$1 == 0.3 { print $3 }' "$F" | tr -d '\r')
+awk -v s="$sum" -v m="$mean" 'BEGIN { e = s / 5 * 1000 - m; if (e < 0) e = -e; exit !(e <= 1e-3 + 1e-6 * m) }' \
+  && t_pass || t_fail "NLTHA mean at mu 0.3: CSV $mean mm, slide on the motions $(awk -v s="$sum" 'BEGIN { print s / 5 * 1000 }') mm"
+# design = min(3.0 x mean, cap); clearance = design (default policy)
+awk -F, 'NR > 1 { d = 3 * $3; if (d > $8) d = $8; e = d - $5; if (e < 0) e = -e; if (e > 2e-4 + 1e-6 * d) bad++; if ($9 != $5) bad++ } END { exit bad > 0 }' "$F" \
+  && t_pass || t_fail "NLTHA design or clearance column inconsistent"
+# ASCE best estimate against `seislide asce --floor`
+t_run asce --floor floors/04-roof36.ini --mu 0.1,0.3 --csv
+for mu in 0.1 0.3; do
+  a=$(awk -F, -v mu=$mu '$1 == mu { print $5 * 1000 }' "$T_OUT")
+  c=$(awk -F, -v mu=$mu '$1 == mu { print $6 }' "$F" | tr -d '\r')
+  awk -v a="$a" -v c="$c" 'BEGIN { e = a - c; if (e < 0) e = -e; exit !(e <= 1e-3) }' && t_pass || t_fail "ASCE best at mu $mu: asce $a, run $c"
+done
+# rows flagged asce_below_nltha really are below, and no others
+awk -F, 'NR > 1 && $7 != "" { below = ($7 + 0 < $5 + 0); flag = ($10 ~ /asce_below_nltha/); if (below != flag) bad++ } END { exit bad > 0 }' "$F" \
+  && t_pass || t_fail "asce_below_nltha flags disagree with the columns"
+
+# the workbook: sheets, charts, lookup formulas, drop-down, pinned date
+if command -v python3 >/dev/null 2>&1; then
+  python3 - "$D/out1/seislide-clearance.xlsx" "$D/out1/summary.csv" > "$D/xlsx.txt" 2>&1 <<'PY'
+import sys, zipfile, re
+z = zipfile.ZipFile(sys.argv[1])
+names = z.namelist()
+wb = z.read('xl/workbook.xml').decode()
+sheets = re.findall(r'<sheet name="([^"]+)"', wb)
+print('sheets', '|'.join(sheets))
+print('charts', sum(1 for n in names if n.startswith('xl/charts/chart')))
+s1 = z.read('xl/worksheets/sheet1.xml').decode()
+print('validation_list', 'type="list"' in s1 and 'Summary!$B$1:$C$1' in s1)
+print('formulas', len(re.findall(r'<f>', s1)), 'MATCH' in s1 and 'INDEX' in s1)
+core = z.read('docProps/core.xml').decode()
+print('created', re.search(r'<dcterms:created[^>]*>([^<]+)<', core).group(1))
+ch = z.read('xl/charts/chart1.xml').decode()
+print('scatter', '<c:scatterChart>' in ch, 'series', ch.count('<c:ser>'))
+PY
+  grep -q "^sheets Lookup|Summary|1 Ground level (RG 1.60, 0.3 |2 Roof el. 36 m|Motion quality|Inputs$" "$D/xlsx.txt" && t_pass || t_fail "sheets: $(cat "$D/xlsx.txt")"
+  grep -q "^charts 2$" "$D/xlsx.txt" && t_pass || t_fail "one chart per floor: $(grep charts "$D/xlsx.txt")"
+  grep -q "^validation_list True$" "$D/xlsx.txt" && t_pass || t_fail "floor drop-down"
+  grep -q "^formulas [5-9] True$" "$D/xlsx.txt" && t_pass || t_fail "lookup formulas: $(grep formulas "$D/xlsx.txt")"
+  grep -q "^created 2023-11-14T22:13:20Z$" "$D/xlsx.txt" && t_pass || t_fail "creation date pinned: $(grep created "$D/xlsx.txt")"
+  grep -q "^scatter True series [45]$" "$D/xlsx.txt" && t_pass || t_fail "chart: $(grep scatter "$D/xlsx.txt")"
+else
+  t_skip "python3 absent: workbook structure not inspected"
+fi
+
+# the same command again (same seed, date and output folder; the workbook
+# records the command line): byte-identical outputs; another seed: different
+mkdir -p "$D/keep" && cp "$D/out1"/*.csv "$D/out1"/*.xlsx "$D/keep/"
+t_run run "$D/floors" -o "$D/out1" $OPTS --motions; t_expect_rc rerun 0
+for f in seislide-clearance.xlsx summary.csv floors.csv motion_quality.csv floor_Roof_el__36_m.csv; do
+  cmp -s "$D/keep/$f" "$D/out1/$f" && t_pass || t_fail "$f differs between identical runs"
+done
+t_run run "$D/floors" -o "$D/out3" $OPTS --seed 2; t_expect_rc seed2 0
+cmp -s "$D/out1/summary.csv" "$D/out3/summary.csv" && t_fail "seed 2 gave the same table" || t_pass
+
+# progress on stderr without -q
+t_run run "$D/floors" -o "$D/out4" --sets 5 --mu-range 0.1:0.3:0.1 --created 0
+t_expect_rc progress 0; t_expect_err progress-msg "floor 2/2 'Roof el. 36 m': synthesis"
+
+# a bad floor file: file and line named, exit 1, no output written
+mkdir -p "$D/badfloors"
+cp floors/01-ground.ini tests/data/floors/bad-nonincreasing.ini "$D/badfloors/"
+t_run run "$D/badfloors" -o "$D/outbad" $OPTS; t_expect_rc bad-floor 1
+t_expect_err bad-floor-msg "bad-nonincreasing.ini:9:"
+[ ! -e "$D/outbad/seislide-clearance.xlsx" ] && [ ! -e "$D/outbad/summary.csv" ] && t_pass || t_fail "output written despite a bad floor"
+t_run run "$D/nonexistent" -o "$D/outx" $OPTS; t_expect_rc missing-dir 1
+t_run run "$D/floors" --policy bogus; t_expect_rc bad-policy 2
+t_end
