@@ -47,6 +47,7 @@ bench: all
 
 # ASan + UBSan build in its own directory, running the same tests.
 asan:
+	LSAN_OPTIONS="suppressions=$(abspath tests/lsan.supp):print_suppressions=0" \
 	$(MAKE) BUILD=build-asan PROG=build-asan/seislide \
 	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
 	  LDFLAGS="-fsanitize=address,undefined" test
