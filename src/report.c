@@ -195,7 +195,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
 /* ---- XLSX --------------------------------------------------------------- */
 
 typedef struct fmts {
-    lxw_format *bold, *title, *mm, *ratio, *mu, *wrap, *result, *input, *header;
+    lxw_format *bold, *title, *mm, *mmbold, *ratio, *mu, *wrap, *result, *input, *header;
 } fmts;
 
 /* A sheet name Excel accepts and that is unique in the workbook. */
@@ -264,7 +264,7 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
         write_num_or_blank(ws, row, 5, MM_PER_M * w->asce_best_m, F->mm);
         write_num_or_blank(ws, row, 6, MM_PER_M * w->asce_design_m, F->mm);
         write_num_or_blank(ws, row, 7, MM_PER_M * w->cap_m, F->mm);
-        write_num_or_blank(ws, row, 8, MM_PER_M * w->clearance_m, F->bold);
+        write_num_or_blank(ws, row, 8, MM_PER_M * w->clearance_m, F->mmbold);
         worksheet_write_string(ws, row, 9, sl_report_flags(w->flags, flags, sizeof flags), NULL);
         ymax = fmax(ymax, fmax(w->nltha_design_m, isfinite(w->asce_design_m) ? w->asce_design_m : 0));
     }
@@ -334,6 +334,10 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
     chart_legend_set_position(ch, LXW_CHART_LEGEND_BOTTOM);
     lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = 1.6, .y_scale = 1.5};
     worksheet_insert_chart_opt(ws, 12, 11, ch, &co);
+    /* printing: landscape, one page wide */
+    worksheet_set_landscape(ws);
+    worksheet_fit_to_pages(ws, 1, 0);
+    worksheet_repeat_rows(ws, 0, 0);
 }
 
 static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
@@ -353,6 +357,8 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
             write_num_or_blank(ws, (lxw_row_t)(k + 1), (lxw_col_t)(i + 1),
                                MM_PER_M * r->floors[i].design->rows[k].clearance_m, F->mm);
     }
+    worksheet_fit_to_pages(ws, 1, 0);
+    worksheet_repeat_rows(ws, 0, 0);
     lxw_row_t b = (lxw_row_t)(n + 2);
     worksheet_write_string(ws, b, 0, "required clearance, mm: the rows above", F->bold);
     worksheet_write_string(ws, b + 1, 0, "horizontal ZPA, g", F->bold);
@@ -447,13 +453,15 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     worksheet_write_formula_num(ws, 12, 1, f, F->mm, y1);
     worksheet_write_string(ws, 14, 0, "Clearance policy", F->bold);
     worksheet_write_string(ws, 14, 1, sl_clearance_policy_name(d0->policy), NULL);
-    worksheet_write_string(ws, 15, 0,
-                           "nltha: 3.0 x the mean peak vector sliding displacement of the "
-                           "synthesized motion sets (ASCE/SEI 43-05), capped at 1.5 x the mean "
-                           "peak floor displacement; see each floor's sheet for ASCE, the cap "
-                           "and the crossover.",
-                           F->wrap);
+    worksheet_merge_range(ws, 15, 0, 15, 1,
+                          "nltha: 3.0 x the mean peak vector sliding displacement of the "
+                          "synthesized motion sets (ASCE/SEI 43-05), capped at 1.5 x the mean "
+                          "peak floor displacement; asce: 2.0 x the ASCE best estimate, same "
+                          "cap; envelope: the larger. See each floor's sheet for both curves, "
+                          "the cap and the crossover.",
+                          F->wrap);
     worksheet_set_row(ws, 15, 60, NULL);
+    worksheet_fit_to_pages(ws, 1, 1);
     worksheet_activate(ws);
 }
 
@@ -557,12 +565,16 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
     format_set_font_size(F.title, 14);
     F.mm = workbook_add_format(wb);
     format_set_num_format(F.mm, "0.0");
+    F.mmbold = workbook_add_format(wb);
+    format_set_num_format(F.mmbold, "0.0");
+    format_set_bold(F.mmbold);
     F.ratio = workbook_add_format(wb);
     format_set_num_format(F.ratio, "0.000");
     F.mu = workbook_add_format(wb);
     format_set_num_format(F.mu, "0.00");
     F.wrap = workbook_add_format(wb);
     format_set_text_wrap(F.wrap);
+    format_set_align(F.wrap, LXW_ALIGN_VERTICAL_TOP);
     F.result = workbook_add_format(wb);
     format_set_bold(F.result);
     format_set_font_size(F.result, 14);
