@@ -144,7 +144,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         return err ? err->code : SL_EIO;
     f = sl_atomic_file(a);
     fputs("floor,file,zpa_h_g,crossover_mu_g_over_zpa,crossover_mu,asce_below_nltha_mu_g_over_zpa,"
-          "clearance_policy,note\r\n", f);
+          "clearance_policy,mu_without_nltha,note\r\n", f);
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
         const sl_design *d = fl->design;
@@ -168,7 +168,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         csv_field(f, ranges);
         fputc(',', f);
         csv_field(f, sl_clearance_policy_name(d->policy));
-        fputc(',', f);
+        fprintf(f, ",%zu,", fl->n_mu_skipped);
         csv_field(f, fl->note ? fl->note : "");
         fputs("\r\n", f);
     }
@@ -279,6 +279,8 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
     worksheet_write_string(ws, 4, 12, sl_clearance_policy_name(d->policy), NULL);
     worksheet_write_string(ws, 5, 11, "note", F->bold);
     worksheet_write_string(ws, 5, 12, fl->note && *fl->note ? fl->note : "-", F->wrap);
+    worksheet_write_string(ws, 3, 11, "mu needing no NLTHA (mu g >= demand)", F->bold);
+    worksheet_write_number(ws, 3, 12, (double)fl->n_mu_skipped, NULL);
     worksheet_write_string(ws, 6, 11, "ASCE below NLTHA for mu g/ZPA in", F->bold);
     size_t used = 0;
     buf[0] = '\0';

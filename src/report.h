@@ -39,6 +39,7 @@ typedef struct sl_report_floor {
     double zpa_h_ms2;        /* the horizontal ZPA used for mu g/ZPA */
     const sl_design *design;
     const char *note;        /* e.g. the 10 % fallback; "" when none */
+    size_t n_mu_skipped;     /* friction values that needed no NLTHA for any motion */
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */

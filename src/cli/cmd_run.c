@@ -345,6 +345,7 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
         rf[i].zpa_h_ms2 = an[i]->zpa_h_ms2;
         rf[i].design = an[i]->design;
         rf[i].note = an[i]->note;
+        rf[i].n_mu_skipped = an[i]->n_mu_skipped;
         for (size_t s = 0; s < an[i]->n_sets; s++)
             for (int cc = 0; cc < SL_SYNTH_NCOMP; cc++) {
                 const sl_synth_check *k = &an[i]->sets[s].check[cc];
