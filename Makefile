@@ -34,7 +34,7 @@ $(LIB): $(LIB_OBJ)
 $(PROG): $(CLI_OBJ) $(LIB)
 	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LIBS_ALL)
 
-$(BUILD)/tests/%: tests/%.c $(LIB) tests/harness.h
+$(BUILD)/tests/%: tests/%.c $(LIB) tests/harness.h tests/oracle.h
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LIB) $(LIBS_ALL)
 

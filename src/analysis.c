@@ -246,6 +246,15 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         NOTE("only %zu motion sets: ASCE/SEI 43-05 asks for at least %d. ", o->n_sets,
              SL_NLTHA_MIN_SETS);
 #undef NOTE
+    goto cleanup;
+nomem:
+    sl_error_set(err, SL_ENOMEM, fl->path, 0, "out of memory");
+fail:
+    if (err && !err->file[0] && fl->path)
+        snprintf(err->file, sizeof err->file, "%s", fl->path);
+    sl_analysis_free(a);
+    a = NULL;
+cleanup:
     free(sets);
     free(res);
     free(peak);
@@ -256,20 +265,4 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     sl_asce_free(asce);
     sl_synth_free(plan);
     return a;
-nomem:
-    sl_error_set(err, SL_ENOMEM, fl->path, 0, "out of memory");
-fail:
-    if (err && !err->file[0] && fl->path)
-        snprintf(err->file, sizeof err->file, "%s", fl->path);
-    free(sets);
-    free(res);
-    free(peak);
-    free(noslide);
-    free(best);
-    sl_spectrum_free(fb[0]);
-    sl_spectrum_free(fb[1]);
-    sl_asce_free(asce);
-    sl_synth_free(plan);
-    sl_analysis_free(a);
-    return NULL;
 }

@@ -9,16 +9,12 @@
 #include <sys/resource.h>
 
 #include "harness.h"
+#include "oracle.h"
 #include "refmodel.h"
 #include "slide.h"
 
 static const double g = SL_G;
 
-static sl_motion mk(double *a, size_t n, double dt)
-{
-    sl_motion m = {NULL, NULL, n, dt, a};
-    return m;
-}
 
 static sl_slide_opts opts_default(void)
 {
@@ -33,25 +29,6 @@ static int finite_result(const sl_slide_result *r)
            isfinite(r->t_rest_s) && isfinite(r->max_speed_ms) && r->peak_m >= 0;
 }
 
-/* Ground velocity and displacement at time t of piecewise-linear samples,
- * integrated independently of the engine. */
-static void ground_vd(const double *a, size_t n, double dt, double t, double *v, double *d)
-{
-    double V = 0, D = 0;
-    for (size_t i = 0; i + 1 < n; i++) {
-        double t0 = (double)i * dt;
-        if (t <= t0)
-            break;
-        double h = fmin(dt, t - t0), s = (a[i + 1] - a[i]) / dt;
-        D += V * h + a[i] * h * h / 2 + s * h * h * h / 6;
-        V += a[i] * h + s * h * h / 2;
-    }
-    double tend = (double)(n - 1) * dt;
-    if (t > tend)
-        D += V * (t - tend);
-    *v = V;
-    *d = D;
-}
 
 static double *sine_record(size_t n, double dt, double A, double f)
 {
@@ -73,7 +50,7 @@ static void test_tiny_mu(void)
         double t = (double)i * dt;
         a[i] = 3.0 * sin(2 * M_PI * 0.7 * t) * exp(-0.3 * t) + 0.1; /* ends with V != 0 */
     }
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r, r0;
@@ -82,14 +59,14 @@ static void test_tiny_mu(void)
     sl_slide_run(&s, &z, 1, &o, &r0, NULL);
     CHECK(finite_result(&r), "finite");
     double V, D, tend = (double)(n - 1) * dt;
-    ground_vd(a, n, dt, tend, &V, &D);
+    oracle_ground_vd(a, n, dt, tend, &V, &D);
     /* the relative velocity at the end is -V + mu g (duration of sliding): */
     double vend = -V + mu * g * tend * (V > 0 ? 1 : -1);
     CHECK_CLOSE(r.t_rest_s, tend + fabs(vend) / (mu * g), 0, 1e-3);
     CHECK_CLOSE(r.residual_x_m, r0.residual_x_m + vend * fabs(vend) / (2 * mu * g), 0, 2e-3);
     /* the 2-D kernel agrees along the x axis */
     double *zero = calloc(n, sizeof *zero);
-    sl_motion mz = mk(zero, n, dt);
+    sl_motion mz = oracle_motion(zero, n, dt);
     sl_set s2 = {&m, &mz, NULL};
     sl_slide_result r2;
     sl_slide_run(&s2, &mu, 1, &o, &r2, NULL);
@@ -110,7 +87,7 @@ static void test_threshold_mu(void)
     double *a = sine_record(n, dt, 2.0, 1.3);
     for (size_t i = 0; i < n; i++)
         a[i] *= sin(M_PI * (double)i / (double)(n - 1));
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     double thr = sl_slide_mu_threshold(&s, &o);
@@ -128,7 +105,7 @@ static void test_threshold_mu(void)
     CHECK(prev < 1e-12, "at 1e-12 below the threshold the slide must be negligible: %g", prev);
     /* 2-D the same */
     double *z = calloc(n, sizeof *z);
-    sl_motion mz = mk(z, n, dt);
+    sl_motion mz = oracle_motion(z, n, dt);
     sl_set s2 = {&mz, &m, NULL};
     double mu = thr * (1 - 1e-9);
     sl_slide_result r2;
@@ -151,7 +128,7 @@ static void test_long_liftoff(void)
         a[i] = 0.8 * sin(2 * M_PI * 1.1 * (double)i * dt); /* far below mu g */
         v[i] = (i >= i0 && i < i1) ? -1.3 * g : 0.0;
     }
-    sl_motion mh = mk(a, n, dt), mv = mk(v, n, dt);
+    sl_motion mh = oracle_motion(a, n, dt), mv = oracle_motion(v, n, dt);
     sl_set s = {&mh, NULL, &mv};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
@@ -164,13 +141,13 @@ static void test_long_liftoff(void)
          * velocity changes exactly by minus the ground velocity change */
         size_t j0 = i0 + 1, j1 = i1 - 2;
         double V0, V1, D;
-        ground_vd(a, n, dt, (double)j0 * dt, &V0, &D);
-        ground_vd(a, n, dt, (double)j1 * dt, &V1, &D);
+        oracle_ground_vd(a, n, dt, (double)j0 * dt, &V0, &D);
+        oracle_ground_vd(a, n, dt, (double)j1 * dt, &V1, &D);
         CHECK_CLOSE(h->vx_ms[j1] - h->vx_ms[j0], -(V1 - V0), 1e-12, 1e-9);
         sl_history_free(h);
     }
     double *z = calloc(n, sizeof *z);
-    sl_motion mz = mk(z, n, dt);
+    sl_motion mz = oracle_motion(z, n, dt);
     sl_set s2 = {&mh, &mz, &mv};
     sl_slide_result r2;
     sl_slide_run(&s2, &mu, 1, &o, &r2, NULL);
@@ -199,7 +176,7 @@ static void test_sixty_minutes(void)
     const size_t per = (size_t)(1.0 / (f * dt));
     long rss0 = maxrss_kb();
     double *a = sine_record(n, dt, A, f);
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result res;
@@ -239,7 +216,7 @@ static void test_all_zero(void)
 {
     const size_t n = 500;
     double *a = calloc(n, sizeof *a);
-    sl_motion m = mk(a, n, 0.01);
+    sl_motion m = oracle_motion(a, n, 0.01);
     sl_set s1 = {&m, NULL, NULL}, s2 = {&m, &m, &m};
     sl_slide_opts o = opts_default();
     double mus[3] = {0.0, 0.1, 1.0};
@@ -264,16 +241,16 @@ static void test_huge_spike(void)
     const double dt = 0.005, mu = 0.2, A = 1000 * g;
     double *a = calloc(n, sizeof *a);
     a[k] = A;
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
     CHECK(sl_slide_run(&s, &mu, 1, &o, &r, NULL) == SL_OK, "run");
     double ton = (double)(k - 1) * dt + dt * mu * g / A, Von, Don, V, D;
-    ground_vd(a, n, dt, ton, &Von, &Don);
-    ground_vd(a, n, dt, 1e9, &V, &D);
+    oracle_ground_vd(a, n, dt, ton, &Von, &Don);
+    oracle_ground_vd(a, n, dt, 1e9, &V, &D);
     double ts = ton + (V - Von) / (mu * g), Vs, Ds;
-    ground_vd(a, n, dt, ts, &Vs, &Ds);
+    oracle_ground_vd(a, n, dt, ts, &Vs, &Ds);
     double U = Ds - Don - Von * (ts - ton) - mu * g * (ts - ton) * (ts - ton) / 2;
     CHECK_CLOSE(r.peak_m, U, 0, 1e-10);
     CHECK(r.episodes == 1, "episodes %ld", r.episodes);
@@ -281,7 +258,7 @@ static void test_huge_spike(void)
     double *ax = calloc(n, sizeof *ax), *ay = calloc(n, sizeof *ay);
     ax[k] = A * c;
     ay[k] = A * sn;
-    sl_motion mx = mk(ax, n, dt), my = mk(ay, n, dt);
+    sl_motion mx = oracle_motion(ax, n, dt), my = oracle_motion(ay, n, dt);
     sl_set s2 = {&mx, &my, NULL};
     sl_slide_result r2;
     CHECK(sl_slide_run(&s2, &mu, 1, &o, &r2, NULL) == SL_OK, "2-D run");
@@ -299,7 +276,7 @@ static void test_smooth_extreme(void)
     const size_t n = 400;
     const double dt = 0.01, mu = 0.2;
     double *a = sine_record(n, dt, 4.0, 1.5);
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result re, rs;
@@ -336,7 +313,7 @@ static void test_large_velocity_pulse(void)
     double I = A * T / M_PI * (cos(th) * (T - t1) + T / M_PI * rr) - mu * g * (T - t1) * (T - t1) / 2;
     double wT = A * T / M_PI * (cos(th) + 1) - mu * g * (T - t1);
     double U = I + wT * wT / (2 * mu * g);
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
@@ -349,7 +326,7 @@ static void test_large_velocity_pulse(void)
         ax[i] = a[i] * c;
         ay[i] = a[i] * sn;
     }
-    sl_motion mx = mk(ax, n, dt), my = mk(ay, n, dt);
+    sl_motion mx = oracle_motion(ax, n, dt), my = oracle_motion(ay, n, dt);
     sl_set s2 = {&mx, &my, NULL};
     sl_slide_result r2;
     sl_slide_run(&s2, &mu, 1, &o, &r2, NULL);

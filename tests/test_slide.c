@@ -7,16 +7,11 @@
 #include <string.h>
 
 #include "harness.h"
+#include "oracle.h"
 #include "slide.h"
 
 static const double g = SL_G;
 
-/* A motion over a caller-owned array (no file). */
-static sl_motion mk(double *a, size_t n, double dt)
-{
-    sl_motion m = {NULL, NULL, n, dt, a};
-    return m;
-}
 
 static double *alloc_n(size_t n) { return calloc(n, sizeof(double)); }
 
@@ -27,25 +22,6 @@ static sl_slide_opts opts_default(void)
     return o;
 }
 
-/* Ground velocity and displacement of a piecewise-linear record at time t,
- * integrated independently of the engine (exact for linear pieces). */
-static void ground_vd(const double *a, size_t n, double dt, double t, double *v, double *d)
-{
-    double V = 0, D = 0;
-    for (size_t i = 0; i + 1 < n; i++) {
-        double t0 = (double)i * dt;
-        if (t <= t0)
-            break;
-        double h = fmin(dt, t - t0), s = (a[i + 1] - a[i]) / dt;
-        D += V * h + a[i] * h * h / 2 + s * h * h * h / 6;
-        V += a[i] * h + s * h * h / 2;
-    }
-    double tend = (double)(n - 1) * dt;
-    if (t > tend)
-        D += V * (t - tend);
-    *v = V;
-    *d = D;
-}
 
 /* Rectangular pulse as samples: 0, A x p, 0 ... (ramps of one dt). The block
  * slides one way from the onset t_on (a = mu g on the first ramp) until
@@ -58,17 +34,17 @@ static void test_rect_pulse_exact(void)
     double *a = alloc_n(n);
     for (size_t i = 1; i <= p; i++)
         a[i] = A;
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set set = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
     CHECK(sl_slide_run(&set, &mu, 1, &o, &r, NULL) == SL_OK, "run");
     double ton = dt * mu * g / A, Von, Don, V, D;
-    ground_vd(a, n, dt, ton, &Von, &Don);
-    ground_vd(a, n, dt, 1e9, &V, &D);
+    oracle_ground_vd(a, n, dt, ton, &Von, &Don);
+    oracle_ground_vd(a, n, dt, 1e9, &V, &D);
     double ts = ton + (V - Von) / (mu * g);
     double Vs, Ds;
-    ground_vd(a, n, dt, ts, &Vs, &Ds);
+    oracle_ground_vd(a, n, dt, ts, &Vs, &Ds);
     double U = Ds - Don - Von * (ts - ton) - mu * g * (ts - ton) * (ts - ton) / 2;
     CHECK_CLOSE(r.peak_m, U, 0, 1e-12);
     CHECK_CLOSE(r.residual_x_m, -U, 0, 1e-12);
@@ -102,7 +78,7 @@ static double half_sine_run(double A, double T, double mu, size_t per_pulse)
     double *a = alloc_n(n);
     for (size_t i = 0; i <= per_pulse; i++)
         a[i] = A * sin(M_PI * (double)i / (double)per_pulse);
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set set = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
@@ -138,7 +114,7 @@ static void test_harmonic_steady_state(void)
     double *a = alloc_n(n);
     for (size_t i = 0; i < n; i++)
         a[i] = A * sin(w * (double)i * dt);
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set set = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     const double rs[] = {0.1, 0.3, 0.5};
@@ -174,7 +150,7 @@ static void test_circular(void)
         ax[i] = A * cos(w * (double)i * dt);
         ay[i] = A * sin(w * (double)i * dt);
     }
-    sl_motion mx = mk(ax, n, dt), my = mk(ay, n, dt);
+    sl_motion mx = oracle_motion(ax, n, dt), my = oracle_motion(ay, n, dt);
     sl_set set = {&mx, &my, NULL};
     const double V = A / w * sqrt(1 - r * r);
     double prev_err = INFINITY;
@@ -248,7 +224,7 @@ static void test_rotation_45(void)
         ax[i] = a[i] * M_SQRT1_2;
         ay[i] = a[i] * M_SQRT1_2;
     }
-    sl_motion m1 = mk(a, n, dt), mx = mk(ax, n, dt), my = mk(ay, n, dt);
+    sl_motion m1 = oracle_motion(a, n, dt), mx = oracle_motion(ax, n, dt), my = oracle_motion(ay, n, dt);
     sl_set s1 = {&m1, NULL, NULL}, s2 = {&mx, &my, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r1, r2;
@@ -280,7 +256,7 @@ static void test_constant_vertical(void)
     double *a = noise_record(n, dt, 9.0, 3u), *v = alloc_n(n);
     for (size_t i = 0; i < n; i++)
         v[i] = c;
-    sl_motion mh = mk(a, n, dt), mv = mk(v, n, dt);
+    sl_motion mh = oracle_motion(a, n, dt), mv = oracle_motion(v, n, dt);
     sl_set sv = {&mh, NULL, &mv}, s0 = {&mh, NULL, NULL};
     sl_slide_opts o = opts_default();
     o.keep_going = 0; /* after the record the vertical is zero: compare within it */
@@ -309,8 +285,8 @@ static void test_invariants(void)
         bn[i] = -b[i];
         bs[i] = lam * b[i];
     }
-    sl_motion ma = mk(a, n, dt), man = mk(an, n, dt), mas = mk(as, n, dt);
-    sl_motion mb = mk(b, n, dt), mbn = mk(bn, n, dt), mbs = mk(bs, n, dt);
+    sl_motion ma = oracle_motion(a, n, dt), man = oracle_motion(an, n, dt), mas = oracle_motion(as, n, dt);
+    sl_motion mb = oracle_motion(b, n, dt), mbn = oracle_motion(bn, n, dt), mbs = oracle_motion(bs, n, dt);
     sl_slide_opts o = opts_default();
     sl_slide_result r, rn, rs;
     /* 1-D and 2-D */
@@ -335,13 +311,13 @@ static void test_invariants(void)
         sl_set s = {&ma, NULL, NULL};
         double z = 0.0, V, D;
         sl_slide_run(&s, &z, 1, &o, &r, NULL);
-        ground_vd(a, n, dt, (double)(n - 1) * dt, &V, &D);
+        oracle_ground_vd(a, n, dt, (double)(n - 1) * dt, &V, &D);
         CHECK_CLOSE(r.residual_x_m, -D, 1e-12, 1e-10);
         CHECK(r.flags & SL_SLIDE_NEVER_STOPS, "mu = 0 must be flagged never_stops");
         sl_set s2 = {&ma, &mb, NULL};
         double Vb, Db;
         sl_slide_run(&s2, &z, 1, &o, &r, NULL);
-        ground_vd(b, n, dt, (double)(n - 1) * dt, &Vb, &Db);
+        oracle_ground_vd(b, n, dt, (double)(n - 1) * dt, &Vb, &Db);
         CHECK_CLOSE(r.residual_x_m, -D, 1e-12, 1e-10);
         CHECK_CLOSE(r.residual_y_m, -Db, 1e-12, 1e-10);
     }
@@ -381,7 +357,7 @@ static void test_energy_balance(void)
         double t = (double)i * dt;
         a[i] = 7 * sin(2 * M_PI * 1.3 * t) * sin(M_PI * t / 10) + 3 * sin(2 * M_PI * 4.1 * t);
     }
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
@@ -412,7 +388,7 @@ static void test_asymmetric(void)
     double *a = alloc_n(n);
     for (size_t i = 0; i < n; i++)
         a[i] = A * sin(2 * M_PI * f * (double)i * dt);
-    sl_motion m = mk(a, n, dt);
+    sl_motion m = oracle_motion(a, n, dt);
     sl_set s = {&m, NULL, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r1, rw, rb;
@@ -453,7 +429,7 @@ static void test_liftoff(void)
         v[i] = (i >= 50 && i < 100) ? -1.5 * g : 0.0;
     }
     a[0] = 0.0;
-    sl_motion mh = mk(a, n, dt), mv = mk(v, n, dt);
+    sl_motion mh = oracle_motion(a, n, dt), mv = oracle_motion(v, n, dt);
     sl_set s = {&mh, NULL, &mv};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
@@ -463,7 +439,7 @@ static void test_liftoff(void)
     CHECK(r.peak_m > 0, "slides during lift-off");
     /* the 2-D kernel agrees (same vertical, H2 = 0) */
     double *z = alloc_n(n);
-    sl_motion mz = mk(z, n, dt);
+    sl_motion mz = oracle_motion(z, n, dt);
     sl_set s2 = {&mh, &mz, &mv};
     sl_slide_result r2;
     o.substeps = 64;
@@ -481,7 +457,7 @@ static void test_vector_and_batch(void)
     const size_t n = 1500, nm = 37;
     const double dt = 0.01;
     double *a = noise_record(n, dt, 7.0, 21u), *b = noise_record(n, dt, 5.0, 22u);
-    sl_motion ma = mk(a, n, dt), mb = mk(b, n, dt);
+    sl_motion ma = oracle_motion(a, n, dt), mb = oracle_motion(b, n, dt);
     double mu[37];
     for (size_t k = 0; k < nm; k++)
         mu[k] = 0.02 * (double)(k + 1);
@@ -512,7 +488,7 @@ static void test_vector_and_batch(void)
 static void test_bad_options(void)
 {
     double a[4] = {0, 1, 2, 0};
-    sl_motion m = mk(a, 4, 0.01);
+    sl_motion m = oracle_motion(a, 4, 0.01);
     sl_set s = {&m, &m, NULL};
     sl_slide_opts o = opts_default();
     sl_slide_result r;
