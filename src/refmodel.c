@@ -226,48 +226,6 @@ static void track_point(track *k, double t, const double u[2], const double v[2]
     k->w[1] = w[1];
 }
 
-/* ---- history ------------------------------------------------------------ */
-
-static void hist_free(sl_history *h)
-{
-    if (!h)
-        return;
-    free(h->t_s);
-    free(h->ux_m);
-    free(h->uy_m);
-    free(h->vx_ms);
-    free(h->vy_ms);
-    free(h->fx_w);
-    free(h->fy_w);
-    free(h);
-}
-
-/* Grow every array to hold cap samples. Returns 0 or -1 (arrays intact). */
-static int hist_reserve(sl_history *h, size_t cap)
-{
-    double **arr[] = {&h->t_s, &h->ux_m, &h->uy_m, &h->vx_ms, &h->vy_ms, &h->fx_w, &h->fy_w};
-    for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++) {
-        double *p = realloc(*arr[k], (cap ? cap : 1) * sizeof(double));
-        if (!p)
-            return -1;
-        *arr[k] = p;
-    }
-    return 0;
-}
-
-static sl_history *hist_alloc(size_t cap, double dt)
-{
-    sl_history *h = calloc(1, sizeof *h);
-    if (!h)
-        return NULL;
-    h->dt_s = dt;
-    if (hist_reserve(h, cap)) {
-        hist_free(h);
-        return NULL;
-    }
-    return h;
-}
-
 /* ---- the models' common state ------------------------------------------ */
 
 typedef struct smooth_par {
@@ -728,10 +686,10 @@ sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opt
         res->flags |= SL_SLIDE_LIFTOFF;
 
     sl_history *H = NULL;
-    if (hist && !(H = hist_alloc(f.n, f.dt)))
+    if (hist && !(H = sl_history_alloc(f.n, f.dt)))
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "reference model: out of memory (history)");
     if (smooth && (st = smooth_init(&m, opts, err)) != SL_OK) {
-        hist_free(H);
+        sl_history_free(H);
         return st;
     }
 
@@ -755,7 +713,7 @@ sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opt
                     double sp = hypot(m.v[0], m.v[1]);
                     double T = SL_REF_EXTEND_S + sp / (mu * f.g);
                     i_end = f.n - 1 + (size_t)ceil(T / f.dt);
-                    if (H && hist_reserve(H, i_end + 1)) {
+                    if (H && sl_history_reserve(H, i_end + 1)) {
                         st = sl_error_set(err, SL_ENOMEM, NULL, 0,
                                           "reference model: out of memory (history)");
                         break;
@@ -777,7 +735,7 @@ sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opt
     if (m.drv)
         gsl_odeiv2_driver_free(m.drv);
     if (st) {
-        hist_free(H);
+        sl_history_free(H);
         return st;
     }
     if (!rest)

@@ -100,19 +100,27 @@ static long count_liftoff(const input *in)
 
 /* ---- history ---------------------------------------------------------- */
 
-static sl_history *history_alloc(size_t cap, double dt)
+int sl_history_reserve(sl_history *h, size_t cap)
+{
+    double **arr[] = {&h->t_s, &h->ux_m, &h->uy_m, &h->vx_ms, &h->vy_ms, &h->fx_w, &h->fy_w};
+    for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++) {
+        double *p = realloc(*arr[k], (cap ? cap : 1) * sizeof(double));
+        if (!p)
+            return -1;
+        *arr[k] = p;
+    }
+    return 0;
+}
+
+sl_history *sl_history_alloc(size_t cap, double dt_s)
 {
     sl_history *h = calloc(1, sizeof *h);
     if (!h)
         return NULL;
-    h->dt_s = dt;
-    double **arr[] = {&h->t_s, &h->ux_m, &h->uy_m, &h->vx_ms, &h->vy_ms, &h->fx_w, &h->fy_w};
-    for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++) {
-        *arr[k] = calloc(cap ? cap : 1, sizeof(double));
-        if (!*arr[k]) {
-            sl_history_free(h);
-            return NULL;
-        }
+    h->dt_s = dt_s;
+    if (sl_history_reserve(h, cap)) {
+        sl_history_free(h);
+        return NULL;
     }
     return h;
 }
@@ -141,15 +149,17 @@ static size_t tail_samples(double T, double dt)
 
 /* Closed-form tail of a block sliding at velocity (vx, vy) on a floor at
  * rest: deceleration mu g along the direction of motion. Samples at t0 + k dt
- * into h until rest. */
-static void history_tail(sl_history *h, double t0, double dt, double ux, double uy,
-                         double vx, double vy, double mu_g, double g)
+ * into h until rest, growing h as needed. Returns 0 or -1 (out of memory). */
+static int history_tail(sl_history *h, double t0, double dt, double ux, double uy,
+                        double vx, double vy, double mu_g, double g)
 {
     double sp = hypot(vx, vy);
     if (!(sp > 0) || !(mu_g > 0))
-        return;
+        return 0;
     double T = sp / mu_g, ex = vx / sp, ey = vy / sp;
     size_t m = tail_samples(T, dt);
+    if (sl_history_reserve(h, h->n + m))
+        return -1;
     for (size_t k = 1; k < m; k++) {
         double s = fmin((double)k * dt, T);
         double d = sp * s - 0.5 * mu_g * s * s, vs = sp - mu_g * s;
@@ -159,6 +169,7 @@ static void history_tail(sl_history *h, double t0, double dt, double ux, double 
         if (!moving)
             break;
     }
+    return 0;
 }
 
 /* ---- threshold ------------------------------------------------------- */
@@ -622,7 +633,7 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
     sl_history *hist = NULL;
     if (hist_out) {
         /* worst case tail: the fastest the block can go, stopping at mu g */
-        hist = history_alloc(in->n + tail_samples(TAIL_MAX_S, in->dt), in->dt);
+        hist = sl_history_alloc(in->n, in->dt); /* the tail grows it when needed */
         if (!hist) {
             free(act);
             return sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
@@ -671,9 +682,10 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
                                       "at mu = %g",
                                       EVENTS_PER_STEP_MAX, mu[act[j]]);
             }
-            if (hist && m == 1)
+            if (hist && m == 1 &&
                 history_tail(hist, t_end, in->dt, S.u[0], 0.0, S.v[0], 0.0,
-                             (S.v[0] > 0.0 ? S.mu_u[0] : S.mu_d[0]) * in->g, in->g);
+                             (S.v[0] > 0.0 ? S.mu_u[0] : S.mu_d[0]) * in->g, in->g))
+                st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
         }
         free(buf);
         free(S.dir);
@@ -681,8 +693,11 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
     } else if (m > 0) {
         state2d S = {.m = m};
         double *buf = calloc(15 * m, sizeof *buf);
+        /* per-sub-step forcing (4 x substeps) and the live blocks of a sample */
+        double *sub = malloc(4 * (size_t)o->substeps * sizeof *sub);
+        size_t *live = malloc(m * sizeof *live);
         S.episodes = calloc(m, sizeof(long));
-        if (!buf || !S.episodes) {
+        if (!buf || !S.episodes || !sub || !live) {
             st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
         } else {
             double **f[] = {&S.mu, &S.ux, &S.uy, &S.vx, &S.vy, &S.peak2,
@@ -691,20 +706,7 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
                 *f[q] = buf + q * m;
             for (size_t j = 0; j < m; j++)
                 S.mu[j] = mu[act[j]];
-            double *sub = malloc(4 * (size_t)o->substeps * sizeof *sub);
-            size_t *live = malloc(m * sizeof *live);
-            if (!sub || !live) {
-                free(sub);
-                free(live);
-                free(buf);
-                free(S.episodes);
-                free(act);
-                sl_history_free(hist);
-                return sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
-            }
             kernel_2d(in, o->substeps, &S, sub, live, hist);
-            free(sub);
-            free(live);
             for (size_t j = 0; j < m; j++) {
                 sl_slide_result *r = &res[act[j]];
                 r->peak_m = sqrt(S.peak2[j]);
@@ -718,11 +720,14 @@ static sl_status run_exact(const input *in, const double *mu, size_t n_mu,
                 finish(r, t_end, S.tstop[j], S.ux[j], S.uy[j], S.vx[j], S.vy[j], S.mu[j] * in->g,
                        o->keep_going);
             }
-            if (hist && m == 1)
+            if (hist && m == 1 &&
                 history_tail(hist, t_end, in->dt, S.ux[0], S.uy[0], S.vx[0], S.vy[0],
-                             S.mu[0] * in->g, in->g);
+                             S.mu[0] * in->g, in->g))
+                st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
         }
         free(buf);
+        free(sub);
+        free(live);
         free(S.episodes);
     }
     free(act);

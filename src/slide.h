@@ -105,6 +105,12 @@ typedef struct sl_history {
     double *t_s, *ux_m, *uy_m, *vx_ms, *vy_ms, *fx_w, *fy_w;
 } sl_history;
 
+/* Allocate a history with room for cap samples (n = 0); NULL on failure.
+ * Free with sl_history_free(). */
+sl_history *sl_history_alloc(size_t cap, double dt_s);
+/* Grow every array to hold cap samples. Returns 0, or -1 with the arrays
+ * intact. */
+int sl_history_reserve(sl_history *h, size_t cap);
 void sl_history_free(sl_history *h);
 
 /* The smallest mu at which the block can never slide:
