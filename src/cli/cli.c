@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "spectrum.h"
+
 void cli_print_error(const sl_error *err)
 {
     char buf[2200];
@@ -139,5 +141,87 @@ int cli_positive(const char *cmd, const char *opt, const char *arg, const char *
         return cli_usage(cmd, "%s '%s' must be a number > 0%s%s%s", opt, arg, unit ? " (" : "",
                          unit ? unit : "", unit ? ")" : "");
     *out = v;
+    return CLI_EXIT_OK;
+}
+
+int cli_units(const char *cmd, const char *arg, sl_unit *out)
+{
+    sl_unit u = sl_unit_parse(arg);
+    if (u == SL_UNIT_NONE)
+        return cli_usage(cmd, "unknown unit '%s' (g, m/s2, cm/s2 = gal, mm/s2)", arg);
+    *out = u;
+    return CLI_EXIT_OK;
+}
+
+int cli_friction(const char *cmd, int is_range, const char *arg, double **mu, size_t *n)
+{
+    free(*mu);
+    *mu = NULL;
+    *n = 0;
+    if (is_range ? cli_parse_range(arg, mu, n) : cli_parse_list(arg, mu, n))
+        return cli_usage(cmd, "bad %s '%s'", is_range ? "--mu-range" : "--mu", arg);
+    return CLI_EXIT_OK;
+}
+
+void cli_grid_init(cli_grid *g)
+{
+    g->fmin_hz = SL_SPECTRUM_FMIN_HZ;
+    g->fmax_hz = SL_SPECTRUM_FMAX_HZ;
+    g->per_decade = SL_SPECTRUM_PER_DECADE;
+    g->freq = NULL;
+    g->nfreq = 0;
+    g->grid_opts = 0;
+}
+
+void cli_grid_free(cli_grid *g)
+{
+    free(g->freq);
+    g->freq = NULL;
+    g->nfreq = 0;
+}
+
+int cli_grid_option(const char *cmd, cli_grid_opt which, const char *arg, cli_grid *g)
+{
+    static const char *const names[] = {"--fmin", "--fmax", "--per-decade", "--freq"};
+    if (which == CLI_GRID_FREQ) {
+        cli_grid_free(g);
+        if (cli_parse_list(arg, &g->freq, &g->nfreq))
+            return cli_usage(cmd, "bad --freq '%s'", arg);
+        return CLI_EXIT_OK;
+    }
+    double v;
+    if (cli_parse_double(arg, &v) || !(v > 0))
+        return cli_usage(cmd, "%s '%s' must be a number > 0", names[which], arg);
+    if (which == CLI_GRID_FMIN)
+        g->fmin_hz = v;
+    else if (which == CLI_GRID_FMAX)
+        g->fmax_hz = v;
+    else
+        g->per_decade = v;
+    g->grid_opts = 1;
+    return CLI_EXIT_OK;
+}
+
+int cli_grid_make(const char *cmd, cli_grid *g, double **f, size_t *nf)
+{
+    if (g->freq && g->grid_opts)
+        return cli_usage(cmd, "--freq excludes --fmin, --fmax and --per-decade");
+    if (g->freq) {
+        for (size_t j = 0; j < g->nfreq; j++)
+            if (!(g->freq[j] > 0))
+                return cli_usage(cmd, "frequency %g must be > 0", g->freq[j]);
+        *f = g->freq;
+        *nf = g->nfreq;
+        g->freq = NULL;
+        g->nfreq = 0;
+        return CLI_EXIT_OK;
+    }
+    if (g->fmax_hz < g->fmin_hz)
+        return cli_usage(cmd, "--fmax %g is below --fmin %g", g->fmax_hz, g->fmin_hz);
+    *f = sl_spectrum_grid(g->fmin_hz, g->fmax_hz, g->per_decade, nf);
+    if (!*f) {
+        cli_msg("cannot make the frequency grid");
+        return CLI_EXIT_ERROR;
+    }
     return CLI_EXIT_OK;
 }

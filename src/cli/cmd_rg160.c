@@ -55,12 +55,12 @@ static const struct option rg160_opts[] = {
 int cmd_rg160(int argc, char **argv)
 {
     double default_damping = RG160_DEFAULT_DAMPING;
-    double *damp = NULL, *freq = NULL, *f = NULL, *psa = NULL;
+    double *damp = NULL, *f = NULL, *psa = NULL;
     size_t nd = 0, nf = 0;
     double pga_g = NAN;
-    double fmin = SL_SPECTRUM_FMIN_HZ, fmax = SL_SPECTRUM_FMAX_HZ;
-    double per_decade = SL_SPECTRUM_PER_DECADE;
-    int csv = 0, grid_opts = 0, rc = CLI_EXIT_ERROR;
+    cli_grid grid;
+    cli_grid_init(&grid);
+    int csv = 0, rc = CLI_EXIT_ERROR;
     sl_rg160_dir dir = SL_RG160_HORIZONTAL;
     sl_error err;
     sl_error_clear(&err);
@@ -87,25 +87,12 @@ int cmd_rg160(int argc, char **argv)
         case OPT_VERTICAL: dir = SL_RG160_VERTICAL; break;
         case OPT_FMIN:
         case OPT_FMAX:
-        case OPT_PER_DECADE: {
-            double v;
-            if (cli_parse_double(arg, &v) || !(v > 0)) {
-                rc = cli_usage("rg160", "%s '%s' must be a number > 0", argv[optind - 1], arg);
-                goto done;
-            }
-            if (c == OPT_FMIN)
-                fmin = v;
-            else if (c == OPT_FMAX)
-                fmax = v;
-            else
-                per_decade = v;
-            grid_opts = 1;
-            break;
-        }
+        case OPT_PER_DECADE:
         case OPT_FREQ:
-            free(freq);
-            if (cli_parse_list(arg, &freq, &nf)) {
-                rc = cli_usage("rg160", "bad --freq '%s'", arg);
+            if (cli_grid_option("rg160", c == OPT_FMIN ? CLI_GRID_FMIN : c == OPT_FMAX ? CLI_GRID_FMAX
+                                : c == OPT_PER_DECADE ? CLI_GRID_PER_DECADE : CLI_GRID_FREQ,
+                                arg, &grid)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -145,29 +132,9 @@ int cmd_rg160(int argc, char **argv)
                            SL_RG160_ZETA_MIN, SL_RG160_ZETA_MAX);
             goto done;
         }
-    if (freq && grid_opts) {
-        rc = cli_usage("rg160", "--freq excludes --fmin, --fmax and --per-decade");
+    if ((rc = cli_grid_make("rg160", &grid, &f, &nf)) != CLI_EXIT_OK)
         goto done;
-    }
-    if (freq) {
-        for (size_t j = 0; j < nf; j++)
-            if (!(freq[j] > 0)) {
-                rc = cli_usage("rg160", "frequency %g must be > 0", freq[j]);
-                goto done;
-            }
-        f = freq;
-        freq = NULL;
-    } else {
-        if (fmax < fmin) {
-            rc = cli_usage("rg160", "--fmax %g is below --fmin %g", fmax, fmin);
-            goto done;
-        }
-        f = sl_spectrum_grid(fmin, fmax, per_decade, &nf);
-        if (!f) {
-            cli_msg("cannot make the frequency grid");
-            goto done;
-        }
-    }
+    rc = CLI_EXIT_ERROR;
     psa = malloc(nd * nf * sizeof *psa);
     if (!psa) {
         cli_msg("out of memory");
@@ -212,7 +179,7 @@ int cmd_rg160(int argc, char **argv)
 done:
     if (damp != &default_damping)
         free(damp);
-    free(freq);
+    cli_grid_free(&grid);
     free(f);
     free(psa);
     return rc;

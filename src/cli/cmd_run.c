@@ -203,9 +203,8 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
             break;
         case O_MU:
         case O_MU_RANGE:
-            free(mu);
-            if (c == O_MU ? cli_parse_list(arg, &mu, &n_mu) : cli_parse_range(arg, &mu, &n_mu)) {
-                rc = cli_usage("run", "bad %s '%s'", c == O_MU ? "--mu" : "--mu-range", arg);
+            if (cli_friction("run", c != O_MU, arg, &mu, &n_mu)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;

@@ -147,9 +147,8 @@ int cmd_slide(int argc, char **argv)
         case OPT_H2: path[1] = arg; break;
         case OPT_V: path[2] = arg; break;
         case OPT_UNITS:
-            ro.units = sl_unit_parse(arg);
-            if (ro.units == SL_UNIT_NONE) {
-                rc = cli_usage("slide", "unknown unit '%s' (use g, m/s2 or cm/s2)", arg);
+            if (cli_units("slide", arg, &ro.units)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -161,9 +160,8 @@ int cmd_slide(int argc, char **argv)
             break;
         case OPT_MU:
         case OPT_MU_RANGE:
-            free(mu);
-            if ((c == OPT_MU ? cli_parse_list(arg, &mu, &n_mu) : cli_parse_range(arg, &mu, &n_mu))) {
-                rc = cli_usage("slide", "bad %s '%s'", c == OPT_MU ? "--mu" : "--mu-range", arg);
+            if (cli_friction("slide", c != OPT_MU, arg, &mu, &n_mu)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;

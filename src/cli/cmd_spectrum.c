@@ -85,11 +85,11 @@ static void put_field(const char *s)
 int cmd_spectrum(int argc, char **argv)
 {
     double default_damping = SPECTRUM_DEFAULT_DAMPING;
-    double *damp = NULL, *freq = NULL, *f = NULL;
+    double *damp = NULL, *f = NULL;
     size_t nd = 0, nf = 0;
-    double fmin = SL_SPECTRUM_FMIN_HZ, fmax = SL_SPECTRUM_FMAX_HZ;
-    double per_decade = SL_SPECTRUM_PER_DECADE;
-    int csv = 0, all = 0, grid_opts = 0, rc = CLI_EXIT_ERROR;
+    cli_grid grid;
+    cli_grid_init(&grid);
+    int csv = 0, all = 0, rc = CLI_EXIT_ERROR;
     sl_read_opts ro = {SL_FORMAT_AUTO, SL_UNIT_NONE, 0.0};
     sl_motion **m = NULL;
     size_t nm = 0;
@@ -112,9 +112,8 @@ int cmd_spectrum(int argc, char **argv)
             }
             break;
         case OPT_UNITS:
-            ro.units = sl_unit_parse(arg);
-            if (ro.units == SL_UNIT_NONE) {
-                rc = cli_usage("spectrum", "unknown unit '%s' (use g, m/s2 or cm/s2)", arg);
+            if (cli_units("spectrum", arg, &ro.units)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -126,25 +125,12 @@ int cmd_spectrum(int argc, char **argv)
             break;
         case OPT_FMIN:
         case OPT_FMAX:
-        case OPT_PER_DECADE: {
-            double v;
-            if (cli_parse_double(arg, &v) || !(v > 0)) {
-                rc = cli_usage("spectrum", "%s '%s' must be a number > 0", argv[optind - 1], arg);
-                goto done;
-            }
-            if (c == OPT_FMIN)
-                fmin = v;
-            else if (c == OPT_FMAX)
-                fmax = v;
-            else
-                per_decade = v;
-            grid_opts = 1;
-            break;
-        }
+        case OPT_PER_DECADE:
         case OPT_FREQ:
-            free(freq);
-            if (cli_parse_list(arg, &freq, &nf)) {
-                rc = cli_usage("spectrum", "bad --freq '%s'", arg);
+            if (cli_grid_option("spectrum", c == OPT_FMIN ? CLI_GRID_FMIN : c == OPT_FMAX ? CLI_GRID_FMAX
+                                : c == OPT_PER_DECADE ? CLI_GRID_PER_DECADE : CLI_GRID_FREQ,
+                                arg, &grid)) {
+                rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
@@ -176,29 +162,9 @@ int cmd_spectrum(int argc, char **argv)
             rc = cli_usage("spectrum", "damping %g outside [0, 1)", damp[k]);
             goto done;
         }
-    if (freq && grid_opts) {
-        rc = cli_usage("spectrum", "--freq excludes --fmin, --fmax and --per-decade");
+    if ((rc = cli_grid_make("spectrum", &grid, &f, &nf)) != CLI_EXIT_OK)
         goto done;
-    }
-    if (freq) {
-        for (size_t j = 0; j < nf; j++)
-            if (!(freq[j] > 0)) {
-                rc = cli_usage("spectrum", "frequency %g must be > 0", freq[j]);
-                goto done;
-            }
-        f = freq;
-        freq = NULL;
-    } else {
-        if (fmax < fmin) {
-            rc = cli_usage("spectrum", "--fmax %g is below --fmin %g", fmax, fmin);
-            goto done;
-        }
-        f = sl_spectrum_grid(fmin, fmax, per_decade, &nf);
-        if (!f) {
-            cli_msg("cannot make the frequency grid");
-            goto done;
-        }
-    }
+    rc = CLI_EXIT_ERROR;
 
     nm = (size_t)(argc - optind);
     m = calloc(nm, sizeof *m);
@@ -313,7 +279,7 @@ int cmd_spectrum(int argc, char **argv)
 done:
     if (damp != &default_damping)
         free(damp);
-    free(freq);
+    cli_grid_free(&grid);
     free(f);
     free(psa);
     free(sd);

@@ -558,9 +558,8 @@ static int parse(int argc, char **argv, synth_run *o)
             o->match[o->nmatch++] = arg;
             break;
         case OPT_UNITS:
-            o->units = sl_unit_parse(arg);
-            if (o->units == SL_UNIT_NONE)
-                return cli_usage("synth", "unknown unit '%s' (g, m/s2, cm/s2, gal, mm/s2)", arg);
+            if (cli_units("synth", arg, &o->units))
+                return CLI_EXIT_USAGE;
             break;
         case 'o': o->outdir = arg; break;
         case OPT_FORMAT:
