@@ -48,6 +48,21 @@ char *sl_report_flags(unsigned flags, char *buf, size_t n)
     return buf;
 }
 
+/* The ranges of mu g/ZPA where ASCE < NLTHA as "a-b<sep>c-d" (cut at n). */
+static char *ranges_text(const sl_design *d, const char *sep, char *buf, size_t n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t q = 0; q < d->n_ranges; q++) {
+        int w = snprintf(buf + used, n - used, "%s%.4g-%.4g", q ? sep : "", d->ranges[q].x_from,
+                         d->ranges[q].x_to);
+        if (w < 0 || (size_t)w >= n - used)
+            break;
+        used += (size_t)w;
+    }
+    return buf;
+}
+
 /* ---- CSV ---------------------------------------------------------------- */
 
 /* One RFC 4180 field: quoted when it holds a comma, quote, CR or LF. */
@@ -95,21 +110,13 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
               "asce_design_mm,cap_mm,clearance_mm,flags\r\n", f);
         for (size_t k = 0; k < fl->design->n; k++) {
             const sl_design_row *w = &fl->design->rows[k];
+            const double mm[] = {w->nltha_mean_m, w->nltha_sd_m, w->nltha_design_m,
+                                 w->asce_best_m, w->asce_design_m, w->cap_m, w->clearance_m};
             fprintf(f, "%.4g,%.5g,", w->mu, w->x);
-            csv_num(f, MM_PER_M * w->nltha_mean_m, "%.4f");
-            fputc(',', f);
-            csv_num(f, MM_PER_M * w->nltha_sd_m, "%.4f");
-            fputc(',', f);
-            csv_num(f, MM_PER_M * w->nltha_design_m, "%.4f");
-            fputc(',', f);
-            csv_num(f, MM_PER_M * w->asce_best_m, "%.4f");
-            fputc(',', f);
-            csv_num(f, MM_PER_M * w->asce_design_m, "%.4f");
-            fputc(',', f);
-            csv_num(f, MM_PER_M * w->cap_m, "%.4f");
-            fputc(',', f);
-            csv_num(f, MM_PER_M * w->clearance_m, "%.4f");
-            fputc(',', f);
+            for (size_t c = 0; c < sizeof mm / sizeof mm[0]; c++) {
+                csv_num(f, MM_PER_M * mm[c], "%.4f");
+                fputc(',', f);
+            }
             csv_field(f, sl_report_flags(w->flags, flags, sizeof flags));
             fputs("\r\n", f);
         }
@@ -148,15 +155,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
         const sl_design *d = fl->design;
-        char ranges[512] = "";
-        size_t used = 0;
-        for (size_t q = 0; q < d->n_ranges; q++) {
-            int w = snprintf(ranges + used, sizeof ranges - used, "%s%.4g-%.4g", q ? " " : "",
-                             d->ranges[q].x_from, d->ranges[q].x_to);
-            if (w < 0 || (size_t)w >= sizeof ranges - used)
-                break;
-            used += (size_t)w;
-        }
+        char ranges[512];
+        ranges_text(d, " ", ranges, sizeof ranges);
         csv_field(f, fl->name);
         fputc(',', f);
         csv_field(f, fl->path);
@@ -282,16 +282,8 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
     worksheet_write_string(ws, 3, 11, "mu needing no NLTHA (mu g >= demand)", F->bold);
     worksheet_write_number(ws, 3, 12, (double)fl->n_mu_skipped, NULL);
     worksheet_write_string(ws, 6, 11, "ASCE below NLTHA for mu g/ZPA in", F->bold);
-    size_t used = 0;
-    buf[0] = '\0';
-    for (size_t q = 0; q < d->n_ranges; q++) {
-        int wr = snprintf(buf + used, sizeof buf - used, "%s%.3f-%.3f", q ? ", " : "",
-                          d->ranges[q].x_from, d->ranges[q].x_to);
-        if (wr < 0 || (size_t)wr >= sizeof buf - used)
-            break;
-        used += (size_t)wr;
-    }
-    worksheet_write_string(ws, 6, 12, d->n_ranges ? buf : "none", NULL);
+    worksheet_write_string(ws, 6, 12, d->n_ranges ? ranges_text(d, ", ", buf, sizeof buf) : "none",
+                           NULL);
     worksheet_set_column(ws, 11, 11, 30, NULL);
     worksheet_set_column(ws, 12, 12, 40, NULL);
     if (d->has_crossover) {

@@ -186,8 +186,6 @@ static void test_circular(void)
         }
         sl_history_free(h);
     }
-    /* separate friction per axis would not give this: check the speed is not
-     * the per-axis answer (A/w) sqrt(1 - (pi r / 2)^2)... only as a guard */
     free(ax);
     free(ay);
 }

@@ -136,11 +136,22 @@ static int add_inputs(const char *arg, char **paths, size_t *n)
             cli_msg("%s: cannot list the folder", arg);
             return -1;
         }
-        for (size_t i = 0; i < g.gl_pathc && *n < MAX_FLOORS; i++)
-            paths[(*n)++] = strdup(g.gl_pathv[i]);
+        int full = 0;
+        for (size_t i = 0; i < g.gl_pathc && !full; i++) {
+            full = *n >= MAX_FLOORS;
+            if (!full)
+                paths[(*n)++] = strdup(g.gl_pathv[i]);
+        }
         globfree(&g);
+        if (full) {
+            cli_msg("%s: more than %d floor files in one run", arg, MAX_FLOORS);
+            return -1;
+        }
     } else if (*n < MAX_FLOORS) {
         paths[(*n)++] = strdup(arg);
+    } else {
+        cli_msg("%s: more than %d floor files in one run", arg, MAX_FLOORS);
+        return -1;
     }
     return 0;
 }
