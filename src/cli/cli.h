@@ -30,6 +30,7 @@ int cmd_rg160(int argc, char **argv);
 int cmd_asce(int argc, char **argv);
 int cmd_synth(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
+int cmd_study(int argc, char **argv);
 
 /* Print "seislide: FILE:LINE: message" for a library error. */
 void cli_print_error(const sl_error *err);

@@ -1,0 +1,297 @@
+/*
+ * study.c - recorded sets, RG 1.60 matching and group sliding spectra for
+ * the study reproduction (study.h, docs/validation.md).
+ */
+#include "study.h"
+
+#include <ctype.h>
+#include <glob.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "asce.h"
+#include "rg160.h"
+#include "spectrum.h"
+
+/* A step within this relative slack of another is the same step. */
+#define STEP_SLACK 1e-9
+
+/* 1 when the file name (any folder part stripped) names a vertical
+ * component by the PEER conventions: ...-UP.AT2, ...UP.AT2, ...DWN.AT2,
+ * ...VER.AT2, ...DWN-up.AT2. */
+static int is_vertical(const char *path)
+{
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    char up[256];
+    size_t n = 0;
+    for (; base[n] && n + 1 < sizeof up; n++)
+        up[n] = (char)toupper((unsigned char)base[n]);
+    up[n] = '\0';
+    if (n > 4 && strcmp(up + n - 4, ".AT2") == 0)
+        up[n -= 4] = '\0';
+    static const char *const ends[] = {"UP", "DWN", "VER"};
+    for (size_t i = 0; i < sizeof ends / sizeof ends[0]; i++) {
+        size_t k = strlen(ends[i]);
+        if (n >= k && strcmp(up + n - k, ends[i]) == 0)
+            return 1;
+    }
+    return strstr(up, "-UP") != NULL || strstr(up, "DWN-") != NULL;
+}
+
+void sl_study_record_free(sl_study_record *rec)
+{
+    if (!rec)
+        return;
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        sl_motion_free(rec->comp[c]);
+    memset(rec, 0, sizeof *rec);
+}
+
+sl_set sl_study_record_set(const sl_study_record *rec)
+{
+    sl_set s = {rec->comp[SL_SYNTH_H1], rec->comp[SL_SYNTH_H2], rec->comp[SL_SYNTH_V]};
+    return s;
+}
+
+sl_status sl_study_record_read(const char *dir, sl_study_record *rec, sl_error *err)
+{
+    memset(rec, 0, sizeof *rec);
+    char pattern[4096];
+    if (snprintf(pattern, sizeof pattern, "%s/*.AT2", dir) >= (int)sizeof pattern)
+        return sl_error_set(err, SL_EINVAL, dir, 0, "folder name too long");
+    glob_t g;
+    int gr = glob(pattern, 0, NULL, &g); /* sorted by name */
+    if (gr != 0) {
+        if (gr != GLOB_NOMATCH)
+            globfree(&g);
+        return sl_error_set(err, SL_EIO, dir, 0, "no .AT2 files in this folder");
+    }
+    const char *hor[2] = {NULL, NULL}, *ver = NULL;
+    size_t nh = 0, nv = 0;
+    for (size_t i = 0; i < g.gl_pathc; i++) {
+        if (is_vertical(g.gl_pathv[i])) {
+            ver = g.gl_pathv[i];
+            nv++;
+        } else {
+            if (nh < 2)
+                hor[nh] = g.gl_pathv[i];
+            nh++;
+        }
+    }
+    if (nh != 2 || nv != 1) {
+        globfree(&g);
+        return sl_error_set(err, SL_EIO, dir, 0,
+                            "expected 2 horizontal and 1 vertical .AT2 files, found %zu and %zu",
+                            nh, nv);
+    }
+    const char *path[SL_SYNTH_NCOMP] = {hor[0], hor[1], ver};
+    sl_read_opts ro;
+    memset(&ro, 0, sizeof ro);
+    sl_status st = SL_OK;
+    for (int c = 0; c < SL_SYNTH_NCOMP && st == SL_OK; c++) {
+        rec->comp[c] = sl_motion_read(path[c], &ro, err);
+        if (!rec->comp[c])
+            st = err ? err->code : SL_EIO;
+    }
+    globfree(&g);
+    if (st == SL_OK) {
+        sl_set s = sl_study_record_set(rec);
+        st = sl_set_check(&s, 1, err);
+    }
+    if (st != SL_OK)
+        sl_study_record_free(rec);
+    return st;
+}
+
+sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double pga_ms2,
+                               sl_synth_set *out, sl_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!rec || !rec->comp[0] || !rec->comp[1] || !rec->comp[2])
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "matching needs three components");
+    sl_synth_params p;
+    sl_synth_params_default(&p);
+    /* the largest step dt/k <= 0.01 s (SRP 3.7.1: Nyquist >= 50 Hz) */
+    double dt0 = rec->comp[0]->dt_s;
+    double k = ceil(dt0 / SL_SYNTH_MAX_DT_S * (1 - STEP_SLACK));
+    double dt = dt0 / (k < 1 ? 1 : k);
+    sl_motion *rs[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
+    sl_spectrum *spec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
+    sl_synth_target tgt[SL_SYNTH_NCOMP];
+    sl_synth *plan = NULL;
+    sl_status st = SL_OK;
+    size_t n = 0;
+    for (int c = 0; c < SL_SYNTH_NCOMP && st == SL_OK; c++) {
+        const sl_motion *m = rec->comp[c];
+        if (fabs(m->dt_s - dt) <= STEP_SLACK * dt) {
+            rs[c] = sl_motion_copy(m);
+        } else {
+            size_t n2 = 0;
+            double *a = sl_synth_resample(m->acc_ms2, m->n, m->dt_s, dt, &n2);
+            rs[c] = a ? sl_motion_from_array(a, n2, dt, m->label) : NULL;
+            free(a);
+        }
+        if (!rs[c])
+            st = sl_error_set(err, SL_ENOMEM, m->path, 0, "cannot resample to dt %g s", dt);
+        else if (rs[c]->n > n)
+            n = rs[c]->n;
+    }
+    size_t n_min = (size_t)ceil(p.min_duration_s / dt * (1 - STEP_SLACK)) + 1;
+    if (n < n_min)
+        n = n_min;
+    if (st == SL_OK)
+        st = sl_synth_targets_rg160(pga_ms2, zeta, &p, spec, tgt, err);
+    if (st == SL_OK && !(plan = sl_synth_alloc(n, dt, &p, err)))
+        st = err ? err->code : SL_ENOMEM;
+    if (st == SL_OK) {
+        const sl_motion *const r3[SL_SYNTH_NCOMP] = {rs[0], rs[1], rs[2]};
+        st = sl_synth_match_set(plan, tgt, r3, out, err);
+    }
+    sl_synth_free(plan);
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        sl_motion_free(rs[c]);
+        sl_spectrum_free(spec[c]);
+    }
+    return st;
+}
+
+void sl_study_spectra_free(sl_study_spectra *s)
+{
+    if (!s)
+        return;
+    free(s->mu);
+    free(s->peak_m);
+    free(s->asce_set_m);
+    free(s->nltha_mean_m);
+    free(s->asce_mean_m);
+    free(s->pgd_m);
+    sl_design_free(s->design);
+    free(s);
+}
+
+/* ASCE best estimates of one set at every mu, into best[0..n_mu-1]. */
+static sl_status asce_of_set(const sl_set *set, const double *f, size_t nf, const double *mu,
+                             size_t n_mu, double *best, sl_error *err)
+{
+    sl_spectrum *sp[2] = {sl_spectrum_alloc(nf, SL_ASCE_DAMPING),
+                          sl_spectrum_alloc(nf, SL_ASCE_DAMPING)};
+    const sl_motion *h[2] = {set->h1, set->h2};
+    sl_asce *a = NULL;
+    sl_status st = SL_OK;
+    if (!sp[0] || !sp[1])
+        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
+    for (int c = 0; c < 2 && st == SL_OK; c++) {
+        memcpy(sp[c]->f_hz, f, nf * sizeof *f);
+        st = sl_spectrum_compute(h[c]->acc_ms2, h[c]->n, h[c]->dt_s, f, nf, SL_ASCE_DAMPING,
+                                 sp[c]->sa_ms2, NULL, NULL, err);
+    }
+    if (st == SL_OK) {
+        sl_asce_input in;
+        sl_asce_input_default(&in);
+        in.h1 = sp[0];
+        in.h2 = sp[1];
+        in.av_ms2 = set->v ? sl_motion_pga(set->v) : 0.0;
+        in.zpa_h_ms2 = sl_set_pga_h(set);
+        in.pgd_m = NAN; /* the group's cap is applied in design.c */
+        if (!(a = sl_asce_alloc(&in, err)))
+            st = err ? err->code : SL_ENOMEM;
+    }
+    for (size_t k = 0; k < n_mu && st == SL_OK; k++) {
+        sl_asce_result r;
+        st = sl_asce_eval(a, mu[k], &r, err);
+        best[k] = r.delta_best_m;
+    }
+    sl_asce_free(a);
+    sl_spectrum_free(sp[0]);
+    sl_spectrum_free(sp[1]);
+    return st;
+}
+
+sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, const double *mu,
+                                           size_t n_mu, const sl_slide_opts *so, sl_error *err)
+{
+    if (!sets || n_sets == 0 || !mu || n_mu == 0) {
+        sl_error_set(err, SL_EINVAL, NULL, 0, "study spectra: no sets or no friction values");
+        return NULL;
+    }
+    for (size_t s = 0; s < n_sets; s++)
+        if (!sets[s].h1 || !sets[s].h2 || !sets[s].v) {
+            sl_error_set(err, SL_EINVAL, sets[s].h1 ? sets[s].h1->path : NULL, 0,
+                         "study spectra: set %zu lacks a component (H1, H2 and V needed)", s);
+            return NULL;
+        }
+    sl_study_spectra *r = calloc(1, sizeof *r);
+    sl_slide_result *res = calloc(n_sets * n_mu, sizeof *res);
+    int *noslide = calloc(n_mu, sizeof *noslide);
+    size_t nf = 0;
+    double *f = sl_spectrum_grid(SL_SPECTRUM_FMIN_HZ, SL_SPECTRUM_FMAX_HZ, SL_SPECTRUM_PER_DECADE,
+                                 &nf);
+    if (r) {
+        r->n_sets = n_sets;
+        r->n_mu = n_mu;
+        r->mu = malloc(n_mu * sizeof *r->mu);
+        r->peak_m = calloc(n_sets * n_mu, sizeof *r->peak_m);
+        r->asce_set_m = calloc(n_sets * n_mu, sizeof *r->asce_set_m);
+        r->nltha_mean_m = calloc(n_mu, sizeof *r->nltha_mean_m);
+        r->asce_mean_m = calloc(n_mu, sizeof *r->asce_mean_m);
+        r->pgd_m = calloc(n_sets, sizeof *r->pgd_m);
+    }
+    if (!r || !res || !noslide || !f || !r->mu || !r->peak_m || !r->asce_set_m ||
+        !r->nltha_mean_m || !r->asce_mean_m || !r->pgd_m) {
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
+        goto fail;
+    }
+    memcpy(r->mu, mu, n_mu * sizeof *mu);
+
+    /* NLTHA of every set at every mu (OpenMP over sets) */
+    sl_slide_opts def;
+    sl_slide_opts_default(&def);
+    if (sl_slide_batch(sets, n_sets, mu, n_mu, so ? so : &def, res, err))
+        goto fail;
+    for (size_t k = 0; k < n_mu; k++)
+        noslide[k] = 1;
+    for (size_t s = 0; s < n_sets; s++) {
+        r->pgd_m[s] = sl_set_pgd_100_40(&sets[s]);
+        r->pga_ms2 += sl_set_pga_h(&sets[s]) / (double)n_sets;
+        for (size_t k = 0; k < n_mu; k++) {
+            const sl_slide_result *x = &res[s * n_mu + k];
+            r->peak_m[s * n_mu + k] = x->peak_m;
+            r->nltha_mean_m[k] += x->peak_m / (double)n_sets;
+            noslide[k] &= (x->flags & SL_SLIDE_SKIPPED) != 0;
+        }
+    }
+
+    /* ASCE per set, then the group mean */
+    for (size_t s = 0; s < n_sets; s++)
+        if (asce_of_set(&sets[s], f, nf, mu, n_mu, r->asce_set_m + s * n_mu, err))
+            goto fail;
+    for (size_t k = 0; k < n_mu; k++)
+        for (size_t s = 0; s < n_sets; s++)
+            r->asce_mean_m[k] += r->asce_set_m[s * n_mu + k] / (double)n_sets;
+
+    sl_design_input di;
+    sl_design_input_default(&di);
+    di.n_mu = n_mu;
+    di.n_sets = n_sets;
+    di.mu = mu;
+    di.peak_m = r->peak_m;
+    di.no_slide = noslide;
+    di.asce_best_m = r->asce_mean_m;
+    di.pgd_m = r->pgd_m;
+    di.zpa_h_ms2 = r->pga_ms2;
+    if (!(r->design = sl_design_compute(&di, err)))
+        goto fail;
+    free(res);
+    free(noslide);
+    free(f);
+    return r;
+fail:
+    free(res);
+    free(noslide);
+    free(f);
+    sl_study_spectra_free(r);
+    return NULL;
+}

@@ -1,0 +1,90 @@
+/*
+ * study.h - the pieces of the source study's evaluation (`seislide study`,
+ * docs/validation.md) that are more than one call of another module:
+ *
+ *  - reading a recorded three-component set from a folder of PEER .AT2 files;
+ *  - modifying a recorded set to match Regulatory Guide 1.60 (synth.h,
+ *    record matching: the record's Fourier phases kept);
+ *  - the sliding spectra of a group of sets: NLTHA peak vector displacement
+ *    per set (slide.h), the ASCE/SEI 43-05 best estimate per set on the set's
+ *    own 10 %-damped spectra (asce.h), both averaged over the group, and the
+ *    design spectra, cap and crossover (design.h).
+ *
+ * Group averages (../shared/docs/REFERENCE.md 1: "averaged over a set"):
+ *     NLTHA best estimate  m(mu)  = (1/N) sum_s peak_s(mu)
+ *     ASCE best estimate   d(mu)  = (1/N) sum_s delta_s(mu)   (NAN if any set
+ *                                   has no answer, e.g. no crossing)
+ *     x                    = mu g / PGA, PGA = (1/N) sum_s PGA_h,s
+ * with PGA_h,s the larger horizontal peak of set s; the design rows follow
+ * design.h (NLTHA 3.0 x m, ASCE 2.0 x d, cap 1.5 x mean 100-40 PGD).
+ *
+ * Units: SI (m, s, m/s^2). Memory: every *_free pairs with its producer.
+ */
+#ifndef SL_STUDY_H
+#define SL_STUDY_H
+
+#include <stddef.h>
+
+#include "design.h"
+#include "motion.h"
+#include "slide.h"
+#include "status.h"
+#include "synth.h"
+
+/* The three components of a recorded set read from one folder. */
+typedef struct sl_study_record {
+    sl_motion *comp[SL_SYNTH_NCOMP]; /* H1, H2, V (owned) */
+} sl_study_record;
+
+/* Read the set in folder `dir`: its *.AT2 files, exactly two horizontals and
+ * one vertical. A file is vertical when its name (upper case, without
+ * ".AT2") ends in UP, DWN or VER, or contains "-UP" or "DWN-"; H1 is the
+ * horizontal whose name sorts first. Components of different length are cut
+ * to the shortest (PEER sets sometimes differ by a few samples). Returns
+ * SL_OK, or an error naming the folder or file (SL_EIO when the folder
+ * cannot be read or does not hold 2 + 1 files, the reader's errors). On
+ * failure nothing is left allocated. */
+sl_status sl_study_record_read(const char *dir, sl_study_record *rec, sl_error *err);
+
+/* Free the components and zero rec; harmless on NULL. */
+void sl_study_record_free(sl_study_record *rec);
+
+/* The record as a set of borrowed pointers (H1, H2, V). */
+sl_set sl_study_record_set(const sl_study_record *rec);
+
+/* Modify a recorded set to match the RG 1.60 spectra (horizontal for H1 and
+ * H2, vertical for V) at damping zeta and PGA pga_ms2, with the default
+ * acceptance checks of synth.h: the records are resampled to the largest
+ * step dt/k <= 0.01 s (linear interpolation, exact for their
+ * piecewise-linear reading) and zero-extended to at least the minimum
+ * duration (20 s). out is filled as by sl_synth_match_set(). Returns SL_OK,
+ * SL_ENOCONV (out complete, some check failed: see out->pass), or an error
+ * (out cleared). */
+sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double pga_ms2,
+                               sl_synth_set *out, sl_error *err);
+
+/* Sliding spectra of a group of sets. */
+typedef struct sl_study_spectra {
+    size_t n_sets, n_mu;
+    double *mu;            /* n_mu friction values (copy) */
+    double *peak_m;        /* peak_m[s * n_mu + k]: NLTHA peak |u| of set s at mu[k] */
+    double *asce_set_m;    /* asce_set_m[s * n_mu + k]: ASCE best estimate of set s */
+    double *nltha_mean_m;  /* n_mu: mean of peak_m over the sets */
+    double *asce_mean_m;   /* n_mu: mean of asce_set_m (NAN if any is NAN) */
+    double *pgd_m;         /* n_sets: 100-40 peak displacement of each set */
+    double pga_ms2;        /* mean larger-horizontal PGA of the sets */
+    sl_design *design;     /* design spectra and crossover, x = mu g / pga_ms2 */
+} sl_study_spectra;
+
+/* Compute the sliding spectra of n_sets checked sets (each with H1, H2 and
+ * V) at n_mu increasing friction values with the engine options `so` (NULL =
+ * defaults). The ASCE method takes each set's 10 %-damped PSA of H1 and H2
+ * on the default grid (0.1-50 Hz, 100 per decade), A_v = the set's vertical
+ * peak, ZPA_h = its larger horizontal peak. Returns NULL and fills err on
+ * failure. Free with sl_study_spectra_free(). */
+sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, const double *mu,
+                                           size_t n_mu, const sl_slide_opts *so, sl_error *err);
+
+void sl_study_spectra_free(sl_study_spectra *s);
+
+#endif
