@@ -1,4 +1,4 @@
-# seislide - see README.md. Targets: all test bench install clean asan.
+# seislide - see README.md. Targets: all test bench study install clean asan.
 CC      ?= cc
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -21,7 +21,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 LIB      := $(BUILD)/libseislide.a
 PROG     ?= seislide
 
-.PHONY: all test bench install clean asan check-tools
+.PHONY: all test bench study install clean asan check-tools
 all: $(PROG) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard src/*.h src/cli/*.h tests/*.h)
@@ -44,6 +44,11 @@ test: all
 
 bench: all
 	./$(PROG) bench
+
+# The source study reproduced from ../shared/records (or $$SEISLIDE_SHARED/records):
+# docs/validation.md and docs/validation/ (figures need gnuplot: gnuplot-nox).
+study: $(PROG)
+	./$(PROG) study -o docs
 
 # ASan + UBSan build in its own directory, running the same tests.
 asan:

@@ -15,6 +15,76 @@
 #include "rg160.h"
 #include "spectrum.h"
 
+/* ------------------------------------------------------------------ */
+/* The record sets of the study                                        */
+/* ------------------------------------------------------------------ */
+
+/* A record set of the study and why it is there. */
+/* Part 3: the study's seven-record ground set (REFERENCE.md 1), with the
+ * stand-in for each record ../shared lacks in three components. */
+static const sl_study_entry ground_set[] = {
+    {"RSN20_NCALIF.FH_H-FRN", "Ferndale 1954 (Ferndale City Hall)", "the study's record"},
+    {"RSN77_SFERN_PUL", "Pacoima Dam 1971 (upper left abutment)", "the study's record"},
+    {"RSN31_PARKF_C08", "Cholame-Shandon #5 1966 -> Cholame-Shandon #8, 1966",
+     "stand-in: same event and array; ../shared has #5 in one component only"},
+    {"RSN777_LOMAP_HCH", "Hollister 1961 -> Hollister City Hall, Loma Prieta 1989",
+     "stand-in: the 1961 records were made at this station; 1961 is not in ../shared"},
+    {"RSN57_SFERN_ORR", "Taft 1952 -> Castaic Old Ridge Route, San Fernando 1971",
+     "stand-in: Taft is in ../shared in one component only; Castaic is a "
+     "moderate-distance record of a California reverse-fault event of the same era"},
+    {"RSN776_LOMAP_HSP", "Ferndale 1941 (1) -> Hollister South & Pine, Loma Prieta 1989",
+     "stand-in: 1941 is not in ../shared; a northern-California soil record at "
+     "moderate distance, like Ferndale's"},
+    {"RSN162_IMPVALL.H_H-CXO", "Ferndale 1941 (2) -> Calexico Fire Station, Imperial Valley 1979",
+     "stand-in: as above; a soil record of a moderate (M6.5) event"},
+};
+_Static_assert(sizeof ground_set / sizeof ground_set[0] == SL_STUDY_NGROUND,
+               "SL_STUDY_NGROUND must count ground_set");
+const sl_study_group sl_study_ground = {"ground set", "ground", ground_set,
+                                       sizeof ground_set / sizeof ground_set[0]};
+
+/* Part 4: real three-component sets grouped like the study's four PEER sets.
+ * ../shared has no distance, site or pulse metadata; the classification is
+ * ours, from published sets (named per record). */
+static const sl_study_entry group_nf_soil[] = {
+    {"RSN6_IMPVALL.I_I-ELC", "El Centro #9, Imperial Valley 1940", "NGA-West2: Rrup ~6 km, soil"},
+    {"RSN187_IMPVALL.H_H-PTS", "Parachute Test Site, Imperial Valley 1979", "Rrup ~13 km, soil"},
+    {"RSN458_MORGAN_G04", "Gilroy Array #4, Morgan Hill 1984", "Rrup ~12 km, soil"},
+    {"RSN768_LOMAP_G04", "Gilroy Array #4, Loma Prieta 1989", "Rrup ~14 km, soil"},
+    {"RSN764_LOMAP_GOF", "Gilroy Historic Bldg., Loma Prieta 1989", "Rrup ~11 km, soil"},
+};
+static const sl_study_entry group_ff_soil[] = {
+    {"RSN953_NORTHR_MUL", "Beverly Hills Mulholland, Northridge 1994", "FEMA P695 far-field set"},
+    {"RSN960_NORTHR_LOS", "Canyon Country W Lost Canyon, Northridge 1994", "FEMA P695 far-field set"},
+    {"RSN1602_DUZCE_BOL", "Bolu, Duzce 1999", "FEMA P695 far-field set"},
+    {"RSN174_IMPVALL.H_H-E11", "El Centro Array #11, Imperial Valley 1979", "FEMA P695 far-field set"},
+    {"RSN1116_KOBE_SHI", "Shin-Osaka, Kobe 1995", "FEMA P695 far-field set"},
+    {"RSN1158_KOCAELI_DZC", "Duzce, Kocaeli 1999", "FEMA P695 far-field set"},
+    {"RSN848_LANDERS_CLW", "Coolwater, Landers 1992", "FEMA P695 far-field set"},
+    {"RSN752_LOMAP_CAP", "Capitola, Loma Prieta 1989", "FEMA P695 far-field set"},
+};
+static const sl_study_entry group_nf_rock[] = {
+    {"RSN753_LOMAP_CLS", "Corralitos, Loma Prieta 1989", "FEMA P695 near-field (no pulse); Rrup ~4 km, Vs30 ~460 m/s"},
+    {"RSN454_MORGAN_GIL", "Gilroy Gavilan College, Morgan Hill 1984", "rock station (Vs30 ~730 m/s), Rrup ~15 km"},
+    {"RSN1111_KOBE_NIS", "Nishi-Akashi, Kobe 1995", "Rrup ~7 km, Vs30 ~610 m/s"},
+    {"RSN1787_HECTOR_HEC", "Hector, Hector Mine 1999", "Rrup ~12 km, Vs30 ~730 m/s"},
+    {"RSN1_HELENA.A_A-HMC", "Carroll College, Helena 1935", "rock station a few km from the source"},
+};
+static const sl_study_entry group_pulse[] = {
+    {"RSN1063_NORTHR_RRS", "Rinaldi Receiving Station, Northridge 1994", "Baker (2007) pulse list"},
+    {"RSN77_SFERN_PUL", "Pacoima Dam, San Fernando 1971", "Baker (2007) pulse list"},
+    {"RSN879_LANDERS_LCN", "Lucerne, Landers 1992", "Baker (2007) pulse list"},
+    {"RSN161_IMPVALL.H_H-BRA", "Brawley Airport, Imperial Valley 1979", "Baker (2007) pulse list"},
+    {"RSN292_ITALY_A-STU", "Sturno, Irpinia 1980", "Baker (2007) pulse list; FEMA P695 near-field pulse set"},
+};
+#define GROUP(name, tag, arr) {name, tag, arr, sizeof arr / sizeof arr[0]}
+const sl_study_group sl_study_groups[SL_STUDY_NGROUPS] = {
+    GROUP("near-field soil", "nfsoil", group_nf_soil),
+    GROUP("far-field soil", "ffsoil", group_ff_soil),
+    GROUP("near-field rock", "nfrock", group_nf_rock),
+    GROUP("pulse-like", "pulse", group_pulse),
+};
+
 /* A step within this relative slack of another is the same step. */
 #define STEP_SLACK 1e-9
 

@@ -31,6 +31,30 @@
 #include "status.h"
 #include "synth.h"
 
+/* A record set of the study: its folder under the records folder, what it
+ * stands for, and why it is there (a stand-in's reason, or the basis of its
+ * group membership). */
+typedef struct sl_study_entry {
+    const char *dir, *name, *why;
+} sl_study_entry;
+
+typedef struct sl_study_group {
+    const char *name;  /* e.g. "near-field soil" */
+    const char *tag;   /* file-name tag, e.g. "nfsoil" */
+    const sl_study_entry *e;
+    size_t n;
+} sl_study_group;
+
+/* The study's seven-record ground set (REFERENCE.md 1), with the stand-in for
+ * each record ../shared lacks in three components. */
+#define SL_STUDY_NGROUND 7
+extern const sl_study_group sl_study_ground;
+
+/* Real three-component sets grouped like the study's four PEER sets:
+ * near-field soil, far-field soil, near-field rock, pulse-like. */
+#define SL_STUDY_NGROUPS 4
+extern const sl_study_group sl_study_groups[SL_STUDY_NGROUPS];
+
 /* The three components of a recorded set read from one folder. */
 typedef struct sl_study_record {
     sl_motion *comp[SL_SYNTH_NCOMP]; /* H1, H2, V (owned) */

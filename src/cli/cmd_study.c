@@ -28,81 +28,6 @@
 #define STUDY_SMOOTH_UY_M 1e-7   /* the study's yield displacement, m */
 #define STUDY_NPARTS 4
 
-/* A record set of the study and why it is there. */
-typedef struct study_entry {
-    const char *dir;   /* folder under the records folder */
-    const char *name;  /* what it stands for */
-    const char *why;   /* the reason (stand-in or group membership) */
-} study_entry;
-
-/* Part 3: the study's seven-record ground set (REFERENCE.md 1), with the
- * stand-in for each record ../shared lacks in three components. */
-static const study_entry ground_set[] = {
-    {"RSN20_NCALIF.FH_H-FRN", "Ferndale 1954 (Ferndale City Hall)", "the study's record"},
-    {"RSN77_SFERN_PUL", "Pacoima Dam 1971 (upper left abutment)", "the study's record"},
-    {"RSN31_PARKF_C08", "Cholame-Shandon #5 1966 -> Cholame-Shandon #8, 1966",
-     "stand-in: same event and array; ../shared has #5 in one component only"},
-    {"RSN777_LOMAP_HCH", "Hollister 1961 -> Hollister City Hall, Loma Prieta 1989",
-     "stand-in: the 1961 records were made at this station; 1961 is not in ../shared"},
-    {"RSN57_SFERN_ORR", "Taft 1952 -> Castaic Old Ridge Route, San Fernando 1971",
-     "stand-in: Taft is in ../shared in one component only; Castaic is a "
-     "moderate-distance record of a California reverse-fault event of the same era"},
-    {"RSN776_LOMAP_HSP", "Ferndale 1941 (1) -> Hollister South & Pine, Loma Prieta 1989",
-     "stand-in: 1941 is not in ../shared; a northern-California soil record at "
-     "moderate distance, like Ferndale's"},
-    {"RSN162_IMPVALL.H_H-CXO", "Ferndale 1941 (2) -> Calexico Fire Station, Imperial Valley 1979",
-     "stand-in: as above; a soil record of a moderate (M6.5) event"},
-};
-#define N_GROUND (sizeof ground_set / sizeof ground_set[0])
-
-/* Part 4: real three-component sets grouped like the study's four PEER sets.
- * ../shared has no distance, site or pulse metadata; the classification is
- * ours, from published sets (named per record). */
-static const study_entry group_nf_soil[] = {
-    {"RSN6_IMPVALL.I_I-ELC", "El Centro #9, Imperial Valley 1940", "NGA-West2: Rrup ~6 km, soil"},
-    {"RSN187_IMPVALL.H_H-PTS", "Parachute Test Site, Imperial Valley 1979", "Rrup ~13 km, soil"},
-    {"RSN458_MORGAN_G04", "Gilroy Array #4, Morgan Hill 1984", "Rrup ~12 km, soil"},
-    {"RSN768_LOMAP_G04", "Gilroy Array #4, Loma Prieta 1989", "Rrup ~14 km, soil"},
-    {"RSN764_LOMAP_GOF", "Gilroy Historic Bldg., Loma Prieta 1989", "Rrup ~11 km, soil"},
-};
-static const study_entry group_ff_soil[] = {
-    {"RSN953_NORTHR_MUL", "Beverly Hills Mulholland, Northridge 1994", "FEMA P695 far-field set"},
-    {"RSN960_NORTHR_LOS", "Canyon Country W Lost Canyon, Northridge 1994", "FEMA P695 far-field set"},
-    {"RSN1602_DUZCE_BOL", "Bolu, Duzce 1999", "FEMA P695 far-field set"},
-    {"RSN174_IMPVALL.H_H-E11", "El Centro Array #11, Imperial Valley 1979", "FEMA P695 far-field set"},
-    {"RSN1116_KOBE_SHI", "Shin-Osaka, Kobe 1995", "FEMA P695 far-field set"},
-    {"RSN1158_KOCAELI_DZC", "Duzce, Kocaeli 1999", "FEMA P695 far-field set"},
-    {"RSN848_LANDERS_CLW", "Coolwater, Landers 1992", "FEMA P695 far-field set"},
-    {"RSN752_LOMAP_CAP", "Capitola, Loma Prieta 1989", "FEMA P695 far-field set"},
-};
-static const study_entry group_nf_rock[] = {
-    {"RSN753_LOMAP_CLS", "Corralitos, Loma Prieta 1989", "FEMA P695 near-field (no pulse); Rrup ~4 km, Vs30 ~460 m/s"},
-    {"RSN454_MORGAN_GIL", "Gilroy Gavilan College, Morgan Hill 1984", "rock station (Vs30 ~730 m/s), Rrup ~15 km"},
-    {"RSN1111_KOBE_NIS", "Nishi-Akashi, Kobe 1995", "Rrup ~7 km, Vs30 ~610 m/s"},
-    {"RSN1787_HECTOR_HEC", "Hector, Hector Mine 1999", "Rrup ~12 km, Vs30 ~730 m/s"},
-    {"RSN1_HELENA.A_A-HMC", "Carroll College, Helena 1935", "rock station a few km from the source"},
-};
-static const study_entry group_pulse[] = {
-    {"RSN1063_NORTHR_RRS", "Rinaldi Receiving Station, Northridge 1994", "Baker (2007) pulse list"},
-    {"RSN77_SFERN_PUL", "Pacoima Dam, San Fernando 1971", "Baker (2007) pulse list"},
-    {"RSN879_LANDERS_LCN", "Lucerne, Landers 1992", "Baker (2007) pulse list"},
-    {"RSN161_IMPVALL.H_H-BRA", "Brawley Airport, Imperial Valley 1979", "Baker (2007) pulse list"},
-    {"RSN292_ITALY_A-STU", "Sturno, Irpinia 1980", "Baker (2007) pulse list; FEMA P695 near-field pulse set"},
-};
-typedef struct study_group {
-    const char *name, *tag;
-    const study_entry *e;
-    size_t n;
-} study_group;
-#define GROUP(name, tag, arr) {name, tag, arr, sizeof arr / sizeof arr[0]}
-static const study_group groups[] = {
-    GROUP("near-field soil", "nfsoil", group_nf_soil),
-    GROUP("far-field soil", "ffsoil", group_ff_soil),
-    GROUP("near-field rock", "nfrock", group_nf_rock),
-    GROUP("pulse-like", "pulse", group_pulse),
-};
-#define N_GROUPS (sizeof groups / sizeof groups[0])
-
 static const double levels_g[] = {0.2, 0.4, 0.6, 0.8};
 #define N_LEVELS (sizeof levels_g / sizeof levels_g[0])
 
@@ -114,8 +39,8 @@ typedef struct study_claims {
     double p3_cross[N_LEVELS];        /* crossover mu g/PGA (NAN: none) */
     double p3_fs3_x[N_LEVELS];        /* largest x where 3.0 ASCE best < NLTHA design */
     double p3_uncons_hi[N_LEVELS];    /* ranges with ASCE < NLTHA above the crossover */
-    double p4_frac_best[N_GROUPS];    /* fraction of grid where ASCE best < NLTHA mean */
-    double p4_cross[N_GROUPS];
+    double p4_frac_best[SL_STUDY_NGROUPS];    /* fraction of grid where ASCE best < NLTHA mean */
+    double p4_cross[SL_STUDY_NGROUPS];
     int p4_ran;
 } study_claims;
 
@@ -284,7 +209,7 @@ static int plot(study_ctx *s, const char *base, const char *body)
     return 0;
 }
 
-static int read_entry(study_ctx *s, const study_entry *e, sl_study_record *rec)
+static int read_entry(study_ctx *s, const sl_study_entry *e, sl_study_record *rec)
 {
     char dir[4200];
     snprintf(dir, sizeof dir, "%s/%s", s->records, e->dir);
@@ -306,7 +231,7 @@ static double pct(double to, double from)
 
 static int part1(study_ctx *s)
 {
-    static const study_entry rinaldi = {"RSN1063_NORTHR_RRS", "Rinaldi", ""};
+    static const sl_study_entry rinaldi = {"RSN1063_NORTHR_RRS", "Rinaldi", ""};
     sl_study_record rec;
     if (read_entry(s, &rinaldi, &rec))
         return -1;
@@ -412,7 +337,7 @@ static int part1(study_ctx *s)
 
 static int part2(study_ctx *s)
 {
-    static const study_entry elc = {"RSN6_IMPVALL.I_I-ELC", "El Centro #9", ""};
+    static const sl_study_entry elc = {"RSN6_IMPVALL.I_I-ELC", "El Centro #9", ""};
     sl_study_record rec;
     if (read_entry(s, &elc, &rec))
         return -1;
@@ -630,7 +555,7 @@ static void failed_checks(const sl_synth_set *m, char *buf, size_t n)
 static int part3(study_ctx *s)
 {
     FILE *md = s->md;
-    sl_synth_set matched[N_GROUND];
+    sl_synth_set matched[SL_STUDY_NGROUND];
     memset(matched, 0, sizeof matched);
     int rc = 0;
     double pgd_g = 0;
@@ -644,9 +569,9 @@ static int part3(study_ctx *s)
             "| study record -> used | folder | why | matching checks (REFERENCE.md 5) | PGD H1, H2 at 1 g (m) |\n"
             "|---|---|---|---|---|\n",
             100 * STUDY_ZETA);
-    for (size_t i = 0; i < N_GROUND && !rc; i++) {
+    for (size_t i = 0; i < SL_STUDY_NGROUND && !rc; i++) {
         sl_study_record rec;
-        if (read_entry(s, &ground_set[i], &rec)) {
+        if (read_entry(s, &sl_study_ground.e[i], &rec)) {
             rc = -1;
             break;
         }
@@ -664,11 +589,11 @@ static int part3(study_ctx *s)
         }
         char failed[256];
         failed_checks(&matched[i], failed, sizeof failed);
-        pgd_g += sl_motion_pgd(matched[i].motion[0]) / (double)N_GROUND;
-        fprintf(md, "| %s | %s | %s | %s (SA/target %.2f-%.2f) | %.2f, %.2f |\n", ground_set[i].name,
-                ground_set[i].dir, ground_set[i].why, failed, lo, hi,
+        pgd_g += sl_motion_pgd(matched[i].motion[0]) / (double)SL_STUDY_NGROUND;
+        fprintf(md, "| %s | %s | %s | %s (SA/target %.2f-%.2f) | %.2f, %.2f |\n", sl_study_ground.e[i].name,
+                sl_study_ground.e[i].dir, sl_study_ground.e[i].why, failed, lo, hi,
                 sl_motion_pgd(matched[i].motion[0]), sl_motion_pgd(matched[i].motion[1]));
-        note(s, "part 3: matched %s", ground_set[i].dir);
+        note(s, "part 3: matched %s", sl_study_ground.e[i].dir);
     }
     if (rc)
         goto done;
@@ -693,10 +618,10 @@ static int part3(study_ctx *s)
     const size_t nx = 191; /* 0.05 .. 1.00 step 0.005 */
     for (size_t l = 0; l < N_LEVELS && !rc; l++) {
         double pga = levels_g[l] * SL_G;
-        sl_motion *own[N_GROUND][SL_SYNTH_NCOMP];
-        sl_set sets[N_GROUND];
+        sl_motion *own[SL_STUDY_NGROUND][SL_SYNTH_NCOMP];
+        sl_set sets[SL_STUDY_NGROUND];
         memset(own, 0, sizeof own);
-        for (size_t i = 0; i < N_GROUND; i++)
+        for (size_t i = 0; i < SL_STUDY_NGROUND; i++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
                 own[i][c] = sl_motion_copy(matched[i].motion[c]);
                 if (own[i][c])
@@ -704,12 +629,12 @@ static int part3(study_ctx *s)
                 else
                     rc = -1;
             }
-        for (size_t i = 0; i < N_GROUND; i++)
+        for (size_t i = 0; i < SL_STUDY_NGROUND; i++)
             sets[i] = (sl_set){own[i][0], own[i][1], own[i][2]};
         double mu[191];
         for (size_t k = 0; k < nx; k++)
             mu[k] = (0.05 + 0.005 * (double)k) * pga / SL_G;
-        sl_study_spectra *sp = rc ? NULL : sl_study_spectra_compute(sets, N_GROUND, mu, nx, NULL, &s->err);
+        sl_study_spectra *sp = rc ? NULL : sl_study_spectra_compute(sets, SL_STUDY_NGROUND, mu, nx, NULL, &s->err);
         if (!sp) {
             if (!rc)
                 cli_print_error(&s->err);
@@ -739,7 +664,7 @@ static int part3(study_ctx *s)
             sl_study_spectra_free(sp);
             note(s, "part 3: %.1f g done", levels_g[l]);
         }
-        for (size_t i = 0; i < N_GROUND; i++)
+        for (size_t i = 0; i < SL_STUDY_NGROUND; i++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++)
                 sl_motion_free(own[i][c]);
     }
@@ -747,7 +672,7 @@ static int part3(study_ctx *s)
         goto done;
     rc = plot(s, "fig6_ground_design",
               "set multiplot layout 2,2 title 'Ground set matched to RG 1.60: design sliding spectra'\n"
-              "set logscale y\nset xlabel 'mu g / PGA'\nset ylabel 'design displacement (mm)'\n"
+              "set logscale y\nset format y '%g'\nset xlabel 'mu g / PGA'\nset ylabel 'design displacement (mm)'\n"
               "set key top right font ',10'\n"
               "do for [a in '0.2 0.4 0.6 0.8'] {\n"
               "  f = sprintf('p3_ground_%sg.tsv', a)\n"
@@ -761,7 +686,7 @@ static int part3(study_ctx *s)
             "study's recommended factor 3.0 on the ASCE best estimate still falls below the\n"
             "NLTHA design value (both capped).\n\n");
 done:
-    for (size_t i = 0; i < N_GROUND; i++)
+    for (size_t i = 0; i < SL_STUDY_NGROUND; i++)
         sl_synth_set_clear(&matched[i]);
     return rc;
 }
@@ -786,11 +711,11 @@ static int part4(study_ctx *s)
             "0.80 step 0.01 (the study: every 0.05); NLTHA with both horizontals and the\n"
             "vertical; ASCE on each record's 10 %%-damped spectra; both averaged.\n\n"
             "| group | records (folder: why) |\n|---|---|\n");
-    for (size_t g = 0; g < N_GROUPS; g++) {
-        fprintf(md, "| %s |", groups[g].name);
-        for (size_t i = 0; i < groups[g].n; i++)
-            fprintf(md, "%s %s (`%s`: %s)", i ? ";" : "", groups[g].e[i].name, groups[g].e[i].dir,
-                    groups[g].e[i].why);
+    for (size_t g = 0; g < SL_STUDY_NGROUPS; g++) {
+        fprintf(md, "| %s |", sl_study_groups[g].name);
+        for (size_t i = 0; i < sl_study_groups[g].n; i++)
+            fprintf(md, "%s %s (`%s`: %s)", i ? ";" : "", sl_study_groups[g].e[i].name, sl_study_groups[g].e[i].dir,
+                    sl_study_groups[g].e[i].why);
         fprintf(md, " |\n");
     }
     fprintf(md, "\n| group | sets | mean PGA (g) | ASCE best < NLTHA mean at | "
@@ -800,8 +725,8 @@ static int part4(study_ctx *s)
     double mu[76];
     for (size_t k = 0; k < nmu; k++)
         mu[k] = 0.05 + 0.01 * (double)k;
-    for (size_t g = 0; g < N_GROUPS && !rc; g++) {
-        size_t n = groups[g].n;
+    for (size_t g = 0; g < SL_STUDY_NGROUPS && !rc; g++) {
+        size_t n = sl_study_groups[g].n;
         sl_study_record *rec = calloc(n, sizeof *rec);
         sl_set *sets = calloc(n, sizeof *sets);
         if (!rec || !sets) {
@@ -811,7 +736,7 @@ static int part4(study_ctx *s)
             return -1;
         }
         for (size_t i = 0; i < n && !rc; i++) {
-            rc = read_entry(s, &groups[g].e[i], &rec[i]);
+            rc = read_entry(s, &sl_study_groups[g].e[i], &rec[i]);
             sets[i] = sl_study_record_set(&rec[i]);
         }
         sl_study_spectra *sp = rc ? NULL : sl_study_spectra_compute(sets, n, mu, nmu, NULL, &s->err);
@@ -844,14 +769,14 @@ static int part4(study_ctx *s)
                 snprintf(bb, sizeof bb, "none of %zu mu", defined);
             snprintf(cross, sizeof cross, sp->design->has_crossover ? "%.3f" : "none",
                      sp->design->crossover_x);
-            fprintf(md, "| %s | %zu | %.3f | %s | %s | %s |\n", groups[g].name, n,
+            fprintf(md, "| %s | %zu | %.3f | %s | %s | %s |\n", sl_study_groups[g].name, n,
                     sp->pga_ms2 / SL_G, bb, rg, cross);
             char name[64], title[128];
-            snprintf(name, sizeof name, "p4_%s.tsv", groups[g].tag);
-            snprintf(title, sizeof title, "%s records, unscaled", groups[g].name);
+            snprintf(name, sizeof name, "p4_%s.tsv", sl_study_groups[g].tag);
+            snprintf(title, sizeof title, "%s records, unscaled", sl_study_groups[g].name);
             rc = write_spectra_tsv(s, name, title, sp);
             sl_study_spectra_free(sp);
-            note(s, "part 4: %s done", groups[g].name);
+            note(s, "part 4: %s done", sl_study_groups[g].name);
         }
         for (size_t i = 0; i < n; i++)
             sl_study_record_free(&rec[i]);
@@ -863,7 +788,7 @@ static int part4(study_ctx *s)
     s->c.p4_ran = 1;
     rc = plot(s, "fig7_groups",
               "set multiplot layout 2,2 title 'Real record groups: best-estimate (thin) and design (thick) sliding spectra'\n"
-              "set logscale y\nset xlabel 'mu'\nset ylabel 'displacement (mm)'\nset key top right font ',9'\n"
+              "set logscale y\nset format y '%g'\nset yrange [0.1:*]\nset xlabel 'mu'\nset ylabel 'displacement (mm)'\nset key top right font ',9'\n"
               "do for [g in 'nfsoil ffsoil nfrock pulse'] {\n"
               "  f = sprintf('p4_%s.tsv', g)\n"
               "  set title (g eq 'nfsoil' ? 'near-field soil' : g eq 'ffsoil' ? 'far-field soil' : "
@@ -968,11 +893,11 @@ static void part5(study_ctx *s)
     if (s->parts & 8) {
         fprintf(md, "| ASCE best estimates are conservative for all four real sets | yes | "
                     "ASCE best below the NLTHA mean at ");
-        for (size_t g = 0; g < N_GROUPS; g++)
+        for (size_t g = 0; g < SL_STUDY_NGROUPS; g++)
             fprintf(md, "%s%.0f %% of mu (%s)", g ? ", " : "", 100 * c->p4_frac_best[g],
-                    groups[g].name);
+                    sl_study_groups[g].name);
         int all = 1;
-        for (size_t g = 0; g < N_GROUPS; g++)
+        for (size_t g = 0; g < SL_STUDY_NGROUPS; g++)
             all &= c->p4_frac_best[g] == 0;
         fprintf(md, " | %s |\n",
                 all ? "agrees"
