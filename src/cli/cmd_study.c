@@ -278,10 +278,11 @@ static int part1(study_ctx *s)
                 peak_e = r.peak_m;
             else
                 dev = fmax(dev, fabs(r.peak_m - peak_e) / peak_e);
-            fprintf(md, "| %s | %s | %.2f | %.2f | %.2f | %.2f | %s%.2f %% | %.1f |\n",
+            char dev_txt[32];
+            snprintf(dev_txt, sizeof dev_txt, m ? "%+.2f %%" : "reference", pct(r.peak_m, peak_e));
+            fprintf(md, "| %s | %s | %.2f | %.2f | %.2f | %.2f | %s | %.1f |\n",
                     two ? "228 + 318" : "228", mname[m], 1e3 * r.peak_m, 1e3 * r.peak_x_m,
-                    1e3 * r.peak_y_m, 1e3 * r.residual_m, m ? "" : "(", m ? pct(r.peak_m, peak_e) : 0.0,
-                    ms);
+                    1e3 * r.peak_y_m, 1e3 * r.residual_m, dev_txt, ms);
             char name[64], title[128];
             snprintf(name, sizeof name, "p1_%s_%s.tsv", two ? "2d" : "1d", mtag[m]);
             snprintf(title, sizeof title, "Rinaldi %s, mu = %.1f, %s", two ? "228 + 318" : "228",
@@ -299,8 +300,7 @@ static int part1(study_ctx *s)
     sl_study_record_free(&rec);
     if (rc)
         return rc;
-    fprintf(md, "\n(The engine rows show its own deviation as 0.) Run times are one run on\n"
-                "this machine, single-threaded; docs/performance.md gives speed against error.\n\n");
+    fprintf(md, "\nRun times are one run on this machine, single-threaded; docs/performance.md gives speed against error.\n\n");
     rc = plot(s, "fig1_rinaldi_228",
               "set title 'Rinaldi 228 alone, mu = 0.3 (study Fig. 3-4)'\n"
               "set xlabel 'time (s)'\nset ylabel 'sliding displacement u (mm)'\n"
@@ -440,11 +440,11 @@ static int part2(study_ctx *s)
             "![u_x histories](" STUDY_FIGDIR "/fig3_elcentro_ux.svg)\n\n"
             "![u_y histories](" STUDY_FIGDIR "/fig4_elcentro_uy.svg)\n\n"
             "![hysteresis loops](" STUDY_FIGDIR "/fig5_elcentro_loops.svg)\n\n"
-            "F/W is the friction force over the weight (= absolute block acceleration / g):\n"
-            "alone, a direction's loop is a rectangle at +-mu; with the other horizontal the\n"
-            "friction is shared between the axes (|F| <= mu N), so each axis's loop stays\n"
-            "inside +-mu and the loops round off; with the vertical, mu N varies and the\n"
-            "plateaus ripple.\n\n");
+            "F/W is the friction force over the weight (= absolute block acceleration / g).\n"
+            "Under one horizontal a loop is a rectangle at +-mu; with both, the friction\n"
+            "vector is shared between the axes (|F| = mu N while sliding), so each axis's\n"
+            "loop stays inside +-mu and its corners round off. With the vertical (data\n"
+            "p2_xyz.tsv) mu N follows g + a_v and the plateaus ripple.\n\n");
     return rc;
 }
 
