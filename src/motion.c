@@ -19,6 +19,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 /* Relative tolerance on sample intervals: the steps of a time column
  * against their mean, an explicit dt against the file's, and the dt of the
@@ -1218,6 +1219,23 @@ static const char *comp_name(const sl_motion *m)
     if (m->label && m->label[0])
         return m->label;
     return "(unnamed)";
+}
+
+int sl_motion_name_is_vertical(const char *path)
+{
+    const char *b = strrchr(path, '/');
+    b = b ? b + 1 : path;
+    size_t n = strlen(b);
+    const char *dot = strrchr(b, '.');
+    if (dot)
+        n = (size_t)(dot - b);
+    static const char *const tails[] = {"UP", "DWN", "DOWN", "VER", "VRT", "-V", "-Z", "_Z", "_V"};
+    for (size_t k = 0; k < sizeof tails / sizeof tails[0]; k++) {
+        size_t m = strlen(tails[k]);
+        if (n >= m && !strncasecmp(b + n - m, tails[k], m))
+            return 1;
+    }
+    return 0;
 }
 
 sl_status sl_set_check(sl_set *set, int truncate, sl_error *err)

@@ -88,6 +88,13 @@ void sl_motion_integrate(const sl_motion *m, double *vel_ms, double *disp_m);
 /* Multiply all samples by s. */
 void sl_motion_scale(sl_motion *m, double s);
 
+/* 1 when a file name (folders stripped) names a vertical component by the
+ * PEER and agency conventions: the component code ends the name, before
+ * the extension, as UP, DWN, DOWN, VER, VRT, -V, -Z, _Z or _V (any case):
+ * "...-UP.AT2", "RinaldiUP.AT2", "...DWN-up.AT2", "...HECVER.AT2". Station
+ * codes inside a name ("H-VC1", "H-Z11") do not count. */
+int sl_motion_name_is_vertical(const char *path);
+
 /* A three-component set: H1 required, H2 and V optional (NULL). Borrowed
  * pointers; after sl_set_check() succeeds all present components share n
  * and dt_s. */

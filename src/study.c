@@ -4,7 +4,6 @@
  */
 #include "study.h"
 
-#include <ctype.h>
 #include <glob.h>
 #include <math.h>
 #include <stdio.h>
@@ -88,29 +87,6 @@ const sl_study_group sl_study_groups[SL_STUDY_NGROUPS] = {
 /* A step within this relative slack of another is the same step. */
 #define STEP_SLACK 1e-9
 
-/* 1 when the file name (any folder part stripped) names a vertical
- * component by the PEER conventions: ...-UP.AT2, ...UP.AT2, ...DWN.AT2,
- * ...VER.AT2, ...DWN-up.AT2. */
-static int is_vertical(const char *path)
-{
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    char up[256];
-    size_t n = 0;
-    for (; base[n] && n + 1 < sizeof up; n++)
-        up[n] = (char)toupper((unsigned char)base[n]);
-    up[n] = '\0';
-    if (n > 4 && strcmp(up + n - 4, ".AT2") == 0)
-        up[n -= 4] = '\0';
-    static const char *const ends[] = {"UP", "DWN", "VER"};
-    for (size_t i = 0; i < sizeof ends / sizeof ends[0]; i++) {
-        size_t k = strlen(ends[i]);
-        if (n >= k && strcmp(up + n - k, ends[i]) == 0)
-            return 1;
-    }
-    return strstr(up, "-UP") != NULL || strstr(up, "DWN-") != NULL;
-}
-
 void sl_study_record_free(sl_study_record *rec)
 {
     if (!rec)
@@ -142,7 +118,7 @@ sl_status sl_study_record_read(const char *dir, sl_study_record *rec, sl_error *
     const char *hor[2] = {NULL, NULL}, *ver = NULL;
     size_t nh = 0, nv = 0;
     for (size_t i = 0; i < g.gl_pathc; i++) {
-        if (is_vertical(g.gl_pathv[i])) {
+        if (sl_motion_name_is_vertical(g.gl_pathv[i])) {
             ver = g.gl_pathv[i];
             nv++;
         } else {
@@ -184,10 +160,7 @@ sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double p
         return sl_error_set(err, SL_EINVAL, NULL, 0, "matching needs three components");
     sl_synth_params p;
     sl_synth_params_default(&p);
-    /* the largest step dt/k <= 0.01 s (SRP 3.7.1: Nyquist >= 50 Hz) */
-    double dt0 = rec->comp[0]->dt_s;
-    double k = ceil(dt0 / SL_SYNTH_MAX_DT_S * (1 - STEP_SLACK));
-    double dt = dt0 / (k < 1 ? 1 : k);
+    double dt = sl_synth_match_dt(rec->comp[0]->dt_s); /* SRP 3.7.1: Nyquist >= 50 Hz */
     sl_motion *rs[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_spectrum *spec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_synth_target tgt[SL_SYNTH_NCOMP];
@@ -195,17 +168,9 @@ sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double p
     sl_status st = SL_OK;
     size_t n = 0;
     for (int c = 0; c < SL_SYNTH_NCOMP && st == SL_OK; c++) {
-        const sl_motion *m = rec->comp[c];
-        if (fabs(m->dt_s - dt) <= STEP_SLACK * dt) {
-            rs[c] = sl_motion_copy(m);
-        } else {
-            size_t n2 = 0;
-            double *a = sl_synth_resample(m->acc_ms2, m->n, m->dt_s, dt, &n2);
-            rs[c] = a ? sl_motion_from_array(a, n2, dt, m->label) : NULL;
-            free(a);
-        }
-        if (!rs[c])
-            st = sl_error_set(err, SL_ENOMEM, m->path, 0, "cannot resample to dt %g s", dt);
+        if (!(rs[c] = sl_synth_resample_motion(rec->comp[c], dt)))
+            st = sl_error_set(err, SL_ENOMEM, rec->comp[c]->path, 0, "cannot resample to dt %g s",
+                              dt);
         else if (rs[c]->n > n)
             n = rs[c]->n;
     }

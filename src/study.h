@@ -61,9 +61,8 @@ typedef struct sl_study_record {
 } sl_study_record;
 
 /* Read the set in folder `dir`: its *.AT2 files, exactly two horizontals and
- * one vertical. A file is vertical when its name (upper case, without
- * ".AT2") ends in UP, DWN or VER, or contains "-UP" or "DWN-"; H1 is the
- * horizontal whose name sorts first. Components of different length are cut
+ * one vertical (sl_motion_name_is_vertical); H1 is the horizontal whose name
+ * sorts first. Components of different length are cut
  * to the shortest (PEER sets sometimes differ by a few samples). Returns
  * SL_OK, or an error naming the folder or file (SL_EIO when the folder
  * cannot be read or does not hold 2 + 1 files, the reader's errors). On

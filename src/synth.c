@@ -1179,6 +1179,35 @@ double *sl_synth_resample(const double *acc_ms2, size_t n, double dt_s, double d
     return out;
 }
 
+double sl_synth_match_dt(double dt_s)
+{
+    /* the slack keeps dt itself when it is SL_SYNTH_MAX_DT_S up to rounding */
+    double k = ceil(dt_s / SL_SYNTH_MAX_DT_S * (1 - 1e-9));
+    return dt_s / (k < 1 ? 1 : k);
+}
+
+sl_motion *sl_synth_resample_motion(const sl_motion *m, double dt_s)
+{
+    if (!m || !(dt_s > 0))
+        return NULL;
+    if (fabs(m->dt_s - dt_s) <= 1e-9 * dt_s)
+        return sl_motion_copy(m);
+    size_t n2 = 0;
+    double *a = sl_synth_resample(m->acc_ms2, m->n, m->dt_s, dt_s, &n2);
+    sl_motion *r = a ? sl_motion_from_array(a, n2, dt_s, m->label) : NULL;
+    free(a);
+    if (r && m->path) {
+        char *p = strdup(m->path);
+        if (!p) {
+            sl_motion_free(r);
+            return NULL;
+        }
+        free(r->path);
+        r->path = p;
+    }
+    return r;
+}
+
 sl_status sl_synth_write_at2(const char *path, const sl_motion *m, const char *title,
                              sl_error *err)
 {

@@ -385,6 +385,16 @@ sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYN
 double *sl_synth_resample(const double *acc_ms2, size_t n, double dt_s, double dt_new_s,
                           size_t *n_new);
 
+/* The step record matching uses for a record sampled at dt_s: the largest
+ * dt_s/k <= SL_SYNTH_MAX_DT_S, k whole (dt_s itself when it is fine enough),
+ * so every record sample stays a sample. */
+double sl_synth_match_dt(double dt_s);
+
+/* m resampled to dt_s by sl_synth_resample (a plain copy when m is already
+ * at dt_s within 1e-9 relative), keeping its path and label. Returns NULL on
+ * bad input or allocation failure; free with sl_motion_free. */
+sl_motion *sl_synth_resample_motion(const sl_motion *m, double dt_s);
+
 /* Write a motion as a PEER-style AT2 file readable by sl_motion_read():
  * line 1 "SEISLIDE SYNTHETIC MOTION", line 2 the title, line 3
  * "ACCELERATION TIME SERIES IN UNITS OF G", line 4 "NPTS= n, DT= dt SEC",

@@ -775,27 +775,6 @@ static const char *tsv_get(const tsv *t, size_t row, long col)
     return t->f[row * t->ncol + (size_t)col];
 }
 
-/* Vertical components by file name: the component code ends the name
- * (before ".AT2"): "...-UP", "RinaldiUP", "...DWN", "...DWN-up",
- * "...HECVER", "..._Z". Station codes such as "H-VC1" or "H-Z11" are not
- * components, so "-V"/"-Z" count only at the very end. */
-static int name_is_vertical(const char *path)
-{
-    const char *b = strrchr(path, '/');
-    b = b ? b + 1 : path;
-    size_t n = strlen(b);
-    const char *dot = strrchr(b, '.');
-    if (dot)
-        n = (size_t)(dot - b);
-    static const char *const tails[] = {"UP", "DWN", "DOWN", "VER", "VRT", "-V", "-Z", "_Z", "_V"};
-    for (size_t k = 0; k < sizeof tails / sizeof tails[0]; k++) {
-        size_t m = strlen(tails[k]);
-        if (n >= m && !strncasecmp(b + n - m, tails[k], m))
-            return 1;
-    }
-    return 0;
-}
-
 /* The MANIFEST's component column says vertical. */
 static int component_is_vertical(const char *c)
 {
@@ -960,7 +939,7 @@ static void check_records(const char *fmt_name, sl_unit units, size_t min_files)
         double dt = strtod(tsv_get(&man, r, c_dt), NULL);
         CHECK(m->n == (size_t)npts, "%s: n %zu, MANIFEST npts %ld", local, m->n, npts);
         CHECK_CLOSE(m->dt_s, dt, 0, TOL_DT_REL);
-        int vert = name_is_vertical(local);
+        int vert = sl_motion_name_is_vertical(local);
         CHECK(vert == component_is_vertical(tsv_get(&man, r, c_comp)),
               "%s: name says %s, MANIFEST component '%s'", local,
               vert ? "vertical" : "horizontal", tsv_get(&man, r, c_comp));

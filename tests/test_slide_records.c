@@ -16,46 +16,11 @@
 
 #include "harness.h"
 #include "slide.h"
+#include "study.h"
 
-typedef struct rec3 {
-    const char *dir, *h1, *h2, *v;
-} rec3;
-
-static const rec3 records[] = {
-    {"RSN1063_NORTHR_RRS", "Rinaldi228.AT2", "Rinaldi318.AT2", "RinaldiUP.AT2"},
-    {"RSN6_IMPVALL.I_I-ELC", "RSN6_IMPVALL.I_I-ELC180.AT2", "RSN6_IMPVALL.I_I-ELC270-hor2.AT2",
-     "RSN6_IMPVALL.I_I-ELC-UP.AT2"},
-    {"RSN77_SFERN_PUL", NULL, NULL, NULL}, /* names found at run time */
-};
-
-/* Find the three AT2 files of a directory: vertical by name. */
-static int find3(const char *dir, char *h1, char *h2, char *v, size_t n)
-{
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "ls '%s' 2>/dev/null", dir);
-    FILE *p = popen(cmd, "r");
-    if (!p)
-        return -1;
-    char line[512];
-    int nh = 0, nv = 0;
-    while (fgets(line, sizeof line, p)) {
-        line[strcspn(line, "\r\n")] = 0;
-        if (!strstr(line, ".AT2"))
-            continue;
-        if (strstr(line, "UP") || strstr(line, "-V") || strstr(line, "DWN")) {
-            snprintf(v, n, "%s/%s", dir, line);
-            nv++;
-        } else if (nh == 0) {
-            snprintf(h1, n, "%s/%s", dir, line);
-            nh++;
-        } else if (nh == 1) {
-            snprintf(h2, n, "%s/%s", dir, line);
-            nh++;
-        }
-    }
-    pclose(p);
-    return (nh == 2 && nv == 1) ? 0 : -1;
-}
+/* Three-component records with sliding in every friction range tested. */
+static const char *const records[] = {"RSN1063_NORTHR_RRS", "RSN6_IMPVALL.I_I-ELC",
+                                      "RSN77_SFERN_PUL"};
 
 static void test_2d_convergence_records(void)
 {
@@ -71,23 +36,15 @@ static void test_2d_convergence_records(void)
     double worst_at8 = 0, order_sum = 0;
     int order_n = 0;
     for (size_t r = 0; r < sizeof records / sizeof records[0]; r++) {
-        char dir[600], p1[1200], p2[1200], pv[1200];
-        snprintf(dir, sizeof dir, "%s/records/%s", shared, records[r].dir);
-        if (records[r].h1) {
-            snprintf(p1, sizeof p1, "%s/%s", dir, records[r].h1);
-            snprintf(p2, sizeof p2, "%s/%s", dir, records[r].h2);
-            snprintf(pv, sizeof pv, "%s/%s", dir, records[r].v);
-        } else if (find3(dir, p1, p2, pv, sizeof p1) != 0) {
-            CHECK(0, "cannot find three components in %s", dir);
-            continue;
-        }
-        sl_read_opts ro = {SL_FORMAT_AUTO, SL_UNIT_NONE, 0};
+        char dir[600];
+        snprintf(dir, sizeof dir, "%s/records/%s", shared, records[r]);
+        sl_study_record rec;
         sl_error e;
-        sl_motion *m1 = sl_motion_read(p1, &ro, &e), *m2 = sl_motion_read(p2, &ro, &e),
-                  *mv = sl_motion_read(pv, &ro, &e);
-        CHECK(m1 && m2 && mv, "read %s: %s", records[r].dir, e.msg);
-        sl_set set = {m1, m2, mv};
-        if (m1 && m2 && mv && sl_set_check(&set, 1, &e) == SL_OK) {
+        sl_error_clear(&e);
+        sl_status rs = sl_study_record_read(dir, &rec, &e);
+        CHECK(rs == SL_OK, "read %s: %s", records[r], e.msg);
+        sl_set set = sl_study_record_set(&rec);
+        if (rs == SL_OK) {
             tested++;
             sl_slide_opts o;
             sl_slide_opts_default(&o);
@@ -116,12 +73,10 @@ static void test_2d_convergence_records(void)
                     worst_at8 = fmax(worst_at8, worst);
                 if (verbose)
                     fprintf(stderr, "  %-22s substeps %3u  worst rel. error of peak %.2e\n",
-                            records[r].dir, subs[q], worst);
+                            records[r], subs[q], worst);
             }
         }
-        sl_motion_free(m1);
-        sl_motion_free(m2);
-        sl_motion_free(mv);
+        sl_study_record_free(&rec);
     }
     CHECK(tested == 3, "tested %d of 3 records", tested);
     double order = order_n ? order_sum / order_n : 0;

@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "spectrum.h"
 
@@ -224,4 +225,11 @@ int cli_grid_make(const char *cmd, cli_grid *g, double **f, size_t *nf)
         return CLI_EXIT_ERROR;
     }
     return CLI_EXIT_OK;
+}
+
+double cli_now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }

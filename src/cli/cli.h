@@ -48,6 +48,9 @@ int cli_usage(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
+/* Monotonic wall-clock time, s (for the timings commands report). */
+double cli_now_s(void);
+
 /* Strict parse of a finite double (whole string). Returns 0 on success. */
 int cli_parse_double(const char *s, double *out);
 /* Parse option `opt` of command `cmd` as a finite number > 0 (in `unit`,

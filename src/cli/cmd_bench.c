@@ -34,6 +34,7 @@
 #include "cli.h"
 #include "motion.h"
 #include "slide.h"
+#include "study.h"
 #include "analysis.h"
 #include "floor.h"
 #include "spectrum.h"
@@ -63,13 +64,6 @@ static const char bench_help[] =
     "converged Coulomb solution (engine at 1024 sub-steps, checked against 2048).\n"
     "Prints the tables and writes them to FILE (default docs/performance.md).\n"
     "--quick skips the slowest reference-model settings.\n";
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Output to stdout and to the report file at once. */
 static FILE *report;
@@ -121,32 +115,20 @@ typedef struct bench_set {
 
 static int load_sets(const char *shared, bench_set *sets, int max)
 {
-    static const char *const names[][4] = {
-        {"RSN1063_NORTHR_RRS", "Rinaldi228.AT2", "Rinaldi318.AT2", "RinaldiUP.AT2"},
-        {"RSN6_IMPVALL.I_I-ELC", "RSN6_IMPVALL.I_I-ELC180.AT2",
-         "RSN6_IMPVALL.I_I-ELC270-hor2.AT2", "RSN6_IMPVALL.I_I-ELC-UP.AT2"},
-        {"RSN77_SFERN_PUL", "RSN77_SFERN_PUL164.AT2", "RSN77_SFERN_PUL254-hor2.AT2",
-         "RSN77_SFERN_PULDWN-up.AT2"},
-    };
+    static const char *const dirs[] = {"RSN1063_NORTHR_RRS", "RSN6_IMPVALL.I_I-ELC",
+                                       "RSN77_SFERN_PUL"};
     int n = 0;
     for (int r = 0; r < 3 && n < max; r++) {
-        sl_read_opts ro = {SL_FORMAT_AUTO, SL_UNIT_NONE, 0};
+        char dir[2048];
+        snprintf(dir, sizeof dir, "%s/records/%s", shared, dirs[r]);
+        sl_study_record rec;
         sl_error err;
-        int ok = 1;
-        for (int c = 0; c < 3; c++) {
-            char p[2048];
-            snprintf(p, sizeof p, "%s/records/%s/%s", shared, names[r][0], names[r][c + 1]);
-            sets[n].m[c] = sl_motion_read(p, &ro, &err);
-            ok &= sets[n].m[c] != NULL;
-        }
-        sl_set s = {sets[n].m[0], sets[n].m[1], sets[n].m[2]};
-        if (ok && sl_set_check(&s, 1, &err) == SL_OK) {
-            snprintf(sets[n].name, sizeof sets[n].name, "%s", names[r][0]);
-            n++;
-        } else {
-            for (int c = 0; c < 3; c++)
-                sl_motion_free(sets[n].m[c]);
-        }
+        if (sl_study_record_read(dir, &rec, &err) != SL_OK)
+            continue;
+        for (int c = 0; c < 3; c++)
+            sets[n].m[c] = rec.comp[c]; /* ownership moves to the bench set */
+        snprintf(sets[n].name, sizeof sets[n].name, "%s", dirs[r]);
+        n++;
     }
     if (n == 0) {
         for (int r = 0; r < 3 && n < max; r++) {
@@ -192,12 +174,12 @@ static void time_setting(setting *st, bench_set *sets, int ns, sl_slide_result r
         unsigned long reps = st->o.model == SL_MODEL_EXACT ? repeat : 1;
         for (unsigned long r = 0; r < reps; r++) {
             sl_error e;
-            double t0 = now_s();
+            double t0 = cli_now_s();
             if (sl_slide_run(&set, model_mu, N_MODEL_MU, &st->o, res, &e) != SL_OK) {
                 st->failed = 1;
                 return;
             }
-            best = fmin(best, now_s() - t0);
+            best = fmin(best, cli_now_s() - t0);
         }
         total += best;
         errors(res, ref[s], N_MODEL_MU, &st->rel, &st->abs_m);
@@ -232,7 +214,7 @@ static double limit_time_per_update(void)
     const double *restrict rmu = mu;
     double best = INFINITY;
     for (int rep = 0; rep < 5; rep++) {
-        double t0 = now_s();
+        double t0 = cli_now_s();
         for (int it = 0; it < ITERS; it++) {
             const double hax = 1e-4 * (it & 7), hay = -1e-4 * (it & 3);
             for (int k = 0; k < M; k++) {
@@ -253,7 +235,7 @@ static double limit_time_per_update(void)
                 rvy[k] = ny;
             }
         }
-        best = fmin(best, (now_s() - t0) / ((double)M * ITERS));
+        best = fmin(best, (cli_now_s() - t0) / ((double)M * ITERS));
     }
     double sink = 0;
     for (int k = 0; k < M; k++)
@@ -340,9 +322,9 @@ int cmd_bench(int argc, char **argv)
         sl_slide_opts_default(&o);
         double best = INFINITY;
         for (unsigned long r = 0; r < repeat; r++) {
-            double t0 = now_s();
+            double t0 = cli_now_s();
             sl_slide_run(&set1, mu, nm, &o, res, NULL);
-            best = fmin(best, now_s() - t0);
+            best = fmin(best, cli_now_s() - t0);
         }
         out("| %s | 1-D exact (H1) | %.2f | %.1f | exact | exact |\n", sets[s].name,
             1e6 * best / (double)nm, (double)n * (double)nm / best / 1e6);
@@ -356,9 +338,9 @@ int cmd_bench(int argc, char **argv)
             o.substeps = sub;
             best = INFINITY;
             for (unsigned long r = 0; r < repeat; r++) {
-                double t0 = now_s();
+                double t0 = cli_now_s();
                 sl_slide_run(&set2, mu, nm, &o, res, NULL);
-                best = fmin(best, now_s() - t0);
+                best = fmin(best, cli_now_s() - t0);
             }
             double rel = 0, abs_m = 0;
             errors(res, ref, nm, &rel, &abs_m);
@@ -497,10 +479,10 @@ int cmd_bench(int argc, char **argv)
                 so.steps_per_period = spp[q];
                 double best = INFINITY;
                 for (unsigned long r = 0; r < repeat; r++) {
-                    double t0 = now_s();
+                    double t0 = cli_now_s();
                     sl_spectrum_compute_opts(m->acc_ms2, m->n, m->dt_s, f, nf, 0.05, &so, p, NULL,
                                              NULL, NULL);
-                    best = fmin(best, now_s() - t0);
+                    best = fmin(best, cli_now_s() - t0);
                 }
                 double e = 0;
                 for (size_t j = 0; j < nf; j++)
@@ -535,9 +517,9 @@ int cmd_bench(int argc, char **argv)
             double tsum = 0, tmax = 0, worst_lo = INFINITY, worst_hi = 0, worst_corr = 0;
             for (int q = 0; q < nseeds; q++) {
                 sl_synth_set set;
-                double t0 = now_s();
+                double t0 = cli_now_s();
                 sl_status sst = sl_synth_make_set(sy, tgt, 1000u + (uint64_t)q, 0, &set, NULL);
-                double t = now_s() - t0;
+                double t = cli_now_s() - t0;
                 tsum += t;
                 tmax = fmax(tmax, t);
                 passed += (sst == SL_OK && set.pass);
@@ -618,9 +600,9 @@ int cmd_bench(int argc, char **argv)
             o.substeps = 16;
             double best = INFINITY;
             for (unsigned long r = 0; r < repeat; r++) {
-                double t0 = now_s();
+                double t0 = cli_now_s();
                 sl_slide_run(&set2, mu, nm, &o, res, NULL);
-                best = fmin(best, now_s() - t0);
+                best = fmin(best, cli_now_s() - t0);
             }
             double per = best / ((double)sets[s].m[0]->n * 16.0 * (double)nm);
             /* sliding updates: time spent sliding within the record / h */

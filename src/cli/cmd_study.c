@@ -11,7 +11,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "atomic.h"
@@ -101,13 +100,6 @@ static void note(const study_ctx *s, const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     fputc('\n', stderr);
     va_end(ap);
-}
-
-static double wall_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* ------------------------------------------------------------------ */
@@ -267,13 +259,13 @@ static int part1(study_ctx *s)
             so.plastic_uy_m = STUDY_SMOOTH_UY_M;
             sl_slide_result r;
             sl_history *h = NULL;
-            double t0 = wall_s();
+            double t0 = cli_now_s();
             if (sl_slide_history(&set, STUDY_P1_MU, &so, &r, &h, &s->err)) {
                 cli_print_error(&s->err);
                 rc = -1;
                 break;
             }
-            double ms = 1e3 * (wall_s() - t0);
+            double ms = 1e3 * (cli_now_s() - t0);
             if (m == 0)
                 peak_e = r.peak_m;
             else
@@ -615,7 +607,7 @@ static int part3(study_ctx *s)
                 "| PGA (g) | crossover mu g/PGA (study 0.128-0.134) | all ranges with ASCE design < NLTHA design | "
                 "3.0 x ASCE best < NLTHA design up to | NLTHA design at 0.1 (mm) | ASCE design at 0.1 (mm) | cap (mm) |\n"
                 "|---|---|---|---|---|---|---|\n");
-    const size_t nx = 191; /* 0.05 .. 1.00 step 0.005 */
+    enum { NX = 191 }; /* mu g/PGA = 0.05 .. 1.00 step 0.005 */
     for (size_t l = 0; l < N_LEVELS && !rc; l++) {
         double pga = levels_g[l] * SL_G;
         sl_motion *own[SL_STUDY_NGROUND][SL_SYNTH_NCOMP];
@@ -631,10 +623,10 @@ static int part3(study_ctx *s)
             }
         for (size_t i = 0; i < SL_STUDY_NGROUND; i++)
             sets[i] = (sl_set){own[i][0], own[i][1], own[i][2]};
-        double mu[191];
-        for (size_t k = 0; k < nx; k++)
+        double mu[NX];
+        for (size_t k = 0; k < NX; k++)
             mu[k] = (0.05 + 0.005 * (double)k) * pga / SL_G;
-        sl_study_spectra *sp = rc ? NULL : sl_study_spectra_compute(sets, SL_STUDY_NGROUND, mu, nx, NULL, &s->err);
+        sl_study_spectra *sp = rc ? NULL : sl_study_spectra_compute(sets, SL_STUDY_NGROUND, mu, NX, NULL, &s->err);
         if (!sp) {
             if (!rc)
                 cli_print_error(&s->err);
@@ -721,8 +713,9 @@ static int part4(study_ctx *s)
     fprintf(md, "\n| group | sets | mean PGA (g) | ASCE best < NLTHA mean at | "
                 "ASCE design < NLTHA design for mu g/PGA in | crossover mu g/PGA |\n"
                 "|---|---|---|---|---|---|\n");
-    const size_t nmu = 76;
-    double mu[76];
+    enum { NMU = 76 }; /* mu = 0.05 .. 0.80 step 0.01 */
+    const size_t nmu = NMU;
+    double mu[NMU];
     for (size_t k = 0; k < nmu; k++)
         mu[k] = 0.05 + 0.01 * (double)k;
     for (size_t g = 0; g < SL_STUDY_NGROUPS && !rc; g++) {
@@ -1000,7 +993,7 @@ int cmd_study(int argc, char **argv)
             "figure are in `docs/" STUDY_FIGDIR "/`. Regression tests on the same\n"
             "computations: tests/test_study.c.\n\n");
     int rc = 0;
-    double t0 = wall_s();
+    double t0 = cli_now_s();
     if (!rc && (s.parts & 1)) {
         note(&s, "part 1: model validation");
         rc = part1(&s);
@@ -1019,7 +1012,7 @@ int cmd_study(int argc, char **argv)
         fprintf(s.md, "Figures were not drawn in this run (--no-plots).\n\n");
     if (!rc)
         fprintf(s.md, "---\nseislide %s; `seislide study` took %.0f s on this machine.\n",
-                SEISLIDE_VERSION, wall_s() - t0);
+                SEISLIDE_VERSION, cli_now_s() - t0);
     fclose(s.md);
     if (!rc)
         rc = write_text(&s, s.out, "validation.md", s.md_buf, s.md_len);

@@ -400,26 +400,17 @@ static int read_records(const synth_run *o, sl_motion *rec[SL_SYNTH_NCOMP], doub
             cli_print_error(&err);
             return CLI_EXIT_ERROR;
         }
-        if (i == 0 && !(dt > 0)) {
-            /* the record's own step, divided by a whole number until it is
-             * at most SL_SYNTH_MAX_DT_S */
-            double m = ceil(rec[0]->dt_s / SL_SYNTH_MAX_DT_S * (1 - SYNTH_STEP_SLACK));
-            dt = rec[0]->dt_s / (m < 1 ? 1 : m);
-        }
+        if (i == 0 && !(dt > 0))
+            dt = sl_synth_match_dt(rec[0]->dt_s);
     }
     for (size_t i = 0; i < o->nmatch; i++) {
         if (fabs(rec[i]->dt_s - dt) <= SYNTH_STEP_SLACK * dt)
             continue;
-        size_t n2;
-        double *a = sl_synth_resample(rec[i]->acc_ms2, rec[i]->n, rec[i]->dt_s, dt, &n2);
-        sl_motion *r2 = a ? sl_motion_from_array(a, n2, dt, rec[i]->label) : NULL;
-        free(a);
+        sl_motion *r2 = sl_synth_resample_motion(rec[i], dt);
         if (!r2) {
             cli_msg("%s: cannot resample to dt %g s", o->match[i], dt);
             return CLI_EXIT_ERROR;
         }
-        free(r2->path);
-        r2->path = strdup(rec[i]->path ? rec[i]->path : o->match[i]);
         sl_motion_free(rec[i]);
         rec[i] = r2;
         if (!o->quiet)
