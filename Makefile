@@ -12,7 +12,7 @@ ALL_CFLAGS  = $(WARN) $(WERROR) -fopenmp -D_XOPEN_SOURCE=700 -Isrc $(PKG_CFLAGS)
 ALL_LDFLAGS = -fopenmp $(LDFLAGS)
 LIBS_ALL    = $(PKG_LIBS) -lm
 
-LIB_SRC  := $(wildcard src/*.c)
+LIB_SRC  := $(filter-out src/cli/%,$(wildcard src/*.c src/*/*.c))
 CLI_SRC  := $(wildcard src/cli/*.c)
 TEST_SRC := $(wildcard tests/test_*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
@@ -24,7 +24,7 @@ PROG     ?= seislide
 .PHONY: all test bench study install clean asan check-tools
 all: $(PROG) $(TEST_BIN)
 
-$(BUILD)/%.o: %.c $(wildcard src/*.h src/cli/*.h tests/*.h)
+$(BUILD)/%.o: %.c $(wildcard src/*.h src/*/*.h tests/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 

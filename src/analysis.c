@@ -8,10 +8,10 @@
 #include <time.h>
 #include <zlib.h>
 
-#include "asce.h"
-#include "slide.h"
-#include "spectrum.h"
-#include "units.h"
+#include "method/asce.h"
+#include "slide/slide.h"
+#include "signal/spectrum.h"
+#include "core/units.h"
 
 /* Damping of the ASCE/SEI 43-05 spectra. */
 #define ASCE_DAMPING 0.10

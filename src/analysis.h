@@ -21,10 +21,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "design.h"
-#include "floor.h"
-#include "status.h"
-#include "synth.h"
+#include "method/design.h"
+#include "io/floor.h"
+#include "core/status.h"
+#include "synth/synth.h"
 
 /* Default number of motion sets per floor (ASCE 43-05 needs at least 5). */
 #define SL_ANALYSIS_DEFAULT_SETS 7

@@ -8,7 +8,7 @@
 
 #include <stddef.h>
 
-#include "motion.h"
+#include "io/motion.h"
 
 /* A motion over a caller-owned array (no file, nothing to free). */
 static inline sl_motion oracle_motion(double *a, size_t n, double dt)

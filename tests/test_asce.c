@@ -1,10 +1,10 @@
 /* test_asce.c - ASCE/SEI 43-05 A.1 steps on RG 1.60 spectra where f_es is
  * solvable by hand (power-law segments), every edge case, and Newmark's
  * estimates (REFERENCE.md 2-3). */
-#include "asce.h"
+#include "method/asce.h"
 #include "harness.h"
-#include "rg160.h"
-#include "units.h"
+#include "signal/rg160.h"
+#include "core/units.h"
 
 #define PI 3.14159265358979323846
 #define IN_M 0.0254

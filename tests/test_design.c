@@ -2,9 +2,9 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "design.h"
+#include "method/design.h"
 #include "harness.h"
-#include "units.h"
+#include "core/units.h"
 
 /* Two sets, five mu. Hand values: means, sample sd, the 3.0 / 2.0 factors,
  * the cap 1.5 x mean PGD, and a crossover where the two design curves, each

@@ -4,9 +4,9 @@
  * repository root (make test does). */
 #include <dirent.h>
 
-#include "floor.h"
+#include "io/floor.h"
 #include "harness.h"
-#include "units.h"
+#include "core/units.h"
 
 #define FLOORS "tests/data/floors/"
 

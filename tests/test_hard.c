@@ -10,8 +10,8 @@
 
 #include "harness.h"
 #include "oracle.h"
-#include "refmodel.h"
-#include "slide.h"
+#include "slide/refmodel.h"
+#include "slide/slide.h"
 
 static const double g = SL_G;
 

@@ -3,7 +3,7 @@
  * and their derived quantities against closed forms; every .AT2 of the
  * shared record collection against records/MANIFEST.tsv and SUMMARY.tsv.
  */
-#include "motion.h"
+#include "io/motion.h"
 
 #include "harness.h"
 

@@ -15,9 +15,9 @@
 #include <string.h>
 
 #include "harness.h"
-#include "refmodel.h"
-#include "slide.h"
-#include "units.h"
+#include "slide/refmodel.h"
+#include "slide/slide.h"
+#include "core/units.h"
 
 #define G SL_G
 

@@ -2,8 +2,8 @@
  * every tabulated damping, the REFERENCE.md 3 checkpoints, the shape rules
  * and the damping interpolation. */
 #include "harness.h"
-#include "rg160.h"
-#include "units.h"
+#include "signal/rg160.h"
+#include "core/units.h"
 
 #define PI 3.14159265358979323846
 #define IN_M 0.0254

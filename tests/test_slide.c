@@ -8,7 +8,7 @@
 
 #include "harness.h"
 #include "oracle.h"
-#include "slide.h"
+#include "slide/slide.h"
 
 static const double g = SL_G;
 

@@ -15,8 +15,8 @@
 #include <string.h>
 
 #include "harness.h"
-#include "slide.h"
-#include "study.h"
+#include "slide/slide.h"
+#include "study/study.h"
 
 /* Three-component records with sliding in every friction range tested. */
 static const char *const records[] = {"RSN1063_NORTHR_RRS", "RSN6_IMPVALL.I_I-ELC",

@@ -4,8 +4,8 @@
 #include <time.h>
 
 #include "harness.h"
-#include "motion.h"
-#include "spectrum.h"
+#include "io/motion.h"
+#include "signal/spectrum.h"
 
 #define PI 3.14159265358979323846
 

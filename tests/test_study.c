@@ -14,8 +14,8 @@
 #include <unistd.h>
 
 #include "harness.h"
-#include "study.h"
-#include "units.h"
+#include "study/study.h"
+#include "core/units.h"
 
 /* A folder under TMPDIR with AT2 files of the given names and lengths. */
 static const char *make_set_dir(const char *tag, const char *const *names, const size_t *n,

@@ -13,11 +13,11 @@
 #include <time.h>
 
 #include "harness.h"
-#include "floor.h"
-#include "motion.h"
-#include "rg160.h"
-#include "spectrum.h"
-#include "synth.h"
+#include "io/floor.h"
+#include "io/motion.h"
+#include "signal/rg160.h"
+#include "signal/spectrum.h"
+#include "synth/synth.h"
 
 /* The standard motion of the issue: 20 s at 200 samples/s. */
 #define T_N 4001

@@ -8,7 +8,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "spectrum.h"
+#include "signal/spectrum.h"
 
 void cli_print_error(const sl_error *err)
 {

@@ -11,8 +11,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "status.h"
-#include "units.h"
+#include "core/status.h"
+#include "core/units.h"
 
 #define CLI_EXIT_OK 0
 #define CLI_EXIT_ERROR 1

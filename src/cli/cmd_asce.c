@@ -5,12 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "asce.h"
+#include "method/asce.h"
 #include "cli.h"
-#include "floor.h"
-#include "motion.h"
-#include "rg160.h"
-#include "spectrum.h"
+#include "io/floor.h"
+#include "io/motion.h"
+#include "signal/rg160.h"
+#include "signal/spectrum.h"
 
 static const char asce_help[] =
     "usage: seislide asce (--rg160 PGA | --floor FILE | --h1 FILE --h2 FILE --v FILE)\n"

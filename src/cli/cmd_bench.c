@@ -30,15 +30,15 @@
 #include <string.h>
 #include <time.h>
 
-#include "atomic.h"
+#include "io/atomic.h"
 #include "cli.h"
-#include "motion.h"
-#include "slide.h"
-#include "study.h"
+#include "io/motion.h"
+#include "slide/slide.h"
+#include "study/study.h"
 #include "analysis.h"
-#include "floor.h"
-#include "spectrum.h"
-#include "synth.h"
+#include "io/floor.h"
+#include "signal/spectrum.h"
+#include "synth/synth.h"
 
 #include <omp.h>
 

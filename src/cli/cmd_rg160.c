@@ -5,8 +5,8 @@
 #include <string.h>
 
 #include "cli.h"
-#include "rg160.h"
-#include "spectrum.h"
+#include "signal/rg160.h"
+#include "signal/spectrum.h"
 
 /* Default damping ratio when --damping is not given. */
 #define RG160_DEFAULT_DAMPING 0.05

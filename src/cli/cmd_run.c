@@ -12,10 +12,10 @@
 #include <zlib.h>
 
 #include "analysis.h"
-#include "asce.h"
+#include "method/asce.h"
 #include "cli.h"
-#include "floor.h"
-#include "report.h"
+#include "io/floor.h"
+#include "report/report.h"
 
 #define RUN_DEFAULT_DIR "floors"
 #define RUN_DEFAULT_OUT "output"

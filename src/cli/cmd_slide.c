@@ -4,10 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
+#include "io/atomic.h"
 #include "cli.h"
-#include "motion.h"
-#include "slide.h"
+#include "io/motion.h"
+#include "slide/slide.h"
 
 static const char slide_help[] =
     "usage: seislide slide --h1 FILE [--h2 FILE] [--v FILE] [--units g|m/s2|cm/s2]\n"

@@ -5,8 +5,8 @@
 #include <string.h>
 
 #include "cli.h"
-#include "motion.h"
-#include "spectrum.h"
+#include "io/motion.h"
+#include "signal/spectrum.h"
 
 /* Default damping ratio when --damping is not given. */
 #define SPECTRUM_DEFAULT_DAMPING 0.05

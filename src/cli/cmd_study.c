@@ -13,9 +13,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "atomic.h"
+#include "io/atomic.h"
 #include "cli.h"
-#include "study.h"
+#include "study/study.h"
 
 #define STUDY_DEFAULT_OUT "docs"
 #define STUDY_FIGDIR "validation"

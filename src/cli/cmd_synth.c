@@ -10,12 +10,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "atomic.h"
+#include "io/atomic.h"
 #include "cli.h"
-#include "floor.h"
-#include "motion.h"
-#include "rg160.h"
-#include "synth.h"
+#include "io/floor.h"
+#include "io/motion.h"
+#include "signal/rg160.h"
+#include "synth/synth.h"
 
 /* Most records --match takes (H1, H2, V). */
 #define SYNTH_MAX_RECORDS SL_SYNTH_NCOMP

@@ -1,10 +1,10 @@
 /* rg160.c - Regulatory Guide 1.60 design spectra (see rg160.h). */
-#include "rg160.h"
+#include "signal/rg160.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "spectrum.h"
+#include "signal/spectrum.h"
 
 /* pi (math.h's M_PI is not in C11). */
 #define RG160_PI 3.14159265358979323846

@@ -26,8 +26,8 @@
 
 #include <stddef.h>
 
-#include "status.h"
-#include "units.h"
+#include "core/status.h"
+#include "core/units.h"
 
 typedef enum sl_format {
     SL_FORMAT_AUTO = 0, /* decide from the content (AT2 header, CSV header, columns) */

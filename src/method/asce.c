@@ -1,12 +1,12 @@
 /* asce.c - ASCE/SEI 43-05 approximate sliding displacement and Newmark's
  * estimates (see asce.h). */
-#include "asce.h"
+#include "method/asce.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "units.h"
+#include "core/units.h"
 
 /* pi (math.h's M_PI is not in C11). */
 #define ASCE_PI 3.14159265358979323846

@@ -2,7 +2,7 @@
  * study.c - recorded sets, RG 1.60 matching and group sliding spectra for
  * the study reproduction (study.h, docs/validation.md).
  */
-#include "study.h"
+#include "study/study.h"
 
 #include <glob.h>
 #include <math.h>
@@ -10,9 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "asce.h"
-#include "rg160.h"
-#include "spectrum.h"
+#include "method/asce.h"
+#include "signal/rg160.h"
+#include "signal/spectrum.h"
 
 /* ------------------------------------------------------------------ */
 /* The record sets of the study                                        */

@@ -1,5 +1,5 @@
 /* atomic.c - temporary file + rename, see atomic.h. */
-#include "atomic.h"
+#include "io/atomic.h"
 
 #include <errno.h>
 #include <stdlib.h>

@@ -84,10 +84,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "floor.h"
-#include "motion.h"
-#include "spectrum.h"
-#include "status.h"
+#include "io/floor.h"
+#include "io/motion.h"
+#include "signal/spectrum.h"
+#include "core/status.h"
 
 /* ---- Defaults of the acceptance checks (SRP 3.7.1; REFERENCE.md 5) ---- */
 #define SL_SYNTH_TOL_BELOW 0.10      /* no point more than 10 % below the target */

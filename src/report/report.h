@@ -28,8 +28,8 @@
 #include <stddef.h>
 #include <time.h>
 
-#include "design.h"
-#include "status.h"
+#include "method/design.h"
+#include "core/status.h"
 
 typedef struct sl_report_floor {
     const char *name;        /* floor name (from its file) */

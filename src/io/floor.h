@@ -41,9 +41,9 @@
 
 #include <stddef.h>
 
-#include "spectrum.h"
-#include "status.h"
-#include "units.h"
+#include "signal/spectrum.h"
+#include "core/status.h"
+#include "core/units.h"
 
 /* Fewest frequencies a spectrum may have. */
 #define SL_FLOOR_MIN_POINTS 2

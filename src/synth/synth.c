@@ -1,6 +1,6 @@
 /* synth.c - spectrum-compatible motions by iterative Fourier-amplitude
  * correction (see synth.h and docs/synthesis.md). */
-#include "synth.h"
+#include "synth/synth.h"
 
 #include <fftw3.h>
 #include <gsl/gsl_rng.h>
@@ -8,9 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
-#include "rg160.h"
-#include "units.h"
+#include "io/atomic.h"
+#include "signal/rg160.h"
+#include "core/units.h"
 
 #define SYNTH_PI 3.14159265358979323846
 /* Smallest motion handled, samples. */

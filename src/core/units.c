@@ -1,5 +1,5 @@
 /* units.c - unit names and conversion factors to SI. */
-#include "units.h"
+#include "core/units.h"
 
 #include <string.h>
 #include <strings.h>

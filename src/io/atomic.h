@@ -11,7 +11,7 @@
 
 #include <stdio.h>
 
-#include "status.h"
+#include "core/status.h"
 
 typedef struct sl_atomic sl_atomic;
 

@@ -9,7 +9,7 @@
  * the file, the 1-based line of the offending token and the token quoted.
  * See docs/formats.md, section "Ground motions".
  */
-#include "motion.h"
+#include "io/motion.h"
 
 #include <ctype.h>
 #include <errno.h>

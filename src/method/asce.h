@@ -39,8 +39,8 @@
 
 #include <stddef.h>
 
-#include "spectrum.h"
-#include "status.h"
+#include "signal/spectrum.h"
+#include "core/status.h"
 
 /* The constants of the method (ASCE/SEI 43-05 A.1 and the study). */
 #define SL_ASCE_DAMPING 0.10       /* damping of the spectra used */

@@ -25,11 +25,11 @@
 
 #include <stddef.h>
 
-#include "design.h"
-#include "motion.h"
-#include "slide.h"
-#include "status.h"
-#include "synth.h"
+#include "method/design.h"
+#include "io/motion.h"
+#include "slide/slide.h"
+#include "core/status.h"
+#include "synth/synth.h"
 
 /* A record set of the study: its folder under the records folder, what it
  * stands for, and why it is there (a stand-in's reason, or the basis of its

@@ -34,8 +34,8 @@
 
 #include <stddef.h>
 
-#include "status.h"
-#include "units.h"
+#include "core/status.h"
+#include "core/units.h"
 
 typedef enum sl_rg160_dir {
     SL_RG160_HORIZONTAL = 0,

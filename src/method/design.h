@@ -30,7 +30,7 @@
 
 #include <stddef.h>
 
-#include "status.h"
+#include "core/status.h"
 
 /* ASCE/SEI 43-05 factor on the mean of the nonlinear analyses. */
 #define SL_NLTHA_FS 3.0

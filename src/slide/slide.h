@@ -36,8 +36,8 @@
 
 #include <stddef.h>
 
-#include "motion.h"
-#include "status.h"
+#include "io/motion.h"
+#include "core/status.h"
 
 typedef enum sl_model {
     SL_MODEL_EXACT = 0, /* the engine: exact 1-D, projection 2-D */

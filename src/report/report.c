@@ -1,5 +1,5 @@
 /* report.c - clearance workbook (XLSX) and CSV tables; see report.h. */
-#include "report.h"
+#include "report/report.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -8,8 +8,8 @@
 #include <string.h>
 #include <xlsxwriter.h>
 
-#include "atomic.h"
-#include "units.h"
+#include "io/atomic.h"
+#include "core/units.h"
 
 #define MM_PER_M 1000.0
 #define SHEET_NAME_MAX 31 /* Excel's limit */

@@ -1,13 +1,13 @@
 /* design.c - design sliding spectra, crossover and clearance; see design.h. */
-#include "design.h"
+#include "method/design.h"
 
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "asce.h"
-#include "units.h"
+#include "method/asce.h"
+#include "core/units.h"
 
 static const char *const policy_names[] = {"nltha", "asce", "envelope"};
 

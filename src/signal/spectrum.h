@@ -49,8 +49,8 @@
 
 #include <stddef.h>
 
-#include "motion.h"
-#include "status.h"
+#include "io/motion.h"
+#include "core/status.h"
 
 /* Sub-steps per natural period for the sampled peak (REFERENCE.md 4:
  * dt <= T/20, error <= 1 - cos(pi/20) = 1.23 %). */

@@ -7,7 +7,7 @@
  * current line was indented, sees section headers (so that empty, unknown
  * or repeated sections are caught too) and refuses lines longer than inih's
  * buffer instead of letting them be split. */
-#include "floor.h"
+#include "io/floor.h"
 
 #include <errno.h>
 #include <ini.h>

@@ -26,14 +26,14 @@
  * at mu g along a straight line, so the rest of the motion is closed-form
  * (stop after |v|/(mu g), a further v|v|/(2 mu g)).
  */
-#include "slide.h"
+#include "slide/slide.h"
 
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "refmodel.h"
+#include "slide/refmodel.h"
 
 /* Cap on events (stops, onsets) handled inside one input step for one mu in
  * the exact kernel; real records need a handful at most. Past it the step

@@ -69,7 +69,7 @@
  *    at each sample; the extension is capped at SL_REF_EXTEND_S + |u'| /
  *    (mu g) after the record (flag SL_SLIDE_NEVER_STOPS when reached).
  */
-#include "refmodel.h"
+#include "slide/refmodel.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>

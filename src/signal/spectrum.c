@@ -1,5 +1,5 @@
 /* spectrum.c - Nigam-Jennings response spectra (see spectrum.h). */
-#include "spectrum.h"
+#include "signal/spectrum.h"
 
 #include <math.h>
 #include <omp.h>

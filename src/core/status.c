@@ -1,5 +1,5 @@
 /* status.c - status messages and the error record. */
-#include "status.h"
+#include "core/status.h"
 
 #include <stdarg.h>
 #include <stdio.h>
