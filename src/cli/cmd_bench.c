@@ -96,11 +96,11 @@ static sl_motion *synth_component(size_t n, double dt, double amp, unsigned seed
         s = s * 1103515245u + 12345u;
         double f = 0.3 + 15.0 * (double)((s >> 8) & 0xffff) / 65535.0;
         s = s * 1103515245u + 12345u;
-        double ph = 2 * M_PI * (double)((s >> 8) & 0xffff) / 65535.0;
+        double ph = 2 * SL_PI * (double)((s >> 8) & 0xffff) / 65535.0;
         for (size_t i = 0; i < n; i++) {
             double t = (double)i * dt, T = (double)(n - 1) * dt;
-            double env = sin(M_PI * t / T);
-            a[i] += amp / 8.0 * env * env * sin(2 * M_PI * f * t + ph) / sqrt(1.0 + f);
+            double env = sin(SL_PI * t / T);
+            a[i] += amp / 8.0 * env * env * sin(2 * SL_PI * f * t + ph) / sqrt(1.0 + f);
         }
     }
     sl_motion *m = sl_motion_from_array(a, n, dt, "synthesized");

@@ -11,6 +11,9 @@
 /* Standard gravity, m/s^2 (ISO 80000-3; ../shared/docs/REFERENCE.md). */
 #define SL_G 9.80665
 
+/* pi (math.h's M_PI is not in C11). */
+#define SL_PI 3.14159265358979323846
+
 /* One inch in metres (RG 1.60 uses 36 in of displacement per 1 g). */
 #define SL_INCH_M 0.0254
 

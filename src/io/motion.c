@@ -43,8 +43,6 @@
 /* Most fields on one line of a column or CSV file. */
 #define SL_MOTION_FIELDS_MAX 16
 
-/* pi (math.h's M_PI is not in C11). */
-#define SL_MOTION_PI 3.14159265358979323846
 
 /* Chunk size for reading files, bytes. */
 #define SL_MOTION_READ_CHUNK 65536
@@ -1171,7 +1169,7 @@ double sl_motion_arias(const sl_motion *m)
     double s = 0;
     for (size_t i = 0; i + 1 < m->n; i++)
         s += step_a2(m->acc_ms2, i, m->dt_s);
-    return SL_MOTION_PI / (2 * SL_G) * s;
+    return SL_PI / (2 * SL_G) * s;
 }
 
 /* Time at which the Husid curve reaches the fraction p of the total

@@ -8,8 +8,6 @@
 
 #include "core/units.h"
 
-/* pi (math.h's M_PI is not in C11). */
-#define ASCE_PI 3.14159265358979323846
 /* Frequencies of the two spectra closer than this (relative) are merged. */
 #define ASCE_MERGE_REL 1e-12
 /* Damping of an input spectrum may differ from 10 % by this much. */
@@ -174,7 +172,7 @@ sl_status sl_asce_eval(const sl_asce *a, double mu, sl_asce_result *res, sl_erro
     if (cs < s[0]) { /* constant-SD extension below f_min */
         r.flags |= SL_ASCE_BELOW_FMIN;
         r.fes_hz = cs > 0 ? f[0] * sqrt(cs / s[0]) : 0.0;
-        double w0 = 2.0 * ASCE_PI * f[0];
+        double w0 = 2.0 * SL_PI * f[0];
         r.delta_best_m = s[0] / (w0 * w0);
     } else {
         if (cs == s[0]) {
@@ -193,7 +191,7 @@ sl_status sl_asce_eval(const sl_asce *a, double mu, sl_asce_result *res, sl_erro
             *res = r;
             return SL_OK;
         }
-        double w = 2.0 * ASCE_PI * r.fes_hz;
+        double w = 2.0 * SL_PI * r.fes_hz;
         r.delta_best_m = cs / (w * w); /* step 5 */
     }
     r.delta_design_m = in->fs * r.delta_best_m; /* step 6 */

@@ -6,8 +6,6 @@
 
 #include "signal/spectrum.h"
 
-/* pi (math.h's M_PI is not in C11). */
-#define RG160_PI 3.14159265358979323846
 /* Two grid frequencies closer than this (relative) are the same point. */
 #define RG160_GRID_MERGE_REL 1e-9
 
@@ -82,7 +80,7 @@ static void unit_control(sl_rg160_dir dir, double b, double c, double d,
 {
     for (int k = 0; k < SL_RG160_NCONTROL; k++)
         f[k] = control_f_hz[dir][k];
-    double w_d = 2.0 * RG160_PI * f[0];
+    double w_d = 2.0 * SL_PI * f[0];
     double sd_d_m = d * SL_RG160_DISP_PER_G_M / SL_G; /* per 1 m/s^2 of PGA */
     sa[0] = w_d * w_d * sd_d_m;
     sa[1] = c;

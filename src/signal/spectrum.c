@@ -14,8 +14,6 @@
 #define SERIES_TOL 1e-18
 /* Relative tolerance for deciding that two grid frequencies coincide. */
 #define GRID_REL_TOL 1e-12
-/* pi (math.h's M_PI is not in C11). */
-#define SPECTRUM_PI 3.14159265358979323846
 
 enum { C11, C12, C21, C22, BU0, BU1, BV0, BV1, NCOEF };
 
@@ -191,7 +189,7 @@ sl_status sl_spectrum_coefs(double f_hz, double zeta, double h_s,
     if (!(zeta >= 0 && zeta < 1))
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "spectrum: damping %g outside [0, 1)", zeta);
-    double w = 2.0 * SPECTRUM_PI * f_hz;
+    double w = 2.0 * SL_PI * f_hz;
     switch (method) {
     case SL_SPECTRUM_CLOSED: coefs_closed(w, zeta, h_s, c); break;
     case SL_SPECTRUM_SERIES: coefs_series(w, zeta, h_s, c); break;
@@ -314,7 +312,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
     sort_by_m(wk->perm, m_of, nf);
     for (size_t p = 0; p < nf; p++) {
         size_t j = wk->perm[p];
-        double w = 2.0 * SPECTRUM_PI * f[j];
+        double w = 2.0 * SL_PI * f[j];
         double h = dt / (double)m_of[j];
         double c[NCOEF];
         coefs_auto(w, zeta, h, c);
@@ -488,7 +486,7 @@ sl_status sl_spectrum_history(const double *acc_ms2, size_t n, double dt_s,
         return st;
     size_t m = substeps_for(f_hz, dt_s, o.steps_per_period);
     double c[NCOEF];
-    coefs_auto(2.0 * SPECTRUM_PI * f_hz, zeta, dt_s / (double)m, c);
+    coefs_auto(2.0 * SL_PI * f_hz, zeta, dt_s / (double)m, c);
     double u = 0.0, v = 0.0, inv_m = 1.0 / (double)m;
     for (size_t i = 0; i < n; i++) {
         if (u_m)

@@ -12,7 +12,6 @@
 #include "signal/rg160.h"
 #include "core/units.h"
 
-#define SYNTH_PI 3.14159265358979323846
 /* Smallest motion handled, samples. */
 #define SYNTH_MIN_N 16
 /* Largest FFT length accepted (a guard against absurd options). */
@@ -356,7 +355,7 @@ sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_err
         return NULL;
     }
     for (size_t j = 0; j < s->ntaper; j++)
-        s->taper[j] = 0.5 * (1 - cos(SYNTH_PI * (double)j / (double)s->ntaper));
+        s->taper[j] = 0.5 * (1 - cos(SL_PI * (double)j / (double)s->ntaper));
     /* Baseline shapes and the 2x2 map from their coefficients to end values. */
     double T = dt_s * (double)(n - 1), m[2][2];
     for (size_t j = 0; j < n; j++) {
@@ -700,7 +699,7 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
     for (size_t k = 1; k < s->nbin; k++) {
         double f = s->df * (double)k;
         double amp = target_ext(t->spec, f) / sqrt(f);
-        double phi = 2 * SYNTH_PI * gsl_rng_uniform(rng);
+        double phi = 2 * SL_PI * gsl_rng_uniform(rng);
         m->cwork[k][0] = amp * cos(phi);
         m->cwork[k][1] = amp * sin(phi);
     }
