@@ -4,7 +4,6 @@
  */
 #include "study/study.h"
 
-#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -87,80 +86,16 @@ const sl_study_group sl_study_groups[SL_STUDY_NGROUPS] = {
 /* A step within this relative slack of another is the same step. */
 #define STEP_SLACK 1e-9
 
-void sl_study_record_free(sl_study_record *rec)
-{
-    if (!rec)
-        return;
-    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-        sl_motion_free(rec->comp[c]);
-    memset(rec, 0, sizeof *rec);
-}
-
-sl_set sl_study_record_set(const sl_study_record *rec)
-{
-    sl_set s = {rec->comp[SL_SYNTH_H1], rec->comp[SL_SYNTH_H2], rec->comp[SL_SYNTH_V]};
-    return s;
-}
-
-sl_status sl_study_record_read(const char *dir, sl_study_record *rec, sl_error *err)
-{
-    memset(rec, 0, sizeof *rec);
-    char pattern[4096];
-    if (snprintf(pattern, sizeof pattern, "%s/*.AT2", dir) >= (int)sizeof pattern)
-        return sl_error_set(err, SL_EINVAL, dir, 0, "folder name too long");
-    glob_t g;
-    int gr = glob(pattern, 0, NULL, &g); /* sorted by name */
-    if (gr != 0) {
-        if (gr != GLOB_NOMATCH)
-            globfree(&g);
-        return sl_error_set(err, SL_EIO, dir, 0, "no .AT2 files in this folder");
-    }
-    const char *hor[2] = {NULL, NULL}, *ver = NULL;
-    size_t nh = 0, nv = 0;
-    for (size_t i = 0; i < g.gl_pathc; i++) {
-        if (sl_motion_name_is_vertical(g.gl_pathv[i])) {
-            ver = g.gl_pathv[i];
-            nv++;
-        } else {
-            if (nh < 2)
-                hor[nh] = g.gl_pathv[i];
-            nh++;
-        }
-    }
-    if (nh != 2 || nv != 1) {
-        globfree(&g);
-        return sl_error_set(err, SL_EIO, dir, 0,
-                            "expected 2 horizontal and 1 vertical .AT2 files, found %zu and %zu",
-                            nh, nv);
-    }
-    const char *path[SL_SYNTH_NCOMP] = {hor[0], hor[1], ver};
-    sl_read_opts ro;
-    memset(&ro, 0, sizeof ro);
-    sl_status st = SL_OK;
-    for (int c = 0; c < SL_SYNTH_NCOMP && st == SL_OK; c++) {
-        rec->comp[c] = sl_motion_read(path[c], &ro, err);
-        if (!rec->comp[c])
-            st = err ? err->code : SL_EIO;
-    }
-    globfree(&g);
-    if (st == SL_OK) {
-        sl_set s = sl_study_record_set(rec);
-        st = sl_set_check(&s, 1, err);
-    }
-    if (st != SL_OK)
-        sl_study_record_free(rec);
-    return st;
-}
-
-sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double pga_ms2,
+sl_status sl_study_match_rg160(const sl_set *rec, double zeta, double pga_ms2,
                                sl_synth_set *out, sl_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!rec || !rec->comp[0] || !rec->comp[1] || !rec->comp[2])
+    if (!rec || !rec->h1 || !rec->h2 || !rec->v)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "matching needs three components");
     sl_synth_params p;
     sl_synth_params_default(&p);
-    double dt = sl_synth_match_dt(rec->comp[0]->dt_s); /* SRP 3.7.1: Nyquist >= 50 Hz */
+    const sl_motion *comp[SL_SYNTH_NCOMP] = {rec->h1, rec->h2, rec->v};
+    double dt = sl_synth_match_dt(comp[0]->dt_s); /* SRP 3.7.1: Nyquist >= 50 Hz */
     sl_motion *rs[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_spectrum *spec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_synth_target tgt[SL_SYNTH_NCOMP];
@@ -168,8 +103,8 @@ sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double p
     sl_status st = SL_OK;
     size_t n = 0;
     for (int c = 0; c < SL_SYNTH_NCOMP && st == SL_OK; c++) {
-        if (!(rs[c] = sl_synth_resample_motion(rec->comp[c], dt)))
-            st = sl_error_set(err, SL_ENOMEM, rec->comp[c]->path, 0, "cannot resample to dt %g s",
+        if (!(rs[c] = sl_synth_resample_motion(comp[c], dt)))
+            st = sl_error_set(err, SL_ENOMEM, comp[c]->path, 0, "cannot resample to dt %g s",
                               dt);
         else if (rs[c]->n > n)
             n = rs[c]->n;
