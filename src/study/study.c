@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "method/asce.h"
+#include "method/asce_input.h"
 #include "signal/rg160.h"
 #include "signal/spectrum.h"
 
@@ -142,31 +143,18 @@ void sl_study_spectra_free(sl_study_spectra *s)
     free(s);
 }
 
-/* ASCE best estimates of one set at every mu, into best[0..n_mu-1]. */
-static sl_status asce_of_set(const sl_set *set, const double *f, size_t nf, const double *mu,
-                             size_t n_mu, double *best, sl_error *err)
+/* ASCE best estimates of one set at every mu, into best[0..n_mu-1]: the
+ * set's own 10 %-damped spectra (asce_input.h), no cap (the group's cap is
+ * applied in design.c). */
+static sl_status asce_of_set(const sl_set *set, const double *mu, size_t n_mu, double *best,
+                             sl_error *err)
 {
-    sl_spectrum *sp[2] = {sl_spectrum_alloc(nf, SL_ASCE_DAMPING),
-                          sl_spectrum_alloc(nf, SL_ASCE_DAMPING)};
-    const sl_motion *h[2] = {set->h1, set->h2};
+    sl_asce_source src;
     sl_asce *a = NULL;
-    sl_status st = SL_OK;
-    if (!sp[0] || !sp[1])
-        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
-    for (int c = 0; c < 2 && st == SL_OK; c++) {
-        memcpy(sp[c]->f_hz, f, nf * sizeof *f);
-        st = sl_spectrum_compute(h[c]->acc_ms2, h[c]->n, h[c]->dt_s, f, nf, SL_ASCE_DAMPING,
-                                 sp[c]->sa_ms2, NULL, NULL, err);
-    }
+    sl_status st = sl_asce_input_from_set(set, &src, err);
     if (st == SL_OK) {
-        sl_asce_input in;
-        sl_asce_input_default(&in);
-        in.h1 = sp[0];
-        in.h2 = sp[1];
-        in.av_ms2 = set->v ? sl_motion_pga(set->v) : 0.0;
-        in.zpa_h_ms2 = sl_set_pga_h(set);
-        in.pgd_m = NAN; /* the group's cap is applied in design.c */
-        if (!(a = sl_asce_alloc(&in, err)))
+        src.in.pgd_m = NAN;
+        if (!(a = sl_asce_alloc(&src.in, err)))
             st = err ? err->code : SL_ENOMEM;
     }
     for (size_t k = 0; k < n_mu && st == SL_OK; k++) {
@@ -175,8 +163,7 @@ static sl_status asce_of_set(const sl_set *set, const double *f, size_t nf, cons
         best[k] = r.delta_best_m;
     }
     sl_asce_free(a);
-    sl_spectrum_free(sp[0]);
-    sl_spectrum_free(sp[1]);
+    sl_asce_source_free(&src);
     return st;
 }
 
@@ -196,9 +183,6 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
     sl_study_spectra *r = calloc(1, sizeof *r);
     sl_slide_result *res = calloc(n_sets * n_mu, sizeof *res);
     int *noslide = calloc(n_mu, sizeof *noslide);
-    size_t nf = 0;
-    double *f = sl_spectrum_grid(SL_SPECTRUM_FMIN_HZ, SL_SPECTRUM_FMAX_HZ, SL_SPECTRUM_PER_DECADE,
-                                 &nf);
     if (r) {
         r->n_sets = n_sets;
         r->n_mu = n_mu;
@@ -209,7 +193,7 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
         r->asce_mean_m = calloc(n_mu, sizeof *r->asce_mean_m);
         r->pgd_m = calloc(n_sets, sizeof *r->pgd_m);
     }
-    if (!r || !res || !noslide || !f || !r->mu || !r->peak_m || !r->asce_set_m ||
+    if (!r || !res || !noslide || !r->mu || !r->peak_m || !r->asce_set_m ||
         !r->nltha_mean_m || !r->asce_mean_m || !r->pgd_m) {
         sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
         goto fail;
@@ -236,7 +220,7 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
 
     /* ASCE per set, then the group mean */
     for (size_t s = 0; s < n_sets; s++)
-        if (asce_of_set(&sets[s], f, nf, mu, n_mu, r->asce_set_m + s * n_mu, err))
+        if (asce_of_set(&sets[s], mu, n_mu, r->asce_set_m + s * n_mu, err))
             goto fail;
     for (size_t k = 0; k < n_mu; k++)
         for (size_t s = 0; s < n_sets; s++)
@@ -256,12 +240,10 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
         goto fail;
     free(res);
     free(noslide);
-    free(f);
     return r;
 fail:
     free(res);
     free(noslide);
-    free(f);
     sl_study_spectra_free(r);
     return NULL;
 }
