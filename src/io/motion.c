@@ -11,6 +11,8 @@
  */
 #include "io/motion.h"
 
+#include "core/standards.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <limits.h>
@@ -28,7 +30,6 @@
 
 /* Factor on the orthogonal component in the 100-40 combination of peak
  * horizontal displacements (dimensionless). */
-#define SL_MOTION_COMBO_40 0.4
 
 /* Husid-curve fractions bounding the significant duration D5-75. */
 #define SL_MOTION_HUSID_LO 0.05
@@ -1309,5 +1310,5 @@ double sl_set_pgd_100_40(const sl_set *set)
     if (!set->h2)
         return p1;
     double p2 = sl_motion_pgd(set->h2);
-    return fmax(p1 + SL_MOTION_COMBO_40 * p2, p2 + SL_MOTION_COMBO_40 * p1);
+    return fmax(p1 + SL_COMB_100_40 * p2, p2 + SL_COMB_100_40 * p1);
 }
