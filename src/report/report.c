@@ -884,10 +884,12 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
 
 /* Write a formula with its cached value (a number, or text when isnan(v)
  * and s given). */
-static void formula(lxw_worksheet *ws, lxw_row_t row, const char *f, double v, const char *s,
+static void formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, const char *f, double v, const char *s,
                     lxw_format *fmt)
 {
-    if (s)
+    if (zero_cache)
+        worksheet_write_formula_num(ws, row, 1, f, fmt, 0);
+    else if (s)
         worksheet_write_formula_str(ws, row, 1, f, fmt, s);
     else
         worksheet_write_formula_num(ws, row, 1, f, fmt, v);
@@ -968,7 +970,7 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
              LK_CHECK + 1, LK_MU1 + 1, LK_MU0 + 1, LK_C0 + 1, LK_C0 + 1, LK_MU + 1, LK_MU0 + 1,
              LK_C1 + 1, LK_C0 + 1, LK_MU1 + 1, LK_MU0 + 1);
-    formula(ws, LK_RESULT, f, res, ok ? NULL : "-", F->result);
+    formula(ws, r->lookup_zero_cache, LK_RESULT, f, res, ok ? NULL : "-", F->result);
     worksheet_write_string(ws, LK_CHECK, 0, "Input check", F->bold);
     snprintf(f, sizeof f,
              "=IF(B%d=\"\",\"choose a floor from the list\",IF(ISNA(MATCH(B%d,floor_names,0)),"
@@ -976,20 +978,20 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              "IF(NOT(ISNUMBER(B%d)),\"mu must be a number\",IF(OR(B%d<%.10g,B%d>%.10g),"
              "\"mu outside the table\",\"ok\")))))",
              LK_FLOOR + 1, LK_FLOOR + 1, LK_MU + 1, LK_MU + 1, LK_MU + 1, mu_min, LK_MU + 1, mu_max);
-    formula(ws, LK_CHECK, f, 0, check, F->bold);
+    formula(ws, r->lookup_zero_cache, LK_CHECK, f, 0, check, F->bold);
     snprintf(msg, sizeof msg, "the table covers mu %.2f to %.2f", mu_min, mu_max);
     worksheet_write_string(ws, LK_CHECK, 2, msg, NULL);
     worksheet_write_string(ws, LK_NOTE, 0, "Note", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"no sliding predicted: mu g is at or "
              "above what every motion demands\",\"\"))", LK_CHECK + 1, LK_RESULT + 1);
-    formula(ws, LK_NOTE, f, 0, ok && res == 0 ? "no sliding predicted: mu g is at or above what "
+    formula(ws, r->lookup_zero_cache, LK_NOTE, f, 0, ok && res == 0 ? "no sliding predicted: mu g is at or above what "
             "every motion demands" : "", NULL);
     worksheet_write_string(ws, LK_ZPA, 0, "Floor's horizontal ZPA, g", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(floor_zpa_g,1,B%d))", LK_CHECK + 1, LK_COL + 1);
-    formula(ws, LK_ZPA, f, ok ? r->floors[fi].zpa_h_ms2 / SL_G : 0, ok ? NULL : "", F->ratio);
+    formula(ws, r->lookup_zero_cache, LK_ZPA, f, ok ? r->floors[fi].zpa_h_ms2 / SL_G : 0, ok ? NULL : "", F->ratio);
     worksheet_write_string(ws, LK_X, 0, "mu g / ZPA", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",B%d/B%d)", LK_CHECK + 1, LK_MU + 1, LK_ZPA + 1);
-    formula(ws, LK_X, f, ok ? mu0 * SL_G / r->floors[fi].zpa_h_ms2 : 0, ok ? NULL : "", F->ratio);
+    formula(ws, r->lookup_zero_cache, LK_X, f, ok ? mu0 * SL_G / r->floors[fi].zpa_h_ms2 : 0, ok ? NULL : "", F->ratio);
     /* the standard error, interpolated as the clearance is */
     char se_col_from[8], se_col_to[8], fl_from[8], fl_to[8];
     col_name(data_col_se(nf, 0), se_col_from);
@@ -1016,7 +1018,7 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
         double m0 = dsel->rows[k0].mu, m1 = dsel->rows[k1].mu;
         se = MM_PER_M * (s0 + (m1 == m0 ? 0 : (mu0 - m0) * (s1 - s0) / (m1 - m0)));
     }
-    formula(ws, LK_SE, f, se, ok ? NULL : "", F->mm);
+    formula(ws, r->lookup_zero_cache, LK_SE, f, se, ok ? NULL : "", F->mm);
     worksheet_set_row(ws, LK_SE, 48, NULL);
     worksheet_set_row(ws, LK_CHECK, 30, NULL);
     worksheet_write_string(ws, LK_FLAGS, 0, "Flags at the grid rows around mu", F->bold);
@@ -1028,31 +1030,31 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
         sl_report_flags(dsel->rows[k1].flags, fl1, sizeof fl1);
         snprintf(flc, sizeof flc, "%s | %s", fl0[0] ? fl0 : "-", fl1[0] ? fl1 : "-");
     }
-    formula(ws, LK_FLAGS, f, 0, flc, NULL);
+    formula(ws, r->lookup_zero_cache, LK_FLAGS, f, 0, flc, NULL);
 
     worksheet_merge_range(ws, LK_HOW, 0, LK_HOW, 1, "How it is computed (linear interpolation in "
                           "mu, as sl_design_clearance_at in the program):", F->bold);
     worksheet_write_string(ws, LK_COL, 0, "column of the floor in Summary", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,floor_names,0))", LK_CHECK + 1, LK_FLOOR + 1);
-    formula(ws, LK_COL, f, (double)(fi + 1), ok ? NULL : "", NULL);
+    formula(ws, r->lookup_zero_cache, LK_COL, f, (double)(fi + 1), ok ? NULL : "", NULL);
     worksheet_write_string(ws, LK_ROW, 0, "row of the mu at or below", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,mu_grid,1))", LK_CHECK + 1, LK_MU + 1);
-    formula(ws, LK_ROW, f, (double)(k0 + 1), ok ? NULL : "", NULL);
+    formula(ws, r->lookup_zero_cache, LK_ROW, f, (double)(k0 + 1), ok ? NULL : "", NULL);
     worksheet_write_string(ws, LK_MU0, 0, "mu at or below", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(mu_grid,B%d))", LK_CHECK + 1, LK_ROW + 1);
-    formula(ws, LK_MU0, f, dsel->rows[k0].mu, ok ? NULL : "", F->mu);
+    formula(ws, r->lookup_zero_cache, LK_MU0, f, dsel->rows[k0].mu, ok ? NULL : "", F->mu);
     worksheet_write_string(ws, LK_MU1, 0, "mu above", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(mu_grid,MIN(B%d+1,%zu)))", LK_CHECK + 1,
              LK_ROW + 1, n);
-    formula(ws, LK_MU1, f, dsel->rows[k1].mu, ok ? NULL : "", F->mu);
+    formula(ws, r->lookup_zero_cache, LK_MU1, f, dsel->rows[k1].mu, ok ? NULL : "", F->mu);
     worksheet_write_string(ws, LK_C0, 0, "clearance at the mu at or below, mm", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(clearance_mm,B%d,B%d))", LK_CHECK + 1,
              LK_ROW + 1, LK_COL + 1);
-    formula(ws, LK_C0, f, MM_PER_M * dsel->rows[k0].clearance_m, ok ? NULL : "", F->mm);
+    formula(ws, r->lookup_zero_cache, LK_C0, f, MM_PER_M * dsel->rows[k0].clearance_m, ok ? NULL : "", F->mm);
     worksheet_write_string(ws, LK_C1, 0, "clearance at the mu above, mm", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(clearance_mm,MIN(B%d+1,%zu),B%d))",
              LK_CHECK + 1, LK_ROW + 1, n, LK_COL + 1);
-    formula(ws, LK_C1, f, MM_PER_M * dsel->rows[k1].clearance_m, ok ? NULL : "", F->mm);
+    formula(ws, r->lookup_zero_cache, LK_C1, f, MM_PER_M * dsel->rows[k1].clearance_m, ok ? NULL : "", F->mm);
 
     worksheet_write_string(ws, LK_POLICY, 0, "Clearance policy", F->bold);
     worksheet_write_string(ws, LK_POLICY, 1, sl_clearance_policy_name(d0->policy), NULL);

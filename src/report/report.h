@@ -94,6 +94,9 @@ typedef struct sl_report {
      * the grid is kept, the sheet then says so). Tests set them. */
     const char *lookup_floor;
     double lookup_mu;
+    /* Tests: write 0 as every Lookup formula's cached value, so that values
+     * read back can only come from a recalculation (tests/test_lookup.c). */
+    int lookup_zero_cache;
 } sl_report;
 
 /* Lookup default mu (when inside the grid). */
