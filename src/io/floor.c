@@ -10,6 +10,7 @@
 #include "io/floor.h"
 
 #include <errno.h>
+#include <glob.h>
 #include <ini.h>
 #include <math.h>
 #include <stdarg.h>
@@ -647,4 +648,38 @@ sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err)
                             "%g-%g g for a floor: check the units and the values",
                             sl_unit_name(fl->units), h, SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G);
     return SL_OK;
+}
+
+sl_status sl_floor_list(const char *arg, char **paths, size_t *n, size_t max, sl_error *err)
+{
+    struct stat st;
+    if (stat(arg, &st) != 0)
+        return sl_error_set(err, SL_EIO, arg, 0, "%s", strerror(errno));
+    if (!S_ISDIR(st.st_mode)) {
+        if (*n >= max)
+            return sl_error_set(err, SL_EINVAL, arg, 0, "more than %zu floor files", max);
+        if (!(paths[*n] = strdup(arg)))
+            return sl_error_set(err, SL_ENOMEM, arg, 0, "out of memory");
+        (*n)++;
+        return SL_OK;
+    }
+    char pat[4096];
+    snprintf(pat, sizeof pat, "%s/*.ini", arg);
+    glob_t g;
+    memset(&g, 0, sizeof g);
+    if (glob(pat, 0, NULL, &g) != 0) {
+        globfree(&g);
+        return sl_error_set(err, SL_EIO, arg, 0, "no floor files (*.ini) in this folder");
+    }
+    sl_status s = SL_OK;
+    for (size_t i = 0; i < g.gl_pathc && !s; i++) {
+        if (*n >= max)
+            s = sl_error_set(err, SL_EINVAL, arg, 0, "more than %zu floor files", max);
+        else if (!(paths[*n] = strdup(g.gl_pathv[i])))
+            s = sl_error_set(err, SL_ENOMEM, arg, 0, "out of memory");
+        else
+            (*n)++;
+    }
+    globfree(&g);
+    return s;
 }

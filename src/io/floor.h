@@ -104,6 +104,12 @@ sl_floor *sl_floor_load(const char *path, sl_error *err);
  * in g). The caller decides whether that stops the run. */
 sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
 
+/* The floor files named by `arg`: the file itself, or every *.ini in it
+ * when it is a folder (sorted). Appends strdup'd paths to paths[*n], at most
+ * `max` in all. SL_EIO (missing, unreadable, no *.ini) or SL_EINVAL (more
+ * than max) with the path in err. */
+sl_status sl_floor_list(const char *arg, char **paths, size_t *n, size_t max, sl_error *err);
+
 /* Free a floor; harmless on NULL. */
 void sl_floor_free(sl_floor *fl);
 

@@ -143,3 +143,43 @@ done:
     free(why);
     return st;
 }
+
+sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args, size_t nargs,
+                                 int force, char *warnings, size_t nw, sl_error *err)
+{
+    sl_status st = SL_OK;
+    if (nw)
+        warnings[0] = '\0';
+    for (size_t i = 0; i < nargs && !st; i++)
+        st = sl_floor_list(args[i], in->paths, &in->n, SL_DELIVER_MAX_FLOORS, err);
+    sl_report_floor rf[SL_DELIVER_MAX_FLOORS];
+    for (size_t i = 0; i < in->n && !st; i++) {
+        if (!(in->floors[i] = sl_floor_load(in->paths[i], err)))
+            return err ? err->code : SL_EINVAL;
+        sl_error w;
+        if ((st = sl_floor_check_plausible(in->floors[i], force ? &w : err)) && force) {
+            size_t used = strlen(warnings);
+            snprintf(warnings + used, nw - used, "%s:%ld: %s\n", w.file, w.line, w.msg);
+            st = SL_OK;
+        }
+        in->idp[i] = sl_report_floor_id(in->paths[i], in->ids[i], sizeof in->ids[i]);
+        rf[i] = (sl_report_floor){.id = in->idp[i], .name = in->floors[i]->name,
+                                  .path = in->paths[i]};
+    }
+    if (st)
+        return st;
+    sl_report chk;
+    sl_report_init(&chk);
+    chk.n_floors = in->n;
+    chk.floors = rf;
+    return sl_report_check_floors(&chk, err);
+}
+
+void sl_deliver_inputs_free(sl_deliver_inputs *in)
+{
+    for (size_t i = 0; i < in->n; i++) {
+        sl_floor_free(in->floors[i]);
+        free(in->paths[i]);
+    }
+    memset(in, 0, sizeof *in);
+}

@@ -29,6 +29,28 @@ typedef struct sl_deliver_opts {
     int write_motions;        /* also motions/<floor id>/setNN_{h1,h2,v}.AT2 */
 } sl_deliver_opts;
 
+/* Most floors in one run, and the longest floor id. */
+#define SL_DELIVER_MAX_FLOORS 256
+#define SL_DELIVER_ID_MAX 80
+
+/* The floors of a run, read and checked before any long work. */
+typedef struct sl_deliver_inputs {
+    size_t n;
+    char *paths[SL_DELIVER_MAX_FLOORS];
+    sl_floor *floors[SL_DELIVER_MAX_FLOORS];
+    char ids[SL_DELIVER_MAX_FLOORS][SL_DELIVER_ID_MAX];
+    const char *idp[SL_DELIVER_MAX_FLOORS]; /* ids[i] */
+} sl_deliver_inputs;
+
+/* Read every floor file named by args (files or folders of *.ini;
+ * sl_floor_list), check each (sl_floor_check_plausible: an error, or with
+ * `force` a line appended to `warnings`, size nw) and the uniqueness of
+ * their ids and names (sl_report_check_floors). in must be zeroed; free it
+ * with sl_deliver_inputs_free() whatever the result. */
+sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args, size_t nargs,
+                                 int force, char *warnings, size_t nw, sl_error *err);
+void sl_deliver_inputs_free(sl_deliver_inputs *in);
+
 /* Write everything for n floors (floors[i] analysed as an[i]; ids[i] from
  * sl_report_floor_id, already checked unique) into folder dir. Returns
  * SL_OK or the first error (err names the file). */

@@ -108,10 +108,7 @@ char *sl_report_flags(unsigned flags, char *buf, size_t n)
     return buf;
 }
 
-/* The ASCE-below-NLTHA ranges in mu (use_x 0) or mu g/ZPA (1) as
- * "a-b, c-d" ("none" when there is none; cut at n). An end the grid does
- * not close is written "<=a" or ">=b". */
-static char *ranges_text(const sl_design *d, int use_x, char *buf, size_t n)
+char *sl_report_ranges_text(const sl_design *d, char *buf, size_t n)
 {
     size_t used = 0;
     buf[0] = '\0';
@@ -121,9 +118,8 @@ static char *ranges_text(const sl_design *d, int use_x, char *buf, size_t n)
     }
     for (size_t q = 0; q < d->n_ranges; q++) {
         const sl_design_range *g = &d->ranges[q];
-        double lo = use_x ? g->x_lo : g->mu_lo, hi = use_x ? g->x_hi : g->mu_hi;
         int w = snprintf(buf + used, n - used, "%s%s%.3f-%.3f%s", q ? ", " : "",
-                         g->open_lo ? "<=" : "", lo, hi, g->open_hi ? "+" : "");
+                         g->open_lo ? "<=" : "", g->mu_lo, g->mu_hi, g->open_hi ? "+" : "");
         if (w < 0 || (size_t)w >= n - used)
             break;
         used += (size_t)w;
@@ -260,7 +256,7 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
     csv_comment(f, "factors", buf);
     csv_comment(f, "clearance_policy", sl_clearance_policy_name(d->policy));
     csv_comment(f, "crossover", crossover_text(d, buf, sizeof buf));
-    csv_comment(f, "asce_below_nltha_mu", ranges_text(d, 0, buf, sizeof buf));
+    csv_comment(f, "asce_below_nltha_mu", sl_report_ranges_text(d, buf, sizeof buf));
     csv_comment(f, "note", fl->note && *fl->note ? fl->note : "-");
     fputs("mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,nltha_design_se_mm,"
           "asce_best_mm,asce_design_mm,cap_mm,clearance_mm,flags\r\n", f);
@@ -733,7 +729,7 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, siz
     snprintf(info[ni++].value, sizeof info[0].value, "%.3f g (mu g/ZPA = mu / %.3f)",
              fl->zpa_h_ms2 / SL_G, fl->zpa_h_ms2 / SL_G);
     info[ni].label = "ASCE below NLTHA for mu in";
-    ranges_text(d, 0, info[ni++].value, sizeof info[0].value);
+    sl_report_ranges_text(d, info[ni++].value, sizeof info[0].value);
     info[ni].label = "crossover (docs/run.md)";
     crossover_text(d, info[ni++].value, sizeof info[0].value);
     info[ni].label = "clearance; factors";
@@ -839,7 +835,7 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
         worksheet_write_string(ws, b + 3, c, or_dash(fl->description), NULL);
         worksheet_write_number(ws, b + 4, c, fl->zpa_h_ms2 / SL_G, F->ratio);
         worksheet_write_string(ws, b + 5, c, crossover_text(fl->design, buf, sizeof buf), NULL);
-        worksheet_write_string(ws, b + 6, c, ranges_text(fl->design, 0, buf, sizeof buf), NULL);
+        worksheet_write_string(ws, b + 6, c, sl_report_ranges_text(fl->design, buf, sizeof buf), NULL);
         worksheet_write_string(ws, b + 7, c, or_dash(fl->note), NULL);
     }
     /* named ranges the Lookup formulas read */

@@ -131,6 +131,12 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
 sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err);
 
 
+/* Every range of mu where ASCE is below NLTHA as "a-b, c-d" (ends
+ * interpolated; "<=a" or "b+" where the grid does not close the range),
+ * or "none"; into buf of size n. The one text every sheet, CSV comment and
+ * message uses. */
+char *sl_report_ranges_text(const sl_design *d, char *buf, size_t n);
+
 /* Flags of a design row as text ("nltha_capped asce_unconservative ..."). */
 char *sl_report_flags(unsigned flags, char *buf, size_t n);
 
