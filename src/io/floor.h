@@ -44,6 +44,7 @@
 #include <stddef.h>
 
 #include "signal/spectrum.h"
+#include "core/standards.h"
 #include "core/status.h"
 #include "core/units.h"
 
@@ -65,7 +66,7 @@
 #define SL_FLOOR_ZPA_MIN_G 0.01
 #define SL_FLOOR_ZPA_MAX_G 5.0
 /* The damping of the spectra the ASCE/SEI 43-05 method uses. */
-#define SL_FLOOR_ASCE_DAMPING 0.10
+#define SL_FLOOR_ASCE_DAMPING SL_ASCE_DAMPING /* core/standards.h */
 
 typedef enum sl_floor_comp {
     SL_FLOOR_H1 = 0,
