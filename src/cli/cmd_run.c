@@ -1,7 +1,8 @@
 /* cmd_run.c - `seislide run`: floor response spectra in, the clearance workbook and CSV
  * tables out (analysis.h; report/deliver.h writes the folder). Options and help: one table. */
 #include <errno.h>
-#include <getopt.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <math.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -15,33 +16,71 @@
 #include "io/atomic.h"
 #include "report/deliver.h"
 
-#define RUN_MU_RANGE "0.05:0.80:0.01"
-enum { O_SETS = 256, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS, O_CREATED,
-       O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE, O_HELP };
-static const struct run_opt { const char *name; int arg, id; const char *help; } opts[] = {
-    {"output", 1, 'o', "DIR\toutput folder (default output/). The run writes a fresh folder and "
-     "swaps it in, so DIR must be new, empty or hold only seislide outputs"},
-    {"quiet", 0, 'q', "\tno progress on stderr"},
-    {"sets", 1, O_SETS, "N\tmotion sets per floor (default 7; ASCE 43-05: >= 5)"},
-    {"seed", 1, O_SEED, "S\trandom seed (default 1); a floor's seed also depends on its name"},
-    {"mu-range", 1, O_MU_RANGE, "A:B:S\tfriction grid (default " RUN_MU_RANGE ")"},
-    {"mu", 1, O_MU, "LIST\texplicit friction values, increasing"},
-    {"policy", 1, O_POLICY, "P\trequired clearance: nltha (default), asce or envelope"},
-    {"accuracy", 1, O_ACC, "E\t2-D integration accuracy 0.01 (1 sub-step), 0.001 (8, default), "
-     "0.0001 (32)"},
-    {"substeps", 1, O_SUB, "N\tset the 2-D sub-steps directly"},
-    {"motions", 0, O_MOTIONS, "\talso write every motion to DIR/motions/<floor id>/*.AT2"},
-    {"created", 1, O_CREATED, "EPOCH\tworkbook date, s since 1970 (default SOURCE_DATE_EPOCH, "
-     "else now)"},
-    {"force", 0, O_FORCE, "\trun a floor whose ZPA is outside 0.01-5 g (a warning, not an error)"},
-    {"project", 1, O_PROJECT, "TEXT\ttitle block: project"},
-    {"document", 1, O_DOCUMENT, "TEXT\ttitle block: document number"},
-    {"revision", 1, O_REVISION, "TEXT\ttitle block: revision"},
-    {"prepared", 1, O_PREPARED, "TEXT\ttitle block: prepared by"},
-    {"checked", 1, O_CHECKED, "TEXT\ttitle block: checked by"},
-    {"date", 1, O_DATE, "TEXT\ttitle block: date (default: the workbook date)"},
-    {"help", 0, O_HELP, "\tthis text"}};
-#define N_OPTS (sizeof opts / sizeof opts[0])
+#include "core/standards.h"
+
+/* Everything the options set (cli.h: one table, parsed and documented from it). */
+typedef struct run_args {
+    const char *out;
+    int quiet, motions, force;
+    unsigned long sets, substeps;
+    cli_mu mu;
+    double accuracy, created;
+    uint64_t seed;
+    sl_clearance_policy policy;
+    sl_report_project project;
+} run_args;
+#define A(f) .off = offsetof(run_args, f)
+enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
+       O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE };
+static const cli_opt opts[] = {
+    {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
+     "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
+     A(out)},
+    {"quiet", 'q', NULL, "no progress on stderr", .kind = CLI_FLAG, A(quiet)},
+    {"sets", O_SETS, "N", "motion sets per floor (default %g; ASCE 43-05: >= %g)",
+     {SL_ANALYSIS_DEFAULT_SETS, SL_NLTHA_MIN_SETS}, .kind = CLI_COUNT1, A(sets)},
+    {"seed", O_SEED, "S", "random seed (default 1); a floor's seed also depends on its name",
+     .kind = CLI_CALL},
+    {"mu-range", O_MU_RANGE, "A:B:S", "friction grid (default " SL_MU_GRID_TEXT ")",
+     .kind = CLI_MU_RANGE, A(mu)},
+    {"mu", O_MU, "LIST", "explicit friction values, increasing", .kind = CLI_MU_LIST, A(mu)},
+    {"policy", O_POLICY, "P", "required clearance: nltha (default), asce or envelope",
+     .kind = CLI_CALL},
+    {"accuracy", O_ACC, "E", "2-D integration accuracy: 0.01 -> 1 sub-step, 0.001 (default) -> 8,\n"
+     "0.0001 -> 32 (docs/performance.md)", .kind = CLI_POSITIVE, A(accuracy)},
+    {"substeps", O_SUB, "N", "set the 2-D sub-steps directly", .kind = CLI_COUNT1, A(substeps)},
+    {"motions", O_MOTIONS, NULL, "also write every motion to DIR/motions/<floor id>/*.AT2",
+     .kind = CLI_FLAG, A(motions)},
+    {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\nelse now)",
+     .kind = CLI_CALL},
+    {"force", O_FORCE, NULL, "run a floor whose horizontal ZPA is outside %g-%g g (warning)",
+     {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_FLAG, A(force)},
+    {.head = "title block of the workbook (Lookup, Summary, page headers, CSV comments):"},
+    {"project", O_PROJECT, "TEXT", "project", .kind = CLI_STRING, A(project.project)},
+    {"document", O_DOCUMENT, "TEXT", "document number", .kind = CLI_STRING, A(project.document)},
+    {"revision", O_REVISION, "TEXT", "revision", .kind = CLI_STRING, A(project.revision)},
+    {"prepared", O_PREPARED, "TEXT", "prepared by", .kind = CLI_STRING, A(project.prepared)},
+    {"checked", O_CHECKED, "TEXT", "checked by", .kind = CLI_STRING, A(project.checked)},
+    {"date", O_DATE, "TEXT", "date (default: the workbook date)", .kind = CLI_STRING,
+     A(project.date)}};
+
+/* The options that need more than their kind. */
+static int take(void *dst, int key, const char *v)
+{
+    run_args *a = dst;
+    unsigned long ul = 0;
+    int p = key == O_POLICY ? sl_clearance_policy_parse(v) : 0;
+    int bad = key == O_SEED ? cli_parse_ulong(v, &ul) : key == O_POLICY ? p < 0
+              : cli_parse_double(v, &a->created) || a->created < 0 || a->created > 4e12;
+    if (bad)
+        return cli_usage("run", "bad value '%s' for --%s", v, key == O_SEED ? "seed"
+                         : key == O_POLICY ? "policy (nltha, asce, envelope)" : "created");
+    if (key == O_SEED)
+        a->seed = ul;
+    if (key == O_POLICY)
+        a->policy = (sl_clearance_policy)p;
+    return CLI_EXIT_OK;
+}
 
 static void help(void)
 {
@@ -50,20 +89,10 @@ static void help(void)
          "compute the peak vector sliding displacement of each by\nNLTHA over the friction grid "
          "and the ASCE/SEI 43-05 estimate, the design sliding\nspectra, every range where ASCE "
          "is below NLTHA, and the required clearance; write\nDIR/" SL_DELIVER_WORKBOOK " and "
-         "the CSV files (docs/run.md).\n");
-    for (size_t i = 0; i < N_OPTS; i++) { /* "  -o, --name ARG" then the help, wrapped */
-        const char *t = strchr(opts[i].help, '\t'), *p = t + 1;
-        printf("  %s--%s%s%.*s\n", opts[i].id < 256 ? (opts[i].id == 'o' ? "-o, " : "-q, ") : "",
-               opts[i].name, opts[i].arg ? " " : "", (int)(t - opts[i].help), opts[i].help);
-        while (*p) {
-            int w = (int)strlen(p) <= 70 ? (int)strlen(p) : 70;
-            while (w < (int)strlen(p) && w > 0 && p[w] != ' ')
-                w--;
-            printf("        %.*s\n", w, p);
-            p += w + (p[w] == ' ');
-        }
-    }
-    puts("\nExit status: 0 success, 1 bad input or failed run (no output changed), 2 usage error.");
+         "the CSV files (docs/run.md).\n\noptions:");
+    cli_help_options(stdout, opts, CLI_NOPTS(opts), 22);
+    puts("\nExit status: 0 success, 1 bad input or failed run (the output folder unchanged),\n"
+         "2 usage error.");
 }
 
 typedef struct progress_ctx {
@@ -102,67 +131,30 @@ static void on_signal(int s)
 
 int cmd_run(int argc, char **argv)
 {
-    struct option lo[N_OPTS + 1] = {{0}};
-    for (size_t i = 0; i < N_OPTS; i++)
-        lo[i] = (struct option){opts[i].name, opts[i].arg ? required_argument : no_argument, 0,
-                                opts[i].id};
-    sl_analysis_opts ao;
-    sl_analysis_opts_default(&ao);
-    sl_deliver_opts dop = {.version = "seislide " SEISLIDE_VERSION, .seed = 1, .accuracy = 1e-3};
-    const char **text[] = {&dop.project.project, &dop.project.document, &dop.project.revision,
-                           &dop.project.prepared, &dop.project.checked, &dop.project.date};
-    const char *outdir = "output", *sde = getenv("SOURCE_DATE_EPOCH"), *dflt[] = {"floors"};
-    int quiet = 0, force = 0, rc = CLI_EXIT_USAGE, c, li = -1;
-    unsigned long ul, n_sets = SL_ANALYSIS_DEFAULT_SETS;
-    double v, *mu = NULL;
-    double created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL);
+    const char *sde = getenv("SOURCE_DATE_EPOCH"), *dflt[] = {"floors"};
+    double v;
+    run_args a = {.out = "output", .sets = SL_ANALYSIS_DEFAULT_SETS, .accuracy = 1e-3, .seed = 1,
+                  .created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL)};
     char cmdline[8192] = "seislide", date[32], warn[4096], r[512];
     static sl_deliver_inputs in; /* large: not on the stack */
     sl_analysis *an[SL_DELIVER_MAX_FLOORS] = {NULL};
     sl_atomic_dir *out = NULL;
     sl_error err;
     sl_error_clear(&err);
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, ":o:q", lo, &li)) != -1) {
-        const char *a = optarg;
-        int bad = 0;
-        switch (c) {
-        case 'o': outdir = a; break;
-        case 'q': quiet = 1; break;
-        case O_SETS: bad = cli_parse_ulong(a, &n_sets) || n_sets < 1 || n_sets > 1000; break;
-        case O_SEED: bad = cli_parse_ulong(a, &ul); dop.seed = ul; break;
-        case O_MU: case O_MU_RANGE:
-            if (cli_friction("run", c == O_MU_RANGE, a, &mu, &ao.n_mu))
-                goto done;
-            break;
-        case O_POLICY: bad = (c = sl_clearance_policy_parse(a)) < 0; ao.policy = bad ? 0 : c; break;
-        case O_ACC: bad = cli_parse_double(a, &dop.accuracy) || !(dop.accuracy > 0); break;
-        case O_SUB: bad = cli_parse_ulong(a, &ul) || ul < 1 || ul > 100000; dop.substeps = ul; break;
-        case O_MOTIONS: dop.write_motions = 1; break;
-        case O_CREATED: bad = cli_parse_double(a, &created) || created < 0 || created > 4e12; break;
-        case O_FORCE: force = 1; break;
-        case O_HELP: help(); rc = CLI_EXIT_OK; goto done;
-        case ':': cli_usage("run", "option '%s' needs a value", argv[optind - 1]); goto done;
-        case '?': cli_usage("run", "unknown option '%s'", argv[optind - 1]); goto done;
-        default: *text[c - O_PROJECT] = a; break; /* the title block */
-        }
-        if (bad) {
-            cli_usage("run", "bad value '%s' for --%s (see seislide run --help)", a, lo[li].name);
-            goto done;
-        }
-    }
-    if (!mu && cli_parse_range(RUN_MU_RANGE, &mu, &ao.n_mu))
+    int rc = cli_parse("run", opts, CLI_NOPTS(opts), argc, argv, &a, take);
+    if (rc == CLI_OPT_HELP)
+        help();
+    if (rc || (!a.mu.v && cli_parse_range(SL_MU_GRID_TEXT, &a.mu.v, &a.mu.n)))
         goto done;
     rc = CLI_EXIT_ERROR;
     /* every floor read and checked, and the output folder made, before any long work */
     int nargs = optind < argc ? argc - optind : 1;
     if (sl_deliver_inputs_load(&in, optind < argc ? (const char *const *)argv + optind : dflt,
-                               (size_t)nargs, force, warn, sizeof warn, &err))
+                               (size_t)nargs, a.force, warn, sizeof warn, &err))
         goto fail;
     if (warn[0])
         cli_msg("run: warning (--force): %s", warn);
-    if (!(out = sl_atomic_dir_open(outdir, sl_report_owns_name, &err)))
+    if (!(out = sl_atomic_dir_open(a.out, sl_report_owns_name, &err)))
         goto fail;
     snprintf(sig_dir, sizeof sig_dir, "%s", sl_atomic_dir_path(out));
     snprintf(sig_keep[0], sizeof sig_keep[0], "%s/.keep", sig_dir);
@@ -170,23 +162,26 @@ int cmd_run(int argc, char **argv)
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
     signal(SIGHUP, on_signal);
-    double e = dop.accuracy; /* measured sub-steps per accuracy: docs/performance.md */
-    ao.substeps = dop.substeps ? dop.substeps : e >= 1e-2 ? 1 : e >= 1e-3 ? 8 : e >= 1e-4 ? 32 : 128;
-    dop.substeps = ao.substeps;
-    ao.n_sets = n_sets;
-    ao.seed = dop.seed;
-    ao.mu = mu;
+    sl_analysis_opts ao;
+    sl_analysis_opts_default(&ao);
+    double e = a.accuracy; /* measured sub-steps per accuracy: docs/performance.md */
+    ao.substeps = a.substeps ? (unsigned)a.substeps : e >= 1e-2 ? 1 : e >= 1e-3 ? 8 : e >= 1e-4 ? 32 : 128;
+    ao.n_sets = a.sets;
+    ao.seed = a.seed;
+    ao.mu = a.mu.v;
+    ao.n_mu = a.mu.n;
+    ao.policy = a.policy;
     progress_ctx pc;
     ao.progress = progress;
     ao.progress_ctx = &pc;
-    if (n_sets < SL_NLTHA_MIN_SETS && !quiet)
+    if (a.sets < SL_NLTHA_MIN_SETS && !a.quiet)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",
-                n_sets, SL_NLTHA_MIN_SETS);
+                a.sets, SL_NLTHA_MIN_SETS);
     for (size_t i = 0; i < in.n; i++) {
-        pc = (progress_ctx){quiet, i + 1, in.n, in.floors[i]->name, NULL, -100};
+        pc = (progress_ctx){a.quiet, i + 1, in.n, in.floors[i]->name, NULL, -100};
         if (!(an[i] = sl_analysis_run(in.floors[i], &ao, &err)))
             goto fail;
-        if (!quiet)
+        if (!a.quiet)
             cli_msg("run: floor %zu/%zu '%s': ZPA %.3f g; %zu of %zu friction values need no "
                     "NLTHA; ASCE below NLTHA for mu in %s%s%s", i + 1, in.n, in.floors[i]->name,
                     an[i]->zpa_h_ms2 / SL_G, an[i]->n_mu_skipped, ao.n_mu,
@@ -195,8 +190,10 @@ int cmd_run(int argc, char **argv)
     }
     for (int i = 0; i < argc && strlen(cmdline) + strlen(argv[i]) + 2 < sizeof cmdline; i++)
         strcat(strcat(cmdline, " "), argv[i]);
-    dop.command_line = cmdline;
-    dop.created = (time_t)created;
+    sl_deliver_opts dop = {.version = "seislide " SEISLIDE_VERSION, .command_line = cmdline,
+                           .created = (time_t)a.created, .project = a.project, .seed = a.seed,
+                           .substeps = ao.substeps, .accuracy = a.accuracy,
+                           .write_motions = a.motions};
     if (!dop.project.date && strftime(date, sizeof date, "%Y-%m-%d", gmtime(&dop.created)))
         dop.project.date = date;
     writing = 1; /* a signal now is noted, and the fresh folder dropped */
@@ -205,8 +202,8 @@ int cmd_run(int argc, char **argv)
         interrupted || sl_atomic_dir_commit(out, &err))
         goto fail;
     out = NULL;
-    if (!quiet)
-        cli_msg("run: wrote %s/%s and the CSV files", outdir, SL_DELIVER_WORKBOOK);
+    if (!a.quiet)
+        cli_msg("run: wrote %s/%s and the CSV files", a.out, SL_DELIVER_WORKBOOK);
     rc = CLI_EXIT_OK;
     goto done;
 fail:
@@ -214,11 +211,11 @@ fail:
         cli_print_error(&err);
 done:
     sl_atomic_dir_abort(out);
-    free(mu);
+    free(a.mu.v);
     for (size_t i = 0; i < in.n; i++)
         sl_analysis_free(an[i]);
     sl_deliver_inputs_free(&in);
     if (interrupted)
         signal((int)interrupted, SIG_DFL), raise((int)interrupted);
-    return rc;
+    return rc == CLI_OPT_HELP ? CLI_EXIT_OK : rc;
 }
