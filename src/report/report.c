@@ -127,6 +127,49 @@ char *sl_report_ranges_text(const sl_design *d, char *buf, size_t n)
     return buf;
 }
 
+/* Where the ASCE best estimate is flat (within 0.1 %) or rises with mu:
+ * "flat for mu 0.05-0.07 (constant spectral displacement at f_es); rises
+ * for mu 0.30-0.70 (f_es on a flank where SA grows faster than f^2)". */
+static char *asce_shape_text(const sl_design *d, char *buf, size_t n)
+{
+    static const char *const why[2] = {"constant spectral displacement at f_es",
+                                        "f_es on a flank where SA grows faster than f^2"};
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int kind = 0; kind < 2; kind++) {
+        int first = 1;
+        for (size_t k = 0; k + 1 < d->n; k++) {
+            double a = d->rows[k].asce_best_m, b = d->rows[k + 1].asce_best_m;
+            int hit = a > 0 && b > 0 && (kind == 0 ? fabs(b - a) <= 1e-3 * a : b > a * (1 + 1e-3));
+            if (!hit)
+                continue;
+            size_t e = k + 1;
+            while (e + 1 < d->n) {
+                double c = d->rows[e].asce_best_m, q = d->rows[e + 1].asce_best_m;
+                if (!(c > 0 && q > 0 && (kind == 0 ? fabs(q - c) <= 1e-3 * c : q > c * (1 + 1e-3))))
+                    break;
+                e++;
+            }
+            int w = snprintf(buf + used, n - used, "%s%s%.2f-%.2f", first ? (used ? "; " : "") : ", ",
+                             first ? (kind == 0 ? "flat for mu " : "rises for mu ") : "",
+                             d->rows[k].mu, d->rows[e].mu);
+            if (w < 0 || (size_t)w >= n - used)
+                return buf;
+            used += (size_t)w;
+            first = 0;
+            k = e - 1;
+        }
+        if (!first) {
+            int w = snprintf(buf + used, n - used, " (%s)", why[kind]);
+            if (w > 0 && (size_t)w < n - used)
+                used += (size_t)w;
+        }
+    }
+    if (!used)
+        snprintf(buf, n, "falls with mu over the whole grid");
+    return buf;
+}
+
 /* "0.123 (mu g/ZPA 0.456)" or the reason there is none. */
 static char *crossover_text(const sl_design *d, char *buf, size_t n)
 {
@@ -404,7 +447,7 @@ typedef struct fmts {
 enum {
     TB_ROWS = 8,           /* title + 7 fields */
     SUM_HEAD = TB_ROWS + 1,/* Summary table header row */
-    FL_HEAD = 9,           /* floor sheet table header row */
+    FL_HEAD = 10,          /* floor sheet table header row */
     DATA_HEAD = 3,         /* Data sheet header row */
     FL_COLS = 10           /* floor table columns */
 };
@@ -715,7 +758,7 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, siz
     struct {
         const char *label;
         char value[600];
-    } info[8];
+    } info[9];
     size_t ni = 0;
     info[ni].label = "id and file";
     snprintf(info[ni++].value, sizeof info[0].value, "%s (%s, %s)", fl->id, fl->path, or_dash(fl->units));
@@ -728,9 +771,9 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, siz
     info[ni].label = "horizontal ZPA";
     snprintf(info[ni++].value, sizeof info[0].value, "%.3f g (mu g/ZPA = mu / %.3f)",
              fl->zpa_h_ms2 / SL_G, fl->zpa_h_ms2 / SL_G);
-    info[ni].label = "ASCE below NLTHA for mu in";
+    info[ni].label = "ASCE < NLTHA for mu in";
     sl_report_ranges_text(d, info[ni++].value, sizeof info[0].value);
-    info[ni].label = "crossover (docs/run.md)";
+    info[ni].label = "crossover";
     crossover_text(d, info[ni++].value, sizeof info[0].value);
     info[ni].label = "clearance; factors";
     snprintf(info[ni++].value, sizeof info[0].value,
@@ -738,6 +781,8 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, siz
              "both capped at %g x the mean peak floor displacement (PGD, 100-40 rule)",
              sl_clearance_policy_name(d->policy), d->fs_nltha, d->n_sets, d->fs_asce,
              d->cap_factor);
+    info[ni].label = "ASCE best estimate";
+    asce_shape_text(d, info[ni++].value, sizeof info[0].value);
     info[ni].label = "note";
     snprintf(info[ni++].value, sizeof info[0].value, "%s%s%zu friction values needed no NLTHA "
              "(mu g at or above every motion's demand)",
@@ -1128,10 +1173,14 @@ static void notes_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              "vector sliding displacement (ASCE/SEI 43-05 A.1 asks for 3.0 x the mean of at least "
              "5 analyses).", d->fs_nltha);
     snprintf(t[k++], sizeof t[0], "ASCE design value = %g x the ASCE/SEI 43-05 best estimate "
-             "(10 %%-damped floor spectra, effective frequency f_es of the sliding block). Below "
-             "the spectrum's lowest frequency the method uses the lowest frequency's value, so "
-             "the best estimate stays flat where f_es falls below it (low mu); where the "
-             "spectrum rises with frequency the estimate can grow with mu.", d->fs_asce);
+             "delta = c_s / (2 pi f_es)^2 with c_s = 2 mu_e g and f_es the lowest frequency where "
+             "the 10 %%-damped spectrum SA_vH reaches c_s: delta is the spectral displacement "
+             "SD_vH(f_es) = SA_vH / (2 pi f)^2 there. Where f_es lies in a part of the spectrum with "
+             "constant spectral displacement (RG 1.60 below 0.25 Hz: about 502 mm at 0.3 g) the "
+             "estimate is flat in mu (e.g. mu 0.05-0.07); where f_es lies on a rising flank that "
+             "grows faster than f^2 (a floor's amplification below its mode, e.g. the roof at "
+             "1.5-2.1 Hz) the estimate rises with mu, until mu g reaches the ZPA and it drops to 0. "
+             "Each floor sheet names its flat and rising ranges.", d->fs_asce);
     snprintf(t[k++], sizeof t[0], "Cap = %g x the mean over the sets of the peak floor "
              "displacement (PGD), the horizontals combined by the 100-40 rule: a block cannot "
              "slide much further than the floor moves. Design values are min(value, cap); flags "
@@ -1231,6 +1280,7 @@ static void make_formats(lxw_workbook *wb, fmts *F)
     F->wrap = workbook_add_format(wb);
     format_set_text_wrap(F->wrap);
     format_set_align(F->wrap, LXW_ALIGN_VERTICAL_TOP);
+    format_set_indent(F->wrap, 1);
     F->note = workbook_add_format(wb);
     format_set_text_wrap(F->note);
     format_set_align(F->note, LXW_ALIGN_VERTICAL_TOP);
