@@ -1,4 +1,4 @@
-# seislide - see README.md. Targets: all test bench study install clean asan.
+# seislide - see README.md. Targets: all test bench study install clean asan mutate.
 CC      ?= cc
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -29,7 +29,7 @@ VERSION  := $(shell sed -n 's/^\#define SEISLIDE_VERSION "\(.*\)"/\1/p' src/cli/
 # The public headers: seislide.h and what it includes (not io/atomic.h, cli.h, engine.h ...).
 PUBLIC_H := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
-.PHONY: all test bench study install clean asan check-tools
+.PHONY: all test bench study install clean asan check-tools mutate
 all: $(PROG) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard src/*.h src/*/*.h tests/*.h)
@@ -72,6 +72,11 @@ $(BUILD)/seislide.pc: seislide.pc.in Makefile src/cli/cli.h
 
 # The program, the static library, seislide.h with the public headers it
 # includes (under include/seislide/), seislide.pc and the manual page.
+# Mutation testing (minutes; not part of test): tests/mutations.txt, one line each,
+# applied to a scratch copy; ends with "N mutations, M survived".
+mutate:
+	sh tools/mutate.sh
+
 install: $(PROG) $(BUILD)/seislide.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
 	  $(DESTDIR)$(PREFIX)/share/man/man1
