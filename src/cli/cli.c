@@ -384,3 +384,64 @@ void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col)
         fputc('\n', f);
     }
 }
+
+void cli_put_num(const char *fmt, double v, int width)
+{
+    if (isnan(v))
+        printf("%*s", width, "nan");
+    else
+        printf(fmt, width, v);
+}
+
+void cli_put_csv(double v, int last)
+{
+    if (isnan(v))
+        fputs("nan", stdout);
+    else
+        printf("%.8g", v);
+    putchar(last ? '\n' : ',');
+}
+
+void cli_put_field(const char *s)
+{
+    if (!strpbrk(s, ",\" \t\r\n")) {
+        fputs(s, stdout);
+        return;
+    }
+    putchar('"');
+    for (; *s; s++) {
+        if (*s == '"')
+            putchar('"');
+        putchar(*s);
+    }
+    putchar('"');
+}
+
+void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], size_t ncol,
+                     const double *vals)
+{
+    int w = 12;
+    for (size_t j = 0; j < ncol; j++)
+        if ((int)strlen(names[j]) > w)
+            w = (int)strlen(names[j]);
+    fputs(csv ? "f_hz" : "      f_hz", stdout);
+    for (size_t j = 0; j < ncol; j++) {
+        if (csv) {
+            putchar(',');
+            cli_put_field(names[j]);
+        } else {
+            printf(" %*s", w, names[j]);
+        }
+    }
+    putchar('\n');
+    for (size_t p = 0; p < nf; p++) {
+        printf(csv ? "%.6g" : "%10.5g", f[p]);
+        for (size_t j = 0; j < ncol; j++) {
+            if (csv)
+                printf(",%.8g", vals[j * nf + p]);
+            else
+                printf(" %*.6g", w, vals[j * nf + p]);
+        }
+        putchar('\n');
+    }
+}

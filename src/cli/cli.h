@@ -144,6 +144,20 @@ int cli_usage(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
+/* Tables on stdout. A number in a column of `width` with fmt ("%*.3f"),
+ * or "nan" (never "-nan"). */
+void cli_put_num(const char *fmt, double v, int width);
+/* A CSV number (8 significant digits, or "nan"), then ',' or, when last,
+ * a newline. */
+void cli_put_csv(double v, int last);
+/* A CSV field, quoted when it holds a comma, quote or blank. */
+void cli_put_field(const char *s);
+/* A table of ncol columns over the frequencies f (nf rows): header "f_hz"
+ * and names[j]; values vals[j * nf + p]. CSV (",%.8g") or aligned (each
+ * column as wide as its name, at least 12; "%.6g"). */
+void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], size_t ncol,
+                     const double *vals);
+
 /* Monotonic wall-clock time, s (for the timings commands report). */
 double cli_now_s(void);
 

@@ -66,30 +66,6 @@ static int check_args(const rg160_args *a)
     return CLI_EXIT_OK;
 }
 
-/* The table (or CSV) of nd spectra psa[k * nf + j] on f. */
-static void print_table(const rg160_args *a, const double *damp, size_t nd, const double *f,
-                        size_t nf, const double *psa)
-{
-    int csv = a->csv;
-    if (!csv)
-        printf("# seislide rg160: Regulatory Guide 1.60 %s design spectrum, PGA %g g\n",
-               a->vertical ? "vertical" : "horizontal", a->pga_g);
-    fputs(csv ? "f_hz" : "      f_hz", stdout);
-    for (size_t k = 0; k < nd; k++) {
-        char name[40] = "psa_g";
-        if (nd > 1)
-            snprintf(name, sizeof name, "psa_g_z%g", damp[k]);
-        printf(csv ? ",%s" : " %12s", name);
-    }
-    putchar('\n');
-    for (size_t j = 0; j < nf; j++) {
-        printf(csv ? "%.6g" : "%10.5g", f[j]);
-        for (size_t k = 0; k < nd; k++)
-            printf(csv ? ",%.8g" : " %12.6g", psa[k * nf + j] / SL_G);
-        putchar('\n');
-    }
-}
-
 int cmd_rg160(int argc, char **argv)
 {
     rg160_args a = {.pga_g = NAN};
@@ -122,7 +98,18 @@ int cmd_rg160(int argc, char **argv)
             cli_print_error(&err);
             goto done;
         }
-    print_table(&a, damp, nd, f, nf, psa);
+    if (!a.csv)
+        printf("# seislide rg160: Regulatory Guide 1.60 %s design spectrum, PGA %g g\n",
+               a.vertical ? "vertical" : "horizontal", a.pga_g);
+    char names[RG160_MAX_DAMPINGS][320];
+    for (size_t k = 0; k < nd; k++)
+        if (nd > 1)
+            snprintf(names[k], sizeof names[k], "psa_g_z%g", damp[k]);
+        else
+            snprintf(names[k], sizeof names[k], "psa_g");
+    for (size_t i = 0; i < nd * nf; i++)
+        psa[i] /= SL_G; /* in g */
+    cli_print_table(a.csv, f, nf, names, nd, psa);
     if (fflush(stdout) || ferror(stdout)) {
         cli_msg("error writing the output");
         goto done;

@@ -64,22 +64,6 @@ static const char *base_name(const char *p)
     return s ? s + 1 : p;
 }
 
-/* Write a CSV field, quoted when it holds a comma, quote or blank. */
-static void put_field(const char *s)
-{
-    if (!strpbrk(s, ",\" \t\r\n")) {
-        fputs(s, stdout);
-        return;
-    }
-    putchar('"');
-    for (; *s; s++) {
-        if (*s == '"')
-            putchar('"');
-        putchar(*s);
-    }
-    putchar('"');
-}
-
 /* Column names: per file, per damping: psa_g [, sd_m, sa_abs_g], with
  * _z<damping> and _<file label> when there are several. */
 static char (*column_names(size_t nm, char *const *label, const double *damp, size_t nd,
@@ -102,15 +86,19 @@ static char (*column_names(size_t nm, char *const *label, const double *damp, si
 }
 
 /* The table (or CSV): f, then every column; out[q] holds quantity q
- * (psa, sd, sa) as out[q][k * nm * nf + i * nf + j]. */
+ * (psa, sd, sa) as out[q][k * nm * nf + i * nf + j]. Returns 0 or -1 (no
+ * memory). */
 static int print_table(int csv, char *const *files, sl_motion *const *m, size_t nm,
                        char *const *label, const double *damp, size_t nd, const double *f,
                        size_t nf, double *const out[3], size_t nq)
 {
     char (*name)[320] = column_names(nm, label, damp, nd, nq);
-    if (!name)
+    double *vals = malloc(nm * nd * nq * nf * sizeof *vals);
+    if (!name || !vals) {
+        free(name);
+        free(vals);
         return -1;
-    size_t ncol = nm * nd * nq;
+    }
     if (!csv) {
         printf("# seislide spectrum: Nigam-Jennings, dt <= T/%g, %zu frequencies\n",
                SL_SPECTRUM_STEPS_PER_PERIOD, nf);
@@ -118,35 +106,17 @@ static int print_table(int csv, char *const *files, sl_motion *const *m, size_t 
             printf("# %s: %zu samples at dt = %g s, PGA %.4f g\n", files[i], m[i]->n, m[i]->dt_s,
                    sl_motion_pga(m[i]) / SL_G);
     }
-    int w = 12;
-    for (size_t j = 0; j < ncol; j++)
-        if ((int)strlen(name[j]) > w)
-            w = (int)strlen(name[j]);
-    fputs(csv ? "f_hz" : "      f_hz", stdout);
-    for (size_t j = 0; j < ncol; j++) {
-        if (csv) {
-            putchar(',');
-            put_field(name[j]);
-        } else {
-            printf(" %*s", w, name[j]);
-        }
-    }
-    putchar('\n');
-    for (size_t p = 0; p < nf; p++) {
-        printf(csv ? "%.6g" : "%10.5g", f[p]);
-        for (size_t i = 0; i < nm; i++)
-            for (size_t k = 0; k < nd; k++)
-                for (size_t q = 0; q < nq; q++) {
+    size_t col = 0;
+    for (size_t i = 0; i < nm; i++)
+        for (size_t k = 0; k < nd; k++)
+            for (size_t q = 0; q < nq; q++, col++)
+                for (size_t p = 0; p < nf; p++) {
                     double v = out[q][k * nm * nf + i * nf + p];
-                    v = q == 1 ? v : v / SL_G; /* sd in m, accelerations in g */
-                    if (csv)
-                        printf(",%.8g", v);
-                    else
-                        printf(" %*.6g", w, v);
+                    vals[col * nf + p] = q == 1 ? v : v / SL_G; /* sd in m, accelerations in g */
                 }
-        putchar('\n');
-    }
+    cli_print_table(csv, f, nf, name, nm * nd * nq, vals);
     free(name);
+    free(vals);
     return 0;
 }
 
