@@ -23,7 +23,7 @@
 
 #include "harness.h"
 #include "slide/slide.h"
-#include "study/study.h"
+#include "io/setdir.h"
 
 static const double mus[] = {0.05, 0.075, 0.1, 0.15, 0.2, 0.3, 0.4};
 #define NMU (sizeof mus / sizeof mus[0])
@@ -142,16 +142,15 @@ static void test_all_records(void)
         struct stat st;
         if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
             continue;
-        sl_study_record rec;
+        sl_set set;
         sl_error err;
         sl_error_clear(&err);
-        if (sl_study_record_read(dir, &rec, &err) != SL_OK) {
+        if (sl_set_read_dir(dir, &set, &err) != SL_OK) {
             t.unread++; /* not two horizontals + one vertical in a format read here */
             if (verbose)
                 fprintf(stderr, "  %-40s not read: %s\n", names[i], err.msg);
             continue;
         }
-        sl_set set = sl_study_record_set(&rec);
         check_set(names[i], &set, &t, verbose);
         if (checked_1d < 4 && (i % 16) == 0) { /* a spread of records */
             check_reference_1d(names[i], &set);
@@ -175,7 +174,7 @@ static void test_all_records(void)
             check_set("RSN1063_NORTHR_RRS, V to -1.3 g", &set, &t, verbose);
             check_reference_1d("RSN1063_NORTHR_RRS, V to -1.3 g", &set);
         }
-        sl_study_record_free(&rec);
+        sl_set_free_motions(&set);
     }
     for (size_t i = 0; i < nn; i++)
         free(names[i]);
