@@ -43,6 +43,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The vector pass (doubling_pass and what it inlines) computes every value
+ * on every path and only selects; with GCC it is compiled without
+ * -ftrapping-math (no FP exception flags are used anywhere) so those selects
+ * become vector code. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define VECTOR_PASS __attribute__((optimize("no-trapping-math")))
+#else
+#define VECTOR_PASS
+#endif
+
 /* Most sub-steps one sample is cut into by the refinement. */
 #define NSUB_MAX 4096u
 
@@ -262,25 +272,110 @@ static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
     return b;
 }
 
+/* max and min of finite values as selects (fmax/fmin may be calls) */
+VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
+VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
+
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
  * when the step needs the split (5). Inlined into the vector loops. */
-static inline void ustep(double *vx, double *vy, double *ux, double *uy, double *bad,
+VECTOR_PASS static inline void ustep(double *vx, double *vy, double *ux, double *uy, double *bad,
                          double hax, double hay, double f, double cx, double cy, double h)
 {
+    /* every value is computed on every path and only selected, so the
+     * compiler can turn the loop into vector code (no traps to guard) */
     const double vx0 = *vx, vy0 = *vy;
     const double yx = 2.0 * vx0 - hax, yy = 2.0 * vy0 - hay;
     const double yn = sqrt(yx * yx + yy * yy);
-    const double s = yn > f ? 1.0 - f / fmax(yn, 1e-300) : 0.0;
+    const double s1 = 1.0 - f / (yn > 1e-300 ? yn : 1e-300);
+    const double s = yn > f ? s1 : 0.0;
     const double mx = yx * s - vx0, my = yy * s - vy0;
-    const int rest = (vx0 == 0.0) & (vy0 == 0.0);
     const double v2 = vx0 * vx0 + vy0 * vy0, L = v2 - (hax * vx0 + hay * vy0);
-    const int fwd = ((mx * vx0 + my * vy0) > 0.0) & (L > 0.0) & (L * L > f * f * v2);
-    const int mv = (s > 0.0);
-    *bad = (rest | fwd) ? *bad : 1.0;
-    *ux += mv ? 0.5 * h * (vx0 + mx) + cx : 0.0;
-    *uy += mv ? 0.5 * h * (vy0 + my) + cy : 0.0;
+    /* 1.0/0.0 masks rather than ints and branches: they vectorise */
+    const double rest = v2 == 0.0 ? 1.0 : 0.0;
+    const double fwd = ((mx * vx0 + my * vy0) > 0.0 ? 1.0 : 0.0) * (L > 0.0 ? 1.0 : 0.0) *
+                       (L * L > f * f * v2 ? 1.0 : 0.0);
+    const double dux = 0.5 * h * (vx0 + mx) + cx, duy = 0.5 * h * (vy0 + my) + cy;
+    const double mv = s > 0.0 ? 1.0 : 0.0;
+    *bad = rest + fwd > 0.0 ? *bad : 1.0;
+    *ux += mv * dux;
+    *uy += mv * duy;
     *vx = mx;
     *vy = my;
+}
+
+/* The vector pass over the na packed sliding blocks of one sample: one step
+ * (3)-(4) of dt (Fc) against two of dt/2 (Fa, Fb), the local differences,
+ * the in-sample peak, and the flag pd (1: redo alone). Separate arrays
+ * declared restrict here, so the compiler vectorises both loops. */
+VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *Fa, const force *Fb, double hv,
+                          double a0m, double a1m, double p0, double p1,
+                          const double *restrict pmu, const double *restrict ptol,
+                          double *restrict pux, double *restrict puy, double *restrict pvx,
+                          double *restrict pvy, double *restrict cux, double *restrict cuy,
+                          double *restrict cvx, double *restrict cvy, double *restrict pbad,
+                          double *restrict ppk2, double *restrict pd, double *restrict pdux,
+                          double *restrict pduy, double *restrict pdvx, double *restrict pdvy,
+                          double *restrict pns)
+{
+    /* one step of dt against two of dt/2, every live block at once */
+    const double c_ax = Fc->hax, c_ay = Fc->hay, c_n = Fc->hN, c_cx = Fc->cx, c_cy = Fc->cy,
+                 c_h = Fc->h;
+    const double a_ax = Fa->hax, a_ay = Fa->hay, a_n = Fa->hN, a_cx = Fa->cx, a_cy = Fa->cy,
+                 a_h = Fa->h;
+    const double b_ax = Fb->hax, b_ay = Fb->hay, b_n = Fb->hN, b_cx = Fb->cx, b_cy = Fb->cy,
+                 b_h = Fb->h;
+    for (size_t j = 0; j < na; j++) {
+        double vx = pvx[j], vy = pvy[j], ux = pux[j], uy = puy[j], bad = 0.0;
+        ustep(&vx, &vy, &ux, &uy, &bad, c_ax, c_ay, c_n * pmu[j], c_cx, c_cy, c_h);
+        cux[j] = ux;
+        cuy[j] = uy;
+        cvx[j] = vx;
+        cvy[j] = vy;
+        pbad[j] = bad;
+    }
+    for (size_t j = 0; j < na; j++) {
+        double vx = pvx[j], vy = pvy[j], ux = pux[j], uy = puy[j], bad = pbad[j];
+        const double r0 = ux * ux + uy * uy;
+        ustep(&vx, &vy, &ux, &uy, &bad, a_ax, a_ay, a_n * pmu[j], a_cx, a_cy, a_h);
+        const double uxm = ux, uym = uy, vxm = vx, vym = vy;
+        const double rm = ux * ux + uy * uy;
+        ustep(&vx, &vy, &ux, &uy, &bad, b_ax, b_ay, b_n * pmu[j], b_cx, b_cy, b_h);
+        const double r1 = ux * ux + uy * uy;
+        /* in-step maxima of |u|^2 (track_peak) on both halves */
+        const double q0 = pux[j] * pvx[j] + puy[j] * pvy[j], qm = uxm * vxm + uym * vym,
+                     q1 = ux * vx + uy * vy;
+        const double ha_v = r0 + q0 * a_h * q0 / (q0 - qm > 1e-300 ? q0 - qm : 1e-300);
+        const double hb_v = rm + qm * b_h * qm / (qm - q1 > 1e-300 ? qm - q1 : 1e-300);
+        const double ha = (q0 > 0.0 ? 1.0 : 0.0) * (qm < 0.0 ? ha_v : 0.0);
+        const double hb = (qm > 0.0 ? 1.0 : 0.0) * (q1 < 0.0 ? hb_v : 0.0);
+        ppk2[j] = max2(max2(rm, r1), max2(ha, hb));
+        const double dux = ux - cux[j], duy = uy - cuy[j];
+        const double dvx = vx - cvx[j], dvy = vy - cvy[j];
+        const double eu = sqrt(dux * dux + duy * duy), ev = sqrt(dvx * dvx + dvy * dvy);
+        pdux[j] = dux;
+        pduy[j] = duy;
+        pdvx[j] = dvx;
+        pdvy[j] = dvy;
+        /* near a stop: the speed is within one sample's change of
+         * zero while friction can hold the block (|a| < mu N at an
+         * end); (5) and the halving then find the stop */
+        const double sp_min2 = min2(min2(vx * vx + vy * vy, vxm * vxm + vym * vym),
+                                    pvx[j] * pvx[j] + pvy[j] * pvy[j]);
+        const double fc = c_n * pmu[j];
+        const double dv_max = hv + fc;
+        const double can_hold = (a0m < pmu[j] * p0 ? 1.0 : 0.0) + (a1m < pmu[j] * p1 ? 1.0 : 0.0);
+        const double near_stop =
+            can_hold * (sp_min2 < SL_K2_NEAR_STOP * SL_K2_NEAR_STOP * dv_max * dv_max ? 1.0 : 0.0);
+        const double within = eu + SL_K2_TV * ev <= ptol[j] ? 1.0 : 0.0;
+        pd[j] = within * (near_stop == 0.0 ? 1.0 : 0.0) > 0.0 ? bad : 1.0;
+        pns[j] = near_stop;
+        pux[j] = ux;
+        puy[j] = uy;
+        cux[j] = vxm; /* reused: mid-sample velocity, for the path */
+        cuy[j] = vym;
+        pvx[j] = vx;
+        pvy[j] = vy;
+    }
 }
 
 /* Packed working arrays of the live blocks of one sample. */
@@ -374,59 +469,8 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                 pvx[li] = B[k].vx;
                 pvy[li] = B[k].vy;
             }
-            /* one step of dt against two of dt/2, every live block at once */
-            for (size_t j = 0; j < na; j++) {
-                double vx = pvx[j], vy = pvy[j], ux = pux[j], uy = puy[j], bad = 0.0;
-                ustep(&vx, &vy, &ux, &uy, &bad, Fc.hax, Fc.hay, Fc.hN * pmu[j], Fc.cx, Fc.cy,
-                      Fc.h);
-                cux[j] = ux;
-                cuy[j] = uy;
-                cvx[j] = vx;
-                cvy[j] = vy;
-                pbad[j] = bad;
-            }
-            for (size_t j = 0; j < na; j++) {
-                double vx = pvx[j], vy = pvy[j], ux = pux[j], uy = puy[j], bad = pbad[j];
-                const double r0 = ux * ux + uy * uy;
-                ustep(&vx, &vy, &ux, &uy, &bad, Fa.hax, Fa.hay, Fa.hN * pmu[j], Fa.cx, Fa.cy,
-                      Fa.h);
-                const double uxm = ux, uym = uy, vxm = vx, vym = vy;
-                const double rm = ux * ux + uy * uy;
-                ustep(&vx, &vy, &ux, &uy, &bad, Fb.hax, Fb.hay, Fb.hN * pmu[j], Fb.cx, Fb.cy,
-                      Fb.h);
-                const double r1 = ux * ux + uy * uy;
-                /* in-step maxima of |u|^2 (track_peak) on both halves */
-                const double q0 = pux[j] * pvx[j] + puy[j] * pvy[j], qm = uxm * vxm + uym * vym,
-                             q1 = ux * vx + uy * vy;
-                const double ha = (q0 > 0.0 && qm < 0.0) ? r0 + q0 * Fa.h * q0 / (q0 - qm) : 0.0;
-                const double hb = (qm > 0.0 && q1 < 0.0) ? rm + qm * Fb.h * qm / (qm - q1) : 0.0;
-                ppk2[j] = fmax(fmax(rm, r1), fmax(ha, hb));
-                const double dux = ux - cux[j], duy = uy - cuy[j];
-                const double dvx = vx - cvx[j], dvy = vy - cvy[j];
-                const double eu = sqrt(dux * dux + duy * duy), ev = sqrt(dvx * dvx + dvy * dvy);
-                pdux[j] = dux;
-                pduy[j] = duy;
-                pdvx[j] = dvx;
-                pdvy[j] = dvy;
-                /* near a stop: the speed is within one sample's change of
-                 * zero while friction can hold the block (|a| < mu N at an
-                 * end); (5) and the halving then find the stop */
-                const double sp_min2 = fmin(fmin(vx * vx + vy * vy, vxm * vxm + vym * vym),
-                                            pvx[j] * pvx[j] + pvy[j] * pvy[j]);
-                const double fc = Fc.hN * pmu[j];
-                const double dv_max = hv + fc;
-                const int can_hold = (a0m < pmu[j] * p0) | (a1m < pmu[j] * p1);
-                const int near_stop = can_hold & (sp_min2 < SL_K2_NEAR_STOP * SL_K2_NEAR_STOP *
-                                                                dv_max * dv_max);
-                pd[j] = (eu + SL_K2_TV * ev <= ptol[j] && !near_stop) ? bad : 1.0;
-                pns[j] = near_stop ? 1.0 : 0.0;
-                pux[j] = ux;
-                puy[j] = uy;
-                cux[j] = vxm; /* reused: mid-sample velocity, for the path */
-                cuy[j] = vym;
-                pvx[j] = vx;
-                pvy[j] = vy;
-            }
+            doubling_pass(na, &Fc, &Fa, &Fb, hv, a0m, a1m, p0, p1, pmu, ptol, pux, puy, pvx, pvy,
+                          cux, cuy, cvx, cvy, pbad, ppk2, pd, pdux, pduy, pdvx, pdvy, pns);
             size_t nr = 0;
             for (size_t j = 0; j < na; j++) { /* unpack the accepted, collect the rest */
                 const size_t k = live[j];
