@@ -114,10 +114,56 @@ static void test_csv_band_and_finite(void)
     sl_design_free(d);
 }
 
+/* The standard error of the NLTHA design value: two sets with peaks 0.1 and
+ * 0.3 m: mean 0.2, sample sd sqrt(0.02) = 0.141421 m, design 3 x 0.2 = 0.6 m,
+ * its standard error 3 x sd / sqrt(2) = 0.3 m exactly. */
+static void test_design_se(void)
+{
+    const double mu[2] = {0.1, 0.2};
+    const double peak[4] = {0.1, 0.0, 0.3, 0.0};
+    const double pgd[2] = {10.0, 10.0};
+    sl_design_input in;
+    sl_design_input_default(&in);
+    in.n_mu = 2;
+    in.n_sets = 2;
+    in.mu = mu;
+    in.peak_m = peak;
+    in.pgd_m = pgd;
+    in.zpa_h_ms2 = 0.5 * SL_G;
+    sl_error e;
+    sl_design *d = sl_design_compute(&in, &e);
+    CHECK(d != NULL, "design: %s", e.msg);
+    if (!d)
+        return;
+    char dir[] = "/tmp/sl-report-se-XXXXXX", path[256], line[1024];
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    sl_report_floor fl = {.id = "f", .name = "F", .path = "f.ini", .elevation_m = NAN,
+                          .units = "g", .zpa_h_ms2 = 0.5 * SL_G, .design = d, .note = ""};
+    sl_report r;
+    sl_report_init(&r);
+    r.version = "seislide test";
+    r.n_floors = 1;
+    r.floors = &fl;
+    CHECK(sl_report_write_csv(&r, dir, &e) == SL_OK, "csv: %s", e.msg);
+    snprintf(path, sizeof path, "%s/floor_f.csv", dir);
+    FILE *f = fopen(path, "r");
+    int found = 0;
+    while (f && fgets(line, sizeof line, f))
+        if (!strncmp(line, "0.1,", 4))
+            found = strstr(line, ",200.0000,141.4214,600.0000,300.0000,,,") != NULL;
+    if (f)
+        fclose(f);
+    CHECK(found, "row mu 0.1 with mean 200, sd 141.4214, design 600, se 300: %s", line);
+    snprintf(line, sizeof line, "rm -rf '%s'", dir);
+    CHECK(system(line) == 0, "clean up");
+    sl_design_free(d);
+}
+
 int main(void)
 {
     RUN(test_floor_id);
     RUN(test_ranges_text);
     RUN(test_csv_band_and_finite);
+    RUN(test_design_se);
     return HARNESS_END("report");
 }
