@@ -985,7 +985,9 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     dv.error_message = "Choose a floor from the list (the names of the Summary sheet).";
     worksheet_data_validation_cell(ws, LK_FLOOR, 1, &dv);
     worksheet_write_string(ws, LK_MU, 0, "Friction coefficient mu (type it)", F->bold);
-    if (isfinite(r->lookup_mu))
+    if (r->lookup_mu_text)
+        worksheet_write_string(ws, LK_MU, 1, r->lookup_mu_text, F->input);
+    else if (isfinite(r->lookup_mu))
         worksheet_write_number(ws, LK_MU, 1, r->lookup_mu, F->input);
     else
         worksheet_write_blank(ws, LK_MU, 1, F->input);
@@ -1014,7 +1016,9 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
         check = "choose a floor from the list";
     else if (fi == nf)
         check = "unknown floor: choose one from the list";
-    else if (!isfinite(mu0))
+    else if (r->lookup_mu_text && *r->lookup_mu_text)
+        check = "mu must be a number";
+    else if (!isfinite(mu0) || r->lookup_mu_text)
         check = "type mu";
     else if (mu0 < mu_min || mu0 > mu_max)
         check = "mu outside the table";
