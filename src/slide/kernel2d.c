@@ -58,6 +58,10 @@ long dbg_cnt[8];
 /* Most sub-steps one sample is cut into by the refinement. */
 #define NSUB_MAX 4096u
 
+/* max and min of finite values as selects (fmax/fmin may be calls) */
+VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
+VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
+
 /* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
 static double mean_positive(double n0, double n1)
 {
@@ -118,13 +122,13 @@ static void track_peak(blk *b, double ux0, double uy0, double vx0, double vy0, d
     const double p0 = ux0 * vx0 + uy0 * vy0, p1 = b->ux * b->vx + b->uy * b->vy;
     double c = r2;
     if (p0 > 0.0 && p1 < 0.0)
-        c = fmax(c, ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (p0 - p1));
+        c = max2(c, ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (p0 - p1));
     if (c > b->peak2) {
         b->peak2 = c;
         b->tpeak = t;
     }
-    b->px = fmax(b->px, fabs(b->ux));
-    b->py = fmax(b->py, fabs(b->uy));
+    b->px = max2(b->px, fabs(b->ux));
+    b->py = max2(b->py, fabs(b->uy));
 }
 
 /* The full step (2)-(5) of one block. Returns the fraction of the step
@@ -163,13 +167,13 @@ static double fstep(blk *b, const force *F, double mu)
             const double vn = sqrt(vx0 * vx0 + vy0 * vy0);
             const double ex = vx0 / vn, ey = vy0 / vn;
             const double dec = (hax * ex + hay * ey + f) / h;
-            const double tau = dec > 0.0 ? fmin(vn / dec, h) : h;
+            const double tau = dec > 0.0 ? min2(vn / dec, h) : h;
             const double q = tau / h, rest = 1.0 - q;
             const double tx = vx0 - q * (hax + f * ex), ty = vy0 - q * (hay + f * ey);
             const double atx = F->ax0 + F->dax * q, aty = F->ay0 + F->day * q;
             const double Nt = F->n0 + F->dn * q;
             /* a stop, not a turn: the speed across e left at tau is small */
-            if (q < 1.0 && hypot(atx, aty) <= mu * fmax(Nt, 0.0) &&
+            if (q < 1.0 && atx * atx + aty * aty <= mu * mu * max2(Nt, 0.0) * max2(Nt, 0.0) &&
                 tx * tx + ty * ty <= SL_K2_STOP_REMNANT * SL_K2_STOP_REMNANT * vn * vn) {
                 /* stopped at tau and held there: at rest until the next onset */
                 nvx = nvy = 0.0;
@@ -196,7 +200,7 @@ static double fstep(blk *b, const force *F, double mu)
     b->path += 0.5 * hu * (b->sp + sp);
     b->sp = sp;
     b->tslide += hu;
-    b->vmax2 = fmax(b->vmax2, sp2);
+    b->vmax2 = max2(b->vmax2, sp2);
     if (sp2 == 0.0)
         b->tstop = tu;
     track_peak(b, ux0, uy0, vx0, vy0, hu, tu);
@@ -209,7 +213,7 @@ static int slips_at(const sample *s, double mu, double x)
 {
     const double ax = s->ax0 + (s->ax1 - s->ax0) * x, ay = s->ay0 + (s->ay1 - s->ay0) * x;
     const double N = s->n0 + (s->n1 - s->n0) * x;
-    return hypot(ax, ay) > mu * fmax(N, 0.0);
+    return ax * ax + ay * ay > mu * mu * max2(N, 0.0) * max2(N, 0.0);
 }
 
 /* The first fraction x in [lo, 1) after which a block at rest slips, or 1
@@ -273,10 +277,6 @@ static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
     }
     return b;
 }
-
-/* max and min of finite values as selects (fmax/fmin may be calls) */
-VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
-VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
 
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
  * when the step needs the split (5). Inlined into the vector loops. */
@@ -526,8 +526,8 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                 blk A = run_level(B[k], &s, mu[k], n0, x0), C = run_level(B[k], &s, mu[k], 2 * n0, x0);
                 unsigned n = 2 * n0;
                 for (;;) {
-                    const double eu = hypot(C.ux - A.ux, C.uy - A.uy);
-                    const double ev = hypot(C.vx - A.vx, C.vy - A.vy);
+                    const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
+                    const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
                     if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
                         break;
                     A = C;
