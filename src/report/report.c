@@ -1143,7 +1143,7 @@ static void quality_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Motion quality");
     static const char *const head[] = {
         "floor id", "set", "comp.", "PGA, g", "D5-75, s", "min ratio to target",
-        "max ratio to target", "longest run below target", "max abs. corre- lation",
+        "max ratio to target", "longest run below target", "max abs. correlation",
         "v end, m/s", "d end, m", "pass", "failed checks"};
     for (lxw_col_t c = 0; c < 13; c++)
         worksheet_write_string(ws, 0, c, head[c], F->header);
