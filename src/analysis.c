@@ -28,6 +28,7 @@ void sl_analysis_opts_default(sl_analysis_opts *o)
     o->n_sets = SL_ANALYSIS_DEFAULT_SETS;
     o->seed = 1;
     o->substeps = SL_SLIDE_DEFAULT_SUBSTEPS;
+    o->rtol = SL_SLIDE_DEFAULT_RTOL;
     o->policy = SL_CLEARANCE_NLTHA;
     o->fs_nltha = SL_NLTHA_FS;
     o->fs_asce = SL_ASCE_FS;
@@ -163,6 +164,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     sl_slide_opts so;
     sl_slide_opts_default(&so);
     so.substeps = o->substeps;
+    so.rtol = o->rtol;
     if (sl_slide_batch(sets, o->n_sets, o->mu, o->n_mu, &so, res, err))
         goto fail;
     if (o->progress)

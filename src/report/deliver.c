@@ -110,7 +110,10 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
     snprintf(s_sets, sizeof s_sets, "%zu", an[0]->n_sets);
     snprintf(s_seed, sizeof s_seed, "%llu", (unsigned long long)o->seed);
     snprintf(s_mu, sizeof s_mu, "%zu values, %g to %g", d0->n, d0->rows[0].mu, d0->rows[d0->n - 1].mu);
-    snprintf(s_sub, sizeof s_sub, "%u per sample (requested accuracy %g)", o->substeps, o->accuracy);
+    if (o->substeps) /* fixed sub-steps (expert), else the engine's error control */
+        snprintf(s_sub, sizeof s_sub, "%u per sample (fixed)", o->substeps);
+    else
+        snprintf(s_sub, sizeof s_sub, "error-controlled, relative error %g", o->accuracy);
     snprintf(s_fs, sizeof s_fs, "NLTHA %g x mean; ASCE %g x best estimate; cap %g x mean PGD",
              d0->fs_nltha, d0->fs_asce, d0->cap_factor);
     snprintf(s_synth, sizeof s_synth, "%g s at %g s, matched at %g %% damping (SRP 3.7.1 checks)",
