@@ -105,8 +105,23 @@ static void verify_motion(const char *what, const sl_motion *m, const indep_targ
     CHECK_CLOSE(k->min_ratio, lo, 0, 1e-6);
     CHECK_CLOSE(k->max_ratio, hi, 0, 1e-6);
     CHECK(k->run_below == worst_run, "%s: run %zu vs %zu", what, k->run_below, worst_run);
-    /* peak = ZPA */
-    CHECK_CLOSE(sl_motion_pga(m), zpa_ms2, 0, T_REL);
+    /* the PGA emerges from the high-frequency end of the spectrum (no
+     * pinning): inside the spectral band of the ZPA, and reported */
+    double pga = sl_motion_pga(m);
+    CHECK(pga <= (1 + SL_SYNTH_TOL_ABOVE) * zpa_ms2, "%s: PGA/ZPA %.4f", what, pga / zpa_ms2);
+    if (it->rg) /* rigid from 33 to 50 Hz: the PGA is checked from below too */
+        CHECK(pga >= (1 - SL_SYNTH_PGA_TOL_BELOW) * zpa_ms2, "%s: PGA/ZPA %.4f", what,
+              pga / zpa_ms2);
+    CHECK_CLOSE(k->pga_zpa, pga / zpa_ms2, 0, T_REL);
+    /* local maxima of |a| above 0.9 PGA, counted here (REFERENCE.md 5) */
+    size_t npk = 0;
+    for (size_t i = 1; i + 1 < m->n; i++) {
+        double x = fabs(m->acc_ms2[i]);
+        npk += x >= 0.9 * pga && x > fabs(m->acc_ms2[i - 1]) && x >= fabs(m->acc_ms2[i + 1]);
+    }
+    CHECK(k->peaks == npk, "%s: peaks %zu vs %zu", what, k->peaks, npk);
+    if (it->rg)
+        CHECK(npk <= SL_SYNTH_MAX_PEAKS, "%s: %zu peaks above 0.9 PGA", what, npk);
     /* ends at rest: velocity and displacement (motion.h integration) */
     double *v = malloc(m->n * sizeof *v), *d = malloc(m->n * sizeof *d);
     sl_motion_integrate(m, v, d);
@@ -140,7 +155,8 @@ static double verify_corr(const sl_synth_set *set)
     static const int pr[3][2] = {{0, 1}, {0, 2}, {1, 2}};
     double worst = 0;
     for (int q = 0; q < 3; q++) {
-        const sl_motion *a = set->motion[pr[q][0]], *b = set->motion[pr[q][1]];
+        const sl_motion *a = sl_synth_set_motion(set, (sl_synth_comp)pr[q][0]);
+        const sl_motion *b = sl_synth_set_motion(set, (sl_synth_comp)pr[q][1]);
         double r = pearson(a->acc_ms2, b->acc_ms2, a->n);
         CHECK(fabs(r) <= SL_SYNTH_MAX_CORR, "pair %d: correlation %.4f", q, r);
         CHECK_CLOSE(set->corr[q], r, 1e-12, 1e-9);
@@ -258,7 +274,7 @@ static void test_rg160_levels(void)
                 char what[64];
                 snprintf(what, sizeof what, "RG1.60 %.1fg seed %llu %s", pga_g[i],
                          (unsigned long long)seeds[q], sl_synth_comp_name((sl_synth_comp)c));
-                verify_motion(what, set.motion[c], &it, pga, &set.check[c], &rmin, &rmax);
+                verify_motion(what, sl_synth_set_motion(&set, (sl_synth_comp)c), &it, pga, &set.check[c], &rmin, &rmax);
                 CHECK(set.check[c].damping == SL_SYNTH_DAMPING, "damping");
                 itmax = set.check[c].iterations > itmax ? set.check[c].iterations : itmax;
             }
@@ -316,7 +332,7 @@ static void test_floor_template(void)
                 char what[64];
                 snprintf(what, sizeof what, "template seed %llu set %d %s",
                          (unsigned long long)seeds[q], k, sl_synth_comp_name((sl_synth_comp)c));
-                verify_motion(what, sets[k].motion[c], &it, fl->comp[c].zpa_ms2,
+                verify_motion(what, sl_synth_set_motion(&sets[k], (sl_synth_comp)c), &it, fl->comp[c].zpa_ms2,
                               &sets[k].check[c], &rmin, &rmax);
             }
             verify_corr(&sets[k]);
@@ -354,7 +370,7 @@ static void test_floor_small(void)
     if (!st) {
         for (int c = 0; c < 3; c++) {
             indep_target it = {0, SL_RG160_HORIZONTAL, 0, 0, tgt[c].spec};
-            verify_motion(sl_synth_comp_name((sl_synth_comp)c), set.motion[c], &it,
+            verify_motion(sl_synth_comp_name((sl_synth_comp)c), sl_synth_set_motion(&set, (sl_synth_comp)c), &it,
                           tgt[c].zpa_ms2, &set.check[c], NULL, NULL);
         }
         CHECK(fabs(set.check[0].f_lo_hz - 0.5) < 0.012 && set.check[0].f_hi_hz <= 33,
@@ -388,7 +404,7 @@ static void test_reproducible(void)
         CHECK(sl_synth_make_sets(s, tgt, 11, 0, NS, run, NULL, NULL, &e) == SL_OK, "%s", e.msg);
         for (int k = 0; k < NS; k++) {
             for (int c = 0; c < 3; c++)
-                CHECK(!memcmp(ref[k].motion[c]->acc_ms2, run[k].motion[c]->acc_ms2,
+                CHECK(!memcmp(sl_synth_set_motion(&ref[k], (sl_synth_comp)c)->acc_ms2, sl_synth_set_motion(&run[k], (sl_synth_comp)c)->acc_ms2,
                               T_N * sizeof(double)),
                       "%d threads: set %d %s differs", threads[t], k,
                       sl_synth_comp_name((sl_synth_comp)c));
@@ -399,14 +415,14 @@ static void test_reproducible(void)
     /* one set made alone (index 1) equals set 1 of the batch */
     sl_synth_set one;
     CHECK(sl_synth_make_set(s, tgt, 11, 1, &one, &e) == SL_OK, "%s", e.msg);
-    CHECK(!memcmp(one.motion[SL_SYNTH_V]->acc_ms2, ref[1].motion[SL_SYNTH_V]->acc_ms2,
+    CHECK(!memcmp(one.set.v->acc_ms2, ref[1].set.v->acc_ms2,
                   T_N * sizeof(double)),
           "set index 1 alone differs from the batch");
     sl_synth_set_clear(&one);
     /* another seed: a different motion, unrelated to the first */
     sl_synth_set other;
     CHECK(sl_synth_make_set(s, tgt, 12, 0, &other, &e) == SL_OK, "%s", e.msg);
-    double r = pearson(other.motion[0]->acc_ms2, ref[0].motion[0]->acc_ms2, T_N);
+    double r = pearson(other.set.h1->acc_ms2, ref[0].set.h1->acc_ms2, T_N);
     CHECK(fabs(r) < SL_SYNTH_MAX_CORR, "seeds 11 and 12 correlate %.3f", r);
     if (verbose())
         fprintf(stderr, "  seeds 11 vs 12, H1: rho = %.4f\n", r);
@@ -499,7 +515,7 @@ static void test_impossible(void)
         CHECK(!k->pass && (!k->ok_below || !k->ok_above), "%s passed", sl_synth_comp_name(c));
         CHECK(k->iterations <= 1 && k->attempt == 0, "cap ignored: %u iterations, attempt %u",
               k->iterations, k->attempt);
-        CHECK(set.motion[c] != NULL, "failed motion not returned for the report");
+        CHECK(sl_synth_set_motion(&set, (sl_synth_comp)c) != NULL, "failed motion not returned for the report");
     }
     sl_synth_set_clear(&set);
     for (int c = 0; c < 3; c++)
@@ -519,12 +535,13 @@ static void test_impossible(void)
         sl_synth_free(s);
         return;
     }
+    /* Without peak pinning the spectrum is met, and the disagreement shows
+     * as the reported PGA/ZPA: the motion's PGA is far below the claimed
+     * ZPA (the target is not rigid at its end, so it is reported only). */
     st = sl_synth_make_set(s, tgt, 1, 0, &set, &e);
-    CHECK(st == SL_ENOCONV && !set.check[SL_SYNTH_V].pass && !set.check[SL_SYNTH_V].ok_above,
-          "implausible V target passed (status %d, max ratio %g)", st,
-          set.check[SL_SYNTH_V].max_ratio);
-    CHECK(set.check[SL_SYNTH_V].attempt == 1, "not retried: attempt %u",
-          set.check[SL_SYNTH_V].attempt);
+    CHECK(st == SL_OK || st == SL_ENOCONV, "status %d", st);
+    CHECK(set.check[SL_SYNTH_V].pga_zpa < 1 - SL_SYNTH_PGA_TOL_BELOW,
+          "implausible V target: PGA/ZPA %g", set.check[SL_SYNTH_V].pga_zpa);
     sl_synth_set_clear(&set);
     sl_synth_free(s);
     sl_floor_free(fl);
@@ -560,13 +577,13 @@ static void test_match_record(void)
     sl_status st = sl_synth_match_set(s, tgt, rec, &m, &e);
     CHECK(st == SL_OK, "status %d: %s", st, e.msg);
     if (st == SL_OK || st == SL_ENOCONV) {
-        CHECK(m.motion[1] == NULL && m.motion[2] == NULL && isnan(m.corr[0]), "absent parts");
+        CHECK(m.set.h2 == NULL && m.set.v == NULL && isnan(m.corr[0]), "absent parts");
         indep_target it = {1, SL_RG160_HORIZONTAL, 0.05, pga, NULL};
-        verify_motion("Taft matched", m.motion[0], &it, pga, &m.check[0], NULL, NULL);
-        double rho_match = pearson(m.motion[0]->acc_ms2, r->acc_ms2, r->n);
+        verify_motion("Taft matched", m.set.h1, &it, pga, &m.check[0], NULL, NULL);
+        double rho_match = pearson(m.set.h1->acc_ms2, r->acc_ms2, r->n);
         sl_synth_set u;
         CHECK(sl_synth_make_set(s, tgt, 3, 0, &u, &e) == SL_OK, "%s", e.msg);
-        double rho_other = pearson(u.motion[0]->acc_ms2, r->acc_ms2, r->n);
+        double rho_other = pearson(u.set.h1->acc_ms2, r->acc_ms2, r->n);
         CHECK(rho_match > 0.6 && rho_match > 5 * fabs(rho_other),
               "phase not kept: rho %.3f with the original, %.3f unrelated", rho_match,
               rho_other);

@@ -435,7 +435,7 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
                     snprintf(path, sizeof path, "%s/set%02zu_%s.AT2", dir, s + 1, cn[cc]);
                     snprintf(title, sizeof title, "%s, set %zu, %s, seed %lu", floors[i]->name,
                              s + 1, cn[cc], seed);
-                    if (sl_synth_write_at2(path, an[i]->sets[s].motion[cc], title, &err)) {
+                    if (sl_synth_write_at2(path, sl_synth_set_motion(&an[i]->sets[s], (sl_synth_comp)cc), title, &err)) {
                         cli_print_error(&err);
                         goto done;
                     }

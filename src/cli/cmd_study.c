@@ -340,7 +340,7 @@ static int part2(study_ctx *s)
         cli_print_error(&s->err);
         return -1;
     }
-    sl_motion *x = ms.motion[0], *y = ms.motion[1], *z = ms.motion[2];
+    sl_motion *x = ms.set.h1, *y = ms.set.h2, *z = ms.set.v;
     FILE *md = s->md;
     fprintf(md,
             "## 2. El Centro #9 (1940): the effect of the second horizontal and the vertical\n\n"
@@ -525,7 +525,7 @@ static void failed_checks(const sl_synth_set *m, char *buf, size_t n)
         char comps[16] = "";
         for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
             const int *ok = (const int *)((const char *)&m->check[c] + checks[k].off);
-            if (m->motion[c] && !*ok) {
+            if (sl_synth_set_motion(m, (sl_synth_comp)c) && !*ok) {
                 strncat(comps, comps[0] ? "," : "", sizeof comps - strlen(comps) - 1);
                 strncat(comps, sl_synth_comp_name((sl_synth_comp)c), sizeof comps - strlen(comps) - 1);
             }
@@ -581,10 +581,10 @@ static int part3(study_ctx *s)
         }
         char failed[256];
         failed_checks(&matched[i], failed, sizeof failed);
-        pgd_g += sl_motion_pgd(matched[i].motion[0]) / (double)SL_STUDY_NGROUND;
+        pgd_g += sl_motion_pgd(matched[i].set.h1) / (double)SL_STUDY_NGROUND;
         fprintf(md, "| %s | %s | %s | %s (SA/target %.2f-%.2f) | %.2f, %.2f |\n", sl_study_ground.e[i].name,
                 sl_study_ground.e[i].dir, sl_study_ground.e[i].why, failed, lo, hi,
-                sl_motion_pgd(matched[i].motion[0]), sl_motion_pgd(matched[i].motion[1]));
+                sl_motion_pgd(matched[i].set.h1), sl_motion_pgd(matched[i].set.h2));
         note(s, "part 3: matched %s", sl_study_ground.e[i].dir);
     }
     if (rc)
@@ -615,7 +615,7 @@ static int part3(study_ctx *s)
         memset(own, 0, sizeof own);
         for (size_t i = 0; i < SL_STUDY_NGROUND; i++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
-                own[i][c] = sl_motion_copy(matched[i].motion[c]);
+                own[i][c] = sl_motion_copy(sl_synth_set_motion(&matched[i], (sl_synth_comp)c));
                 if (own[i][c])
                     sl_motion_scale(own[i][c], levels_g[l]);
                 else
