@@ -29,6 +29,17 @@
 #include "core/status.h"
 #include "core/units.h"
 
+/* The reader's limits. A file larger than SL_MOTION_MAX_BYTES is refused
+ * before it is read (the message gives the limit); an acceleration whose
+ * magnitude in SI exceeds SL_MOTION_MAX_ABS_G g (including one that
+ * overflows to infinity when converted) is refused with its file, line and
+ * value: no floor or ground motion comes near it, and every result computed
+ * from the motion stays finite. Time-column values must lie within
+ * +-SL_MOTION_MAX_TIME_S. */
+#define SL_MOTION_MAX_BYTES (256L * 1024 * 1024)
+#define SL_MOTION_MAX_ABS_G 100.0
+#define SL_MOTION_MAX_TIME_S 1e6
+
 typedef enum sl_format {
     SL_FORMAT_AUTO = 0, /* decide from the content (AT2 header, CSV header, columns) */
     SL_FORMAT_AT2,
@@ -102,9 +113,26 @@ typedef struct sl_set {
     sl_motion *h1, *h2, *v;
 } sl_set;
 
+/* What sl_set_check_fit() did to the lengths: n_in[k] samples of H1, H2, V
+ * as read (0 when absent), n the common length after the check, and
+ * `changed` nonzero when a length was altered (padded or cut). */
+typedef struct sl_set_fit {
+    size_t n_in[3];
+    size_t n;
+    int truncated; /* 1: cut to the shortest, 0: padded to the longest */
+    int changed;
+} sl_set_fit;
+
 /* Check a set: H1 present; same dt (relative 1e-6) or an error naming both
- * files and values; same length, or with `truncate` nonzero cut every
- * component to the shortest; all values finite. */
+ * files and values; all values finite. Components of different length are
+ * padded with zeros to the longest (the ground is at rest after its record
+ * ends; the padded arrays are reallocated, so the motions must own their
+ * samples, as those from the readers do), or with `truncate` nonzero cut to
+ * the shortest (the old behaviour). fit (may be NULL) reports the lengths so
+ * the caller can say what was done. On error the set is unchanged. */
+sl_status sl_set_check_fit(sl_set *set, int truncate, sl_set_fit *fit, sl_error *err);
+
+/* sl_set_check_fit() without the report. */
 sl_status sl_set_check(sl_set *set, int truncate, sl_error *err);
 
 /* Peak horizontal acceleration of the set: the larger component peak,
