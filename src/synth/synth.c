@@ -3,6 +3,7 @@
 #include "synth/synth.h"
 
 #include <fftw3.h>
+#include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
@@ -53,6 +54,7 @@ void sl_synth_params_default(sl_synth_params *p)
     p->max_peaks = SL_SYNTH_MAX_PEAKS;
     p->pga_tol_below = SL_SYNTH_PGA_TOL_BELOW;
     p->wavelet_rate = SL_SYNTH_WAVELET_RATE;
+    p->pga_sigma = SL_SYNTH_PGA_SIGMA;
     p->wavelet_cycles = SL_SYNTH_WAVELET_CYCLES;
     p->psd_frac = 0; /* reported, not required (docs/synthesis.md 9) */
     p->max_iter = SL_SYNTH_MAX_ITER;
@@ -89,6 +91,7 @@ sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)
     SYNTH_REQUIRE(p->wavelet_cycles > 0 && isfinite(p->wavelet_cycles),
                   "wavelet_cycles must be > 0");
     SYNTH_REQUIRE(p->pga_tol_below >= 0 && p->pga_tol_below <= 1, "pga_tol_below must be in [0, 1]");
+    SYNTH_REQUIRE(p->pga_sigma >= 0 && p->pga_sigma <= 1, "pga_sigma must be in [0, 1]");
     SYNTH_REQUIRE(p->psd_frac >= 0 && isfinite(p->psd_frac), "psd_frac must be >= 0");
     SYNTH_REQUIRE(p->max_attempts >= 1, "max_attempts must be >= 1");
     SYNTH_REQUIRE(p->aim > 0 && isfinite(p->aim), "aim must be > 0");
@@ -461,6 +464,7 @@ struct sl_synth_motion {
     const sl_spectrum *tspec; /* the target spectrum (borrowed) */
     double fc_hz;          /* compression: content above this only (compress_peaks) */
     double knee;           /* compression knee: SL_SYNTH_KNEE, records SL_SYNTH_KNEE_RECORD */
+    double level;          /* compression level / ZPA (peak_level()) */
     size_t j_lo, j_hi;     /* checked grid points [j_lo, j_hi) */
     unsigned iter;         /* iterations since set_* */
     unsigned attempt;
@@ -721,7 +725,7 @@ static sl_status finish(sl_synth_motion *m, sl_error *err)
         m->acc[j] *= s->taper[j];
         m->acc[n - 1 - j] *= s->taper[j];
     }
-    compress_peaks(m, s->p.aim * m->zpa, m->knee);
+    compress_peaks(m, m->level * m->zpa, m->knee);
     /* Baseline: subtract c0 bl0 + c1 bl1 so that v(T) = d(T) = 0. */
     double ve, de;
     end_values(m->acc, n, s->dt, &ve, &de);
@@ -779,6 +783,21 @@ static sl_status start(sl_synth_motion *m, sl_error *err)
     return st;
 }
 
+/* The peak level of a synthetic motion, as a fraction of the ZPA: real
+ * motions sharing one mean spectrum scatter in PGA (the physical floor
+ * motions of tests/test_physical_floors.c: coefficient of variation about
+ * 0.15), and a block with mu g near the ZPA slides in the motions whose peak
+ * exceeds it. So each motion draws its level from a lognormal of median
+ * aim and log standard deviation pga_sigma, kept 0.02 inside the spectral
+ * band [1 - tol_below, 1 + tol_above]; pga_sigma = 0 gives aim. */
+static double peak_level(const sl_synth_params *p, gsl_rng *rng)
+{
+    double z = gsl_ran_gaussian_ziggurat(rng, 1.0);
+    double l = p->aim * exp(p->pga_sigma * z);
+    double lo = 1 - p->tol_below + 0.02, hi = 1 + p->tol_above - 0.02;
+    return p->pga_sigma > 0 ? (l < lo ? lo : l > hi ? hi : l) : p->aim;
+}
+
 sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint64_t seed,
                               size_t set, sl_synth_comp comp, unsigned attempt, sl_error *err)
 {
@@ -823,6 +842,7 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
                 m->acc[j] += amp * exp(-0.5 * x * x / (sg * sg)) * cos(2 * SL_PI * f * x + phi);
             }
         }
+        m->level = peak_level(&s->p, rng);
         gsl_rng_free(rng);
         m->attempt = attempt;
         m->knee = SL_SYNTH_KNEE;
@@ -838,6 +858,7 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
         m->cwork[k][0] = amp * cos(phi);
         m->cwork[k][1] = amp * sin(phi);
     }
+    m->level = peak_level(&s->p, rng);
     gsl_rng_free(rng);
     m->knee = SL_SYNTH_KNEE;
     m->cwork[s->nbin - 1][1] = 0; /* the Nyquist bin of a real signal is real */
@@ -876,6 +897,7 @@ sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
         return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: record is all zeros");
     m->attempt = 0;
     m->knee = SL_SYNTH_KNEE_RECORD;
+    m->level = s->p.aim;
     return start(m, err);
 }
 
