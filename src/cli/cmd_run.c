@@ -24,7 +24,8 @@
 #define MAX_FLOORS 256
 
 static const char run_help[] =
-    "usage: seislide run [FLOOR.ini ... | DIR] [-o DIR] [-q] [--sets N] [--seed S]\n"
+    "usage: seislide run [FLOOR.ini ... | DIR] [-o DIR] [-q] [--seed S]\n"
+    "                    [--sets N | --rel-se R --abs-se MM --max-sets N]\n"
     "                    [--mu-range A:B:S | --mu LIST] [--policy nltha|asce|envelope]\n"
     "                    [--accuracy 0.01|0.001|0.0001 | --substeps N] [--created EPOCH]\n"
     "\n"
@@ -41,9 +42,15 @@ static const char run_help[] =
     "\n"
     "  -o, --output DIR     output folder (default output/; created if missing)\n"
     "  -q, --quiet          no progress on stderr\n"
-    "  --sets N             motion sets per floor (default 7; ASCE 43-05: >= 5)\n"
+    "  --sets N             a fixed number of motion sets per floor (ASCE 43-05: >= 5)\n"
+    "                       instead of adding sets until converged (the default):\n"
+    "  --rel-se R           target standard error of the design value, relative\n"
+    "                       (default 0.05), or\n"
+    "  --abs-se MM          absolute, mm (default 1), whichever is larger, at every mu\n"
+    "  --max-sets N         stop there if not converged, flagged (default 200)\n"
     "  --seed S             random seed (default 1); a floor's seed also depends on its\n"
-    "                       name, so it does not change with the other floors\n"
+    "                       spectra's numbers (or its 'seed =' key), never on its name\n"
+    "                       or on the other floors\n"
     "  --mu-range A:B:S     friction grid (default " RUN_DEFAULT_MU_RANGE ")\n"
     "  --mu LIST            explicit friction values, increasing\n"
     "  --policy P           required clearance: nltha (default: the NLTHA design value,\n"
@@ -160,6 +167,7 @@ int cmd_run(int argc, char **argv)
 {
     enum { O_MOTIONS = 300 };
 enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED, O_HELP };
+    enum { O_REL_SE = 320, O_ABS_SE, O_MAX_SETS };
     static const struct option lo[] = {{"output", required_argument, 0, 'o'},
                                        {"quiet", no_argument, 0, 'q'},
                                        {"sets", required_argument, 0, O_SETS},
@@ -171,11 +179,15 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
                                        {"substeps", required_argument, 0, O_SUB},
                                        {"created", required_argument, 0, O_CREATED},
                                        {"motions", no_argument, 0, O_MOTIONS},
+                                       {"rel-se", required_argument, 0, O_REL_SE},
+                                       {"abs-se", required_argument, 0, O_ABS_SE},
+                                       {"max-sets", required_argument, 0, O_MAX_SETS},
                                        {"help", no_argument, 0, O_HELP},
                                        {0, 0, 0, 0}};
     const char *outdir = RUN_DEFAULT_OUT;
     int quiet = 0, rc = CLI_EXIT_ERROR, write_motions = 0;
-    unsigned long ul, seed = 1, n_sets = SL_ANALYSIS_DEFAULT_SETS;
+    unsigned long ul, seed = 1, n_sets = 0, max_sets = SL_ANALYSIS_MAX_SETS;
+    double rel_se = SL_ANALYSIS_REL_SE, abs_se_mm = 1e3 * SL_ANALYSIS_ABS_SE_M;
     unsigned substeps = 0;
     double acc = 1e-3, *mu = NULL;
     size_t n_mu = 0;
@@ -248,6 +260,24 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
             break;
         }
         case O_MOTIONS: write_motions = 1; break;
+        case O_REL_SE:
+            if (cli_parse_double(arg, &rel_se) || !(rel_se >= 0 && rel_se < 1)) {
+                rc = cli_usage("run", "--rel-se '%s' must be a number in [0, 1)", arg);
+                goto done;
+            }
+            break;
+        case O_ABS_SE:
+            if (cli_parse_double(arg, &abs_se_mm) || !(abs_se_mm >= 0) || !isfinite(abs_se_mm)) {
+                rc = cli_usage("run", "--abs-se '%s' must be a number >= 0 (mm)", arg);
+                goto done;
+            }
+            break;
+        case O_MAX_SETS:
+            if (cli_parse_ulong(arg, &max_sets) || max_sets < 2 || max_sets > 10000) {
+                rc = cli_usage("run", "--max-sets '%s' must be an integer from 2 to 10000", arg);
+                goto done;
+            }
+            break;
         case O_HELP:
             fputs(run_help, stdout);
             rc = CLI_EXIT_OK;
@@ -259,6 +289,10 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
             rc = cli_usage("run", "unknown option '%s'", argv[optind - 1]);
             goto done;
         }
+    }
+    if (!(rel_se > 0 || abs_se_mm > 0)) {
+        rc = cli_usage("run", "--rel-se and --abs-se cannot both be 0");
+        goto done;
     }
     if (!mu && cli_parse_range(RUN_DEFAULT_MU_RANGE, &mu, &n_mu)) {
         cli_msg("out of memory");
@@ -300,6 +334,9 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
     sl_analysis_opts ao;
     sl_analysis_opts_default(&ao);
     ao.n_sets = n_sets;
+    ao.rel_se = rel_se;
+    ao.abs_se_m = 1e-3 * abs_se_mm;
+    ao.max_sets = max_sets;
     ao.seed = seed;
     ao.mu = mu;
     ao.n_mu = n_mu;
@@ -308,7 +345,7 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
     ao.progress = progress;
     progress_ctx pc = {quiet, 0, np, "", -100, NULL};
     ao.progress_ctx = &pc;
-    if (n_sets < SL_NLTHA_MIN_SETS && !quiet)
+    if (n_sets > 0 && n_sets < SL_NLTHA_MIN_SETS && !quiet)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",
                 n_sets, SL_NLTHA_MIN_SETS);
     for (size_t i = 0; i < np; i++) {
@@ -327,6 +364,16 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
                     i + 1, np, floors[i]->name, an[i]->zpa_h_ms2 / SL_G, an[i]->n_mu_skipped, n_mu,
                     d->has_crossover ? "" : "(none", d->has_crossover ? d->crossover_x : 0.0,
                     d->has_crossover ? "" : ")");
+            if (an[i]->stop == SL_ANALYSIS_STOP_FIXED)
+                cli_msg("run: floor '%s': %zu motion sets (fixed by --sets)", floors[i]->name,
+                        an[i]->n_sets);
+            else
+                cli_msg("run: floor '%s': %zu motion sets in %zu batches: %s (worst standard "
+                        "error %.1f %% of the design value)", floors[i]->name, an[i]->n_sets,
+                        an[i]->n_batches,
+                        an[i]->stop == SL_ANALYSIS_STOP_CONVERGED ? "converged"
+                                                                  : "NOT converged, --max-sets reached",
+                        100 * an[i]->worst_rel_se);
             if (an[i]->note[0])
                 cli_msg("run: floor '%s': note: %s", floors[i]->name, an[i]->note);
         }
@@ -356,6 +403,9 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
         rf[i].design = an[i]->design;
         rf[i].note = an[i]->note;
         rf[i].n_mu_skipped = an[i]->n_mu_skipped;
+        rf[i].n_sets = an[i]->n_sets;
+        rf[i].stop = sl_analysis_stop_name(an[i]->stop);
+        rf[i].conv = an[i]->conv;
         for (size_t s = 0; s < an[i]->n_sets; s++)
             for (int cc = 0; cc < SL_SYNTH_NCOMP; cc++) {
                 const sl_synth_check *k = &an[i]->sets[s].check[cc];
@@ -392,8 +442,12 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
         strcat(cmdline, " ");
         strcat(cmdline, argv[i]);
     }
-    char s_sets[32], s_seed[32], s_mu[96], s_sub[64], s_fs[64], s_synth[160];
-    snprintf(s_sets, sizeof s_sets, "%lu", n_sets);
+    char s_sets[96], s_seed[32], s_mu[96], s_sub[64], s_fs[64], s_synth[160];
+    if (n_sets > 0)
+        snprintf(s_sets, sizeof s_sets, "%lu (fixed)", n_sets);
+    else
+        snprintf(s_sets, sizeof s_sets, "until SE <= max(%g %%, %g mm), at most %lu",
+                 100 * rel_se, abs_se_mm, max_sets);
     snprintf(s_seed, sizeof s_seed, "%lu", seed);
     snprintf(s_mu, sizeof s_mu, "%zu values, %g to %g", n_mu, mu[0], mu[n_mu - 1]);
     snprintf(s_sub, sizeof s_sub, "%u per sample (requested accuracy %g)", substeps, acc);

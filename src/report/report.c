@@ -107,7 +107,9 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
             return err ? err->code : SL_EIO;
         FILE *f = sl_atomic_file(a);
         fputs("mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,asce_best_mm,"
-              "asce_design_mm,cap_mm,clearance_mm,flags\r\n", f);
+              "asce_design_mm,cap_mm,clearance_mm,flags,n_sets,nltha_design_se_mm,"
+              "nltha_design_lo90_mm,nltha_design_hi90_mm,p_slide,lognormal_mean_mm,converged\r\n",
+              f);
         for (size_t k = 0; k < fl->design->n; k++) {
             const sl_design_row *w = &fl->design->rows[k];
             const double mm[] = {w->nltha_mean_m, w->nltha_sd_m, w->nltha_design_m,
@@ -118,6 +120,20 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
                 fputc(',', f);
             }
             csv_field(f, sl_report_flags(w->flags, flags, sizeof flags));
+            if (fl->conv) {
+                const sl_stats_conv *cv = &fl->conv[k];
+                fprintf(f, ",%zu,", cv->n_sets);
+                const double cm[] = {cv->design_se_m, cv->design_lo_m, cv->design_hi_m};
+                for (size_t c = 0; c < sizeof cm / sizeof cm[0]; c++) {
+                    csv_num(f, MM_PER_M * cm[c], "%.4f");
+                    fputc(',', f);
+                }
+                fprintf(f, "%.4f,", cv->p_slide);
+                csv_num(f, MM_PER_M * cv->lognormal_mean_m, "%.4f");
+                fprintf(f, ",%s", cv->converged ? "yes" : "no");
+            } else {
+                fputs(",,,,,,,", f);
+            }
             fputs("\r\n", f);
         }
         if (sl_atomic_commit(a, err))

@@ -29,6 +29,7 @@
 #include <time.h>
 
 #include "method/design.h"
+#include "method/stats.h"
 #include "core/status.h"
 
 typedef struct sl_report_floor {
@@ -40,6 +41,10 @@ typedef struct sl_report_floor {
     const sl_design *design;
     const char *note;        /* e.g. the 10 % fallback; "" when none */
     size_t n_mu_skipped;     /* friction values that needed no NLTHA for any motion */
+    size_t n_sets;           /* motion sets used */
+    const char *stop;        /* why it stopped adding sets: "converged", "max_sets", "fixed" */
+    const sl_stats_conv *conv; /* per mu, as design->rows: sets, SE and band of the NLTHA
+                                  design value (NULL: columns left blank) */
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */
