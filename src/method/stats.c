@@ -12,14 +12,13 @@ sl_status sl_stats_mean_compute(const double *x, size_t n, size_t stride, sl_sta
 {
     if (!x || !out || n == 0 || stride == 0)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "stats: empty sample");
-    double sum = 0, sum_l = 0;
+    double sum_l = 0;
     size_t k = 0;
     for (size_t i = 0; i < n; i++) {
         double v = x[i * stride];
         if (!(v >= 0) || !isfinite(v))
             return sl_error_set(err, SL_EINVAL, NULL, 0,
                                 "stats: value %g (sample %zu) is not finite and >= 0", v, i + 1);
-        sum += v;
         if (v > 0) {
             k++;
             sum_l += log(v);
@@ -28,16 +27,17 @@ sl_status sl_stats_mean_compute(const double *x, size_t n, size_t stride, sl_sta
     sl_stats_mean s = {0};
     s.n = n;
     s.n_pos = k;
-    s.mean = sum / (double)n;
-    double ss = 0, ss_l = 0;
+    /* GSL's running mean and sd, as design.c uses them, so the design
+     * value here and in the design table are the same bits */
+    s.mean = gsl_stats_mean(x, stride, n);
+    double ss_l = 0;
     double ml = k ? sum_l / (double)k : NAN;
     for (size_t i = 0; i < n; i++) {
         double v = x[i * stride];
-        ss += (v - s.mean) * (v - s.mean);
         if (v > 0)
             ss_l += (log(v) - ml) * (log(v) - ml);
     }
-    s.sd = n > 1 ? sqrt(ss / (double)(n - 1)) : 0.0;
+    s.sd = n > 1 ? gsl_stats_sd_m(x, stride, n, s.mean) : 0.0;
     s.se = s.sd / sqrt((double)n);
     s.p_pos = (double)k / (double)n;
     s.ln_mu = s.ln_sigma = NAN;
