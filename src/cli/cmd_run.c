@@ -364,16 +364,22 @@ enum { O_SETS = 256, O_SEED, O_MU, O_MU_RANGE, O_POLICY, O_ACC, O_SUB, O_CREATED
                     i + 1, np, floors[i]->name, an[i]->zpa_h_ms2 / SL_G, an[i]->n_mu_skipped, n_mu,
                     d->has_crossover ? "" : "(none", d->has_crossover ? d->crossover_x : 0.0,
                     d->has_crossover ? "" : ")");
-            if (an[i]->stop == SL_ANALYSIS_STOP_FIXED)
+            const sl_analysis *q = an[i];
+            if (q->stop == SL_ANALYSIS_STOP_FIXED)
                 cli_msg("run: floor '%s': %zu motion sets (fixed by --sets)", floors[i]->name,
-                        an[i]->n_sets);
+                        q->n_sets);
             else
                 cli_msg("run: floor '%s': %zu motion sets in %zu batches: %s (worst standard "
-                        "error %.1f %% of the design value)", floors[i]->name, an[i]->n_sets,
-                        an[i]->n_batches,
-                        an[i]->stop == SL_ANALYSIS_STOP_CONVERGED ? "converged"
-                                                                  : "NOT converged, --max-sets reached",
-                        100 * an[i]->worst_rel_se);
+                        "error %.1f %% of the design value)", floors[i]->name, q->n_sets,
+                        q->n_batches,
+                        q->stop == SL_ANALYSIS_STOP_CONVERGED ? "converged"
+                                                              : "NOT converged, --max-sets reached",
+                        100 * q->worst_rel_se);
+            cli_msg("run: floor '%s': wall time: synthesis %.2f s, NLTHA %.2f s, statistics "
+                    "%.3f s, ASCE and design %.3f s (%.3f s per set)", floors[i]->name,
+                    q->time_synth_s, q->time_nltha_s, q->time_stats_s, q->time_asce_s,
+                    (q->time_synth_s + q->time_nltha_s + q->time_stats_s + q->time_asce_s) /
+                        (double)q->n_sets);
             if (an[i]->note[0])
                 cli_msg("run: floor '%s': note: %s", floors[i]->name, an[i]->note);
         }

@@ -167,7 +167,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         return err ? err->code : SL_EIO;
     f = sl_atomic_file(a);
     fputs("floor,file,zpa_h_g,crossover_mu_g_over_zpa,crossover_mu,asce_below_nltha_mu_g_over_zpa,"
-          "clearance_policy,mu_without_nltha,note\r\n", f);
+          "clearance_policy,mu_without_nltha,n_sets,sets_stop,note\r\n", f);
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
         const sl_design *d = fl->design;
@@ -184,7 +184,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         csv_field(f, ranges);
         fputc(',', f);
         csv_field(f, sl_clearance_policy_name(d->policy));
-        fprintf(f, ",%zu,", fl->n_mu_skipped);
+        fprintf(f, ",%zu,%zu,%s,", fl->n_mu_skipped, fl->n_sets, fl->stop ? fl->stop : "");
         csv_field(f, fl->note ? fl->note : "");
         fputs("\r\n", f);
     }
