@@ -8,13 +8,12 @@
 #include <time.h>
 
 #include "method/asce.h"
+#include "method/asce_input.h"
 #include "method/stats.h"
 #include "slide/slide.h"
 #include "signal/spectrum.h"
 #include "core/units.h"
 
-/* Damping of the ASCE/SEI 43-05 spectra. */
-#define ASCE_DAMPING 0.10
 
 static double wall_s(void)
 {
@@ -127,7 +126,7 @@ static sl_spectrum *mean_spectrum(const sl_analysis *a, int c, sl_error *err)
 {
     size_t nf = 0;
     double *f = sl_spectrum_grid(SL_SPECTRUM_FMIN_HZ, SL_SPECTRUM_FMAX_HZ, SL_SPECTRUM_PER_DECADE, &nf);
-    sl_spectrum *sp = f ? sl_spectrum_alloc(nf, ASCE_DAMPING) : NULL;
+    sl_spectrum *sp = f ? sl_spectrum_alloc(nf, SL_ASCE_DAMPING) : NULL;
     double *psa = malloc(nf * sizeof *psa);
     if (!f || !sp || !psa) {
         free(f);
@@ -140,7 +139,7 @@ static sl_spectrum *mean_spectrum(const sl_analysis *a, int c, sl_error *err)
     memset(sp->sa_ms2, 0, nf * sizeof *sp->sa_ms2);
     for (size_t s = 0; s < a->n_sets; s++) {
         const sl_motion *m = a->sets[s].motion[c];
-        if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, f, nf, ASCE_DAMPING, psa, NULL, NULL,
+        if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, f, nf, SL_ASCE_DAMPING, psa, NULL, NULL,
                                 err)) {
             free(f);
             free(psa);
@@ -298,7 +297,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     if (!a->sets || !a->pgd_m || !a->conv || !sets || !res || !peak || !n_skip || !noslide ||
         !best)
         goto nomem;
-    a->zpa_h_ms2 = fmax(fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2);
+    a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
     a->av_ms2 = fl->comp[SL_FLOOR_V].zpa_ms2;
     a->floor_seed = sl_analysis_floor_seed(o->seed, fl);
 
@@ -401,15 +400,11 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         s10[0] = fb[0];
         s10[1] = fb[1];
     }
-    sl_asce_input ai;
-    sl_asce_input_default(&ai);
-    ai.h1 = s10[0];
-    ai.h2 = s10[1];
-    ai.av_ms2 = a->av_ms2;
-    ai.zpa_h_ms2 = a->zpa_h_ms2;
-    ai.pgd_m = NAN; /* the common cap is applied in design.c */
-    ai.fs = o->fs_asce;
-    asce = sl_asce_alloc(&ai, err);
+    sl_asce_source ai; /* borrows the floor's or the fallback spectra: nothing to free */
+    if (sl_asce_input_from_floor(fl, s10, &ai, err))
+        goto fail;
+    ai.in.fs = o->fs_asce; /* pgd_m NAN: the common cap is applied in design.c */
+    asce = sl_asce_alloc(&ai.in, err);
     if (!asce)
         goto fail;
     for (size_t k = 0; k < n_mu; k++) {

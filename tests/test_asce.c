@@ -2,6 +2,7 @@
  * solvable by hand (power-law segments), every edge case, and Newmark's
  * estimates (REFERENCE.md 2-3). */
 #include "method/asce.h"
+#include "method/asce_input.h"
 #include "harness.h"
 #include "signal/rg160.h"
 #include "core/units.h"
@@ -341,8 +342,88 @@ static void test_newmark(void)
     CHECK(isnan(sl_asce_newmark_asym(NAN, a, 0.1, g)), "V NaN");
 }
 
+
+/* The ASCE input of a floor (asce_input.h), against a hand calculation.
+ * Floor: H1 zpa 0.2 g, H2 zpa 0.5 g, V zpa 0.1 g; both horizontals
+ * SA_0.10 = 0.05, 0.5, 0.6, 0.5 g at 0.1, 1, 10, 50 Hz.
+ *  - ZPA_h is the LARGER horizontal, 0.5 g (with the smaller, 0.2 g, the
+ *    block below would be reported as not sliding);
+ *  - mu = 0.3: mu_e = 0.3 (1 - 0.4 x 0.1) = 0.288, c_s = 0.576 g; SA_vH =
+ *    sqrt(1.16) SA (equal horizontals) crosses c_s between 1 and 10 Hz:
+ *    log-log, f_es = 10^(ln(c_s/SA_vH(1))/ln(0.6/0.5)), delta = c_s/(2 pi f_es)^2;
+ *  - no cap (a floor gives no peak displacement). */
+static void test_input_from_floor(void)
+{
+    const char *text =
+        "[floor]\nname = hand\nunits = g\n"
+        "[h1]\nf_hz = 0.1, 1, 10, 50\nsa_0.10 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.2\n"
+        "[h2]\nf_hz = 0.1, 1, 10, 50\nsa_0.10 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.5\n"
+        "[v]\nf_hz = 0.1, 1, 10, 50\nsa_0.10 = 0.02, 0.2, 0.2, 0.1\nzpa = 0.1\n";
+    const char *path = harness_tmpfile("asce-floor.ini", text);
+    sl_error err;
+    sl_error_clear(&err);
+    sl_floor *fl = sl_floor_load(path, &err);
+    CHECK(fl != NULL, "%s", err.msg);
+    if (!fl)
+        return;
+    CHECK_CLOSE(sl_asce_floor_zpa_h(fl), 0.5 * SL_G, 0, 1e-12);
+    sl_asce_source src;
+    CHECK(sl_asce_input_from_floor(fl, NULL, &src, &err) == SL_OK, "%s", err.msg);
+    CHECK_CLOSE(src.in.zpa_h_ms2, 0.5 * SL_G, 0, 1e-12);
+    CHECK_CLOSE(src.in.av_ms2, 0.1 * SL_G, 0, 1e-12);
+    CHECK(isnan(src.in.pgd_m), "a floor has no cap: pgd %g", src.in.pgd_m);
+    sl_asce *m = sl_asce_alloc(&src.in, &err);
+    CHECK(m != NULL, "%s", err.msg);
+    sl_asce_result r;
+    CHECK(m && sl_asce_eval(m, 0.3, &r, &err) == SL_OK, "%s", err.msg);
+    if (m) {
+        double cs = 2 * 0.288 * SL_G, sa1 = sqrt(1.16) * 0.5 * SL_G;
+        double fes = pow(10.0, log(cs / sa1) / log(0.6 / 0.5));
+        CHECK(!(r.flags & SL_ASCE_NO_SLIDING), "mu 0.3 reported as no sliding (flags %u)",
+              r.flags);
+        CHECK_CLOSE(r.fes_hz, fes, 0, 1e-9);
+        CHECK_CLOSE(r.delta_best_m, cs / pow(2 * PI * fes, 2), 0, 1e-9);
+        CHECK(isnan(r.cap_m), "cap %g", r.cap_m);
+        sl_asce_eval(m, 0.55, &r, &err); /* mu_e g = 0.528 g >= 0.5 g */
+        CHECK(r.flags == SL_ASCE_NO_SLIDING, "mu 0.55: flags %u", r.flags);
+    }
+    sl_asce_free(m);
+    sl_asce_source_free(&src);
+    sl_floor_free(fl);
+    /* without sa_0.10 and without a fallback: an error naming the file */
+    const char *t5 = "[floor]\nname = five\nunits = g\n"
+                     "[h1]\nf_hz = 0.1, 1, 10, 50\nsa_0.05 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.2\n"
+                     "[h2]\nf_hz = 0.1, 1, 10, 50\nsa_0.05 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.5\n"
+                     "[v]\nf_hz = 0.1, 1, 10, 50\nsa_0.05 = 0.02, 0.2, 0.2, 0.1\nzpa = 0.1\n";
+    path = harness_tmpfile("asce-floor5.ini", t5);
+    fl = sl_floor_load(path, &err);
+    CHECK(fl != NULL, "%s", err.msg);
+    CHECK(fl && sl_asce_input_from_floor(fl, NULL, &src, &err) == SL_EUNSUPPORTED &&
+              strstr(err.file, "asce-floor5.ini") && strstr(err.msg, "sa_0.10"),
+          "missing sa_0.10: %s: %s", err.file, err.msg);
+    sl_floor_free(fl);
+}
+
+/* The ASCE input of RG 1.60 (asce_input.h): A_v = ZPA = PGA, the cap from
+ * 36 in per g per horizontal combined 100-40: 1.4 x 36 in x PGA. */
+static void test_input_from_rg160(void)
+{
+    sl_asce_source src;
+    sl_error err;
+    sl_error_clear(&err);
+    CHECK(sl_asce_input_from_rg160(0.3, &src, &err) == SL_OK, "%s", err.msg);
+    CHECK_CLOSE(src.in.zpa_h_ms2, 0.3 * SL_G, 0, 1e-15);
+    CHECK_CLOSE(src.in.av_ms2, 0.3 * SL_G, 0, 1e-15);
+    CHECK_CLOSE(src.in.pgd_m, 1.4 * 36 * IN_M * 0.3, 0, 1e-12);
+    CHECK(src.in.h1 == src.in.h2 && src.in.h1->damping == 0.10, "spectra");
+    sl_asce_source_free(&src);
+    CHECK(sl_asce_input_from_rg160(-1, &src, &err) == SL_EINVAL, "negative PGA accepted");
+}
+
 int main(void)
 {
+    RUN(test_input_from_floor);
+    RUN(test_input_from_rg160);
     RUN(test_rg160_power_law_segment);
     RUN(test_rg160_constant_sd_segment);
     RUN(test_below_fmin);

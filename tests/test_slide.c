@@ -482,6 +482,92 @@ static void test_vector_and_batch(void)
     free(b);
 }
 
+/* Issue 11 (a): the 2-D "no sliding" threshold is the vector magnitude
+ * |a_h| / N. A half-sine pulse of peak A = g along 45 degrees has components
+ * of only g/sqrt(2) each, yet at mu = 0.95 < A/g the block must slide the
+ * closed-form distance of the 1-D pulse; a threshold from max(|ax|, |ay|)
+ * would skip it (0 mm). At r = mu g/A > 0.7246 the slide ends inside the
+ * pulse: from the onset t1 = T asin(r)/pi the relative speed is
+ *   w(t) = (A T/pi)(cos th1 - cos(pi t/T)) - mu g (t - t1)
+ * until w(ts) = 0 (found by bisection here), and
+ *   U = (A T/pi)(cos th1 (ts - t1) - (T/pi)(sin(pi ts/T) - r)) - mu g (ts - t1)^2/2.
+ * The sampled (piecewise-linear) input differs by O(dt^2). */
+static double half_sine_short(double A, double T, double mu)
+{
+    const double r = mu * g / A, th = asin(r), t1 = T * th / M_PI, k = A * T / M_PI;
+    double lo = T / 2, hi = T; /* w > 0 at T/2 (w' = a - mu g > 0 before), w(T) < 0 */
+    for (int it = 0; it < 200; it++) {
+        double t = 0.5 * (lo + hi);
+        double w = k * (cos(th) - cos(M_PI * t / T)) - mu * g * (t - t1);
+        if (w > 0)
+            lo = t;
+        else
+            hi = t;
+    }
+    double ts = 0.5 * (lo + hi);
+    return k * (cos(th) * (ts - t1) - T / M_PI * (sin(M_PI * ts / T) - r)) -
+           mu * g * (ts - t1) * (ts - t1) / 2;
+}
+
+static void test_threshold_vector(void)
+{
+    const double A = g, T = 0.5, mu = 0.95;
+    const size_t per = 2000, n = per + 11;
+    double *ax = alloc_n(n), *ay = alloc_n(n);
+    for (size_t i = 0; i <= per; i++) {
+        ax[i] = A * sin(M_PI * (double)i / (double)per) * M_SQRT1_2;
+        ay[i] = ax[i];
+    }
+    sl_motion mx = oracle_motion(ax, n, T / (double)per), my = oracle_motion(ay, n, T / (double)per);
+    sl_set set = {&mx, &my, NULL};
+    sl_slide_opts o = opts_default();
+    CHECK_CLOSE(sl_slide_mu_threshold(&set, &o), A / g, 0, 1e-12);
+    sl_slide_result r;
+    CHECK(sl_slide_run(&set, &mu, 1, &o, &r, NULL) == SL_OK, "run");
+    double U = half_sine_short(A, T, mu);
+    CHECK(U > 5e-4, "closed form must slide: %g", U);
+    CHECK_CLOSE(r.peak_m, U, 0, 2e-3);
+    CHECK(!(r.flags & SL_SLIDE_SKIPPED), "flags %d", r.flags);
+    free(ax);
+    free(ay);
+}
+
+/* Issue 11 (b): the position update of the 2-D step while sliding on is
+ * exact for forcing linear in time, trapezoid + h^2/12 (a_1 - a_0) (eq. 4).
+ * A ramp a(t) = -(c0 + c1 t) along 45 degrees (c0 > mu g) drives the block
+ * from rest without stopping: u(t) = (c0 - mu g) t^2/2 + c1 t^3/6 along the
+ * diagonal. One sub-step of 0.05 s; the only error is the first (onset)
+ * step's c1 h^3/12. Without the correction the error grows as t c1 h^2/12
+ * (4e-4 m at 2 s). */
+static void test_ramp_position(void)
+{
+    const double dt = 0.05, c0 = 3.0, c1 = 1.5, mu = 0.2;
+    const size_t n = 41;
+    double *ax = alloc_n(n), *ay = alloc_n(n);
+    for (size_t i = 0; i < n; i++)
+        ax[i] = ay[i] = -(c0 + c1 * (double)i * dt) * M_SQRT1_2;
+    sl_motion mx = oracle_motion(ax, n, dt), my = oracle_motion(ay, n, dt);
+    sl_set set = {&mx, &my, NULL};
+    sl_slide_opts o = opts_default();
+    o.substeps = 1;
+    o.keep_going = 0;
+    sl_slide_result r;
+    sl_history *h = NULL;
+    CHECK(sl_slide_history(&set, mu, &o, &r, &h, NULL) == SL_OK, "history");
+    if (h) {
+        const double tol = c1 * dt * dt * dt / 12 * 1.01 + 1e-12;
+        for (size_t i = 1; i < n; i++) {
+            double t = (double)i * dt;
+            double u = (c0 - mu * g) * t * t / 2 + c1 * t * t * t / 6;
+            CHECK_CLOSE(hypot(h->ux_m[i], h->uy_m[i]), u, tol, 0);
+            CHECK_CLOSE(h->ux_m[i], h->uy_m[i], 1e-14, 1e-12);
+        }
+        sl_history_free(h);
+    }
+    free(ax);
+    free(ay);
+}
+
 /* Bad options are errors, never silent. */
 static void test_bad_options(void)
 {
@@ -517,6 +603,8 @@ int main(void)
     RUN(test_asymmetric);
     RUN(test_liftoff);
     RUN(test_vector_and_batch);
+    RUN(test_threshold_vector);
+    RUN(test_ramp_position);
     RUN(test_bad_options);
     return HARNESS_END("slide");
 }

@@ -16,7 +16,7 @@
 
 #include "harness.h"
 #include "slide/slide.h"
-#include "study/study.h"
+#include "io/setdir.h"
 
 /* Three-component records with sliding in every friction range tested. */
 static const char *const records[] = {"RSN1063_NORTHR_RRS", "RSN6_IMPVALL.I_I-ELC",
@@ -38,12 +38,11 @@ static void test_2d_convergence_records(void)
     for (size_t r = 0; r < sizeof records / sizeof records[0]; r++) {
         char dir[600];
         snprintf(dir, sizeof dir, "%s/records/%s", shared, records[r]);
-        sl_study_record rec;
+        sl_set set;
         sl_error e;
         sl_error_clear(&e);
-        sl_status rs = sl_study_record_read(dir, &rec, &e);
+        sl_status rs = sl_set_read_dir(dir, &set, &e);
         CHECK(rs == SL_OK, "read %s: %s", records[r], e.msg);
-        sl_set set = sl_study_record_set(&rec);
         if (rs == SL_OK) {
             tested++;
             sl_slide_opts o;
@@ -76,7 +75,7 @@ static void test_2d_convergence_records(void)
                             records[r], subs[q], worst);
             }
         }
-        sl_study_record_free(&rec);
+        sl_set_free_motions(&set);
     }
     CHECK(tested == 3, "tested %d of 3 records", tested);
     double order = order_n ? order_sum / order_n : 0;

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "harness.h"
+#include "io/setdir.h"
 #include "study/study.h"
 #include "core/units.h"
 
@@ -73,21 +74,22 @@ static void test_record_read_conventions(void)
         CHECK(dir != NULL, "cannot make a folder");
         if (!dir)
             return;
-        sl_study_record rec;
+        sl_set rec;
         sl_error err;
         sl_error_clear(&err);
-        sl_status st = sl_study_record_read(dir, &rec, &err);
+        sl_status st = sl_set_read_dir(dir, &rec, &err);
         CHECK(st == SL_OK, "case %zu: %s", c, err.msg);
         if (st == SL_OK) {
             const char *vname = cases[c].names[cases[c].v];
-            CHECK(strstr(rec.comp[2]->path, vname) != NULL, "case %zu: V is %s, expected %s", c,
-                  rec.comp[2]->path, vname);
-            CHECK(strcmp(rec.comp[0]->path, rec.comp[1]->path) < 0, "case %zu: H1 sorts first", c);
+            CHECK(strstr(rec.v->path, vname) != NULL, "case %zu: V is %s, expected %s", c,
+                  rec.v->path, vname);
+            CHECK(strcmp(rec.h1->path, rec.h2->path) < 0, "case %zu: H1 sorts first", c);
+            const sl_motion *comp[3] = {rec.h1, rec.h2, rec.v};
             for (int k = 0; k < 3; k++)
-                CHECK(rec.comp[k]->n == 280, "case %zu comp %d: %zu samples, expected the "
-                      "shortest, 280", c, k, rec.comp[k]->n);
+                CHECK(comp[k]->n == 280, "case %zu comp %d: %zu samples, expected the "
+                      "shortest, 280", c, k, comp[k]->n);
         }
-        sl_study_record_free(&rec);
+        sl_set_free_motions(&rec);
         remove_dir(dir, cases[c].names, 3);
     }
 }
@@ -101,16 +103,16 @@ static void test_record_read_errors(void)
     CHECK(dir != NULL, "cannot make a folder");
     if (!dir)
         return;
-    sl_study_record rec;
+    sl_set rec;
     sl_error err;
     sl_error_clear(&err);
-    CHECK(sl_study_record_read(dir, &rec, &err) == SL_EIO, "two files accepted");
+    CHECK(sl_set_read_dir(dir, &rec, &err) == SL_EIO, "two files accepted");
     CHECK(strstr(err.file, "seislide-study") != NULL, "error names %s", err.file);
     CHECK(strstr(err.msg, "found 2 and 0") != NULL, "message: %s", err.msg);
-    CHECK(rec.comp[0] == NULL && rec.comp[1] == NULL, "nothing left allocated");
+    CHECK(rec.h1 == NULL && rec.h2 == NULL, "nothing left allocated");
     remove_dir(dir, names, 2);
     sl_error_clear(&err);
-    CHECK(sl_study_record_read("/nonexistent-seislide", &rec, &err) == SL_EIO, "missing folder");
+    CHECK(sl_set_read_dir("/nonexistent-seislide", &rec, &err) == SL_EIO, "missing folder");
 }
 
 /* The study sets must exist in ../shared as three components, so that
@@ -129,23 +131,23 @@ static void test_study_sets_present(void)
         for (size_t i = 0; i < all[g]->n; i++) {
             char dir[1024];
             snprintf(dir, sizeof dir, "%s/records/%s", shared, all[g]->e[i].dir);
-            sl_study_record rec;
+            sl_set rec;
             sl_error err;
             sl_error_clear(&err);
-            CHECK(sl_study_record_read(dir, &rec, &err) == SL_OK, "%s: %s", dir, err.msg);
-            sl_study_record_free(&rec);
+            CHECK(sl_set_read_dir(dir, &rec, &err) == SL_OK, "%s: %s", dir, err.msg);
+            sl_set_free_motions(&rec);
         }
     }
 }
 
-static int read_shared(const char *sub, sl_study_record *rec)
+static int read_shared(const char *sub, sl_set *rec)
 {
     const char *shared = harness_shared_dir();
     char dir[1024];
     snprintf(dir, sizeof dir, "%s/records/%s", shared, sub);
     sl_error err;
     sl_error_clear(&err);
-    if (sl_study_record_read(dir, rec, &err)) {
+    if (sl_set_read_dir(dir, rec, &err)) {
         fprintf(stderr, "  %s: %s\n", dir, err.msg);
         return -1;
     }
@@ -163,12 +165,12 @@ static void test_part1_models_agree(void)
 {
     if (!harness_shared_dir())
         SKIP("../shared not found: part 1 not checked");
-    sl_study_record rec;
+    sl_set rec;
     CHECK(read_shared("RSN1063_NORTHR_RRS", &rec) == 0, "Rinaldi not readable");
-    if (!rec.comp[0])
+    if (!rec.h1)
         return;
     for (int two = 0; two < 2; two++) {
-        sl_set set = {rec.comp[0], two ? rec.comp[1] : NULL, NULL};
+        sl_set set = {rec.h1, two ? rec.h2 : NULL, NULL};
         double peak[3];
         const sl_model models[3] = {SL_MODEL_EXACT, SL_MODEL_SMOOTH, SL_MODEL_PLASTIC};
         for (int m = 0; m < 3; m++) {
@@ -190,7 +192,7 @@ static void test_part1_models_agree(void)
         CHECK_CLOSE(peak[1], peak[0], 0, 0.01);
         CHECK_CLOSE(peak[2], peak[0], 0, 0.01);
     }
-    sl_study_record_free(&rec);
+    sl_set_free_motions(&rec);
 }
 
 /* Part 2 (study Figs. 3-7 to 3-9): El Centro #9 matched to RG 1.60 at
@@ -204,15 +206,15 @@ static void test_part2_elcentro(void)
 {
     if (!harness_shared_dir())
         SKIP("../shared not found: part 2 not checked");
-    sl_study_record rec;
+    sl_set rec;
     CHECK(read_shared("RSN6_IMPVALL.I_I-ELC", &rec) == 0, "El Centro not readable");
-    if (!rec.comp[0])
+    if (!rec.h1)
         return;
     sl_synth_set ms;
     sl_error err;
     sl_error_clear(&err);
     sl_status st = sl_study_match_rg160(&rec, 0.10, 0.8 * SL_G, &ms, &err);
-    sl_study_record_free(&rec);
+    sl_set_free_motions(&rec);
     CHECK(st == SL_OK && ms.pass, "matching: status %d, %s", (int)st, err.msg);
     if (st != SL_OK && st != SL_ENOCONV)
         return;
@@ -304,7 +306,7 @@ static void test_part3_crossover(void)
     sl_synth_set m[SL_STUDY_NGROUND];
     memset(m, 0, sizeof m);
     for (size_t i = 0; i < SL_STUDY_NGROUND; i++) {
-        sl_study_record rec;
+        sl_set rec;
         if (read_shared(sl_study_ground.e[i].dir, &rec)) {
             CHECK(0, "%s not readable", sl_study_ground.e[i].dir);
             goto done;
@@ -312,7 +314,7 @@ static void test_part3_crossover(void)
         sl_error err;
         sl_error_clear(&err);
         sl_status st = sl_study_match_rg160(&rec, 0.10, SL_G, &m[i], &err);
-        sl_study_record_free(&rec);
+        sl_set_free_motions(&rec);
         CHECK(st == SL_OK || st == SL_ENOCONV, "%s: %s", sl_study_ground.e[i].dir, err.msg);
         if (st != SL_OK && st != SL_ENOCONV)
             goto done;
@@ -362,12 +364,12 @@ static void test_part4_asce_conservative(void)
         mu[k] = 0.05 + 0.01 * (double)k;
     for (int g = 0; g < SL_STUDY_NGROUPS; g++) {
         const sl_study_group *gr = &sl_study_groups[g];
-        sl_study_record rec[16];
+        sl_set rec[16];
         sl_set sets[16];
         size_t n = 0;
         for (size_t i = 0; i < gr->n && i < 16; i++)
             if (read_shared(gr->e[i].dir, &rec[n]) == 0) {
-                sets[n] = sl_study_record_set(&rec[n]);
+                sets[n] = rec[n];
                 n++;
             }
         CHECK(n == gr->n, "%s: read %zu of %zu", gr->name, n, gr->n);
@@ -387,7 +389,7 @@ static void test_part4_asce_conservative(void)
         CHECK(defined >= 70, "%s: ASCE defined at %zu of 76 mu", gr->name, defined);
         sl_study_spectra_free(sp);
         for (size_t i = 0; i < n; i++)
-            sl_study_record_free(&rec[i]);
+            sl_set_free_motions(&rec[i]);
     }
 }
 

@@ -233,3 +233,136 @@ double cli_now_s(void)
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
+
+void cli_parser_init(cli_parser *p, const char *cmd, const cli_opt *opts, size_t n)
+{
+    memset(p, 0, sizeof *p);
+    p->cmd = cmd;
+    size_t k = 0, s = 0;
+    p->so[s++] = ':'; /* a missing value is reported as ':' */
+    for (size_t i = 0; i < n && k < CLI_MAX_OPTS; i++) {
+        if (!opts[i].name)
+            continue;
+        p->lo[k++] = (struct option){opts[i].name, opts[i].arg ? required_argument : no_argument,
+                                     NULL, opts[i].key};
+        if (opts[i].key > 0 && opts[i].key < CLI_OPT_ID) {
+            p->so[s++] = (char)opts[i].key;
+            if (opts[i].arg)
+                p->so[s++] = ':';
+        }
+    }
+    p->lo[k++] = (struct option){"help", no_argument, NULL, 'h'};
+    p->lo[k] = (struct option){NULL, 0, NULL, 0};
+    p->so[s++] = 'h';
+    p->so[s] = '\0';
+    optind = 1;
+    opterr = 0;
+}
+
+int cli_next(cli_parser *p, int argc, char **argv)
+{
+    int c = getopt_long(argc, argv, p->so, p->lo, NULL);
+    p->arg = optarg;
+    if (c == -1)
+        return CLI_OPT_END;
+    if (c == 'h')
+        return CLI_OPT_HELP;
+    if (c == ':') {
+        cli_usage(p->cmd, "option '%s' needs a value", argv[optind - 1]);
+        return CLI_OPT_BAD;
+    }
+    if (c == '?') {
+        cli_usage(p->cmd, "unknown option '%s'", argv[optind - 1]);
+        return CLI_OPT_BAD;
+    }
+    return c;
+}
+
+int cli_no_operands(const char *cmd, int argc, char **argv)
+{
+    if (optind < argc)
+        return cli_usage(cmd, "unexpected argument '%s'", argv[optind]);
+    return CLI_EXIT_OK;
+}
+
+/* Take one option's value into dst by its kind. */
+static int take(const char *cmd, const cli_opt *o, const char *arg, void *dst)
+{
+    char *at = (char *)dst + o->off;
+    char opt[64];
+    snprintf(opt, sizeof opt, "--%s", o->name);
+    switch (o->kind) {
+    case CLI_STRING: *(const char **)(void *)at = arg; return CLI_EXIT_OK;
+    case CLI_FLAG: *(int *)(void *)at = 1; return CLI_EXIT_OK;
+    case CLI_POSITIVE: return cli_positive(cmd, opt, arg, o->unit, (double *)(void *)at);
+    case CLI_UNITS: return cli_units(cmd, arg, (sl_unit *)(void *)at);
+    case CLI_MU_LIST:
+    case CLI_MU_RANGE: {
+        cli_mu *m = (cli_mu *)(void *)at;
+        return cli_friction(cmd, o->kind == CLI_MU_RANGE, arg, &m->v, &m->n);
+    }
+    case CLI_COUNT1: {
+        unsigned long v;
+        if (cli_parse_ulong(arg, &v) || v < 1)
+            return cli_usage(cmd, "%s '%s' must be an integer >= 1", opt, arg);
+        *(unsigned long *)(void *)at = v;
+        return CLI_EXIT_OK;
+    }
+    default: return CLI_EXIT_USAGE;
+    }
+}
+
+int cli_parse(const char *cmd, const cli_opt *opts, size_t n, int argc, char **argv, void *dst,
+              int (*call)(void *dst, int key, const char *arg))
+{
+    cli_parser p;
+    cli_parser_init(&p, cmd, opts, n);
+    for (int c; (c = cli_next(&p, argc, argv)) != CLI_OPT_END;) {
+        if (c == CLI_OPT_HELP)
+            return CLI_OPT_HELP;
+        if (c == CLI_OPT_BAD)
+            return CLI_EXIT_USAGE;
+        size_t i = 0;
+        while (i < n && !(opts[i].name && opts[i].key == c))
+            i++;
+        int rc = i == n                        ? CLI_EXIT_USAGE
+                 : opts[i].kind == CLI_CALL ? (call ? call(dst, c, p.arg) : CLI_EXIT_USAGE)
+                                            : take(cmd, &opts[i], p.arg, dst);
+        if (rc != CLI_EXIT_OK)
+            return CLI_EXIT_USAGE;
+    }
+    return CLI_EXIT_OK;
+}
+
+void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col)
+{
+    for (size_t i = 0; i < n; i++) {
+        const cli_opt *o = &opts[i];
+        if (!o->name) {
+            if (o->head)
+                fprintf(f, "%s\n", o->head);
+            continue;
+        }
+        if (!o->help)
+            continue;
+        char left[128];
+        if (o->show)
+            snprintf(left, sizeof left, "%s", o->show);
+        else if (o->key > 0 && o->key < CLI_OPT_ID)
+            snprintf(left, sizeof left, "-%c, --%s%s%s", o->key, o->name, o->arg ? " " : "",
+                     o->arg ? o->arg : "");
+        else
+            snprintf(left, sizeof left, "--%s%s%s", o->name, o->arg ? " " : "",
+                     o->arg ? o->arg : "");
+        int pad = col - 2 - (int)strlen(left);
+        fprintf(f, "  %s%*s", left, pad < 2 ? 2 : pad, "");
+        char text[1024];
+        snprintf(text, sizeof text, o->help, o->def[0], o->def[1], o->def[2]);
+        for (const char *t = text; *t; t++) {
+            fputc(*t, f);
+            if (*t == '\n')
+                fprintf(f, "%*s", col, "");
+        }
+        fputc('\n', f);
+    }
+}

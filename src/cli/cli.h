@@ -8,6 +8,7 @@
 #ifndef SL_CLI_H
 #define SL_CLI_H
 
+#include <getopt.h>
 #include <stddef.h>
 #include <stdio.h>
 
@@ -31,6 +32,95 @@ int cmd_asce(int argc, char **argv);
 int cmd_synth(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_study(int argc, char **argv);
+
+/*
+ * Options: one table per command, from which the parser, the checks of
+ * every value and the option lines of --help are generated. A command
+ * keeps its settings in one struct and declares
+ *
+ *     typedef struct args { double fs; int csv; const char *out; cli_mu mu; } args;
+ *     #define A(f) offsetof(args, f)
+ *     static const cli_opt opts[] = {
+ *         {.head = "options:"},
+ *         {"fs", OPT_FS, "F", "factor of safety (default %g)", {SL_ASCE_FS},
+ *          .kind = CLI_POSITIVE, .off = A(fs)},
+ *         {"output", 'o', "DIR", "folder", .kind = CLI_STRING, .off = A(out)},
+ *         {"csv", OPT_CSV, NULL, "CSV output", .kind = CLI_FLAG, .off = A(csv)},
+ *         {"mu", OPT_MU, "LIST", "coefficients", .kind = CLI_MU_LIST, .off = A(mu)},
+ *     };
+ *
+ * and calls cli_parse("asce", opts, CLI_NOPTS(opts), argc, argv, &a, NULL,
+ * NULL). Kinds: CLI_STRING (const char *), CLI_FLAG (int set to 1),
+ * CLI_POSITIVE (double > 0; `unit` named in the message), CLI_COUNT1
+ * (unsigned long >= 1), CLI_UNITS (sl_unit), CLI_MU_LIST / CLI_MU_RANGE
+ * (cli_mu: --mu 0.1,0.2 or --mu-range A:B:S), CLI_CALL (handed to the
+ * command's callback with its key and value: options that need more).
+ *
+ * --help prints the command's own usage and prose around
+ * cli_help_options(stdout, opts, n, col): for each option "  --fs F"
+ * padded to column `col` (at least two spaces), then the help text, a
+ * printf format given def[0..2] (defaults come from the constants, never
+ * retyped; a literal percent sign is %%); a newline in the text continues
+ * at the column. `show` replaces the generated "--name ARG" (letter keys
+ * give "-o, --output DIR"); help NULL hides an option another line
+ * describes; an entry with only `head` prints that line. --help and -h
+ * need no entry. Option ids start at CLI_OPT_ID; a letter key is also -x.
+ */
+#define CLI_OPT_ID 256 /* first key of an option without a letter */
+#define CLI_OPT_END (-1)
+#define CLI_OPT_HELP (-2)
+#define CLI_OPT_BAD (-3) /* unknown option or missing value: usage error printed */
+#define CLI_MAX_OPTS 48
+
+typedef enum cli_kind {
+    CLI_CALL = 0, CLI_STRING, CLI_FLAG, CLI_POSITIVE, CLI_COUNT1, CLI_UNITS, CLI_MU_LIST,
+    CLI_MU_RANGE
+} cli_kind;
+
+/* Friction values given by --mu or --mu-range (v owned; free(v)). */
+typedef struct cli_mu {
+    double *v;
+    size_t n;
+} cli_mu;
+
+typedef struct cli_opt {
+    const char *name;  /* long name without "--"; NULL for a heading */
+    int key;           /* a letter (also -x) or an id >= CLI_OPT_ID */
+    const char *arg;   /* value name for help ("DIR"); NULL for a flag */
+    const char *help;  /* printf format of the help text; NULL: not listed */
+    double def[3];     /* the arguments of the format (defaults) */
+    const char *show;  /* left column instead of the generated one */
+    const char *head;  /* a heading line (name NULL) */
+    cli_kind kind;     /* how cli_parse() takes the value */
+    size_t off;        /* where: offsetof in the command's settings */
+    const char *unit;  /* unit named in a CLI_POSITIVE message, NULL if none */
+} cli_opt;
+#define CLI_NOPTS(t) (sizeof(t) / sizeof((t)[0]))
+
+typedef struct cli_parser {
+    const char *cmd;
+    const char *arg; /* the value of the option cli_next() returned */
+    struct option lo[CLI_MAX_OPTS + 2];
+    char so[3 * CLI_MAX_OPTS + 4];
+} cli_parser;
+
+/* Build the parser of command cmd from its table (at most CLI_MAX_OPTS
+ * options) and reset getopt. */
+void cli_parser_init(cli_parser *p, const char *cmd, const cli_opt *opts, size_t n);
+/* The next option's key (its value in p->arg), CLI_OPT_HELP, CLI_OPT_END
+ * after the last option (operands start at optind), or CLI_OPT_BAD after
+ * printing a usage error. */
+int cli_next(cli_parser *p, int argc, char **argv);
+/* Parse every option into the settings struct dst by its kind; CLI_CALL
+ * options go to call(dst, key, value), which returns CLI_EXIT_OK or a
+ * usage error. Returns CLI_EXIT_OK (operands start at optind), CLI_OPT_HELP
+ * (the caller prints its help) or CLI_EXIT_USAGE (message printed). */
+int cli_parse(const char *cmd, const cli_opt *opts, size_t n, int argc, char **argv, void *dst,
+              int (*call)(void *dst, int key, const char *arg));
+/* CLI_EXIT_OK when no operand follows the options, else a usage error. */
+int cli_no_operands(const char *cmd, int argc, char **argv);
+/* The option lines of a help text, generated from the table. */
+void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col);
 
 /* Print "seislide: FILE:LINE: message" for a library error. */
 void cli_print_error(const sl_error *err);

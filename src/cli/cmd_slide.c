@@ -29,6 +29,7 @@ static const char slide_help[] =
     "                         their unit (AT2 headers do)\n"
     "  --dt S                 sample interval for one-column files, s\n"
     "  --truncate             cut components of different length to the shortest\n"
+    "                         (default: pad the shorter ones with zeros, said on stderr)\n"
     "  --scale-pga G          scale the whole set so the larger horizontal peak\n"
     "                         acceleration is G (in g)\n"
     "  --invert               multiply the horizontal records by -1\n"
@@ -299,9 +300,19 @@ int cmd_slide(int argc, char **argv)
         }
     }
     sl_set set = {m[0], m[1], m[2]};
-    if (sl_set_check(&set, truncate, &err)) {
+    sl_set_fit fit;
+    if (sl_set_check_fit(&set, truncate, &fit, &err)) {
         cli_print_error(&err);
         goto done;
+    }
+    if (fit.changed) {
+        static const char *const tag[3] = {"H1", "H2", "V"};
+        for (int q = 0; q < 3; q++)
+            if (m[q] && fit.n_in[q] != fit.n)
+                cli_msg("%s %s: %zu samples (to %.6g s) %s to %zu (to %.6g s)", tag[q], path[q],
+                        fit.n_in[q], (double)(fit.n_in[q] - 1) * set.h1->dt_s,
+                        fit.truncated ? "cut" : "padded with zeros", fit.n,
+                        (double)(fit.n - 1) * set.h1->dt_s);
     }
     double pga = sl_set_pga_h(&set);
     if (scale_g > 0) {

@@ -15,6 +15,7 @@
 
 #include "io/atomic.h"
 #include "cli.h"
+#include "io/setdir.h"
 #include "study/study.h"
 
 #define STUDY_DEFAULT_OUT "docs"
@@ -201,11 +202,11 @@ static int plot(study_ctx *s, const char *base, const char *body)
     return 0;
 }
 
-static int read_entry(study_ctx *s, const sl_study_entry *e, sl_study_record *rec)
+static int read_entry(study_ctx *s, const sl_study_entry *e, sl_set *rec)
 {
     char dir[4200];
     snprintf(dir, sizeof dir, "%s/%s", s->records, e->dir);
-    if (sl_study_record_read(dir, rec, &s->err)) {
+    if (sl_set_read_dir(dir, rec, &s->err)) {
         cli_print_error(&s->err);
         return -1;
     }
@@ -224,7 +225,7 @@ static double pct(double to, double from)
 static int part1(study_ctx *s)
 {
     static const sl_study_entry rinaldi = {"RSN1063_NORTHR_RRS", "Rinaldi", ""};
-    sl_study_record rec;
+    sl_set rec;
     if (read_entry(s, &rinaldi, &rec))
         return -1;
     FILE *md = s->md;
@@ -247,7 +248,7 @@ static int part1(study_ctx *s)
     static const char *const mtag[3] = {"engine", "smooth", "plastic"};
     int rc = 0;
     for (int two = 0; two < 2 && !rc; two++) {
-        sl_set set = {rec.comp[0], two ? rec.comp[1] : NULL, NULL};
+        sl_set set = {rec.h1, two ? rec.h2 : NULL, NULL};
         double peak_e = NAN;
         double dev = 0;
         for (int m = 0; m < 3 && !rc; m++) {
@@ -289,7 +290,7 @@ static int part1(study_ctx *s)
         else
             s->c.p1_dev_1d = dev;
     }
-    sl_study_record_free(&rec);
+    sl_set_free_motions(&rec);
     if (rc)
         return rc;
     fprintf(md, "\nRun times are one run on this machine, single-threaded; docs/performance.md gives speed against error.\n\n");
@@ -330,12 +331,12 @@ static int part1(study_ctx *s)
 static int part2(study_ctx *s)
 {
     static const sl_study_entry elc = {"RSN6_IMPVALL.I_I-ELC", "El Centro #9", ""};
-    sl_study_record rec;
+    sl_set rec;
     if (read_entry(s, &elc, &rec))
         return -1;
     sl_synth_set ms;
     sl_status st = sl_study_match_rg160(&rec, STUDY_ZETA, STUDY_P2_PGA_G * SL_G, &ms, &s->err);
-    sl_study_record_free(&rec);
+    sl_set_free_motions(&rec);
     if (st && st != SL_ENOCONV) {
         cli_print_error(&s->err);
         return -1;
@@ -562,13 +563,13 @@ static int part3(study_ctx *s)
             "|---|---|---|---|---|\n",
             100 * STUDY_ZETA);
     for (size_t i = 0; i < SL_STUDY_NGROUND && !rc; i++) {
-        sl_study_record rec;
+        sl_set rec;
         if (read_entry(s, &sl_study_ground.e[i], &rec)) {
             rc = -1;
             break;
         }
         sl_status st = sl_study_match_rg160(&rec, STUDY_ZETA, SL_G, &matched[i], &s->err);
-        sl_study_record_free(&rec);
+        sl_set_free_motions(&rec);
         if (st && st != SL_ENOCONV) {
             cli_print_error(&s->err);
             rc = -1;
@@ -720,18 +721,13 @@ static int part4(study_ctx *s)
         mu[k] = 0.05 + 0.01 * (double)k;
     for (size_t g = 0; g < SL_STUDY_NGROUPS && !rc; g++) {
         size_t n = sl_study_groups[g].n;
-        sl_study_record *rec = calloc(n, sizeof *rec);
         sl_set *sets = calloc(n, sizeof *sets);
-        if (!rec || !sets) {
-            free(rec);
-            free(sets);
+        if (!sets) {
             cli_msg("out of memory");
             return -1;
         }
-        for (size_t i = 0; i < n && !rc; i++) {
-            rc = read_entry(s, &sl_study_groups[g].e[i], &rec[i]);
-            sets[i] = sl_study_record_set(&rec[i]);
-        }
+        for (size_t i = 0; i < n && !rc; i++)
+            rc = read_entry(s, &sl_study_groups[g].e[i], &sets[i]);
         sl_study_spectra *sp = rc ? NULL : sl_study_spectra_compute(sets, n, mu, nmu, NULL, &s->err);
         if (!sp && !rc) {
             cli_print_error(&s->err);
@@ -772,8 +768,7 @@ static int part4(study_ctx *s)
             note(s, "part 4: %s done", sl_study_groups[g].name);
         }
         for (size_t i = 0; i < n; i++)
-            sl_study_record_free(&rec[i]);
-        free(rec);
+            sl_set_free_motions(&sets[i]);
         free(sets);
     }
     if (rc)

@@ -46,6 +46,7 @@
 #include <stdint.h>
 
 #include "signal/spectrum.h"
+#include "core/standards.h"
 #include "core/status.h"
 #include "core/units.h"
 
@@ -56,7 +57,7 @@
 /* Two damping ratios closer than this are the same (sa_0.1 = sa_0.10). */
 #define SL_FLOOR_DAMPING_TOL 1e-9
 /* The damping of the spectra the ASCE/SEI 43-05 method uses. */
-#define SL_FLOOR_ASCE_DAMPING 0.10
+#define SL_FLOOR_ASCE_DAMPING SL_ASCE_DAMPING /* core/standards.h */
 
 typedef enum sl_floor_comp {
     SL_FLOOR_H1 = 0,

@@ -11,6 +11,8 @@
  */
 #include "io/motion.h"
 
+#include "core/standards.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <limits.h>
@@ -28,7 +30,6 @@
 
 /* Factor on the orthogonal component in the 100-40 combination of peak
  * horizontal displacements (dimensionless). */
-#define SL_MOTION_COMBO_40 0.4
 
 /* Husid-curve fractions bounding the significant duration D5-75. */
 #define SL_MOTION_HUSID_LO 0.05
@@ -1236,14 +1237,16 @@ int sl_motion_name_is_vertical(const char *path)
     return 0;
 }
 
-sl_status sl_set_check(sl_set *set, int truncate, sl_error *err)
+sl_status sl_set_check_fit(sl_set *set, int truncate, sl_set_fit *fit, sl_error *err)
 {
     sl_error_clear(err);
+    if (fit)
+        memset(fit, 0, sizeof *fit);
     if (!set || !set->h1)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "component H1 missing");
     sl_motion *c[3] = {set->h1, set->h2, set->v};
     static const char *const tag[3] = {"H1", "H2", "V"};
-    size_t nmin = SIZE_MAX;
+    size_t nmin = SIZE_MAX, nmax = 0;
     for (int k = 0; k < 3; k++) {
         if (!c[k])
             continue;
@@ -1255,6 +1258,8 @@ sl_status sl_set_check(sl_set *set, int truncate, sl_error *err)
                                 tag[k], comp_name(c[k]), c[k]->dt_s);
         if (c[k]->n < nmin)
             nmin = c[k]->n;
+        if (c[k]->n > nmax)
+            nmax = c[k]->n;
     }
     for (int k = 1; k < 3; k++) {
         if (!c[k])
@@ -1267,31 +1272,49 @@ sl_status sl_set_check(sl_set *set, int truncate, sl_error *err)
                                 comp_name(c[0]), d0, tag[k], comp_name(c[k]), dk,
                                 SL_MOTION_DT_REL_TOL);
     }
-    for (int k = 1; k < 3; k++) {
-        if (!c[k] || c[k]->n == c[0]->n || truncate)
-            continue;
-        return sl_error_set(err, SL_EINVAL, NULL, 0,
-                            "components have different lengths: H1 '%s' %zu samples, "
-                            "%s '%s' %zu samples (use --truncate to cut all to the shortest)",
-                            comp_name(c[0]), c[0]->n, tag[k], comp_name(c[k]), c[k]->n);
-    }
     for (int k = 0; k < 3; k++) {
         if (!c[k])
             continue;
-        for (size_t i = 0; i < nmin; i++) {
+        for (size_t i = 0; i < c[k]->n; i++) {
             if (!isfinite(c[k]->acc_ms2[i]))
                 return sl_error_set(err, SL_EINVAL, c[k]->path, 0,
                                     "%s '%s': sample %zu (t = %.9g s) is not finite", tag[k],
                                     comp_name(c[k]), i + 1, (double)i * c[k]->dt_s);
         }
     }
+    const size_t n = truncate ? nmin : nmax;
+    /* pad: grow every short component first, so a failure leaves the set as it was */
+    for (int k = 0; k < 3 && !truncate; k++) {
+        if (!c[k] || c[k]->n == n)
+            continue;
+        double *p = realloc(c[k]->acc_ms2, n * sizeof *p);
+        if (!p)
+            return sl_error_set(err, SL_ENOMEM, c[k]->path, 0, "%s '%s': out of memory padding",
+                                tag[k], comp_name(c[k]));
+        c[k]->acc_ms2 = p;
+    }
     for (int k = 0; k < 3; k++) {
         if (!c[k])
             continue;
-        c[k]->n = nmin;
+        if (fit) {
+            fit->n_in[k] = c[k]->n;
+            fit->changed |= (c[k]->n != n);
+        }
+        for (size_t i = c[k]->n; i < n; i++)
+            c[k]->acc_ms2[i] = 0.0; /* the ground at rest after its record */
+        c[k]->n = n;
         c[k]->dt_s = c[0]->dt_s;
     }
+    if (fit) {
+        fit->n = n;
+        fit->truncated = truncate != 0;
+    }
     return SL_OK;
+}
+
+sl_status sl_set_check(sl_set *set, int truncate, sl_error *err)
+{
+    return sl_set_check_fit(set, truncate, NULL, err);
 }
 
 double sl_set_pga_h(const sl_set *set)
@@ -1309,5 +1332,5 @@ double sl_set_pgd_100_40(const sl_set *set)
     if (!set->h2)
         return p1;
     double p2 = sl_motion_pgd(set->h2);
-    return fmax(p1 + SL_MOTION_COMBO_40 * p2, p2 + SL_MOTION_COMBO_40 * p1);
+    return fmax(p1 + SL_COMB_100_40 * p2, p2 + SL_COMB_100_40 * p1);
 }

@@ -102,9 +102,26 @@ typedef struct sl_set {
     sl_motion *h1, *h2, *v;
 } sl_set;
 
+/* What sl_set_check_fit() did to the lengths: n_in[k] samples of H1, H2, V
+ * as read (0 when absent), n the common length after the check, and
+ * `changed` nonzero when a length was altered (padded or cut). */
+typedef struct sl_set_fit {
+    size_t n_in[3];
+    size_t n;
+    int truncated; /* 1: cut to the shortest, 0: padded to the longest */
+    int changed;
+} sl_set_fit;
+
 /* Check a set: H1 present; same dt (relative 1e-6) or an error naming both
- * files and values; same length, or with `truncate` nonzero cut every
- * component to the shortest; all values finite. */
+ * files and values; all values finite. Components of different length are
+ * padded with zeros to the longest (the ground is at rest after its record
+ * ends; the padded arrays are reallocated, so the motions must own their
+ * samples, as those from the readers do), or with `truncate` nonzero cut to
+ * the shortest (the old behaviour). fit (may be NULL) reports the lengths so
+ * the caller can say what was done. On error the set is unchanged. */
+sl_status sl_set_check_fit(sl_set *set, int truncate, sl_set_fit *fit, sl_error *err);
+
+/* sl_set_check_fit() without the report. */
 sl_status sl_set_check(sl_set *set, int truncate, sl_error *err);
 
 /* Peak horizontal acceleration of the set: the larger component peak,

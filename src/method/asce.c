@@ -155,7 +155,7 @@ sl_status sl_asce_eval(const sl_asce *a, double mu, sl_asce_result *res, sl_erro
     r.mu = mu;
     r.mu_e = mu * (1.0 - SL_ASCE_VERTICAL_COEF * in->av_ms2 / g);  /* step 1 */
     r.cs_ms2 = SL_ASCE_CS_COEF * r.mu_e * g;                        /* step 2 */
-    r.cap_m = (in->pgd_m > 0 && isfinite(in->pgd_m)) ? SL_ASCE_CAP_COEF * in->pgd_m : (double)NAN;
+    r.cap_m = (in->pgd_m > 0 && isfinite(in->pgd_m)) ? SL_CAP_FACTOR * in->pgd_m : (double)NAN;
     r.flags = 0;
     r.fes_hz = NAN;
     r.delta_best_m = NAN;

@@ -40,16 +40,16 @@
 #include <stddef.h>
 
 #include "signal/spectrum.h"
+#include "core/standards.h"
 #include "core/status.h"
 
 /* The constants of the method (ASCE/SEI 43-05 A.1 and the study). */
-#define SL_ASCE_DAMPING 0.10       /* damping of the spectra used */
 #define SL_ASCE_VERTICAL_COEF 0.4  /* mu_e = mu (1 - 0.4 A_v/g) */
 #define SL_ASCE_CS_COEF 2.0        /* c_s = 2 mu_e g */
 #define SL_ASCE_H2_COEF 0.4        /* SA_vH = sqrt(SA_H1^2 + (0.4 SA_H2)^2) */
 #define SL_ASCE_FS 2.0             /* design = FS x best estimate */
-#define SL_ASCE_CAP_COEF 1.5       /* cap = 1.5 x peak input displacement */
-#define SL_ASCE_COMB_100_40 0.4    /* 100-40 combination of horizontal displacements */
+/* SL_ASCE_DAMPING (10 %), SL_CAP_FACTOR (1.5) and SL_COMB_100_40 (0.4):
+ * core/standards.h. */
 
 /* Status flags of one result (0 = ok). */
 enum {

@@ -30,13 +30,14 @@
 
 #include <stddef.h>
 
+#include "core/standards.h"
 #include "core/status.h"
 
 /* ASCE/SEI 43-05 factor on the mean of the nonlinear analyses. */
 #define SL_NLTHA_FS 3.0
 /* The study's cap: the design value need not exceed 1.5 x the input's
  * peak displacement (100-40 combination of the horizontals). */
-#define SL_DESIGN_CAP_FACTOR 1.5
+#define SL_DESIGN_CAP_FACTOR SL_CAP_FACTOR /* core/standards.h */
 /* ASCE 43-05 minimum number of NLTHA motions. */
 #define SL_NLTHA_MIN_SETS 5
 

@@ -22,7 +22,7 @@
 #ifndef SL_REFMODEL_H
 #define SL_REFMODEL_H
 
-#include "slide/slide.h"
+#include "slide/model.h"
 
 /* Run one (set, mu) with opts->model SMOOTH or PLASTIC. hist may be NULL.
  * A solver failure is an error with context (time, step), never a silent

@@ -36,82 +36,8 @@
 
 #include <stddef.h>
 
-#include "io/motion.h"
-#include "core/status.h"
+#include "slide/model.h"
 
-typedef enum sl_model {
-    SL_MODEL_EXACT = 0, /* the engine: exact 1-D, projection 2-D */
-    SL_MODEL_SMOOTH,    /* Wang-Wen/Park-Wen smoothed hysteretic model, GSL stiff ODE */
-    SL_MODEL_PLASTIC    /* elastic-perfectly-plastic, Newmark average acceleration */
-} sl_model;
-
-/* Default number of 2-D projection sub-steps per input step. */
-#define SL_SLIDE_DEFAULT_SUBSTEPS 8u
-
-typedef struct sl_slide_opts {
-    sl_model model;
-    double g_ms2;        /* gravity, m/s^2 (SL_G) */
-    unsigned substeps;   /* 2-D sub-steps per input sample (>= 1) */
-    double up_ratio;     /* 1-D: resistance toward +x = mu * up_ratio (1 = symmetric,
-                            INFINITY = one-way); must be 1 in 2-D */
-    int invert;          /* 1: multiply the horizontal records by -1 (SLAMMER "inverted") */
-    /* Smoothed model (SL_MODEL_SMOOTH): Z' = (A - |Z|^eta (beta sgn + gamma)) u'/U_y */
-    double smooth_eta;   /* exponent eta, 2..20 (5) */
-    double smooth_uy_m;  /* yield displacement U_y, m (1e-4) */
-    double smooth_rtol;  /* solver relative tolerance (1e-6) */
-    double smooth_atol;  /* solver absolute tolerance on u, m (1e-9) */
-    int smooth_solver;   /* 0 msbdf, 1 rk4imp, 2 bsimp, 3 rkf45 (see refmodel.h) */
-    /* Elastic-plastic model (SL_MODEL_PLASTIC): initial stiffness k = mu N / U_y */
-    double plastic_uy_m;    /* yield displacement, m (1e-4) */
-    unsigned plastic_substeps; /* sub-steps per input step (>= 1) (8) */
-    int keep_going;      /* 1 (default): after the record, integrate until rest */
-} sl_slide_opts;
-
-/* Fill defaults (documented next to each field). */
-void sl_slide_opts_default(sl_slide_opts *o);
-
-/* Status flags of one result. */
-enum {
-    SL_SLIDE_SKIPPED = 1,     /* mu g >= the most the motion can demand: no sliding, not integrated */
-    SL_SLIDE_NEVER_STOPS = 2, /* mu = 0 (or lift-off at the end): block still moving at record end */
-    SL_SLIDE_LIFTOFF = 4      /* at least one sample had a_v <= -g */
-};
-
-/* What one (motion, mu) analysis returns. Displacements in m. */
-typedef struct sl_slide_result {
-    double mu;
-    double peak_m;        /* max over time of |u| (vector), the quantity spectra use */
-    double peak_x_m;      /* max |u_x| */
-    double peak_y_m;      /* max |u_y| (0 in 1-D) */
-    double t_peak_s;      /* time of peak_m */
-    double residual_m;    /* |u| at rest */
-    double residual_x_m;  /* u_x at rest (signed) */
-    double residual_y_m;  /* u_y at rest (signed) */
-    double path_m;        /* sliding path length, integral of |u'| dt */
-    double max_speed_ms;  /* max |u'| */
-    double t_rest_s;      /* time the block came to rest for good */
-    double slide_time_s;  /* total time spent sliding (2-D: to the sub-step) */
-    long episodes;        /* number of stick-to-slip transitions */
-    long liftoff_samples; /* samples with a_v <= -g */
-    int flags;            /* SL_SLIDE_* */
-} sl_slide_result;
-
-/* Time history of one analysis, sampled at the record's dt, extended past
- * the record until rest. F/W is the friction force on the block divided by
- * its weight (= absolute block acceleration / g), per axis. */
-typedef struct sl_history {
-    size_t n;
-    double dt_s;
-    double *t_s, *ux_m, *uy_m, *vx_ms, *vy_ms, *fx_w, *fy_w;
-} sl_history;
-
-/* Allocate a history with room for cap samples (n = 0); NULL on failure.
- * Free with sl_history_free(). */
-sl_history *sl_history_alloc(size_t cap, double dt_s);
-/* Grow every array to hold cap samples. Returns 0, or -1 with the arrays
- * intact. */
-int sl_history_reserve(sl_history *h, size_t cap);
-void sl_history_free(sl_history *h);
 
 /* The smallest mu at which the block can never slide:
  * max_i |a_h(t_i)| / N(t_i) over samples (INFINITY with lift-off). Exact for

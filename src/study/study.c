@@ -4,13 +4,13 @@
  */
 #include "study/study.h"
 
-#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "method/asce.h"
+#include "method/asce_input.h"
 #include "signal/rg160.h"
 #include "signal/spectrum.h"
 
@@ -87,80 +87,16 @@ const sl_study_group sl_study_groups[SL_STUDY_NGROUPS] = {
 /* A step within this relative slack of another is the same step. */
 #define STEP_SLACK 1e-9
 
-void sl_study_record_free(sl_study_record *rec)
-{
-    if (!rec)
-        return;
-    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-        sl_motion_free(rec->comp[c]);
-    memset(rec, 0, sizeof *rec);
-}
-
-sl_set sl_study_record_set(const sl_study_record *rec)
-{
-    sl_set s = {rec->comp[SL_SYNTH_H1], rec->comp[SL_SYNTH_H2], rec->comp[SL_SYNTH_V]};
-    return s;
-}
-
-sl_status sl_study_record_read(const char *dir, sl_study_record *rec, sl_error *err)
-{
-    memset(rec, 0, sizeof *rec);
-    char pattern[4096];
-    if (snprintf(pattern, sizeof pattern, "%s/*.AT2", dir) >= (int)sizeof pattern)
-        return sl_error_set(err, SL_EINVAL, dir, 0, "folder name too long");
-    glob_t g;
-    int gr = glob(pattern, 0, NULL, &g); /* sorted by name */
-    if (gr != 0) {
-        if (gr != GLOB_NOMATCH)
-            globfree(&g);
-        return sl_error_set(err, SL_EIO, dir, 0, "no .AT2 files in this folder");
-    }
-    const char *hor[2] = {NULL, NULL}, *ver = NULL;
-    size_t nh = 0, nv = 0;
-    for (size_t i = 0; i < g.gl_pathc; i++) {
-        if (sl_motion_name_is_vertical(g.gl_pathv[i])) {
-            ver = g.gl_pathv[i];
-            nv++;
-        } else {
-            if (nh < 2)
-                hor[nh] = g.gl_pathv[i];
-            nh++;
-        }
-    }
-    if (nh != 2 || nv != 1) {
-        globfree(&g);
-        return sl_error_set(err, SL_EIO, dir, 0,
-                            "expected 2 horizontal and 1 vertical .AT2 files, found %zu and %zu",
-                            nh, nv);
-    }
-    const char *path[SL_SYNTH_NCOMP] = {hor[0], hor[1], ver};
-    sl_read_opts ro;
-    memset(&ro, 0, sizeof ro);
-    sl_status st = SL_OK;
-    for (int c = 0; c < SL_SYNTH_NCOMP && st == SL_OK; c++) {
-        rec->comp[c] = sl_motion_read(path[c], &ro, err);
-        if (!rec->comp[c])
-            st = err ? err->code : SL_EIO;
-    }
-    globfree(&g);
-    if (st == SL_OK) {
-        sl_set s = sl_study_record_set(rec);
-        st = sl_set_check(&s, 1, err);
-    }
-    if (st != SL_OK)
-        sl_study_record_free(rec);
-    return st;
-}
-
-sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double pga_ms2,
+sl_status sl_study_match_rg160(const sl_set *rec, double zeta, double pga_ms2,
                                sl_synth_set *out, sl_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!rec || !rec->comp[0] || !rec->comp[1] || !rec->comp[2])
+    if (!rec || !rec->h1 || !rec->h2 || !rec->v)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "matching needs three components");
     sl_synth_params p;
     sl_synth_params_default(&p);
-    double dt = sl_synth_match_dt(rec->comp[0]->dt_s); /* SRP 3.7.1: Nyquist >= 50 Hz */
+    const sl_motion *comp[SL_SYNTH_NCOMP] = {rec->h1, rec->h2, rec->v};
+    double dt = sl_synth_match_dt(comp[0]->dt_s); /* SRP 3.7.1: Nyquist >= 50 Hz */
     sl_motion *rs[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_spectrum *spec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_synth_target tgt[SL_SYNTH_NCOMP];
@@ -168,8 +104,8 @@ sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double p
     sl_status st = SL_OK;
     size_t n = 0;
     for (int c = 0; c < SL_SYNTH_NCOMP && st == SL_OK; c++) {
-        if (!(rs[c] = sl_synth_resample_motion(rec->comp[c], dt)))
-            st = sl_error_set(err, SL_ENOMEM, rec->comp[c]->path, 0, "cannot resample to dt %g s",
+        if (!(rs[c] = sl_synth_resample_motion(comp[c], dt)))
+            st = sl_error_set(err, SL_ENOMEM, comp[c]->path, 0, "cannot resample to dt %g s",
                               dt);
         else if (rs[c]->n > n)
             n = rs[c]->n;
@@ -207,31 +143,18 @@ void sl_study_spectra_free(sl_study_spectra *s)
     free(s);
 }
 
-/* ASCE best estimates of one set at every mu, into best[0..n_mu-1]. */
-static sl_status asce_of_set(const sl_set *set, const double *f, size_t nf, const double *mu,
-                             size_t n_mu, double *best, sl_error *err)
+/* ASCE best estimates of one set at every mu, into best[0..n_mu-1]: the
+ * set's own 10 %-damped spectra (asce_input.h), no cap (the group's cap is
+ * applied in design.c). */
+static sl_status asce_of_set(const sl_set *set, const double *mu, size_t n_mu, double *best,
+                             sl_error *err)
 {
-    sl_spectrum *sp[2] = {sl_spectrum_alloc(nf, SL_ASCE_DAMPING),
-                          sl_spectrum_alloc(nf, SL_ASCE_DAMPING)};
-    const sl_motion *h[2] = {set->h1, set->h2};
+    sl_asce_source src;
     sl_asce *a = NULL;
-    sl_status st = SL_OK;
-    if (!sp[0] || !sp[1])
-        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
-    for (int c = 0; c < 2 && st == SL_OK; c++) {
-        memcpy(sp[c]->f_hz, f, nf * sizeof *f);
-        st = sl_spectrum_compute(h[c]->acc_ms2, h[c]->n, h[c]->dt_s, f, nf, SL_ASCE_DAMPING,
-                                 sp[c]->sa_ms2, NULL, NULL, err);
-    }
+    sl_status st = sl_asce_input_from_set(set, &src, err);
     if (st == SL_OK) {
-        sl_asce_input in;
-        sl_asce_input_default(&in);
-        in.h1 = sp[0];
-        in.h2 = sp[1];
-        in.av_ms2 = set->v ? sl_motion_pga(set->v) : 0.0;
-        in.zpa_h_ms2 = sl_set_pga_h(set);
-        in.pgd_m = NAN; /* the group's cap is applied in design.c */
-        if (!(a = sl_asce_alloc(&in, err)))
+        src.in.pgd_m = NAN;
+        if (!(a = sl_asce_alloc(&src.in, err)))
             st = err ? err->code : SL_ENOMEM;
     }
     for (size_t k = 0; k < n_mu && st == SL_OK; k++) {
@@ -240,8 +163,7 @@ static sl_status asce_of_set(const sl_set *set, const double *f, size_t nf, cons
         best[k] = r.delta_best_m;
     }
     sl_asce_free(a);
-    sl_spectrum_free(sp[0]);
-    sl_spectrum_free(sp[1]);
+    sl_asce_source_free(&src);
     return st;
 }
 
@@ -261,9 +183,6 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
     sl_study_spectra *r = calloc(1, sizeof *r);
     sl_slide_result *res = calloc(n_sets * n_mu, sizeof *res);
     int *noslide = calloc(n_mu, sizeof *noslide);
-    size_t nf = 0;
-    double *f = sl_spectrum_grid(SL_SPECTRUM_FMIN_HZ, SL_SPECTRUM_FMAX_HZ, SL_SPECTRUM_PER_DECADE,
-                                 &nf);
     if (r) {
         r->n_sets = n_sets;
         r->n_mu = n_mu;
@@ -274,7 +193,7 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
         r->asce_mean_m = calloc(n_mu, sizeof *r->asce_mean_m);
         r->pgd_m = calloc(n_sets, sizeof *r->pgd_m);
     }
-    if (!r || !res || !noslide || !f || !r->mu || !r->peak_m || !r->asce_set_m ||
+    if (!r || !res || !noslide || !r->mu || !r->peak_m || !r->asce_set_m ||
         !r->nltha_mean_m || !r->asce_mean_m || !r->pgd_m) {
         sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
         goto fail;
@@ -301,7 +220,7 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
 
     /* ASCE per set, then the group mean */
     for (size_t s = 0; s < n_sets; s++)
-        if (asce_of_set(&sets[s], f, nf, mu, n_mu, r->asce_set_m + s * n_mu, err))
+        if (asce_of_set(&sets[s], mu, n_mu, r->asce_set_m + s * n_mu, err))
             goto fail;
     for (size_t k = 0; k < n_mu; k++)
         for (size_t s = 0; s < n_sets; s++)
@@ -321,12 +240,10 @@ sl_study_spectra *sl_study_spectra_compute(const sl_set *sets, size_t n_sets, co
         goto fail;
     free(res);
     free(noslide);
-    free(f);
     return r;
 fail:
     free(res);
     free(noslide);
-    free(f);
     sl_study_spectra_free(r);
     return NULL;
 }

@@ -2,7 +2,6 @@
  * study.h - the pieces of the source study's evaluation (`seislide study`,
  * docs/validation.md) that are more than one call of another module:
  *
- *  - reading a recorded three-component set from a folder of PEER .AT2 files;
  *  - modifying a recorded set to match Regulatory Guide 1.60 (synth.h,
  *    record matching: the record's Fourier phases kept);
  *  - the sliding spectra of a group of sets: NLTHA peak vector displacement
@@ -55,27 +54,8 @@ extern const sl_study_group sl_study_ground;
 #define SL_STUDY_NGROUPS 4
 extern const sl_study_group sl_study_groups[SL_STUDY_NGROUPS];
 
-/* The three components of a recorded set read from one folder. */
-typedef struct sl_study_record {
-    sl_motion *comp[SL_SYNTH_NCOMP]; /* H1, H2, V (owned) */
-} sl_study_record;
-
-/* Read the set in folder `dir`: its *.AT2 files, exactly two horizontals and
- * one vertical (sl_motion_name_is_vertical); H1 is the horizontal whose name
- * sorts first. Components of different length are cut
- * to the shortest (PEER sets sometimes differ by a few samples). Returns
- * SL_OK, or an error naming the folder or file (SL_EIO when the folder
- * cannot be read or does not hold 2 + 1 files, the reader's errors). On
- * failure nothing is left allocated. */
-sl_status sl_study_record_read(const char *dir, sl_study_record *rec, sl_error *err);
-
-/* Free the components and zero rec; harmless on NULL. */
-void sl_study_record_free(sl_study_record *rec);
-
-/* The record as a set of borrowed pointers (H1, H2, V). */
-sl_set sl_study_record_set(const sl_study_record *rec);
-
-/* Modify a recorded set to match the RG 1.60 spectra (horizontal for H1 and
+/* Modify a recorded set (H1, H2 and V; e.g. from sl_set_read_dir(),
+ * io/setdir.h) to match the RG 1.60 spectra (horizontal for H1 and
  * H2, vertical for V) at damping zeta and PGA pga_ms2, with the default
  * acceptance checks of synth.h: the records are resampled to the largest
  * step dt/k <= 0.01 s (linear interpolation, exact for their
@@ -83,7 +63,7 @@ sl_set sl_study_record_set(const sl_study_record *rec);
  * duration (20 s). out is filled as by sl_synth_match_set(). Returns SL_OK,
  * SL_ENOCONV (out complete, some check failed: see out->pass), or an error
  * (out cleared). */
-sl_status sl_study_match_rg160(const sl_study_record *rec, double zeta, double pga_ms2,
+sl_status sl_study_match_rg160(const sl_set *rec, double zeta, double pga_ms2,
                                sl_synth_set *out, sl_error *err);
 
 /* Sliding spectra of a group of sets. */

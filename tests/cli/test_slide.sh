@@ -52,10 +52,19 @@ t_run slide --h1 "$D/trunc.AT2" --mu 0.1; t_expect_rc truncated-at2 1; t_expect_
 printf 'TITLE\nEVENT\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=     3, DT=   .0000 SEC\n .1 .2 .3\n' > "$D/dt0.AT2"
 t_run slide --h1 "$D/dt0.AT2" --mu 0.1; t_expect_rc dt-zero 1; t_expect_err dt-zero-msg "dt0.AT2:4:"
 awk 'BEGIN { for (i = 0; i <= 300; i++) printf "%.3f %g\n", i * 0.02, 0 }' > "$D/dt02.txt"
-t_run slide --h1 "$D/pulse.txt" --h2 "$D/dt02.txt" --units g --mu 0.1; t_expect_rc mixed-dt 1; t_expect_err mixed-dt-msg "dt"
+t_run slide --h1 "$D/pulse.txt" --h2 "$D/dt02.txt" --units g --mu 0.1; t_expect_rc mixed-dt 1
+t_expect_err mixed-dt-msg "pulse.txt.*0.01.*dt02.txt.*0.02"
+# different lengths: padded with zeros by default (said on stderr with the
+# numbers; a zero H2 padded with zeros is the 1-D answer), cut with --truncate
 awk 'BEGIN { for (i = 0; i <= 200; i++) printf "%.3f %g\n", i * 0.01, 0 }' > "$D/short.txt"
-t_run slide --h1 "$D/pulse.txt" --h2 "$D/short.txt" --units g --mu 0.1; t_expect_rc mixed-length 1
+t_run slide --h1 "$D/pulse.txt" --h2 "$D/short.txt" --units g --mu 0.1 --csv; t_expect_rc mixed-length 0
+t_expect_err mixed-length-msg "H2 .*short.txt: 201 samples \\(to 2 s\\) padded with zeros to 301 \\(to 3 s\\)"
+P2=$(sed -n 2p "$T_OUT" | cut -d, -f2)
+t_run slide --h1 "$D/pulse.txt" --units g --mu 0.1 --csv
+P1=$(sed -n 2p "$T_OUT" | cut -d, -f2)
+awk -v a="$P1" -v b="$P2" 'BEGIN { r = b / a - 1; if (r < 0) r = -r; exit !(a > 1 && r < 1e-3) }' && t_pass || t_fail "padded 2-D $P2 vs 1-D $P1"
 t_run slide --h1 "$D/pulse.txt" --h2 "$D/short.txt" --units g --mu 0.1 --truncate; t_expect_rc truncate 0
+t_expect_err truncate-msg "H1 .*pulse.txt: 301 samples \\(to 3 s\\) cut to 201 \\(to 2 s\\)"
 
 # 2-D and one-way: options that do not fit are usage errors
 t_run slide --h1 "$D/pulse.txt" --h2 "$D/pulse.txt" --units g --mu 0.1 --one-way; t_expect_rc one-way-2d 2

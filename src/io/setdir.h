@@ -1,0 +1,30 @@
+/*
+ * setdir.h - a recorded three-component set read from one folder of PEER
+ * .AT2 files (the layout of ../shared/records/RSN*): two horizontals and
+ * one vertical, told apart by sl_motion_name_is_vertical().
+ *
+ * Units: SI (the reader converts). Memory: the set's motions are owned by
+ * the caller after a successful read and freed with sl_set_free_motions().
+ */
+#ifndef SL_SETDIR_H
+#define SL_SETDIR_H
+
+#include "core/status.h"
+#include "io/motion.h"
+
+/* Read the set in folder `dir`: its *.AT2 files, exactly two horizontals
+ * and one vertical; H1 is the horizontal whose name sorts first.
+ * Components of different length are cut to the shortest (PEER sets
+ * sometimes differ by a few samples; sl_set_check() with truncate). On
+ * success *set holds three motions the caller owns. Returns SL_OK, or an
+ * error naming the folder or file (SL_EINVAL for a name too long, SL_EIO
+ * when the folder cannot be read or does not hold 2 + 1 files, the
+ * reader's errors). On failure *set is zeroed and nothing is left
+ * allocated. */
+sl_status sl_set_read_dir(const char *dir, sl_set *set, sl_error *err);
+
+/* Free the motions of a set that owns them (as sl_set_read_dir() leaves
+ * it) and zero the set; harmless on NULL and on empty components. */
+void sl_set_free_motions(sl_set *set);
+
+#endif
