@@ -54,16 +54,24 @@ static void test_closed_forms(void)
     CHECK(sl_stats_mean_compute(bad, 0, 1, &t, &err) == SL_EINVAL, "empty");
 }
 
-static void test_decimals(void)
+static void test_display(void)
 {
-    CHECK(sl_stats_decimals(5.2, 3) == 0, "5.2");
-    CHECK(sl_stats_decimals(1.0, 3) == 0, "1.0");
-    CHECK(sl_stats_decimals(0.3, 3) == 1, "0.3");
-    CHECK(sl_stats_decimals(0.1, 3) == 1, "0.1");
-    CHECK(sl_stats_decimals(0.04, 3) == 2, "0.04");
-    CHECK(sl_stats_decimals(1e-6, 3) == 3, "clamped");
-    CHECK(sl_stats_decimals(0.0, 2) == 2 && sl_stats_decimals(NAN, 1) == 1, "no SE");
-    CHECK(sl_stats_decimals(250.0, 3) == 0, "large");
+    CHECK(sl_stats_step(26.0, 0.1, 10) == 10, "26");
+    CHECK(sl_stats_step(5.2, 0.1, 10) == 1, "5.2");
+    CHECK(sl_stats_step(1.0, 0.1, 10) == 1, "1.0");
+    CHECK_CLOSE(sl_stats_step(0.3, 0.1, 10), 0.1, 0, 1e-15);
+    CHECK_CLOSE(sl_stats_step(0.04, 0.1, 10), 0.1, 0, 0);
+    CHECK(sl_stats_step(400, 0.1, 10) == 10, "clamped above");
+    CHECK(sl_stats_step(0.0, 0.1, 10) == 0.1 && sl_stats_step(NAN, 0.5, 10) == 0.5, "no SE");
+    /* rounded up, never down */
+    CHECK_CLOSE(sl_stats_round_up(804.24, 10), 810, 0, 1e-15);
+    CHECK_CLOSE(sl_stats_round_up(804.0, 1), 804, 0, 1e-15);
+    CHECK_CLOSE(sl_stats_round_up(12.3, 0.1), 12.3, 1e-12, 0);
+    CHECK_CLOSE(sl_stats_round_up(12.31, 0.1), 12.4, 1e-12, 0);
+    CHECK(sl_stats_round_up(0.0, 1) == 0 && isnan(sl_stats_round_up(NAN, 1)), "zero, NaN");
+    CHECK(sl_stats_step_decimals(10) == 0 && sl_stats_step_decimals(1) == 0 &&
+              sl_stats_step_decimals(0.1) == 1 && sl_stats_step_decimals(0.01) == 2,
+          "decimals");
 }
 
 /* A constant sample has a band of zero width at the constant; the band is
@@ -136,7 +144,7 @@ static void test_brute_force(void)
 int main(void)
 {
     RUN(test_closed_forms);
-    RUN(test_decimals);
+    RUN(test_display);
     RUN(test_band_simple);
     RUN(test_brute_force);
     return HARNESS_END("stats");

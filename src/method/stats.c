@@ -126,12 +126,24 @@ sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double le
     return SL_OK;
 }
 
-int sl_stats_decimals(double se, int max_decimals)
+double sl_stats_step(double se, double min_step, double max_step)
 {
     if (!(se > 0) || !isfinite(se))
-        return max_decimals;
-    double d = ceil(-log10(se));
-    if (d < 0)
-        return 0;
-    return d > max_decimals ? max_decimals : (int)d;
+        return min_step;
+    double step = pow(10.0, floor(log10(se) + 1e-12));
+    return step < min_step ? min_step : step > max_step ? max_step : step;
+}
+
+double sl_stats_round_up(double v, double step)
+{
+    if (!isfinite(v))
+        return v;
+    double q = v / step;
+    return ceil(q - 1e-9 * fmax(1.0, fabs(q))) * step;
+}
+
+int sl_stats_step_decimals(double step)
+{
+    double d = -floor(log10(step) + 1e-12);
+    return d > 0 ? (int)d : 0;
 }

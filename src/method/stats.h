@@ -99,10 +99,19 @@ void sl_stats_band(double *v, size_t m, double level, double *lo, double *hi);
 sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double level,
                                   uint64_t seed, double *lo, double *hi, sl_error *err);
 
-/* Decimals to print a value whose standard error is se (same unit) so that
- * the last digit shown is at the place of the SE's leading digit (se 5.2 ->
- * 0 decimals, 0.3 -> 1, 0.04 -> 2): ceil(-log10(se)) clamped to
- * [0, max_decimals]; max_decimals when se is 0 or not finite. */
-int sl_stats_decimals(double se, int max_decimals);
+/* Showing a design value at the precision its uncertainty supports:
+ * the display step is the power of ten at the place of the SE's leading
+ * digit (se 26 -> 10, 5.2 -> 1, 0.3 -> 0.1), clamped to [min_step,
+ * max_step]; min_step when se is 0 or not finite. */
+double sl_stats_step(double se, double min_step, double max_step);
+
+/* v rounded UP to a multiple of step (step > 0): a clearance is never shown
+ * smaller than computed. A relative 1e-9 of slack keeps 12.3 at 12.3 with
+ * step 0.1. NAN stays NAN. */
+double sl_stats_round_up(double v, double step);
+
+/* Decimals needed to print multiples of step exactly: max(0, -log10 step),
+ * rounded. */
+int sl_stats_step_decimals(double step);
 
 #endif

@@ -14,6 +14,10 @@
 #define MM_PER_M 1000.0
 #define SHEET_NAME_MAX 31 /* Excel's limit */
 #define LOOKUP_DEFAULT_MU 0.30
+/* Clearances are shown rounded up to the SE's leading digit, within these
+ * steps, mm (shown_mm). */
+#define SHOWN_MIN_STEP_MM 0.1
+#define SHOWN_MAX_STEP_MM 10.0
 
 char *sl_report_safe_name(const char *name, char *buf, size_t n)
 {
@@ -63,6 +67,21 @@ static char *ranges_text(const sl_design *d, const char *sep, char *buf, size_t 
     return buf;
 }
 
+/* The clearance of row k as shown to a designer, mm: rounded up to the
+ * step its standard error supports (stats.h: sl_stats_step, 0.1 to 10 mm).
+ * The SE is that of the NLTHA design value where it is the clearance; an
+ * ASCE value (policy asce, or envelope where ASCE governs) comes from the
+ * floor's spectra and is shown to 0.1 mm. */
+static double shown_mm(const sl_report_floor *fl, size_t k, double *step_mm)
+{
+    const sl_design_row *w = &fl->design->rows[k];
+    double se_mm = 0;
+    if (fl->conv && w->clearance_m == w->nltha_design_m)
+        se_mm = MM_PER_M * fl->conv[k].design_se_m;
+    *step_mm = sl_stats_step(se_mm, SHOWN_MIN_STEP_MM, SHOWN_MAX_STEP_MM);
+    return sl_stats_round_up(MM_PER_M * w->clearance_m, *step_mm);
+}
+
 /* ---- CSV ---------------------------------------------------------------- */
 
 /* One RFC 4180 field: quoted when it holds a comma, quote, CR or LF. */
@@ -108,7 +127,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         FILE *f = sl_atomic_file(a);
         fputs("mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,asce_best_mm,"
               "asce_design_mm,cap_mm,clearance_mm,flags,n_sets,nltha_design_se_mm,"
-              "nltha_design_lo90_mm,nltha_design_hi90_mm,p_slide,lognormal_mean_mm,converged\r\n",
+              "nltha_design_lo90_mm,nltha_design_hi90_mm,p_slide,lognormal_mean_mm,converged,"
+              "clearance_shown_mm\r\n",
               f);
         for (size_t k = 0; k < fl->design->n; k++) {
             const sl_design_row *w = &fl->design->rows[k];
@@ -130,10 +150,13 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
                 }
                 fprintf(f, "%.4f,", cv->p_slide);
                 csv_num(f, MM_PER_M * cv->lognormal_mean_m, "%.4f");
-                fprintf(f, ",%s", cv->converged ? "yes" : "no");
+                fprintf(f, ",%s,", cv->converged ? "yes" : "no");
             } else {
-                fputs(",,,,,,,", f);
+                fputs(",,,,,,,,", f);
             }
+            double step, v = shown_mm(fl, k, &step);
+            if (isfinite(v))
+                fprintf(f, "%.*f", sl_stats_step_decimals(step), v);
             fputs("\r\n", f);
         }
         if (sl_atomic_commit(a, err))
@@ -155,8 +178,10 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     for (size_t k = 0; k < n; k++) {
         fprintf(f, "%.4g", r->floors[0].design->rows[k].mu);
         for (size_t i = 0; i < r->n_floors; i++) {
+            double step, v = shown_mm(&r->floors[i], k, &step);
             fputc(',', f);
-            csv_num(f, MM_PER_M * r->floors[i].design->rows[k].clearance_m, "%.4f");
+            if (isfinite(v))
+                fprintf(f, "%.*f", sl_stats_step_decimals(step), v);
         }
         fputs("\r\n", f);
     }
@@ -211,7 +236,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
 /* ---- XLSX --------------------------------------------------------------- */
 
 typedef struct fmts {
-    lxw_format *bold, *title, *mm, *mmbold, *ratio, *mu, *wrap, *result, *input, *header;
+    lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header;
 } fmts;
 
 /* A sheet name Excel accepts and that is unique in the workbook. */
@@ -251,6 +276,9 @@ static void write_num_or_blank(lxw_worksheet *ws, lxw_row_t row, lxw_col_t col, 
         worksheet_write_blank(ws, row, col, f);
 }
 
+/* First column of the side notes of a floor sheet (Q), right of the table. */
+#define NOTE_COL 16
+
 static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *fl,
                         const char *sname)
 {
@@ -259,13 +287,16 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
     static const char *const head[] = {
         "mu", "mu g / ZPA", "NLTHA mean, mm", "NLTHA sd, mm", "NLTHA design (3.0 x mean), mm",
         "ASCE best estimate, mm", "ASCE design (2.0 x best), mm", "cap (1.5 x PGD), mm",
-        "required clearance, mm", "flags"};
-    for (lxw_col_t c = 0; c < 10; c++)
+        "required clearance, mm", "flags", "motion sets", "SE of NLTHA design, mm",
+        "NLTHA design, 90 % band low, mm", "NLTHA design, 90 % band high, mm",
+        "clearance as shown (rounded up to the SE's digit), mm"};
+    for (lxw_col_t c = 0; c < sizeof head / sizeof head[0]; c++)
         worksheet_write_string(ws, 0, c, head[c], F->header);
     worksheet_set_row(ws, 0, 45, NULL);
     worksheet_set_column(ws, 0, 1, 10, NULL);
     worksheet_set_column(ws, 2, 8, 14, NULL);
     worksheet_set_column(ws, 9, 9, 28, NULL);
+    worksheet_set_column(ws, 10, 14, 14, NULL);
     worksheet_freeze_panes(ws, 1, 1);
     char flags[256];
     double ymax = 0;
@@ -282,36 +313,48 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
         write_num_or_blank(ws, row, 7, MM_PER_M * w->cap_m, F->mm);
         write_num_or_blank(ws, row, 8, MM_PER_M * w->clearance_m, F->mmbold);
         worksheet_write_string(ws, row, 9, sl_report_flags(w->flags, flags, sizeof flags), NULL);
+        if (fl->conv) {
+            const sl_stats_conv *cv = &fl->conv[k];
+            worksheet_write_number(ws, row, 10, (double)cv->n_sets, NULL);
+            write_num_or_blank(ws, row, 11, MM_PER_M * cv->design_se_m, F->mm);
+            write_num_or_blank(ws, row, 12, MM_PER_M * cv->design_lo_m, F->mm);
+            write_num_or_blank(ws, row, 13, MM_PER_M * cv->design_hi_m, F->mm);
+        }
+        double step, shown = shown_mm(fl, k, &step);
+        write_num_or_blank(ws, row, 14, shown, step >= 1 ? F->mm0 : F->mm);
         ymax = fmax(ymax, fmax(w->nltha_design_m, isfinite(w->asce_design_m) ? w->asce_design_m : 0));
     }
     /* side notes and the crossover marker (two points: a vertical line) */
     char buf[512];
-    worksheet_write_string(ws, 0, 11, "floor", F->bold);
-    worksheet_write_string(ws, 0, 12, fl->name, NULL);
-    worksheet_write_string(ws, 1, 11, "horizontal ZPA, g", F->bold);
-    worksheet_write_number(ws, 1, 12, fl->zpa_h_ms2 / SL_G, F->ratio);
-    worksheet_write_string(ws, 2, 11, "crossover mu g / ZPA", F->bold);
-    worksheet_write_string(ws, 4, 11, "clearance policy", F->bold);
-    worksheet_write_string(ws, 4, 12, sl_clearance_policy_name(d->policy), NULL);
-    worksheet_write_string(ws, 5, 11, "note", F->bold);
-    worksheet_write_string(ws, 5, 12, fl->note && *fl->note ? fl->note : "-", F->wrap);
-    worksheet_write_string(ws, 3, 11, "mu needing no NLTHA (mu g >= demand)", F->bold);
-    worksheet_write_number(ws, 3, 12, (double)fl->n_mu_skipped, NULL);
-    worksheet_write_string(ws, 6, 11, "ASCE below NLTHA for mu g/ZPA in", F->bold);
-    worksheet_write_string(ws, 6, 12, d->n_ranges ? ranges_text(d, ", ", buf, sizeof buf) : "none",
+    worksheet_write_string(ws, 0, NOTE_COL, "floor", F->bold);
+    worksheet_write_string(ws, 0, NOTE_COL + 1, fl->name, NULL);
+    worksheet_write_string(ws, 1, NOTE_COL, "horizontal ZPA, g", F->bold);
+    worksheet_write_number(ws, 1, NOTE_COL + 1, fl->zpa_h_ms2 / SL_G, F->ratio);
+    worksheet_write_string(ws, 2, NOTE_COL, "crossover mu g / ZPA", F->bold);
+    worksheet_write_string(ws, 4, NOTE_COL, "clearance policy", F->bold);
+    worksheet_write_string(ws, 4, NOTE_COL + 1, sl_clearance_policy_name(d->policy), NULL);
+    worksheet_write_string(ws, 5, NOTE_COL, "note", F->bold);
+    worksheet_write_string(ws, 5, NOTE_COL + 1, fl->note && *fl->note ? fl->note : "-", F->wrap);
+    worksheet_write_string(ws, 3, NOTE_COL, "mu needing no NLTHA (mu g >= demand)", F->bold);
+    worksheet_write_number(ws, 3, NOTE_COL + 1, (double)fl->n_mu_skipped, NULL);
+    worksheet_write_string(ws, 6, NOTE_COL, "ASCE below NLTHA for mu g/ZPA in", F->bold);
+    worksheet_write_string(ws, 6, NOTE_COL + 1, d->n_ranges ? ranges_text(d, ", ", buf, sizeof buf) : "none",
                            NULL);
-    worksheet_set_column(ws, 11, 11, 30, NULL);
-    worksheet_set_column(ws, 12, 12, 40, NULL);
+    worksheet_write_string(ws, 7, NOTE_COL, "motion sets (why they stopped)", F->bold);
+    snprintf(buf, sizeof buf, "%zu (%s)", fl->n_sets, fl->stop ? fl->stop : "-");
+    worksheet_write_string(ws, 7, NOTE_COL + 1, buf, NULL);
+    worksheet_set_column(ws, NOTE_COL, NOTE_COL, 30, NULL);
+    worksheet_set_column(ws, NOTE_COL + 1, NOTE_COL + 1, 40, NULL);
     if (d->has_crossover) {
-        worksheet_write_number(ws, 2, 12, d->crossover_x, F->ratio);
-        worksheet_write_string(ws, 8, 11, "crossover marker x", NULL);
-        worksheet_write_string(ws, 8, 12, "marker y, mm", NULL);
-        worksheet_write_number(ws, 9, 11, d->crossover_x, NULL);
-        worksheet_write_number(ws, 9, 12, 0, NULL);
-        worksheet_write_number(ws, 10, 11, d->crossover_x, NULL);
-        worksheet_write_number(ws, 10, 12, MM_PER_M * ymax, NULL);
+        worksheet_write_number(ws, 2, NOTE_COL + 1, d->crossover_x, F->ratio);
+        worksheet_write_string(ws, 8, NOTE_COL, "crossover marker x", NULL);
+        worksheet_write_string(ws, 8, NOTE_COL + 1, "marker y, mm", NULL);
+        worksheet_write_number(ws, 9, NOTE_COL, d->crossover_x, NULL);
+        worksheet_write_number(ws, 9, NOTE_COL + 1, 0, NULL);
+        worksheet_write_number(ws, 10, NOTE_COL, d->crossover_x, NULL);
+        worksheet_write_number(ws, 10, NOTE_COL + 1, MM_PER_M * ymax, NULL);
     } else {
-        worksheet_write_string(ws, 2, 12, "none", NULL);
+        worksheet_write_string(ws, 2, NOTE_COL + 1, "none", NULL);
     }
 
     lxw_chart *ch = workbook_add_chart(wb, LXW_CHART_SCATTER_STRAIGHT);
@@ -321,8 +364,10 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
         lxw_col_t col;
         const char *name;
     } series[] = {{4, "NLTHA design (3.0 x mean)"}, {6, "ASCE design (2.0 x best)"},
-                  {2, "NLTHA mean"}, {7, "cap (1.5 x PGD)"}};
-    for (size_t q = 0; q < sizeof series / sizeof series[0]; q++) {
+                  {2, "NLTHA mean"}, {7, "cap (1.5 x PGD)"},
+                  {12, "NLTHA design, 90 % band low"}, {13, "NLTHA design, 90 % band high"}};
+    size_t n_series = sizeof series / sizeof series[0] - (fl->conv ? 0 : 2);
+    for (size_t q = 0; q < n_series; q++) {
         char c[8];
         col_name(series[q].col, c);
         snprintf(xr, sizeof xr, "='%s'!$B$2:$B$%u", sname, last);
@@ -331,8 +376,8 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
         chart_series_set_name(s, series[q].name);
     }
     if (d->has_crossover) {
-        snprintf(xr, sizeof xr, "='%s'!$L$10:$L$11", sname);
-        snprintf(yr, sizeof yr, "='%s'!$M$10:$M$11", sname);
+        snprintf(xr, sizeof xr, "='%s'!$Q$10:$Q$11", sname);
+        snprintf(yr, sizeof yr, "='%s'!$R$10:$R$11", sname);
         lxw_chart_series *s = chart_add_series(ch, xr, yr);
         chart_series_set_name(s, "crossover");
     }
@@ -343,7 +388,7 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report_floor *
     chart_axis_set_min(ch->x_axis, 0);
     chart_legend_set_position(ch, LXW_CHART_LEGEND_BOTTOM);
     lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = 1.6, .y_scale = 1.5};
-    worksheet_insert_chart_opt(ws, 12, 11, ch, &co);
+    worksheet_insert_chart_opt(ws, 12, NOTE_COL, ch, &co);
     /* printing: landscape, one page wide */
     worksheet_set_landscape(ws);
     worksheet_fit_to_pages(ws, 1, 0);
@@ -363,14 +408,19 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     worksheet_freeze_panes(ws, 1, 1);
     for (size_t k = 0; k < n; k++) {
         worksheet_write_number(ws, (lxw_row_t)(k + 1), 0, r->floors[0].design->rows[k].mu, F->mu);
-        for (size_t i = 0; i < r->n_floors; i++)
-            write_num_or_blank(ws, (lxw_row_t)(k + 1), (lxw_col_t)(i + 1),
-                               MM_PER_M * r->floors[i].design->rows[k].clearance_m, F->mm);
+        for (size_t i = 0; i < r->n_floors; i++) {
+            double step, v = shown_mm(&r->floors[i], k, &step);
+            write_num_or_blank(ws, (lxw_row_t)(k + 1), (lxw_col_t)(i + 1), v,
+                               step >= 1 ? F->mm0 : F->mm);
+        }
     }
     worksheet_fit_to_pages(ws, 1, 0);
     worksheet_repeat_rows(ws, 0, 0);
     lxw_row_t b = (lxw_row_t)(n + 2);
-    worksheet_write_string(ws, b, 0, "required clearance, mm: the rows above", F->bold);
+    worksheet_write_string(ws, b, 0, "required clearance, mm: the rows above (rounded up to "
+                           "the digit of its standard error)", F->bold);
+    worksheet_write_string(ws, b + 4, 0, "motion sets", F->bold);
+    worksheet_write_string(ws, b + 5, 0, "sets stopped because", F->bold);
     worksheet_write_string(ws, b + 1, 0, "horizontal ZPA, g", F->bold);
     worksheet_write_string(ws, b + 2, 0, "crossover mu g / ZPA", F->bold);
     worksheet_write_string(ws, b + 3, 0, "crossover mu", F->bold);
@@ -378,6 +428,8 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
         const sl_report_floor *fl = &r->floors[i];
         lxw_col_t c = (lxw_col_t)(i + 1);
         worksheet_write_number(ws, b + 1, c, fl->zpa_h_ms2 / SL_G, F->ratio);
+        worksheet_write_number(ws, b + 4, c, (double)fl->n_sets, NULL);
+        worksheet_write_string(ws, b + 5, c, fl->stop ? fl->stop : "", NULL);
         if (fl->design->has_crossover) {
             worksheet_write_number(ws, b + 2, c, fl->design->crossover_x, F->ratio);
             worksheet_write_number(ws, b + 3, c, fl->design->crossover_mu, F->ratio);
@@ -575,6 +627,8 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
     format_set_font_size(F.title, 14);
     F.mm = workbook_add_format(wb);
     format_set_num_format(F.mm, "0.0");
+    F.mm0 = workbook_add_format(wb);
+    format_set_num_format(F.mm0, "0");
     F.mmbold = workbook_add_format(wb);
     format_set_num_format(F.mmbold, "0.0");
     format_set_bold(F.mmbold);

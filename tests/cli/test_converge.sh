@@ -39,6 +39,13 @@ awk -F, 'NR > 1 { n++; d = $5; se = $12; lo = $13; hi = $14; t = 0.15 * d; if (t
   END { if (n != 7 || bad != "") { print n, bad; exit 1 } }' "$FA" \
   && t_pass || t_fail "stopping rule in the CSV: $(awk -F, 'NR>1{print $1,$5,$11,$12}' "$FA" | head -7)"
 grep -q "converged" "$D/outa/floors.csv" && t_pass || t_fail "floors.csv: no stop reason"
+# the clearance shown: rounded UP, by less than its SE (step 0.1 to 10 mm at the SE's digit)
+tr -d '\r' <"$FA" | awk -F, 'NR > 1 { raw = $9; se = $12; shown = $18; s = se; if (s > 10) s = 10; if (s < 0.1) s = 0.1;
+  if (!(shown >= raw - 1e-9 && shown - raw < s + 1e-9)) { print "mu " $1 ": " raw " shown " shown " se " se; bad++ } }
+  END { exit bad > 0 }' >"$D/shown" && t_pass || t_fail "clearance shown: $(head -3 "$D/shown")"
+S1=$(tr -d '\r' <"$D/outa/summary.csv" | awk -F, '$1 == 0.3 { print $2 }')
+S2=$(tr -d '\r' <"$FA" | awk -F, '$1 == 0.3 { print $18 }')
+[ -n "$S1" ] && [ "$S1" = "$S2" ] && t_pass || t_fail "summary.csv shows '$S1', floor CSV '$S2'"
 
 # 3. options
 t_run run "$D/a" -o "$D/outx" --rel-se 0 --abs-se 0; t_expect_rc zero-targets 2
