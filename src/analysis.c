@@ -35,6 +35,7 @@ void sl_analysis_opts_default(sl_analysis_opts *o)
     o->band_level = SL_STATS_BAND_LEVEL;
     o->seed = 1;
     o->substeps = SL_SLIDE_DEFAULT_SUBSTEPS;
+    o->rtol = SL_SLIDE_DEFAULT_RTOL;
     o->policy = SL_CLEARANCE_NLTHA;
     o->fs_nltha = SL_NLTHA_FS;
     o->fs_asce = SL_ASCE_FS;
@@ -101,6 +102,8 @@ void sl_analysis_free(sl_analysis *a)
         return;
     sl_design_free(a->design);
     free(a->conv);
+    free(a->design_lo_m);
+    free(a->design_hi_m);
     if (a->sets)
         for (size_t s = 0; s < a->n_sets; s++)
             sl_synth_set_clear(&a->sets[s]);
@@ -288,14 +291,16 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->sets = calloc(cap_sets, sizeof *a->sets);
     a->pgd_m = calloc(cap_sets, sizeof *a->pgd_m);
     a->conv = calloc(n_mu, sizeof *a->conv);
+    a->design_lo_m = calloc(n_mu, sizeof *a->design_lo_m);
+    a->design_hi_m = calloc(n_mu, sizeof *a->design_hi_m);
     sets = calloc(cap_sets, sizeof *sets);
     res = calloc(cap_sets * n_mu, sizeof *res);
     peak = calloc(cap_sets * n_mu, sizeof *peak);
     n_skip = calloc(n_mu, sizeof *n_skip);
     noslide = calloc(n_mu, sizeof *noslide);
     best = calloc(n_mu, sizeof *best);
-    if (!a->sets || !a->pgd_m || !a->conv || !sets || !res || !peak || !n_skip || !noslide ||
-        !best)
+    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !sets ||
+        !res || !peak || !n_skip || !noslide || !best)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
     a->av_ms2 = fl->comp[SL_FLOOR_V].zpa_ms2;
@@ -313,6 +318,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     sl_slide_opts so;
     sl_slide_opts_default(&so);
     so.substeps = o->substeps;
+    so.rtol = o->rtol;
     prog_ctx pc = {o};
 
     /* 1-2. batches of synthesis and NLTHA until converged (or the fixed count) */
@@ -385,6 +391,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         goto fail;
     a->time_stats_s += wall_s() - t0;
     for (size_t k = 0; k < n_mu; k++) {
+        a->design_lo_m[k] = a->conv[k].design_lo_m;
+        a->design_hi_m[k] = a->conv[k].design_hi_m;
         noslide[k] = n_skip[k] == n;
         a->n_mu_skipped += (size_t)noslide[k];
     }

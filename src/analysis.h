@@ -81,7 +81,8 @@ typedef struct sl_analysis_opts {
     uint64_t seed;
     const double *mu;            /* friction grid, increasing */
     size_t n_mu;
-    unsigned substeps;           /* 2-D sub-steps per sample */
+    unsigned substeps;           /* 2-D sub-steps per sample: 0 = error-controlled by rtol */
+    double rtol;                 /* 2-D: relative error of the peaks (SL_SLIDE_DEFAULT_RTOL) */
     sl_clearance_policy policy;
     double fs_nltha, fs_asce;
     /* progress: step is "synthesis", "nltha", "asce"; done of total */
@@ -97,6 +98,7 @@ typedef sl_stats_conv sl_analysis_conv;
 typedef struct sl_analysis {
     sl_design *design;
     sl_analysis_conv *conv;     /* one per mu, as design->rows */
+    double *design_lo_m, *design_hi_m; /* the band of conv[], as plain arrays (report.h) */
     sl_analysis_stop stop;      /* why the floor stopped adding sets */
     size_t n_batches;           /* batches run */
     size_t n_unconverged;       /* mu where design_se_m > target_se_m */

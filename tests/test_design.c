@@ -55,10 +55,58 @@ static void test_hand_example(void)
     /* crossing between rows 3 and 4: f = A - N = -0.01 at x 0.8, 0 at x 1.0 -> x = 1.0 */
     CHECK(d->has_crossover, "crossover");
     CHECK_CLOSE(d->crossover_x, 1.0, 0, 1e-12);
+    /* the same range with interpolated ends: it starts at the grid's first row
+     * (open there) and ends where A - N reaches 0, at row 4 (mu 0.5) */
+    CHECK(d->ranges[0].open_lo == 1 && d->ranges[0].open_hi == 0, "open ends %d %d",
+          d->ranges[0].open_lo, d->ranges[0].open_hi);
+    CHECK_CLOSE(d->ranges[0].mu_lo, 0.1, 0, 1e-12);
+    CHECK_CLOSE(d->ranges[0].mu_hi, 0.5, 0, 1e-12);
+    CHECK(d->n_sets == 2 && d->fs_nltha == SL_NLTHA_FS && d->cap_factor == SL_DESIGN_CAP_FACTOR,
+          "factors recorded");
     /* default policy: clearance = NLTHA design; interpolation between rows */
     CHECK_CLOSE(d->rows[2].clearance_m, d->rows[2].nltha_design_m, 0, 0);
     CHECK_CLOSE(sl_design_clearance_at(d, 0.25), 0.5 * (0.36 + 0.15), 0, 1e-12);
     CHECK(isnan(sl_design_clearance_at(d, 0.05)), "outside the grid: NAN");
+    sl_design_free(d);
+}
+
+/* A range inside the grid: N = 3 x 0.1 = 0.3 everywhere (one set, cap far
+ * above), A = 2 x best = 0.5, 0.2, 0.2, 0.4: A - N = 0.2, -0.1, -0.1, 0.1.
+ * By hand: the range starts at mu 0.1 + 0.2/0.3 x 0.1 = 0.16667 and ends at
+ * 0.3 + 0.1/0.2 x 0.1 = 0.35; no crossover (ASCE conservative at the lowest
+ * mu), both ends closed. */
+static void test_inner_range(void)
+{
+    const double mu[4] = {0.1, 0.2, 0.3, 0.4};
+    const double peak[4] = {0.1, 0.1, 0.1, 0.1};
+    const double asce[4] = {0.25, 0.1, 0.1, 0.2};
+    const double pgd[1] = {10.0};
+    sl_design_input in;
+    sl_design_input_default(&in);
+    in.n_mu = 4;
+    in.n_sets = 1;
+    in.mu = mu;
+    in.peak_m = peak;
+    in.asce_best_m = asce;
+    in.pgd_m = pgd;
+    in.zpa_h_ms2 = 0.4 * SL_G;
+    sl_error e;
+    sl_design *d = sl_design_compute(&in, &e);
+    CHECK(d != NULL, "compute: %s", e.msg);
+    if (!d)
+        return;
+    CHECK(d->n_ranges == 1 && !d->has_crossover, "ranges %zu crossover %d", d->n_ranges,
+          d->has_crossover);
+    if (d->n_ranges == 1) {
+        CHECK_CLOSE(d->ranges[0].mu_lo, 0.1 + 0.2 / 0.3 * 0.1, 0, 1e-12);
+        CHECK_CLOSE(d->ranges[0].mu_hi, 0.35, 0, 1e-12);
+        CHECK_CLOSE(d->ranges[0].x_lo, (0.1 + 0.2 / 0.3 * 0.1) / 0.4, 0, 1e-12);
+        CHECK(!d->ranges[0].open_lo && !d->ranges[0].open_hi, "closed ends");
+    }
+    /* clearance at mu: the rows' 0.3 at and between grid points */
+    CHECK_CLOSE(sl_design_clearance_at(d, 0.1), 0.3, 0, 1e-15);
+    CHECK_CLOSE(sl_design_clearance_at(d, 0.4), 0.3, 0, 1e-15);
+    CHECK(isnan(sl_design_clearance_at(d, NAN)), "NAN mu");
     sl_design_free(d);
 }
 
@@ -178,6 +226,7 @@ static void test_bad_input(void)
 int main(void)
 {
     RUN(test_hand_example);
+    RUN(test_inner_range);
     RUN(test_crossover_on_curves);
     RUN(test_no_crossover_when_conservative_low);
     RUN(test_policies);

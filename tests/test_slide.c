@@ -295,7 +295,9 @@ static void test_invariants(void)
         double mus = lam * mu;
         sl_slide_run(&s, &mu, 1, &o, &r, NULL);
         sl_slide_run(&sn, &mu, 1, &o, &rn, NULL);
-        sl_slide_run(&ss, &mus, 1, &o, &rs, NULL);
+        sl_slide_opts os = o; /* the absolute tolerance is a length: it scales too */
+        os.atol_m = lam * o.atol_m;
+        sl_slide_run(&ss, &mus, 1, &os, &rs, NULL);
         CHECK(r.peak_m > 1e-3, "%d-D must slide", d);
         CHECK_CLOSE(rn.peak_m, r.peak_m, 0, 1e-12);
         CHECK_CLOSE(rn.residual_x_m, -r.residual_x_m, 1e-15, 1e-12);
@@ -586,8 +588,11 @@ static void test_bad_options(void)
     CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "one-way in 2-D");
     CHECK(strstr(e.msg, "1-D") != NULL, "message: %s", e.msg);
     o = opts_default();
-    o.substeps = 0;
-    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "substeps 0");
+    o.rtol = 0.0;
+    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "rtol 0");
+    o = opts_default();
+    o.atol_m = -1e-6;
+    CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "atol < 0");
 }
 
 int main(void)

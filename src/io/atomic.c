@@ -1,10 +1,18 @@
-/* atomic.c - temporary file + rename, see atomic.h. */
+/* atomic.c - temporary file + rename, fresh folder + swap; see atomic.h. */
+#define _GNU_SOURCE /* renameat2 (Linux, glibc >= 2.28) */
 #include "io/atomic.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+/* Open file descriptors nftw may use while removing a tree. */
+#define REMOVE_TREE_FDS 16
 
 struct sl_atomic {
     FILE *f;
@@ -12,11 +20,37 @@ struct sl_atomic {
     char *tmp;
 };
 
+/* The process umask (read by setting and restoring it). */
+static mode_t current_umask(void)
+{
+    mode_t m = umask(022);
+    umask(m);
+    return m;
+}
+
+/* "DIR/.BASE.tmp-XXXXXX" for path "DIR/BASE" (malloc'd). A trailing '/' of
+ * a folder path is ignored. */
+static char *hidden_sibling(const char *path)
+{
+    size_t n = strlen(path);
+    while (n > 1 && path[n - 1] == '/')
+        n--;
+    char *t = malloc(n + 32);
+    if (!t)
+        return NULL;
+    size_t dirlen = 0;
+    for (size_t i = 0; i < n; i++)
+        if (path[i] == '/')
+            dirlen = i + 1;
+    memcpy(t, path, dirlen);
+    snprintf(t + dirlen, n + 32 - dirlen, ".%.*s.tmp-XXXXXX", (int)(n - dirlen), path + dirlen);
+    return t;
+}
+
 sl_atomic *sl_atomic_open(const char *path, sl_error *err)
 {
     sl_atomic *a = calloc(1, sizeof *a);
-    size_t n = strlen(path);
-    if (!a || !(a->path = strdup(path)) || !(a->tmp = malloc(n + 32))) {
+    if (!a || !(a->path = strdup(path)) || !(a->tmp = hidden_sibling(path))) {
         if (a) {
             free(a->path);
             free(a);
@@ -24,13 +58,8 @@ sl_atomic *sl_atomic_open(const char *path, sl_error *err)
         sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
         return NULL;
     }
-    /* hidden sibling: DIR/.NAME.tmp-XXXXXX */
-    const char *slash = strrchr(path, '/');
-    size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
-    memcpy(a->tmp, path, dirlen);
-    snprintf(a->tmp + dirlen, n + 32 - dirlen, ".%s.tmp-XXXXXX", path + dirlen);
     int fd = mkstemp(a->tmp);
-    if (fd < 0 || !(a->f = fdopen(fd, "wb"))) {
+    if (fd < 0 || fchmod(fd, 0666 & ~current_umask()) != 0 || !(a->f = fdopen(fd, "wb"))) {
         sl_error_set(err, SL_EIO, path, 0, "cannot create: %s", strerror(errno));
         if (fd >= 0) {
             close(fd);
@@ -86,4 +115,172 @@ void sl_atomic_abort(sl_atomic *a)
         fclose(a->f);
     unlink(a->tmp);
     atomic_free(a);
+}
+
+/* ---- folders ------------------------------------------------------------ */
+
+static int remove_entry(const char *p, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st;
+    (void)ftw;
+    return (flag == FTW_DP ? rmdir(p) : unlink(p)) == 0 || errno == ENOENT ? 0 : -1;
+}
+
+int sl_remove_tree(const char *path)
+{
+    return nftw(path, remove_entry, REMOVE_TREE_FDS, FTW_DEPTH | FTW_PHYS);
+}
+
+static int is_placeholder(const char *name)
+{
+    return !strcmp(name, ".keep") || !strcmp(name, ".gitkeep");
+}
+
+sl_status sl_outdir_check(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
+{
+    struct stat st;
+    if (!dir || !*dir)
+        return sl_error_set(err, SL_EINVAL, dir, 0, "no output folder given");
+    if (stat(dir, &st) != 0) {
+        if (errno != ENOENT)
+            return sl_error_set(err, SL_EIO, dir, 0, "output folder: %s", strerror(errno));
+        /* absent: its parent must be a writable folder */
+        char *parent = strdup(dir);
+        if (!parent)
+            return sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+        char *slash = strrchr(parent, '/');
+        if (slash == parent)
+            slash[1] = '\0';
+        else if (slash)
+            *slash = '\0';
+        else
+            strcpy(parent, ".");
+        int ok = stat(parent, &st) == 0 && S_ISDIR(st.st_mode) && access(parent, W_OK | X_OK) == 0;
+        free(parent);
+        if (!ok)
+            return sl_error_set(err, SL_EIO, dir, 0,
+                                "cannot create the output folder: its parent is not a writable "
+                                "folder");
+        return SL_OK;
+    }
+    if (!S_ISDIR(st.st_mode))
+        return sl_error_set(err, SL_EINVAL, dir, 0,
+                            "output path exists and is not a folder; give a new or empty folder");
+    DIR *d = opendir(dir);
+    if (!d)
+        return sl_error_set(err, SL_EIO, dir, 0, "output folder: %s", strerror(errno));
+    struct dirent *e;
+    sl_status s = SL_OK;
+    while (s == SL_OK && (e = readdir(d)) != NULL) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") || is_placeholder(e->d_name))
+            continue;
+        if (!owns || !owns(e->d_name))
+            s = sl_error_set(err, SL_EINVAL, dir, 0,
+                             "output folder holds '%s', which seislide did not write; the run "
+                             "replaces the whole folder, so give a new or empty folder",
+                             e->d_name);
+    }
+    closedir(d);
+    return s;
+}
+
+struct sl_atomic_dir {
+    char *path; /* final */
+    char *tmp;  /* fresh */
+};
+
+sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
+{
+    if (sl_outdir_check(dir, owns, err))
+        return NULL;
+    sl_atomic_dir *a = calloc(1, sizeof *a);
+    if (!a || !(a->path = strdup(dir)) || !(a->tmp = hidden_sibling(dir))) {
+        if (a)
+            free(a->path);
+        free(a);
+        sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+        return NULL;
+    }
+    if (!mkdtemp(a->tmp) || chmod(a->tmp, 0777 & ~current_umask()) != 0) {
+        sl_error_set(err, SL_EIO, dir, 0, "cannot create a folder beside it: %s", strerror(errno));
+        rmdir(a->tmp);
+        free(a->tmp);
+        free(a->path);
+        free(a);
+        return NULL;
+    }
+    /* carry the version-control placeholders over */
+    static const char *const keep[] = {".keep", ".gitkeep"};
+    for (size_t i = 0; i < sizeof keep / sizeof keep[0]; i++) {
+        char src[4096], dst[4096];
+        struct stat st;
+        snprintf(src, sizeof src, "%s/%s", dir, keep[i]);
+        snprintf(dst, sizeof dst, "%s/%s", a->tmp, keep[i]);
+        if (stat(src, &st) == 0 && S_ISREG(st.st_mode)) {
+            int fd = open(dst, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+            if (fd >= 0)
+                close(fd);
+        }
+    }
+    return a;
+}
+
+const char *sl_atomic_dir_path(const sl_atomic_dir *d) { return d ? d->tmp : NULL; }
+
+static void atomic_dir_free(sl_atomic_dir *d)
+{
+    free(d->tmp);
+    free(d->path);
+    free(d);
+}
+
+sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err)
+{
+    if (!d)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "no folder to commit");
+    struct stat st;
+    sl_status s = SL_OK;
+    if (lstat(d->path, &st) != 0) {
+        if (rename(d->tmp, d->path) != 0)
+            s = sl_error_set(err, SL_EIO, d->path, 0, "cannot create: %s", strerror(errno));
+    } else {
+        int done = 0;
+#ifdef RENAME_EXCHANGE
+        /* one atomic step: the old folder now has the fresh folder's name */
+        done = renameat2(AT_FDCWD, d->tmp, AT_FDCWD, d->path, RENAME_EXCHANGE) == 0;
+#endif
+        if (!done) {
+            /* two renames: the old folder aside, the fresh one in */
+            char *old = hidden_sibling(d->path);
+            if (!old || !mkdtemp(old) || rmdir(old) != 0 || rename(d->path, old) != 0) {
+                s = sl_error_set(err, SL_EIO, d->path, 0, "cannot replace: %s", strerror(errno));
+            } else if (rename(d->tmp, d->path) != 0) {
+                s = sl_error_set(err, SL_EIO, d->path, 0, "cannot replace: %s", strerror(errno));
+                rename(old, d->path);
+            } else {
+                sl_remove_tree(old);
+            }
+            free(old);
+            if (s) {
+                sl_remove_tree(d->tmp);
+                atomic_dir_free(d);
+                return s;
+            }
+            atomic_dir_free(d);
+            return SL_OK;
+        }
+    }
+    /* after the exchange d->tmp holds the old outputs; after a failure, the
+     * fresh ones: either way it goes */
+    sl_remove_tree(d->tmp);
+    atomic_dir_free(d);
+    return s;
+}
+
+void sl_atomic_dir_abort(sl_atomic_dir *d)
+{
+    if (!d)
+        return;
+    sl_remove_tree(d->tmp);
+    atomic_dir_free(d);
 }

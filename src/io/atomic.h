@@ -1,10 +1,20 @@
 /*
- * atomic.h - write a file so that it appears complete or not at all.
+ * atomic.h - write a file, or a whole output folder, so that it appears
+ * complete or not at all.
  *
- * sl_atomic_open() creates a hidden temporary file in the destination's
- * directory; sl_atomic_commit() flushes, closes and renames it over the
- * final name; sl_atomic_abort() removes it. A failed or interrupted run
- * never leaves a partial file under the final name.
+ * Files: sl_atomic_open() creates a hidden temporary file in the
+ * destination's directory; sl_atomic_commit() flushes, closes and renames it
+ * over the final name; sl_atomic_abort() removes it.
+ *
+ * Folders: sl_atomic_dir_open() creates a fresh hidden sibling folder
+ * (".NAME.tmp-XXXXXX") to write every output into; sl_atomic_dir_commit()
+ * swaps it in for the final folder (renameat2 RENAME_EXCHANGE where the
+ * system has it, else two renames) and removes the old folder, so stale files
+ * of an earlier run never sit beside new ones; sl_atomic_dir_abort() removes
+ * the fresh folder and everything in it.
+ *
+ * Permissions: files 0666 and folders 0777, less the process umask (what
+ * open(2) and mkdir(2) would give), never mkstemp's private 0600.
  */
 #ifndef SL_ATOMIC_H
 #define SL_ATOMIC_H
@@ -26,5 +36,31 @@ const char *sl_atomic_tmpname(const sl_atomic *a);
 sl_status sl_atomic_commit(sl_atomic *a, sl_error *err);
 /* Close and remove the temporary file; frees a. Harmless on NULL. */
 void sl_atomic_abort(sl_atomic *a);
+
+/* A predicate: nonzero when `name` (an entry of an output folder) is a file
+ * or folder the program writes there, so replacing it loses nothing. */
+typedef int (*sl_outdir_owns_fn)(const char *name);
+
+/* Check an output folder before any work: absent (its parent must be a
+ * writable folder), or a folder whose every entry `owns` accepts. Returns
+ * SL_OK, or SL_EIO/SL_EINVAL naming the path and the first foreign entry. */
+sl_status sl_outdir_check(const char *dir, sl_outdir_owns_fn owns, sl_error *err);
+
+typedef struct sl_atomic_dir sl_atomic_dir;
+
+/* Create the fresh folder for final folder `dir` (checked with
+ * sl_outdir_check first). Entries named ".keep" or ".gitkeep" in the old
+ * folder are carried over (empty). NULL and err filled on failure. */
+sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err);
+/* The fresh folder to write into. */
+const char *sl_atomic_dir_path(const sl_atomic_dir *d);
+/* Swap the fresh folder in for the final one and remove the old one; frees
+ * d. On failure the final folder is unchanged (the fresh one removed). */
+sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err);
+/* Remove the fresh folder and its contents; frees d. Harmless on NULL. */
+void sl_atomic_dir_abort(sl_atomic_dir *d);
+
+/* Remove a folder tree (no symbolic links followed). 0 or -1 (errno). */
+int sl_remove_tree(const char *path);
 
 #endif

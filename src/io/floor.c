@@ -10,12 +10,14 @@
 #include "io/floor.h"
 
 #include <errno.h>
+#include <glob.h>
 #include <ini.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* The value `h2 = same_as_h1` declares H2 equal to H1. */
 #define FLOOR_SAME_AS_H1 "same_as_h1"
@@ -266,6 +268,9 @@ static int check_frequency(ctx *c, const numlist *l, double x, const char *key)
 {
     if (!(x > 0))
         return fail(c, SL_EINVAL, c->lineno, "%s: frequency %g must be positive", key, x);
+    if (x < SL_FLOOR_F_MIN_HZ || x > SL_FLOOR_F_MAX_HZ)
+        return fail(c, SL_EINVAL, c->lineno, "%s: frequency %g Hz outside %g-%g Hz", key, x,
+                    SL_FLOOR_F_MIN_HZ, SL_FLOOR_F_MAX_HZ);
     if (l->n > 0 && !(x > l->v[l->n - 1]))
         return fail(c, SL_EINVAL, c->lineno,
                     "%s: frequencies must increase strictly: %g after %g", key, x,
@@ -544,13 +549,21 @@ static int build_comp(ctx *c, const raw_comp *rc, sl_floor_component *out, doubl
         s->n = n;
         s->damping = rc->damping[order[i]];
         memcpy(s->f_hz, rc->f.v, n * sizeof *s->f_hz);
-        for (size_t j = 0; j < n; j++)
+        for (size_t j = 0; j < n; j++) {
             s->sa_ms2[j] = sa->v[j] * to_si;
+            if (!isfinite(s->sa_ms2[j]) || s->sa_ms2[j] > SL_FLOOR_MAX_SA_G * SL_G)
+                return fail(c, SL_EINVAL, sa->line[j], "sa_%g: value %g %s is above %g g "
+                            "(overflows or is not a floor acceleration)", rc->damping[order[i]],
+                            sa->v[j], sl_unit_name(c->units), SL_FLOOR_MAX_SA_G);
+        }
         if (s->sa_ms2[n - 1] > zpa_end)
             zpa_end = s->sa_ms2[n - 1];
     }
     out->zpa_given = rc->zpa_line != 0;
     out->zpa_ms2 = out->zpa_given ? rc->zpa * to_si : zpa_end;
+    if (!isfinite(out->zpa_ms2) || out->zpa_ms2 > SL_FLOOR_MAX_SA_G * SL_G)
+        return fail(c, SL_EINVAL, rc->zpa_line, "zpa: value %g %s is above %g g", rc->zpa,
+                    sl_unit_name(c->units), SL_FLOOR_MAX_SA_G);
     out->line = rc->line;
     return 1;
 }
@@ -569,6 +582,14 @@ sl_floor *sl_floor_load(const char *path, sl_error *err)
     c.f = fopen(path, "rb");
     if (!c.f) {
         sl_error_set(err, SL_EIO, path, 0, "cannot open: %s", strerror(errno));
+        return NULL;
+    }
+    struct stat st;
+    if (fstat(fileno(c.f), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > SL_FLOOR_MAX_BYTES) {
+        sl_error_set(err, SL_EINVAL, path, 0, "file of %lld bytes is larger than the %d bytes "
+                     "a floor file may have (SL_FLOOR_MAX_BYTES); not read",
+                     (long long)st.st_size, SL_FLOOR_MAX_BYTES);
+        fclose(c.f);
         return NULL;
     }
     int rc = ini_parse_stream(reader, &c, handler, &c);
@@ -595,6 +616,7 @@ sl_floor *sl_floor_load(const char *path, sl_error *err)
             c.name = c.description = NULL;
             fl->elevation_m = c.elevation_m;
             fl->units = c.units;
+            fl->units_line = c.units_line;
             fl->h2_same_as_h1 = c.h2_line != 0;
             fl->has_seed = c.seed_line != 0;
             fl->seed = (uint64_t)c.seed;
@@ -629,4 +651,49 @@ const sl_spectrum *sl_floor_spectrum(const sl_floor *fl, sl_floor_comp c, double
 const sl_spectrum *sl_floor_sa10(const sl_floor *fl, sl_floor_comp c)
 {
     return sl_floor_spectrum(fl, c, SL_FLOOR_ASCE_DAMPING);
+}
+
+sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err)
+{
+    double h = fmax(fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2) / SL_G;
+    if (h < SL_FLOOR_ZPA_MIN_G || h > SL_FLOOR_ZPA_MAX_G)
+        return sl_error_set(err, SL_EINVAL, fl->path, fl->units_line,
+                            "units = %s gives a horizontal ZPA of %.4g g, outside the plausible "
+                            "%g-%g g for a floor: check the units and the values",
+                            sl_unit_name(fl->units), h, SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G);
+    return SL_OK;
+}
+
+sl_status sl_floor_list(const char *arg, char **paths, size_t *n, size_t max, sl_error *err)
+{
+    struct stat st;
+    if (stat(arg, &st) != 0)
+        return sl_error_set(err, SL_EIO, arg, 0, "%s", strerror(errno));
+    if (!S_ISDIR(st.st_mode)) {
+        if (*n >= max)
+            return sl_error_set(err, SL_EINVAL, arg, 0, "more than %zu floor files", max);
+        if (!(paths[*n] = strdup(arg)))
+            return sl_error_set(err, SL_ENOMEM, arg, 0, "out of memory");
+        (*n)++;
+        return SL_OK;
+    }
+    char pat[4096];
+    snprintf(pat, sizeof pat, "%s/*.ini", arg);
+    glob_t g;
+    memset(&g, 0, sizeof g);
+    if (glob(pat, 0, NULL, &g) != 0) {
+        globfree(&g);
+        return sl_error_set(err, SL_EIO, arg, 0, "no floor files (*.ini) in this folder");
+    }
+    sl_status s = SL_OK;
+    for (size_t i = 0; i < g.gl_pathc && !s; i++) {
+        if (*n >= max)
+            s = sl_error_set(err, SL_EINVAL, arg, 0, "more than %zu floor files", max);
+        else if (!(paths[*n] = strdup(g.gl_pathv[i])))
+            s = sl_error_set(err, SL_ENOMEM, arg, 0, "out of memory");
+        else
+            (*n)++;
+    }
+    globfree(&g);
+    return s;
 }

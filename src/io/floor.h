@@ -27,9 +27,11 @@
  * Validation (every error names the file and the line): known sections
  * [floor] [h1] [h2] [v] each at most once and [floor], [h1], [v] present;
  * [h2] present or `h2 = same_as_h1` declared (never assumed), not both;
- * known keys only, each once; frequencies positive and strictly increasing
- * (at least SL_FLOOR_MIN_POINTS); values positive and finite, as many as
- * frequencies; damping ratios in (0, 1), each once per section; units
+ * known keys only, each once; frequencies in SL_FLOOR_F_MIN_HZ-
+ * SL_FLOOR_F_MAX_HZ and strictly increasing (at least SL_FLOOR_MIN_POINTS);
+ * values positive, finite and at most SL_FLOOR_MAX_SA_G once converted to
+ * SI, as many as frequencies; a file larger than SL_FLOOR_MAX_BYTES is
+ * refused before it is read; damping ratios in (0, 1), each once per section; units
  * known; name not empty.
  *
  * Zero-period acceleration of a component: the `zpa` key when given, else
@@ -56,6 +58,17 @@
 #define SL_FLOOR_MAX_DAMPINGS 16
 /* Two damping ratios closer than this are the same (sa_0.1 = sa_0.10). */
 #define SL_FLOOR_DAMPING_TOL 1e-9
+/* Frequencies a floor spectrum may hold, Hz (outside: a typo or a unit
+ * error, refused with the line). */
+#define SL_FLOOR_F_MIN_HZ 1e-3
+#define SL_FLOOR_F_MAX_HZ 1e4
+/* Largest spectral value or ZPA accepted, g (above: not a floor motion). */
+#define SL_FLOOR_MAX_SA_G 1000.0
+/* Largest floor file read, bytes (checked before reading). */
+#define SL_FLOOR_MAX_BYTES (16 * 1024 * 1024)
+/* Plausible horizontal ZPA of a floor, g (sl_floor_check_plausible). */
+#define SL_FLOOR_ZPA_MIN_G 0.01
+#define SL_FLOOR_ZPA_MAX_G 5.0
 /* The damping of the spectra the ASCE/SEI 43-05 method uses. */
 #define SL_FLOOR_ASCE_DAMPING SL_ASCE_DAMPING /* core/standards.h */
 
@@ -81,6 +94,7 @@ typedef struct sl_floor {
     char *description;  /* free text, "" when not given */
     double elevation_m; /* NAN when not given */
     sl_unit units;      /* units of the file (values stored in m/s^2) */
+    long units_line;    /* line of the units key */
     int h2_same_as_h1;  /* 1 when the file declared `h2 = same_as_h1` (H2 copies H1) */
     int has_seed;       /* 1 when the file gave `seed =` */
     uint64_t seed;      /* that seed (0 when not given) */
@@ -90,6 +104,18 @@ typedef struct sl_floor {
 /* Read and validate a floor file. Returns NULL and fills err (file, line,
  * message; SL_EIO, SL_EPARSE, SL_EINVAL or SL_ENOMEM) on failure. */
 sl_floor *sl_floor_load(const char *path, sl_error *err);
+
+/* Plausibility of the horizontal ZPA (the larger of H1 and H2): SL_OK, or
+ * SL_EINVAL naming the file, the units line and the value when it lies
+ * outside SL_FLOOR_ZPA_MIN_G-SL_FLOOR_ZPA_MAX_G (e.g. units = gal on values
+ * in g). The caller decides whether that stops the run. */
+sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
+
+/* The floor files named by `arg`: the file itself, or every *.ini in it
+ * when it is a folder (sorted). Appends strdup'd paths to paths[*n], at most
+ * `max` in all. SL_EIO (missing, unreadable, no *.ini) or SL_EINVAL (more
+ * than max) with the path in err. */
+sl_status sl_floor_list(const char *arg, char **paths, size_t *n, size_t max, sl_error *err);
 
 /* Free a floor; harmless on NULL. */
 void sl_floor_free(sl_floor *fl);

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 /* Relative tolerance on sample intervals: the steps of a time column
  * against their mean, an explicit dt against the file's, and the dt of the
@@ -298,12 +299,31 @@ static int skip_line(const char *s, size_t n)
     return i == n || s[i] == '#';
 }
 
+/* An acceleration after conversion to SI: finite and within the limit. */
+static sl_status check_acc(double si, double raw, sl_unit u, const char *path, long line,
+                           sl_error *err)
+{
+    if (fabs(si) <= SL_MOTION_MAX_ABS_G * SL_G)
+        return SL_OK;
+    return sl_error_set(err, SL_EINVAL, path, line, "acceleration %g %s is %s %g g in magnitude "
+                        "(not a floor or ground motion; check the value and the units)",
+                        raw, sl_unit_name(u), isfinite(si) ? "above" : "infinite in SI, above",
+                        SL_MOTION_MAX_ABS_G);
+}
+
 /* Read a whole file; adds a terminating NUL. */
 static sl_status slurp(const char *path, char **out, size_t *len, sl_error *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
         return sl_error_set(err, SL_EIO, path, 0, "cannot open: %s", strerror(errno));
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > SL_MOTION_MAX_BYTES) {
+        fclose(f);
+        return sl_error_set(err, SL_EINVAL, path, 0, "file of %lld bytes is larger than the "
+                            "%ld bytes a motion file may have; not read",
+                            (long long)st.st_size, SL_MOTION_MAX_BYTES);
+    }
     char *buf = NULL;
     size_t n = 0, cap = 0;
     for (;;) {
@@ -599,6 +619,10 @@ static sl_motion *read_at2(const char *path, text *t, const sl_read_opts *o, sl_
             num_result r = parse_num(tok, tl, &x);
             if (r != NUM_OK) {
                 token_error(err, path, t->lineno, tok, tl, r);
+                free(a.v);
+                return NULL;
+            }
+            if (check_acc(f * x, x, u, path, t->lineno, err)) {
                 free(a.v);
                 return NULL;
             }
@@ -911,6 +935,13 @@ static sl_motion *read_columns(const char *path, text *t, sl_format fmt,
                 goto fail;
             }
             int bad = 0;
+            if ((long)k == a_col && check_acc(fac * x, x, u, path, line, err))
+                goto fail;
+            if ((long)k == t_col && !(fabs(x) <= SL_MOTION_MAX_TIME_S)) {
+                sl_error_set(err, SL_EINVAL, path, line, "time %g s outside +-%g s", x,
+                             SL_MOTION_MAX_TIME_S);
+                goto fail;
+            }
             if ((long)k == a_col)
                 bad = dvec_push(&a, fac * x);
             else if ((long)k == t_col)

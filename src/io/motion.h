@@ -29,6 +29,17 @@
 #include "core/status.h"
 #include "core/units.h"
 
+/* The reader's limits. A file larger than SL_MOTION_MAX_BYTES is refused
+ * before it is read (the message gives the limit); an acceleration whose
+ * magnitude in SI exceeds SL_MOTION_MAX_ABS_G g (including one that
+ * overflows to infinity when converted) is refused with its file, line and
+ * value: no floor or ground motion comes near it, and every result computed
+ * from the motion stays finite. Time-column values must lie within
+ * +-SL_MOTION_MAX_TIME_S. */
+#define SL_MOTION_MAX_BYTES (256L * 1024 * 1024)
+#define SL_MOTION_MAX_ABS_G 100.0
+#define SL_MOTION_MAX_TIME_S 1e6
+
 typedef enum sl_format {
     SL_FORMAT_AUTO = 0, /* decide from the content (AT2 header, CSV header, columns) */
     SL_FORMAT_AT2,

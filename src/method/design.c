@@ -69,6 +69,22 @@ static sl_status check(const sl_design_input *in, sl_error *err)
     return SL_OK;
 }
 
+/* Where D_A - D_N changes sign between rows p and q (linear in mu and x);
+ * 0 when ASCE is undefined at either row (no place to interpolate). */
+static int sign_change(const sl_design_row *p, const sl_design_row *q, double *mu, double *x)
+{
+    if (!isfinite(p->asce_design_m) || !isfinite(q->asce_design_m))
+        return 0;
+    double fp = p->asce_design_m - p->nltha_design_m;
+    double fq = q->asce_design_m - q->nltha_design_m;
+    if (!(fp != fq))
+        return 0;
+    double w = fp / (fp - fq);
+    *mu = p->mu + w * (q->mu - p->mu);
+    *x = p->x + w * (q->x - p->x);
+    return 1;
+}
+
 sl_design *sl_design_compute(const sl_design_input *in, sl_error *err)
 {
     if (check(in, err))
@@ -85,6 +101,10 @@ sl_design *sl_design_compute(const sl_design_input *in, sl_error *err)
     d->n = in->n_mu;
     d->zpa_h_ms2 = in->zpa_h_ms2;
     d->policy = in->policy;
+    d->n_sets = in->n_sets;
+    d->fs_nltha = in->fs_nltha;
+    d->fs_asce = in->fs_asce;
+    d->cap_factor = in->cap_factor;
     d->cap_m = in->cap_factor * gsl_stats_mean(in->pgd_m, 1, in->n_sets);
     for (size_t k = 0; k < in->n_mu; k++) {
         sl_design_row *r = &d->rows[k];
@@ -136,9 +156,16 @@ sl_design *sl_design_compute(const sl_design_input *in, sl_error *err)
         size_t e = k;
         while (e + 1 < d->n && (d->rows[e + 1].flags & SL_DESIGN_UNCONSERVATIVE))
             e++;
-        d->ranges[d->n_ranges].x_from = d->rows[k].x;
-        d->ranges[d->n_ranges].x_to = d->rows[e].x;
-        d->n_ranges++;
+        sl_design_range *g = &d->ranges[d->n_ranges++];
+        g->x_from = d->rows[k].x;
+        g->x_to = d->rows[e].x;
+        g->mu_lo = d->rows[k].mu;
+        g->x_lo = d->rows[k].x;
+        g->open_lo = !(k > 0 && sign_change(&d->rows[k - 1], &d->rows[k], &g->mu_lo, &g->x_lo));
+        g->mu_hi = d->rows[e].mu;
+        g->x_hi = d->rows[e].x;
+        g->open_hi =
+            !(e + 1 < d->n && sign_change(&d->rows[e], &d->rows[e + 1], &g->mu_hi, &g->x_hi));
         /* the crossover (the study's sense): the end of an unconservative range
          * that starts at the lowest mu of the grid */
         if (k == 0 && e + 1 < d->n && isfinite(d->rows[e + 1].asce_design_m)) {

@@ -75,6 +75,12 @@ typedef struct sl_design_row {
 
 typedef struct sl_design_range {
     double x_from, x_to;  /* a range of mu g/ZPA where ASCE < NLTHA (grid points) */
+    /* The same range with its ends where D_A - D_N changes sign, linearly
+     * interpolated between the grid rows on either side; an end that
+     * reaches the first or last row of the grid (open_lo, open_hi = 1)
+     * stays at that row: the grid does not say where the range ends. */
+    double mu_lo, mu_hi, x_lo, x_hi;
+    int open_lo, open_hi;
 } sl_design_range;
 
 typedef struct sl_design {
@@ -83,6 +89,8 @@ typedef struct sl_design {
     double zpa_h_ms2;
     double cap_m;
     sl_clearance_policy policy;
+    size_t n_sets;         /* motion sets behind the NLTHA mean */
+    double fs_nltha, fs_asce, cap_factor; /* the factors used */
     int has_crossover;     /* 1 when ASCE is unconservative at the lowest mu and
                               becomes conservative within the grid */
     double crossover_x;    /* mu g / ZPA there (NAN if none) */
@@ -121,8 +129,13 @@ sl_design *sl_design_compute(const sl_design_input *in, sl_error *err);
 
 void sl_design_free(sl_design *d);
 
-/* Clearance at an arbitrary mu by linear interpolation of the rows (the
- * same rule the workbook's lookup formula uses); NAN outside the grid. */
+/* The required clearance at an arbitrary mu, m: linear interpolation in mu
+ * between the grid rows k and k + 1 with mu_k <= mu <= mu_k+1,
+ *   c(mu) = c_k + (mu - mu_k) (c_k+1 - c_k) / (mu_k+1 - mu_k),
+ * exact at grid points; NAN outside [mu_0, mu_n-1] or for a NAN mu. This is
+ * the one definition: the workbook's Lookup formula is its visible twin
+ * (report.c writes it; tests/test_lookup.c recalculates it with
+ * LibreOffice and compares). */
 double sl_design_clearance_at(const sl_design *d, double mu);
 
 #endif

@@ -134,14 +134,6 @@ double sl_stats_step(double se, double min_step, double max_step)
     return step < min_step ? min_step : step > max_step ? max_step : step;
 }
 
-double sl_stats_round_up(double v, double step)
-{
-    if (!isfinite(v))
-        return v;
-    double q = v / step;
-    return ceil(q - 1e-9 * fmax(1.0, fabs(q))) * step;
-}
-
 int sl_stats_step_decimals(double step)
 {
     double d = -floor(log10(step) + 1e-12);

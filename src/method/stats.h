@@ -105,11 +105,6 @@ sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double le
  * max_step]; min_step when se is 0 or not finite. */
 double sl_stats_step(double se, double min_step, double max_step);
 
-/* v rounded UP to a multiple of step (step > 0): a clearance is never shown
- * smaller than computed. A relative 1e-9 of slack keeps 12.3 at 12.3 with
- * step 0.1. NAN stays NAN. */
-double sl_stats_round_up(double v, double step);
-
 /* Decimals needed to print multiples of step exactly: max(0, -log10 step),
  * rounded. */
 int sl_stats_step_decimals(double step);

@@ -29,34 +29,42 @@
 #include <time.h>
 
 #include "method/design.h"
-#include "method/stats.h"
 #include "core/status.h"
 
 typedef struct sl_report_floor {
-    const char *name;        /* floor name (from its file) */
+    const char *id;          /* short stable id: the file name's stem made safe
+                                (sl_report_floor_id); unique in a report */
+    const char *name;        /* floor name (from its file); unique in a report */
     const char *path;        /* floor file */
+    const char *description; /* free text from the file ("" when none) */
+    double elevation_m;      /* NAN when not given */
+    const char *units;       /* units of the file's spectral values */
     unsigned long crc32;     /* CRC-32 of the file's bytes */
     long size_bytes;
     double zpa_h_ms2;        /* the horizontal ZPA used for mu g/ZPA */
     const sl_design *design;
     const char *note;        /* e.g. the 10 % fallback; "" when none */
     size_t n_mu_skipped;     /* friction values that needed no NLTHA for any motion */
-    size_t n_sets;           /* motion sets used */
-    const char *stop;        /* why it stopped adding sets: "converged", "max_sets", "fixed" */
-    const sl_stats_conv *conv; /* per mu, as design->rows: sets, SE and band of the NLTHA
-                                  design value (NULL: columns left blank) */
+    /* Placeholders for the convergence statistics (analysis.c fills them
+     * when it has them; NULL: the report shows the standard error sd/sqrt(N)
+     * of the design rows only): per row of the design, the 90 % band of the
+     * NLTHA design value, m. */
+    const double *design_lo_m, *design_hi_m;
+    const char *sets_stop;   /* why the floor stopped adding motion sets: "converged",
+                                "max_sets" or "fixed" (NULL: not given) */
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */
 typedef struct sl_report_quality {
-    const char *floor;
+    const char *floor;       /* floor id */
     int set;                 /* 1-based */
     const char *component;   /* "H1", "H2", "V" */
     double pga_g;
     double d5_75_s;
     double min_ratio;        /* min over frequencies of computed/target */
     double max_ratio;
-    int max_run_below;       /* longest run of points below the target */
+    int max_run_below;       /* longest run of consecutive frequency points
+                                below the target (SRP 3.7.1 limit: 9) */
     double max_corr;         /* largest |correlation| with the set's other components */
     double v_end_ms, d_end_m;
     int pass;
@@ -67,30 +75,70 @@ typedef struct sl_report_setting {
     const char *name, *value;
 } sl_report_setting;
 
+/* The title block of the deliverable (any field NULL or "" prints "-"). */
+typedef struct sl_report_project {
+    const char *project, *document, *revision, *prepared, *checked, *date;
+} sl_report_project;
+
 typedef struct sl_report {
     const char *version;
     const char *command_line;
     time_t created;          /* workbook creation date (pin it for reproducible files) */
+    sl_report_project project;
     size_t n_floors;
     const sl_report_floor *floors;
     size_t n_quality;
     const sl_report_quality *quality;
     size_t n_settings;
     const sl_report_setting *settings;
+    /* The Lookup sheet's initial inputs: a floor name (NULL: the first
+     * floor; "" leaves the cell blank) and mu (NAN: blank; a value outside
+     * the grid is kept, the sheet then says so). Tests set them. */
+    const char *lookup_floor;
+    double lookup_mu;
+    const char *lookup_mu_text; /* non-NULL: the mu cell holds this text instead */
+    /* Tests: write 0 as every Lookup formula's cached value, so that values
+     * read back can only come from a recalculation (tests/test_lookup.c). */
+    int lookup_zero_cache;
 } sl_report;
+
+/* Lookup default mu (when inside the grid). */
+#define SL_REPORT_LOOKUP_MU 0.30
+
+/* Initialise a report: zeros, lookup_mu = SL_REPORT_LOOKUP_MU. */
+void sl_report_init(sl_report *r);
+
+/* The short id of a floor file: its file name without folders and the
+ * ".ini" ending, characters other than letters, digits, '-' and '_' made
+ * '_' (into buf of size n). "floors/04-roof36.ini" -> "04-roof36". */
+char *sl_report_floor_id(const char *path, char *buf, size_t n);
+
+/* Check that the floors' ids and names are unique (names compared without
+ * case, as the workbook's MATCH does). SL_EINVAL naming both files. */
+sl_status sl_report_check_floors(const sl_report *r, sl_error *err);
+
+/* Nonzero when `name` is a file or folder `seislide run` writes into its
+ * output folder (for sl_outdir_check). */
+int sl_report_owns_name(const char *name);
 
 /* Write the workbook to path. Returns SL_OK, or SL_EIO/SL_EINVAL with the
  * path and libxlsxwriter's message. All floors must share the mu grid. */
 sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *err);
 
-/* Write floor_<name>.csv per floor, summary.csv, floors.csv and
- * motion_quality.csv into
- * dir (which must exist). Floor names are made safe for file names
- * (letters, digits, '-', '_'; others become '_'). */
+/* Write floor_<id>.csv per floor, summary.csv, floors.csv,
+ * asce_below_nltha.csv and motion_quality.csv into dir (which must exist).
+ * Every file starts with '#' comment lines naming the program, the file's
+ * content, the floor(s), ZPA and units; then one header line; one value per
+ * field. Every number written is finite (a value that does not exist is an
+ * empty field); a non-finite result is an error, not a file. */
 sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err);
 
-/* The file-name form of a floor name (into buf of size n). */
-char *sl_report_safe_name(const char *name, char *buf, size_t n);
+
+/* Every range of mu where ASCE is below NLTHA as "a-b, c-d" (ends
+ * interpolated; "<=a" or "b+" where the grid does not close the range),
+ * or "none"; into buf of size n. The one text every sheet, CSV comment and
+ * message uses. */
+char *sl_report_ranges_text(const sl_design *d, char *buf, size_t n);
 
 /* Flags of a design row as text ("nltha_capped asce_unconservative ..."). */
 char *sl_report_flags(unsigned flags, char *buf, size_t n);

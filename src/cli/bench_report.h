@@ -1,0 +1,13 @@
+/* bench_report.h - the tables of `seislide bench` (internal to the command
+ * line). */
+#ifndef SL_BENCH_REPORT_H
+#define SL_BENCH_REPORT_H
+
+#include <stdio.h>
+
+#include "study/bench.h"
+
+/* Print every section to stdout and to f (the report file). */
+void bench_report(FILE *f, const sl_bench *b, unsigned long repeat);
+
+#endif

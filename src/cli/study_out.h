@@ -1,0 +1,57 @@
+/*
+ * study_out.h - how `seislide study` writes what the study library
+ * (study/study_parts.h) computed: the report (markdown, in memory until
+ * the end), the data files (TSV, units in the headers) and the gnuplot
+ * scripts and figures. Internal to the command line.
+ */
+#ifndef SL_STUDY_OUT_H
+#define SL_STUDY_OUT_H
+
+#include <stdio.h>
+
+#include "study/study_parts.h"
+
+#define STUDY_FIGDIR "validation"
+
+typedef struct study_out {
+    const char *out;   /* folder of validation.md */
+    char figdir[4096]; /* out/validation */
+    int plots;         /* run gnuplot */
+    FILE *md;          /* the report */
+    sl_error err;
+} study_out;
+
+/* Write text to dir/name atomically. 0 or -1 (message printed). */
+int study_write_text(study_out *o, const char *dir, const char *name, const char *text,
+                     size_t len);
+/* A TSV in figdir: a title line, a header of ncol names, nrow rows (NAN as
+ * NaN, which gnuplot skips). 0 or -1 (message printed). */
+int study_write_tsv(study_out *o, const char *name, const char *title, const char *const *hdr,
+                    const double *const *col, size_t ncol, size_t nrow);
+/* A history as TSV: t_s, then the two displacements and forces with the
+ * given column names. */
+int study_write_history(study_out *o, const char *name, const char *title,
+                        const char *const hdr[5], const sl_history *h);
+/* The design spectra of a group as TSV (mu, x, the six curves, sd). */
+int study_write_spectra(study_out *o, const char *name, const char *title,
+                        const sl_study_spectra *sp);
+/* figdir/base.gp with the common header and the body (a printf format),
+ * then gnuplot when plots are on. 0 or -1 (message printed). */
+int study_plot(study_out *o, const char *base, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* "1e-7" (not "1e-07"): a power of ten as the study writes it. */
+const char *study_sci(double v, char *buf, size_t n);
+
+/* The report's sections (study_report.c). Parts return 0 or -1. */
+int study_report_part1(study_out *o, const sl_study_part1 *p);
+int study_report_part2(study_out *o, const sl_study_part2 *p);
+int study_report_part3(study_out *o, const sl_study_part3 *p);
+int study_report_part4(study_out *o, const sl_study_part4 *p);
+/* The claims table; a part not in `parts` (bit k = part k+1) is NULL. */
+void study_report_claims(study_out *o, const sl_study_part1 *p1, const sl_study_part2 *p2,
+                         const sl_study_part3 *p3, const sl_study_part4 *p4);
+
+#endif

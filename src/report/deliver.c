@@ -1,0 +1,197 @@
+/* deliver.c - the output folder of `seislide run`; see deliver.h. */
+#include "report/deliver.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <zlib.h>
+
+#include "method/asce.h"
+#include "synth/synth.h"
+
+/* CRC-32 and size of a file (recorded so the inputs can be recognised). */
+static sl_status file_crc(const char *path, unsigned long *crc, long *size, sl_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return sl_error_set(err, SL_EIO, path, 0, "cannot read: %s", strerror(errno));
+    uLong c = crc32(0L, Z_NULL, 0);
+    unsigned char buf[65536];
+    size_t k;
+    long total = 0;
+    while ((k = fread(buf, 1, sizeof buf, f)) > 0) {
+        c = crc32(c, buf, (uInt)k);
+        total += (long)k;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    *crc = c;
+    *size = total;
+    return bad ? sl_error_set(err, SL_EIO, path, 0, "cannot read") : SL_OK;
+}
+
+static sl_status write_motions(const char *dir, size_t n, const sl_floor *const *floors,
+                               const char *const *ids, const sl_analysis *const *an,
+                               uint64_t seed, sl_error *err)
+{
+    static const char *const cn[SL_SYNTH_NCOMP] = {"h1", "h2", "v"};
+    char sub[4096], path[4400], title[512];
+    snprintf(sub, sizeof sub, "%s/motions", dir);
+    if (mkdir(sub, 0777) != 0)
+        return sl_error_set(err, SL_EIO, sub, 0, "cannot create: %s", strerror(errno));
+    for (size_t i = 0; i < n; i++) {
+        snprintf(sub, sizeof sub, "%s/motions/%s", dir, ids[i]);
+        if (mkdir(sub, 0777) != 0)
+            return sl_error_set(err, SL_EIO, sub, 0, "cannot create: %s", strerror(errno));
+        for (size_t s = 0; s < an[i]->n_sets; s++)
+            for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+                snprintf(path, sizeof path, "%s/set%02zu_%s.AT2", sub, s + 1, cn[c]);
+                snprintf(title, sizeof title, "%s, set %zu, %s, seed %llu", floors[i]->name,
+                         s + 1, cn[c], (unsigned long long)seed);
+                if (sl_synth_write_at2(path, an[i]->sets[s].motion[c], title, err))
+                    return err ? err->code : SL_EIO;
+            }
+    }
+    return SL_OK;
+}
+
+sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *floors,
+                           const char *const *ids, const sl_analysis *const *an,
+                           const sl_deliver_opts *o, sl_error *err)
+{
+    if (n == 0)
+        return sl_error_set(err, SL_EINVAL, dir, 0, "no floors to write");
+    size_t nq = 0;
+    for (size_t i = 0; i < n; i++)
+        nq += an[i]->n_sets * SL_SYNTH_NCOMP;
+    sl_report_floor *rf = calloc(n, sizeof *rf);
+    sl_report_quality *rq = calloc(nq ? nq : 1, sizeof *rq);
+    char (*why)[160] = calloc(nq ? nq : 1, sizeof *why);
+    sl_status st = SL_OK;
+    if (!rf || !rq || !why) {
+        st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+        goto done;
+    }
+    static const char *const comp[SL_SYNTH_NCOMP] = {"H1", "H2", "V"};
+    size_t q = 0;
+    for (size_t i = 0; i < n && !st; i++) {
+        const sl_floor *fl = floors[i];
+        rf[i] = (sl_report_floor){.id = ids[i], .name = fl->name, .path = fl->path,
+                                  .description = fl->description, .elevation_m = fl->elevation_m,
+                                  .units = sl_unit_name(fl->units), .zpa_h_ms2 = an[i]->zpa_h_ms2,
+                                  .design = an[i]->design, .note = an[i]->note,
+                                  .n_mu_skipped = an[i]->n_mu_skipped,
+                                  .design_lo_m = an[i]->design_lo_m,
+                                  .design_hi_m = an[i]->design_hi_m,
+                                  .sets_stop = sl_analysis_stop_name(an[i]->stop)};
+        st = file_crc(fl->path, &rf[i].crc32, &rf[i].size_bytes, err);
+        for (size_t s = 0; s < an[i]->n_sets; s++)
+            for (int c = 0; c < SL_SYNTH_NCOMP; c++, q++) {
+                const sl_synth_check *k = &an[i]->sets[s].check[c];
+                snprintf(why[q], sizeof why[q], "%s%s%s%s%s%s%s%s", k->ok_below ? "" : "below ",
+                         k->ok_above ? "" : "above ", k->ok_run ? "" : "run_below ",
+                         k->ok_d5_75 ? "" : "d5_75 ", k->ok_duration ? "" : "duration ",
+                         k->ok_end ? "" : "end_v_d ", k->ok_pga ? "" : "pga ",
+                         k->ok_corr ? "" : "correlation");
+                rq[q] = (sl_report_quality){.floor = ids[i], .set = (int)s + 1,
+                                            .component = comp[c], .pga_g = k->pga_ms2 / SL_G,
+                                            .d5_75_s = k->d5_75_s, .min_ratio = k->min_ratio,
+                                            .max_ratio = k->max_ratio,
+                                            .max_run_below = (int)k->run_below,
+                                            .max_corr = k->max_corr, .v_end_ms = k->v_end_ms,
+                                            .d_end_m = k->d_end_m, .pass = k->pass,
+                                            .why = why[q]};
+            }
+    }
+    if (st)
+        goto done;
+    const sl_design *d0 = an[0]->design;
+    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160];
+    /* per floor: the sets it needed and why it stopped */
+    size_t used = 0;
+    for (size_t i = 0; i < n && used < sizeof s_sets; i++) {
+        int w = snprintf(s_sets + used, sizeof s_sets - used, "%s%s: %zu (%s)", i ? "; " : "",
+                         ids[i], an[i]->n_sets, sl_analysis_stop_name(an[i]->stop));
+        used += w > 0 ? (size_t)w : 0;
+    }
+    snprintf(s_seed, sizeof s_seed, "%llu", (unsigned long long)o->seed);
+    snprintf(s_mu, sizeof s_mu, "%zu values, %g to %g", d0->n, d0->rows[0].mu, d0->rows[d0->n - 1].mu);
+    if (o->substeps) /* fixed sub-steps (expert), else the engine's error control */
+        snprintf(s_sub, sizeof s_sub, "%u per sample (fixed)", o->substeps);
+    else
+        snprintf(s_sub, sizeof s_sub, "error-controlled, relative error %g", o->accuracy);
+    snprintf(s_fs, sizeof s_fs, "NLTHA %g x mean; ASCE %g x best estimate; cap %g x mean PGD",
+             d0->fs_nltha, d0->fs_asce, d0->cap_factor);
+    snprintf(s_synth, sizeof s_synth, "%g s at %g s, matched at %g %% damping (SRP 3.7.1 checks)",
+             SL_SYNTH_DURATION_S, SL_SYNTH_DT_S, 100 * SL_SYNTH_DAMPING);
+    const sl_report_setting settings[] = {
+        {"motion sets per floor", s_sets}, {"seed", s_seed}, {"friction grid", s_mu},
+        {"2-D sub-steps", s_sub}, {"factors", s_fs}, {"synthetic motions", s_synth},
+        {"clearance policy", sl_clearance_policy_name(d0->policy)},
+        {"units", "displacements in mm; accelerations in g; SI inside"}};
+    sl_report rep;
+    sl_report_init(&rep);
+    rep.version = o->version;
+    rep.command_line = o->command_line;
+    rep.created = o->created;
+    rep.project = o->project;
+    rep.n_floors = n;
+    rep.floors = rf;
+    rep.n_quality = q;
+    rep.quality = rq;
+    rep.n_settings = sizeof settings / sizeof settings[0];
+    rep.settings = settings;
+    char wb[4096];
+    snprintf(wb, sizeof wb, "%s/%s", dir, SL_DELIVER_WORKBOOK);
+    if (!(st = sl_report_check_floors(&rep, err)) && !(st = sl_report_write_csv(&rep, dir, err)) &&
+        !(st = sl_report_write_xlsx(&rep, wb, err)) && o->write_motions)
+        st = write_motions(dir, n, floors, ids, an, o->seed, err);
+done:
+    free(rf);
+    free(rq);
+    free(why);
+    return st;
+}
+
+sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args, size_t nargs,
+                                 int force, char *warnings, size_t nw, sl_error *err)
+{
+    sl_status st = SL_OK;
+    if (nw)
+        warnings[0] = '\0';
+    for (size_t i = 0; i < nargs && !st; i++)
+        st = sl_floor_list(args[i], in->paths, &in->n, SL_DELIVER_MAX_FLOORS, err);
+    sl_report_floor rf[SL_DELIVER_MAX_FLOORS];
+    for (size_t i = 0; i < in->n && !st; i++) {
+        if (!(in->floors[i] = sl_floor_load(in->paths[i], err)))
+            return err ? err->code : SL_EINVAL;
+        sl_error w;
+        if ((st = sl_floor_check_plausible(in->floors[i], force ? &w : err)) && force) {
+            size_t used = strlen(warnings);
+            snprintf(warnings + used, nw - used, "%s:%ld: %s\n", w.file, w.line, w.msg);
+            st = SL_OK;
+        }
+        in->idp[i] = sl_report_floor_id(in->paths[i], in->ids[i], sizeof in->ids[i]);
+        rf[i] = (sl_report_floor){.id = in->idp[i], .name = in->floors[i]->name,
+                                  .path = in->paths[i]};
+    }
+    if (st)
+        return st;
+    sl_report chk;
+    sl_report_init(&chk);
+    chk.n_floors = in->n;
+    chk.floors = rf;
+    return sl_report_check_floors(&chk, err);
+}
+
+void sl_deliver_inputs_free(sl_deliver_inputs *in)
+{
+    for (size_t i = 0; i < in->n; i++) {
+        sl_floor_free(in->floors[i]);
+        free(in->paths[i]);
+    }
+    memset(in, 0, sizeof *in);
+}

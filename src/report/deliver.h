@@ -1,0 +1,61 @@
+/*
+ * deliver.h - the outputs of `seislide run` as one folder: the report
+ * (report.h) assembled from the per-floor analyses (analysis.h), the CSV
+ * files, the workbook and, on request, every synthesized motion, written
+ * into a folder the caller made fresh (atomic.h: sl_atomic_dir_open) and
+ * swaps in when this returns SL_OK.
+ */
+#ifndef SL_DELIVER_H
+#define SL_DELIVER_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <time.h>
+
+#include "analysis.h"
+#include "io/floor.h"
+#include "report/report.h"
+
+/* The workbook's file name in the output folder. */
+#define SL_DELIVER_WORKBOOK "seislide-clearance.xlsx"
+
+typedef struct sl_deliver_opts {
+    const char *version, *command_line;
+    time_t created;
+    sl_report_project project;
+    uint64_t seed;
+    unsigned substeps;
+    double accuracy;          /* the requested accuracy (for the record) */
+    int write_motions;        /* also motions/<floor id>/setNN_{h1,h2,v}.AT2 */
+} sl_deliver_opts;
+
+/* Most floors in one run, and the longest floor id. */
+#define SL_DELIVER_MAX_FLOORS 256
+#define SL_DELIVER_ID_MAX 80
+
+/* The floors of a run, read and checked before any long work. */
+typedef struct sl_deliver_inputs {
+    size_t n;
+    char *paths[SL_DELIVER_MAX_FLOORS];
+    sl_floor *floors[SL_DELIVER_MAX_FLOORS];
+    char ids[SL_DELIVER_MAX_FLOORS][SL_DELIVER_ID_MAX];
+    const char *idp[SL_DELIVER_MAX_FLOORS]; /* ids[i] */
+} sl_deliver_inputs;
+
+/* Read every floor file named by args (files or folders of *.ini;
+ * sl_floor_list), check each (sl_floor_check_plausible: an error, or with
+ * `force` a line appended to `warnings`, size nw) and the uniqueness of
+ * their ids and names (sl_report_check_floors). in must be zeroed; free it
+ * with sl_deliver_inputs_free() whatever the result. */
+sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args, size_t nargs,
+                                 int force, char *warnings, size_t nw, sl_error *err);
+void sl_deliver_inputs_free(sl_deliver_inputs *in);
+
+/* Write everything for n floors (floors[i] analysed as an[i]; ids[i] from
+ * sl_report_floor_id, already checked unique) into folder dir. Returns
+ * SL_OK or the first error (err names the file). */
+sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *floors,
+                           const char *const *ids, const sl_analysis *const *an,
+                           const sl_deliver_opts *o, sl_error *err);
+
+#endif

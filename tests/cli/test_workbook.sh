@@ -1,0 +1,107 @@
+#!/bin/sh
+# The workbook as a document (issue 15): read its XML (title block, notes,
+# protection, named ranges, chart axes and series, the ASCE-below-NLTHA
+# ranges agreeing across sheets and CSV), then render it to PDF with
+# LibreOffice and check the page count and the floor sheets' print scale.
+. "$(dirname "$0")/lib.sh"
+t_suite cli_workbook
+D=$T_TMP
+mkdir -p "$D/floors"
+cp floors/01-ground.ini floors/04-roof36.ini "$D/floors/"
+t_run run "$D/floors" -o "$D/res" --sets 3 --mu-range 0.05:0.80:0.05 --created 1700000000 -q \
+  --project "Plant & Unit 2" --document DOC-0042 --revision C --prepared "A. Author" --checked "B. Checker"
+t_expect_rc run 0
+if ! command -v python3 >/dev/null 2>&1; then
+  t_skip "python3 absent: workbook not inspected"; t_end; exit $?
+fi
+python3 - "$D/res" > "$D/check.txt" 2>&1 <<'PY'
+import sys, zipfile, re, csv, io
+d = sys.argv[1]
+z = zipfile.ZipFile(d + '/seislide-clearance.xlsx')
+wb = z.read('xl/workbook.xml').decode()
+rels = z.read('xl/_rels/workbook.xml.rels').decode()
+sheets = re.findall(r'<sheet name="([^"]+)" sheetId="\d+" r:id="(rId\d+)"', wb)
+target = dict(re.findall(r'Id="(rId\d+)"[^>]*Target="([^"]+)"', rels))
+target.update({k: v for v, k in re.findall(r'Target="([^"]+)"[^>]*Id="(rId\d+)"', rels)})
+xml = {name: z.read('xl/' + target[rid]).decode() for name, rid in sheets}
+ss = re.findall(r'<si><t[^>]*>(.*?)</t></si>', z.read('xl/sharedStrings.xml').decode(), re.S)
+ss = [s.replace('&amp;', '&').replace('&lt;', '<').replace('&gt;', '>') for s in ss]
+def strings(name):
+    return [ss[int(v)] for v in re.findall(r't="s"[^>]*><v>(\d+)</v>', xml[name])]
+def ok(cond, what):
+    print(('ok ' if cond else 'FAIL ') + what)
+names = [n for n, _ in sheets]
+floors = [n for n in names if re.match(r'\d+ ', n)]
+ok(names[:2] == ['Lookup', 'Summary'] and names[-4:] == ['Motion quality', 'Notes', 'Inputs', 'Data'] and len(floors) == 2, 'sheets ' + '|'.join(names))
+# title block on Lookup and Summary
+for n in ('Lookup', 'Summary'):
+    s = strings(n)
+    ok(all(x in s for x in ('Project', 'Plant & Unit 2', 'Document no.', 'DOC-0042', 'Revision', 'C', 'Prepared by', 'A. Author', 'Checked by', 'B. Checker', 'Date', '2023-11-14')), 'title block on ' + n)
+# notes: the assumptions named
+notes = ' '.join(strings('Notes'))
+for k in ('rigid block', 'Sliding only', 'rocking, overturning', 'static coefficient equal to the kinetic', 'level floor', 'Cap = 1.5', '3 x the mean', '2 x the ASCE', 'standard error'):
+    ok(k in notes, 'notes mention ' + k)
+# protection everywhere; on Lookup only the two inputs are unlocked
+for n in names:
+    ok('<sheetProtection' in xml[n] and 'password' not in xml[n], 'protected without password: ' + n)
+styles = z.read('xl/styles.xml').decode()
+xfs = re.search(r'<cellXfs[^>]*>(.*?)</cellXfs>', styles, re.S).group(1)
+xf = re.findall(r'<xf [^>]*?(?:/>|>.*?</xf>)', xfs, re.S)
+unlocked = {i for i, x in enumerate(xf) if 'locked="0"' in x}
+cells = re.findall(r'<c r="([A-Z]+\d+)" s="(\d+)"', xml['Lookup'])
+ok(sorted(r for r, s in cells if int(s) in unlocked) == ['B11', 'B12'], 'Lookup inputs unlocked: %s' % sorted(r for r, s in cells if int(s) in unlocked))
+ok('type="list"' in xml['Lookup'] and 'floor_names' in xml['Lookup'] and 'type="decimal"' in xml['Lookup'], 'Lookup validation')
+# named ranges
+for nm in ('floor_names', 'mu_grid', 'clearance_mm', 'floor_zpa_g'):
+    ok(re.search(r'<definedName name="%s">Summary!' % nm, wb) is not None, 'named range ' + nm)
+# charts: one per floor + Summary; x = mu on the same axis limits, log y with the same limits
+charts = sorted(n for n in z.namelist() if re.match(r'xl/charts/chart\d+\.xml$', n))
+ok(len(charts) == 3, 'charts %d' % len(charts))
+lims = set()
+for c in charts:
+    x = z.read(c).decode()
+    ok('<c:scatterChart>' in x and '<c:logBase val="10"/>' in x, c + ' scatter, log y')
+    lims.add(tuple(re.findall(r'<c:(?:max|min) val="([^"]+)"/>', x)))
+ok(len(lims) == 1, 'axes shared by every chart: %s' % lims)
+ser = [z.read(c).decode().count('<c:ser>') for c in charts]
+ok(ser[0] == 2, 'Summary chart: a series per floor (%d)' % ser[0])
+ok(all(s >= 4 for s in ser[1:]), 'floor charts: design, ASCE, mean, cap, bands (%s)' % ser)
+# the ASCE-below-NLTHA ranges: CSV, Summary and floor sheet agree
+rows = [r for r in csv.reader(io.StringIO(open(d + '/asce_below_nltha.csv').read())) if r and not r[0].startswith('#')][1:]
+fl = [r for r in csv.reader(io.StringIO(open(d + '/floors.csv').read())) if r and not r[0].startswith('#')][1:]
+for i, f in enumerate(fl):
+    rr = [r for r in rows if r[0] == f[0]]
+    text = ', '.join('%s%.3f-%.3f%s' % ('<=' if r[6] == '1' else '', float(r[2]), float(r[3]), '+' if r[7] == '1' else '') for r in rr) or 'none'
+    ok(int(f[7]) == len(rr), f[0] + ': ranges counted in floors.csv')
+    ok(text in strings('Summary') and text in strings(floors[i]), f[0] + ': ranges "%s" on Summary and its sheet' % text)
+    cross = 'none' if f[5] == 'none' else None
+    if cross:
+        ok(any(s.startswith('none') for s in strings('Summary')) and any(s.startswith('none') for s in strings(floors[i])), f[0] + ': crossover none everywhere')
+    else:
+        ok(any(('mu %.3f' % float(f[5])) in s for s in strings(floors[i])), f[0] + ': crossover on its sheet')
+# print setup: portrait floor sheets at a fixed scale >= 70 %, header and footer with page x of y
+for n in floors:
+    m = re.search(r'<pageSetup[^>]*scale="(\d+)"', xml[n])
+    ok(m is not None and int(m.group(1)) >= 70 and 'fitToPage' not in xml[n] and 'orientation="portrait"' in xml[n], n + ' print scale %s' % (m and m.group(1)))
+for n in names:
+    ok('Page &amp;P of &amp;N' in xml[n] and '<oddHeader>' in xml[n], n + ' header and footer')
+PY
+grep '^FAIL' "$D/check.txt" | while read -r l; do echo "  FAIL cli_workbook: $l" >&2; done
+np=$(grep -c '^ok ' "$D/check.txt"); nf=$(grep -c '^FAIL' "$D/check.txt")
+[ "$np" -gt 40 ] && [ "$nf" -eq 0 ] && t_pass || t_fail "workbook checks: $np ok, $nf failed ($(grep -v '^ok ' "$D/check.txt" | head -5))"
+
+# render to PDF: Lookup 1 page, Summary 2 (table, chart), each floor 2 (table, chart),
+# Motion quality, Notes, Inputs, Data 1 each: 11 pages for two floors
+if command -v soffice >/dev/null 2>&1; then
+  (cd "$D" && timeout 180 soffice -env:UserInstallation=file://$D/lo --headless --convert-to pdf --outdir pdf res/seislide-clearance.xlsx >/dev/null 2>&1)
+  if [ -s "$D/pdf/seislide-clearance.pdf" ]; then
+    t_pass
+    pages=$(python3 -c "import re,sys; print(len(re.findall(rb'/Type\s*/Page[^s]', open(sys.argv[1], 'rb').read())))" "$D/pdf/seislide-clearance.pdf")
+    [ "$pages" -eq 11 ] && t_pass || t_fail "PDF has $pages pages, expected 11 (a sheet spilled over its page width?)"
+  else
+    t_fail "soffice did not render the workbook to PDF"
+  fi
+else
+  t_skip "soffice (LibreOffice) not found: the workbook is not rendered; install libreoffice-calc-nogui"
+fi
+t_end

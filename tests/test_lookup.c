@@ -1,0 +1,198 @@
+/* test_lookup.c - the workbook's Lookup formulas against their C twin,
+ * sl_design_clearance_at(), with the workbook recalculated by LibreOffice
+ * (headless): grid, between-grid, last-row, out-of-range, unknown-floor and
+ * blank cases. Every formula's cached value is written as 0
+ * (lookup_zero_cache), so a value read back can only come from LibreOffice's
+ * own recalculation. Skipped, with a message, when soffice is absent (CI
+ * installs libreoffice-calc-nogui). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/units.h"
+#include "harness.h"
+#include "method/design.h"
+#include "report/report.h"
+
+#define N_MU 16
+#define N_SETS 2
+
+/* Two floors with clearances that change curvature between grid points, so
+ * that a reversed interpolation cannot agree by symmetry. */
+static sl_design *make_design(double scale, double zpa_g)
+{
+    double mu[N_MU], peak[N_SETS * N_MU], asce[N_MU];
+    const double pgd[N_SETS] = {2.0, 2.4};
+    for (int k = 0; k < N_MU; k++) {
+        mu[k] = 0.05 * (k + 1);
+        double base = scale * exp(-6.0 * mu[k]) * (1.0 + 0.3 * (k % 3));
+        peak[k] = 0.9 * base;
+        peak[N_MU + k] = 1.1 * base;
+        asce[k] = 1.2 * base;
+    }
+    sl_design_input in;
+    sl_design_input_default(&in);
+    in.n_mu = N_MU;
+    in.n_sets = N_SETS;
+    in.mu = mu;
+    in.peak_m = peak;
+    in.asce_best_m = asce;
+    in.pgd_m = pgd;
+    in.zpa_h_ms2 = zpa_g * SL_G;
+    sl_error e;
+    return sl_design_compute(&in, &e);
+}
+
+typedef struct lcase {
+    const char *floor; /* "" = blank */
+    double mu;         /* NAN = blank */
+    const char *check; /* expected input check */
+    const char *mu_text; /* non-NULL: text typed as mu */
+} lcase;
+
+static const lcase cases[] = {
+    {"Roof, el. 36 m", 0.30, "ok", NULL}, /* on the grid */
+    {"Roof, el. 36 m", 0.337, "ok", NULL}, /* between grid points */
+    {"Ground", 0.0712, "ok", NULL}, /* between, first interval */
+    {"ground", 0.80, "ok", NULL}, /* last row; MATCH ignores case */
+    {"Ground", 0.05, "ok", NULL}, /* first row */
+    {"Ground", 0.9, "mu outside the table", NULL},
+    {"Ground", 0.01, "mu outside the table", NULL},
+    {"Attic", 0.3, "unknown floor: choose one from the list", NULL},
+    {"", 0.3, "choose a floor from the list", NULL},
+    {"Roof, el. 36 m", NAN, "type mu", NULL},
+    {"Roof, el. 36 m", NAN, "mu must be a number", "0,3"},
+};
+#define N_CASES (sizeof cases / sizeof cases[0])
+
+/* Field `col` (0-based) of CSV line `row` (0-based) of a LibreOffice CSV
+ * export (fields quoted with '"'), into buf. */
+static int csv_cell(const char *path, int row, int col, char *buf, size_t n)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    char line[8192];
+    int r = 0, found = -1;
+    while (fgets(line, sizeof line, f)) {
+        if (r++ != row)
+            continue;
+        int c = 0;
+        size_t k = 0;
+        int q = 0;
+        for (char *p = line; *p && *p != '\n' && *p != '\r'; p++) {
+            if (*p == '"') {
+                if (q && p[1] == '"') {
+                    if (c == col && k + 1 < n)
+                        buf[k++] = '"';
+                    p++;
+                } else {
+                    q = !q;
+                }
+            } else if (*p == ',' && !q) {
+                c++;
+            } else if (c == col && k + 1 < n) {
+                buf[k++] = *p;
+            }
+        }
+        buf[k] = '\0';
+        found = c >= col ? 0 : -1;
+        break;
+    }
+    fclose(f);
+    return found;
+}
+
+static void test_lookup_libreoffice(void)
+{
+    if (system("command -v soffice >/dev/null 2>&1") != 0)
+        SKIP("soffice (LibreOffice) not found: the Lookup formulas are not recalculated; "
+             "install libreoffice-calc-nogui");
+    char dir[] = "/tmp/sl-lookup-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    sl_design *d[2] = {make_design(1.0, 0.3), make_design(0.6, 0.63)};
+    CHECK(d[0] && d[1], "designs");
+    if (!d[0] || !d[1])
+        return;
+    sl_report_floor fl[2] = {
+        {.id = "ground", .name = "Ground", .path = "ground.ini", .elevation_m = NAN,
+         .units = "g", .zpa_h_ms2 = 0.3 * SL_G, .design = d[0], .note = ""},
+        {.id = "roof", .name = "Roof, el. 36 m", .path = "roof.ini", .elevation_m = 36,
+         .units = "g", .zpa_h_ms2 = 0.63 * SL_G, .design = d[1], .note = ""}};
+    char cmd[8192];
+    /* a private LibreOffice profile that recalculates every formula on load */
+    char prof[512], xcu[600];
+    snprintf(prof, sizeof prof, "%s/profile/user", dir);
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s'", prof);
+    CHECK(system(cmd) == 0, "profile folder");
+    snprintf(xcu, sizeof xcu, "%s/registrymodifications.xcu", prof);
+    FILE *x = fopen(xcu, "w");
+    CHECK(x != NULL, "profile file");
+    if (!x)
+        return;
+    fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<oor:items "
+          "xmlns:oor=\"http://openoffice.org/2001/registry\" "
+          "xmlns:xs=\"http://www.w3.org/2001/XMLSchema\" "
+          "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\">\n"
+          "<item oor:path=\"/org.openoffice.Office.Calc/Formula/Load\"><prop "
+          "oor:name=\"OOXMLRecalcMode\" oor:op=\"fuse\"><value>0</value></prop></item>\n"
+          "</oor:items>\n", x);
+    fclose(x);
+    int n = snprintf(cmd, sizeof cmd,
+                     "cd '%s' && timeout 180 soffice -env:UserInstallation=file://%s/profile "
+                     "--headless --convert-to 'csv:Text - txt - csv (StarCalc):44,34,76,1,,0,"
+                     "false,true,false,false' --outdir csv", dir, dir);
+    for (size_t c = 0; c < N_CASES; c++) {
+        sl_report r;
+        sl_report_init(&r);
+        r.version = "seislide test";
+        r.created = 1;
+        r.n_floors = 2;
+        r.floors = fl;
+        r.lookup_floor = cases[c].floor;
+        r.lookup_mu = cases[c].mu;
+        r.lookup_mu_text = cases[c].mu_text;
+        r.lookup_zero_cache = 1;
+        char path[600];
+        snprintf(path, sizeof path, "%s/case%02zu.xlsx", dir, c);
+        sl_error e;
+        CHECK(sl_report_write_xlsx(&r, path, &e) == SL_OK, "write case %zu: %s", c, e.msg);
+        n += snprintf(cmd + n, sizeof cmd - (size_t)n, " case%02zu.xlsx", c);
+    }
+    n += snprintf(cmd + n, sizeof cmd - (size_t)n, " >/dev/null 2>&1");
+    CHECK(system(cmd) == 0, "soffice conversion: %s", cmd);
+    for (size_t c = 0; c < N_CASES; c++) {
+        char csv[700], check[256] = "", result[256] = "";
+        snprintf(csv, sizeof csv, "%s/csv/case%02zu.csv", dir, c);
+        /* Lookup!B15: the input check; B14: the clearance (rows 1-based) */
+        CHECK(csv_cell(csv, 14, 1, check, sizeof check) == 0, "case %zu: no B15 in %s", c, csv);
+        CHECK(csv_cell(csv, 13, 1, result, sizeof result) == 0, "case %zu: no B14", c);
+        CHECK(!strcmp(check, cases[c].check), "case %zu (%s, %g): check '%s', expected '%s'", c,
+              cases[c].floor, cases[c].mu, check, cases[c].check);
+        if (!strcmp(cases[c].check, "ok")) {
+            const sl_design *dd = !strcmp(cases[c].floor, "Ground") ||
+                                          !strcmp(cases[c].floor, "ground")
+                                      ? d[0]
+                                      : d[1];
+            double exp = 1000.0 * sl_design_clearance_at(dd, cases[c].mu);
+            char *end;
+            double got = strtod(result, &end);
+            CHECK(end != result, "case %zu: result '%s' is not a number", c, result);
+            CHECK_CLOSE(got, exp, 1e-9, 1e-9);
+        } else {
+            CHECK(!strcmp(result, "-"), "case %zu: result '%s', expected '-'", c, result);
+        }
+    }
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0, "clean up");
+    sl_design_free(d[0]);
+    sl_design_free(d[1]);
+}
+
+int main(void)
+{
+    RUN(test_lookup_libreoffice);
+    return HARNESS_END("lookup");
+}
