@@ -1,19 +1,15 @@
 /* cmd_run.c - `seislide run`: floor response spectra in, the clearance workbook and CSV
  * tables out (analysis.h; report/deliver.h writes the folder). Options and help: one table. */
-#include <errno.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
-#include <unistd.h>
 
 #include "analysis.h"
 #include "cli.h"
-#include "io/atomic.h"
+#include "outdir.h"
 #include "report/deliver.h"
 
 #include "core/standards.h"
@@ -124,22 +120,6 @@ static void progress(void *ctx, const char *step, size_t done, size_t total)
             total, pct);
 }
 
-/* Interrupted while computing: the fresh folder is still empty (but for a
- * placeholder): remove it and die of the signal. While writing: note it. */
-static char sig_dir[4096], sig_keep[2][4200];
-static volatile sig_atomic_t writing, interrupted;
-static void on_signal(int s)
-{
-    interrupted = s;
-    if (writing)
-        return;
-    unlink(sig_keep[0]);
-    unlink(sig_keep[1]);
-    rmdir(sig_dir);
-    signal(s, SIG_DFL);
-    raise(s);
-}
-
 int cmd_run(int argc, char **argv)
 {
     const char *sde = getenv("SOURCE_DATE_EPOCH"), *dflt[] = {"floors"};
@@ -173,14 +153,8 @@ int cmd_run(int argc, char **argv)
         goto fail;
     if (warn[0])
         cli_msg("run: warning (--force): %s", warn);
-    if (!(out = sl_atomic_dir_open(a.out, sl_report_owns_name, &err)))
+    if (!(out = cli_outdir_open(a.out, sl_report_owns_name, &err)))
         goto fail;
-    snprintf(sig_dir, sizeof sig_dir, "%s", sl_atomic_dir_path(out));
-    snprintf(sig_keep[0], sizeof sig_keep[0], "%s/.keep", sig_dir);
-    snprintf(sig_keep[1], sizeof sig_keep[1], "%s/.gitkeep", sig_dir);
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
-    signal(SIGHUP, on_signal);
     sl_analysis_opts ao;
     sl_analysis_opts_default(&ao);
     ao.substeps = (unsigned)a.substeps; /* 0: error-controlled by rtol (docs/integrators.md) */
@@ -234,26 +208,23 @@ int cmd_run(int argc, char **argv)
                            .write_motions = a.motions};
     if (!dop.project.date && strftime(date, sizeof date, "%Y-%m-%d", gmtime(&dop.created)))
         dop.project.date = date;
-    writing = 1; /* a signal now is noted, and the fresh folder dropped */
+    cli_outdir_writing(); /* a signal now is noted, and the fresh folder dropped */
     if (sl_deliver_write(sl_atomic_dir_path(out), in.n, (const sl_floor *const *)in.floors,
                          in.idp, (const sl_analysis *const *)an, &dop, &err) ||
-        interrupted || sl_atomic_dir_commit(out, &err))
+        cli_outdir_commit(&out, &err))
         goto fail;
-    out = NULL;
     if (!a.quiet)
         cli_msg("run: wrote %s/%s and the CSV files", a.out, SL_DELIVER_WORKBOOK);
     rc = CLI_EXIT_OK;
     goto done;
 fail:
-    if (!interrupted)
+    if (!cli_outdir_interrupted())
         cli_print_error(&err);
 done:
-    sl_atomic_dir_abort(out);
     free(a.mu.v);
     for (size_t i = 0; i < in.n; i++)
         sl_analysis_free(an[i]);
     sl_deliver_inputs_free(&in);
-    if (interrupted)
-        signal((int)interrupted, SIG_DFL), raise((int)interrupted);
+    cli_outdir_finish(out);
     return rc == CLI_OPT_HELP ? CLI_EXIT_OK : rc;
 }

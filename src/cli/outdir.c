@@ -1,0 +1,58 @@
+/* outdir.c - an output folder that survives interruption; see outdir.h. */
+#include "outdir.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <unistd.h>
+
+static char fresh[4096], keep[2][4200];
+static volatile sig_atomic_t writing, interrupted;
+
+/* Async-signal-safe: unlink, rmdir, signal, raise. */
+static void on_signal(int s)
+{
+    interrupted = s;
+    if (writing)
+        return;
+    unlink(keep[0]);
+    unlink(keep[1]);
+    rmdir(fresh);
+    signal(s, SIG_DFL);
+    raise(s);
+}
+
+sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
+{
+    sl_atomic_dir *d = sl_atomic_dir_open(dir, owns, err);
+    if (!d)
+        return NULL;
+    snprintf(fresh, sizeof fresh, "%s", sl_atomic_dir_path(d));
+    snprintf(keep[0], sizeof keep[0], "%s/.keep", fresh);
+    snprintf(keep[1], sizeof keep[1], "%s/.gitkeep", fresh);
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    signal(SIGHUP, on_signal);
+    return d;
+}
+
+void cli_outdir_writing(void) { writing = 1; }
+
+int cli_outdir_interrupted(void) { return interrupted != 0; }
+
+sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err)
+{
+    if (interrupted) /* *d stays for cli_outdir_finish() to drop */
+        return sl_error_set(err, SL_EIO, NULL, 0, "interrupted: the output folder is unchanged");
+    sl_status s = sl_atomic_dir_commit(*d, err); /* consumes *d */
+    *d = NULL;
+    return s;
+}
+
+void cli_outdir_finish(sl_atomic_dir *d)
+{
+    sl_atomic_dir_abort(d);
+    if (interrupted) {
+        signal((int)interrupted, SIG_DFL);
+        raise((int)interrupted);
+    }
+}

@@ -1,0 +1,30 @@
+/*
+ * outdir.h - an output folder written whole or not at all, also when the
+ * process is interrupted: the command line's side of atomic.h's fresh folder.
+ *
+ * cli_outdir_open() checks the folder (sl_outdir_check), creates the fresh
+ * sibling folder and installs SIGINT, SIGTERM and SIGHUP handlers. While the
+ * command computes, the fresh folder is still empty (but for a carried-over
+ * .keep/.gitkeep): a signal removes it and the process dies of the signal.
+ * After cli_outdir_writing() a signal is only noted; cli_outdir_commit()
+ * then drops the fresh folder instead of swapping it in, and
+ * cli_outdir_finish() re-raises the signal.
+ */
+#ifndef SL_CLI_OUTDIR_H
+#define SL_CLI_OUTDIR_H
+
+#include "io/atomic.h"
+
+sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err);
+/* From now on a signal is noted, not acted on. */
+void cli_outdir_writing(void);
+/* Swap the fresh folder in and set *d to NULL (SL_OK, or the swap's
+ * error); after a noted signal do nothing and return SL_EIO. */
+sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err);
+/* Nonzero when a signal was noted. */
+int cli_outdir_interrupted(void);
+/* Drop a fresh folder not committed (NULL: nothing) and, after a noted
+ * signal, die of it. */
+void cli_outdir_finish(sl_atomic_dir *d);
+
+#endif
