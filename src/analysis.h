@@ -34,7 +34,8 @@ typedef struct sl_analysis_opts {
     uint64_t seed;
     const double *mu;            /* friction grid, increasing */
     size_t n_mu;
-    unsigned substeps;           /* 2-D sub-steps per sample */
+    unsigned substeps;           /* 2-D sub-steps per sample: 0 = error-controlled by rtol */
+    double rtol;                 /* 2-D: relative error of the peaks (SL_SLIDE_DEFAULT_RTOL) */
     sl_clearance_policy policy;
     double fs_nltha, fs_asce;
     /* progress: step is "synthesis", "nltha", "asce"; done of total */

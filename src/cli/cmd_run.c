@@ -46,9 +46,10 @@ static const cli_opt opts[] = {
     {"mu", O_MU, "LIST", "explicit friction values, increasing", .kind = CLI_MU_LIST, A(mu)},
     {"policy", O_POLICY, "P", "required clearance: nltha (default), asce or envelope",
      .kind = CLI_CALL},
-    {"accuracy", O_ACC, "E", "2-D integration accuracy: 0.01 -> 1 sub-step, 0.001 (default) -> 8,\n"
-     "0.0001 -> 32 (docs/performance.md)", .kind = CLI_POSITIVE, A(accuracy)},
-    {"substeps", O_SUB, "N", "set the 2-D sub-steps directly", .kind = CLI_COUNT1, A(substeps)},
+    {"accuracy", O_ACC, "E", "relative error of every NLTHA peak the 2-D engine aims at (its\n"
+     "rtol, default 0.001, at most 0.1; docs/integrators.md)", .kind = CLI_POSITIVE, A(accuracy)},
+    {"substeps", O_SUB, "N", "expert: N fixed 2-D sub-steps per sample, no error control",
+     .kind = CLI_COUNT1, A(substeps)},
     {"motions", O_MOTIONS, NULL, "also write every motion to DIR/motions/<floor id>/*.AT2",
      .kind = CLI_FLAG, A(motions)},
     {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\nelse now)",
@@ -164,8 +165,8 @@ int cmd_run(int argc, char **argv)
     signal(SIGHUP, on_signal);
     sl_analysis_opts ao;
     sl_analysis_opts_default(&ao);
-    double e = a.accuracy; /* measured sub-steps per accuracy: docs/performance.md */
-    ao.substeps = a.substeps ? (unsigned)a.substeps : e >= 1e-2 ? 1 : e >= 1e-3 ? 8 : e >= 1e-4 ? 32 : 128;
+    ao.substeps = (unsigned)a.substeps; /* 0: error-controlled by rtol (docs/integrators.md) */
+    ao.rtol = a.accuracy;
     ao.n_sets = a.sets;
     ao.seed = a.seed;
     ao.mu = a.mu.v;

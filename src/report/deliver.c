@@ -51,7 +51,7 @@ static sl_status write_motions(const char *dir, size_t n, const sl_floor *const 
                 snprintf(path, sizeof path, "%s/set%02zu_%s.AT2", sub, s + 1, cn[c]);
                 snprintf(title, sizeof title, "%s, set %zu, %s, seed %llu", floors[i]->name,
                          s + 1, cn[c], (unsigned long long)seed);
-                if (sl_synth_write_at2(path, an[i]->sets[s].motion[c], title, err))
+                if (sl_synth_write_at2(path, sl_synth_set_motion(&an[i]->sets[s], (sl_synth_comp)c), title, err))
                     return err ? err->code : SL_EIO;
             }
     }
@@ -110,7 +110,10 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
     snprintf(s_sets, sizeof s_sets, "%zu", an[0]->n_sets);
     snprintf(s_seed, sizeof s_seed, "%llu", (unsigned long long)o->seed);
     snprintf(s_mu, sizeof s_mu, "%zu values, %g to %g", d0->n, d0->rows[0].mu, d0->rows[d0->n - 1].mu);
-    snprintf(s_sub, sizeof s_sub, "%u per sample (requested accuracy %g)", o->substeps, o->accuracy);
+    if (o->substeps) /* fixed sub-steps (expert), else the engine's error control */
+        snprintf(s_sub, sizeof s_sub, "%u per sample (fixed)", o->substeps);
+    else
+        snprintf(s_sub, sizeof s_sub, "error-controlled, relative error %g", o->accuracy);
     snprintf(s_fs, sizeof s_fs, "NLTHA %g x mean; ASCE %g x best estimate; cap %g x mean PGD",
              d0->fs_nltha, d0->fs_asce, d0->cap_factor);
     snprintf(s_synth, sizeof s_synth, "%g s at %g s, matched at %g %% damping (SRP 3.7.1 checks)",
