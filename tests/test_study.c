@@ -410,9 +410,34 @@ static void test_grid_and_pct(void)
     CHECK(isnan(sl_study_pct(1.0, 0.0)), "change from 0 is not a number");
 }
 
+/* The FS 3.0 check of part 3 by hand: the largest x where
+ * min(3.0 x ASCE best, cap) < NLTHA design.
+ *   x 0.1: min(0.30, 0.25) = 0.25 < 0.40  yes
+ *   x 0.2: min(0.30, 1.00) = 0.30 >= 0.20 no
+ *   x 0.3: min(0.15, 0.10) = 0.10 < 0.12  yes (only because of the cap)
+ * so 0.3; with FS 1.0 every row is below (0.3); none at FS 10 without caps. */
+static void test_fs_limit(void)
+{
+    sl_design_row rows[3] = {
+        {.x = 0.1, .asce_best_m = 0.10, .cap_m = 0.25, .nltha_design_m = 0.40},
+        {.x = 0.2, .asce_best_m = 0.10, .cap_m = 1.00, .nltha_design_m = 0.20},
+        {.x = 0.3, .asce_best_m = 0.05, .cap_m = 0.10, .nltha_design_m = 0.12},
+    };
+    sl_design d = {.n = 3, .rows = rows};
+    sl_study_spectra sp = {.n_mu = 3, .design = &d};
+    CHECK_CLOSE(sl_study_fs_limit(&sp, 3.0), 0.3, 0, 0);
+    CHECK_CLOSE(sl_study_fs_limit(&sp, 1.0), 0.3, 0, 0);
+    for (int k = 0; k < 3; k++)
+        rows[k].cap_m = INFINITY;
+    CHECK(isnan(sl_study_fs_limit(&sp, 10.0)), "FS 10 covers every row: %g",
+          sl_study_fs_limit(&sp, 10.0));
+    CHECK_CLOSE(sl_study_fs_limit(&sp, 3.0), 0.1, 0, 0);
+}
+
 int main(void)
 {
     RUN(test_grid_and_pct);
+    RUN(test_fs_limit);
     RUN(test_record_read_conventions);
     RUN(test_record_read_errors);
     RUN(test_study_sets_present);
