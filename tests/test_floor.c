@@ -79,6 +79,7 @@ static const struct {
     {"bad-duplicate-key.ini", 10, "'f_hz' repeated"},
     {"bad-empty-name.ini", 3, "name is empty"},
     {"bad-freq-nonpositive.ini", 8, "must be positive"},
+    {"bad-freq-range.ini", 8, "frequency 1e-300 Hz outside 0.001-10000 Hz"},
     {"bad-h2-both.ini", 5, "give one"},
     {"bad-h2-value.ini", 5, "same_as_h1"},
     {"bad-indented-key.ini", 9, "continuation"},
@@ -99,7 +100,9 @@ static const struct {
     {"bad-unknown-section.ini", 12, "unknown section [h3]"},
     {"bad-value-nan.ini", 10, "'nan' is not a finite number"},
     {"bad-value-nonpositive.ini", 9, "value -4 must be positive"},
+    {"bad-value-overflow.ini", 9, "sa_0.1: value 1e+308 g is above 1000 g"},
     {"bad-zpa.ini", 15, "zpa: value -1 must be positive"},
+    {"bad-zpa-huge.ini", 15, "zpa: value 2000 g is above 1000 g"},
 };
 #define N_BAD (sizeof bad / sizeof bad[0])
 

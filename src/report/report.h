@@ -94,6 +94,7 @@ typedef struct sl_report {
      * the grid is kept, the sheet then says so). Tests set them. */
     const char *lookup_floor;
     double lookup_mu;
+    const char *lookup_mu_text; /* non-NULL: the mu cell holds this text instead */
     /* Tests: write 0 as every Lookup formula's cached value, so that values
      * read back can only come from a recalculation (tests/test_lookup.c). */
     int lookup_zero_cache;
