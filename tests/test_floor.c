@@ -50,6 +50,7 @@ static void test_good_small(void)
         return;
     CHECK(fl->h2_same_as_h1 && isnan(fl->elevation_m) && !strcmp(fl->description, ""),
           "header");
+    CHECK(!fl->has_seed && fl->seed == 0, "no seed given");
     const sl_spectrum *h1 = sl_floor_sa10(fl, SL_FLOOR_H1), *h2 = sl_floor_sa10(fl, SL_FLOOR_H2);
     CHECK(h1 && h2 && h1 != h2 && h2->n == 6, "H2 is a copy of H1");
     for (size_t j = 0; h1 && h2 && j < 6; j++)
@@ -93,6 +94,7 @@ static const struct {
     {"bad-number.ini", 8, "'5x' is not a finite number"},
     {"bad-one-point.ini", 13, "at least 2"},
     {"bad-repeated-section.ini", 12, "section [h1] repeated"},
+    {"bad-seed.ini", 6, "seed: '-3' is not an integer"},
     {"bad-syntax.ini", 7, "syntax error"},
     {"bad-units.ini", 4, "unknown units 'furlongs/fortnight2'"},
     {"bad-unknown-floor-key.ini", 3, "unknown key 'nmae'"},

@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
+#include "analysis.h"
 #include "bench_report.h"
 #include "study/bench_engine.h"
 #include "signal/spectrum.h"
@@ -115,25 +116,42 @@ static void print_rest(FILE *f, const sl_bench *b)
             b->synth_corr);
     }
     out(f, "\n## 6. The main job on the example facility (`seislide run` on floors/)\n\n");
-    out(f, "Default settings: 7 motion sets per floor, %d friction values, 8 sub-steps; all\n"
-        "threads of this machine (%d). Where the time goes, per floor:\n\n", SL_MU_GRID_N,
-        b->threads);
-    out(f, "| floor | synthesis, s | NLTHA, s | ASCE + design, s | total, s | mu not integrated |\n");
-    out(f, "|---|---|---|---|---|---|\n");
-    double tot[3] = {0, 0, 0};
-    for (int i = 0; i < SL_BENCH_NFLOORS; i++) {
-        const double *t = b->floor_t[i];
-        if (b->floor_found[i] == 0)
-            out(f, "| %s | not found (run from the repository root) | | | | |\n", sl_bench_floors[i]);
-        if (b->floor_found[i] != 1)
-            continue;
-        out(f, "| %s | %.2f | %.2f | %.3f | %.2f | %zu of %d |\n", b->floor_name[i], t[0], t[1],
-            t[2], t[0] + t[1] + t[2], b->floor_skipped[i], SL_MU_GRID_N);
-        for (int k = 0; k < 3; k++)
-            tot[k] += t[k];
+    out(f, "%d friction values, the default 2-D accuracy; all threads of this machine (%d);\n"
+        "wall time. Two settings per floor: a fixed %d motion sets (the former default) and\n"
+        "the default since issue 13, sets added until the standard error of the design\n"
+        "value is <= max(5 %%, 1 mm) at every mu (docs/run.md, \"Convergence\"). The cost of\n"
+        "a set does not depend on the setting; the number of sets does.\n\n", SL_MU_GRID_N,
+        b->threads, SL_BENCH_FIXED_SETS);
+    out(f, "| floor | setting | sets | stop | synthesis, s | NLTHA, s | statistics, s | ASCE + design, s | total, s | s per set | synthesis share | mu not integrated |\n");
+    out(f, "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    double tot[2][4] = {{0}};
+    size_t tsets[2] = {0, 0};
+    for (int mode = 0; mode < 2; mode++)
+        for (int i = 0; i < SL_BENCH_NFLOORS; i++) {
+            const double *t = b->floor_t[i][mode];
+            if (b->floor_found[i] == 0 && mode == 0)
+                out(f, "| %s | not found (run from the repository root) | | | | | | | | | | |\n",
+                    sl_bench_floors[i]);
+            if (b->floor_found[i] != 1)
+                continue;
+            double all = t[0] + t[1] + t[2] + t[3];
+            size_t ns = b->floor_sets[i][mode];
+            out(f, "| %s | %s | %zu | %s | %.2f | %.2f | %.3f | %.3f | %.2f | %.3f | %.0f %% | %zu of %d |\n",
+                b->floor_name[i], mode ? "converged" : "fixed", ns,
+                sl_analysis_stop_name((sl_analysis_stop)b->floor_stop[i][mode]), t[0], t[1], t[2],
+                t[3], all, ns ? all / (double)ns : 0.0, all > 0 ? 100 * t[0] / all : 0.0,
+                b->floor_skipped[i], SL_MU_GRID_N);
+            for (int k = 0; k < 4; k++)
+                tot[mode][k] += t[k];
+            tsets[mode] += ns;
+        }
+    for (int mode = 0; mode < 2; mode++) {
+        const double *t = tot[mode];
+        double all = t[0] + t[1] + t[2] + t[3];
+        out(f, "| all floors | %s | %zu | | %.2f | %.2f | %.3f | %.3f | %.2f | %.3f | %.0f %% | |\n",
+            mode ? "converged" : "fixed", tsets[mode], t[0], t[1], t[2], t[3], all,
+            tsets[mode] ? all / (double)tsets[mode] : 0.0, all > 0 ? 100 * t[0] / all : 0.0);
     }
-    out(f, "| all floors | %.2f | %.2f | %.3f | %.2f | |\n", tot[0], tot[1], tot[2],
-        tot[0] + tot[1] + tot[2]);
     out(f, "\n## 7. How close the engine comes to this machine's arithmetic limit\n\n");
     out(f, "The limit is measured, not guessed: a branch-free loop over 4096 independent\n"
         "blocks doing only the arithmetic of one 2-D sliding update (midpoint friction\n"

@@ -12,6 +12,7 @@
 
 #include "core/units.h"
 #include "io/atomic.h"
+#include "method/stats.h"
 
 #define MM_PER_M 1000.0
 #define SHEET_NAME_MAX 31  /* Excel's limit */
@@ -191,6 +192,22 @@ static double design_se_m(const sl_design *d, size_t k)
     return d->fs_nltha * w->nltha_sd_m / sqrt((double)d->n_sets);
 }
 
+/* Clearances in summary.csv and the Summary sheet are shown to the place of
+ * their SE's leading digit, between these steps, mm (shown_decimals). */
+#define SHOWN_MIN_STEP_MM 0.1
+#define SHOWN_MAX_STEP_MM 1.0
+
+/* Decimals to show the clearance of row k with: 0 when the standard error
+ * of the NLTHA design value is 1 mm or more, else 1 (stats.h:
+ * sl_stats_step). An ASCE clearance comes from the floor's spectra: 1. The
+ * value itself is not rounded (the Lookup interpolates the exact values). */
+static int shown_decimals(const sl_design *d, size_t k)
+{
+    const sl_design_row *w = &d->rows[k];
+    double se_mm = w->clearance_m == w->nltha_design_m ? MM_PER_M * design_se_m(d, k) : 0.0;
+    return sl_stats_step_decimals(sl_stats_step(se_mm, SHOWN_MIN_STEP_MM, SHOWN_MAX_STEP_MM));
+}
+
 /* Every number the report writes must be finite: ASCE may be undefined
  * (NAN, written as an empty cell), nothing may be infinite. */
 static sl_status check_finite(const sl_report *r, sl_error *err)
@@ -337,7 +354,9 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     if (csv_open(dir, "summary.csv", &a, err))
         return err ? err->code : SL_EIO;
     FILE *f = sl_atomic_file(a);
-    csv_head(f, r, "required clearance (mm) per floor; columns named <floor_id>_clearance_mm");
+    csv_head(f, r, "required clearance (mm) per floor; columns named <floor_id>_clearance_mm; "
+             "shown to the digit of its standard error (1 mm or 0.1 mm; the floor files hold "
+             "every digit)");
     csv_comment(f, "units", "clearance in mm; mu dimensionless");
     for (size_t i = 0; i < r->n_floors; i++) {
         snprintf(buf, sizeof buf, "%s (file %s, horizontal ZPA %.4f g)", r->floors[i].name,
@@ -354,8 +373,10 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     for (size_t k = 0; k < n; k++) {
         fprintf(f, "%.4g", r->floors[0].design->rows[k].mu);
         for (size_t i = 0; i < r->n_floors; i++) {
+            double v = MM_PER_M * r->floors[i].design->rows[k].clearance_m;
             fputc(',', f);
-            csv_num(f, MM_PER_M * r->floors[i].design->rows[k].clearance_m, "%.4f");
+            if (isfinite(v))
+                fprintf(f, "%.*f", shown_decimals(r->floors[i].design, k), v);
         }
         fputs("\r\n", f);
     }
@@ -369,7 +390,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     csv_comment(f, "crossover", "the mu where 2.0 x ASCE rises above 3.0 x NLTHA mean when ASCE is "
                 "below NLTHA at the lowest mu of the grid; 'none' otherwise (docs/run.md)");
     fputs("floor_id,floor,file,elevation_m,zpa_h_g,crossover_mu,crossover_mu_g_over_zpa,"
-          "n_asce_below_nltha_ranges,clearance_policy,mu_without_nltha,note\r\n", f);
+          "n_asce_below_nltha_ranges,clearance_policy,mu_without_nltha,n_sets,sets_stop,note\r\n",
+          f);
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
         const sl_design *d = fl->design;
@@ -384,8 +406,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
             fprintf(f, "%.4f,%.4f", d->crossover_mu, d->crossover_x);
         else
             fputs("none,none", f);
-        fprintf(f, ",%zu,%s,%zu,", d->n_ranges, sl_clearance_policy_name(d->policy),
-                fl->n_mu_skipped);
+        fprintf(f, ",%zu,%s,%zu,%zu,%s,", d->n_ranges, sl_clearance_policy_name(d->policy),
+                fl->n_mu_skipped, d->n_sets, fl->sets_stop ? fl->sets_stop : "");
         csv_field(f, fl->note && *fl->note ? fl->note : "");
         fputs("\r\n", f);
     }
@@ -445,7 +467,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
 /* ---- XLSX --------------------------------------------------------------- */
 
 typedef struct fmts {
-    lxw_format *bold, *title, *mm, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
+    lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
         *note, *label, *sci;
 } fmts;
 
@@ -880,15 +902,18 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
     for (size_t k = 0; k < n; k++) {
         lxw_row_t row = (lxw_row_t)(SUM_HEAD + 1 + k);
         worksheet_write_number(ws, row, 0, r->floors[0].design->rows[k].mu, F->mu);
-        for (size_t i = 0; i < nf; i++)
+        for (size_t i = 0; i < nf; i++) {
             write_num_or_blank(ws, row, (lxw_col_t)(i + 1),
-                               MM_PER_M * r->floors[i].design->rows[k].clearance_m, F->mm);
+                               MM_PER_M * r->floors[i].design->rows[k].clearance_m,
+                               shown_decimals(r->floors[i].design, k) ? F->mm : F->mm0);
+        }
     }
     lxw_row_t b = (lxw_row_t)(SUM_HEAD + n + 2);
     static const char *const lab[] = {"floor id", "floor file", "elevation, m", "description",
                                       "horizontal ZPA, g", "crossover (docs/run.md)",
-                                      "ASCE below NLTHA for mu in", "note"};
-    for (lxw_row_t q = 0; q < 8; q++)
+                                      "ASCE below NLTHA for mu in", "note", "motion sets",
+                                      "sets stopped because"};
+    for (lxw_row_t q = 0; q < 10; q++)
         worksheet_write_string(ws, b + q, 0, lab[q], F->label);
     char buf[600];
     for (size_t i = 0; i < nf; i++) {
@@ -902,6 +927,8 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
         worksheet_write_string(ws, b + 5, c, crossover_text(fl->design, buf, sizeof buf), NULL);
         worksheet_write_string(ws, b + 6, c, sl_report_ranges_text(fl->design, buf, sizeof buf), NULL);
         worksheet_write_string(ws, b + 7, c, or_dash(fl->note), NULL);
+        worksheet_write_number(ws, b + 8, c, (double)fl->design->n_sets, NULL);
+        worksheet_write_string(ws, b + 9, c, or_dash(fl->sets_stop), NULL);
     }
     /* named ranges the Lookup formulas read */
     char last_col[8], def[160];
@@ -1300,6 +1327,8 @@ static void make_formats(lxw_workbook *wb, fmts *F)
     format_set_font_size(F->title, 14);
     F->mm = workbook_add_format(wb);
     format_set_num_format(F->mm, "0.0");
+    F->mm0 = workbook_add_format(wb);
+    format_set_num_format(F->mm0, "0");
     F->mmbold = workbook_add_format(wb);
     format_set_num_format(F->mmbold, "0.0");
     format_set_bold(F->mmbold);
