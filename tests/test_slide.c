@@ -628,6 +628,27 @@ static void test_error_control(void)
         free(by);
     }
     CHECK(bounded == rows, "the estimate bounds the error in %d of %d rows", bounded, rows);
+    /* a record that stops in strong shaking: the block slides on after it
+     * and the peak is at the end of the tail, d = v^2/(2 mu g); its
+     * estimate carries the velocity error, |v| dv/(mu g) */
+    {
+        const size_t nc = 1200;
+        double *ax = noise_record(2 * nc, dt, 9.0, 21u), *ay = noise_record(2 * nc, dt, 9.0, 22u);
+        sl_motion mx = oracle_motion(ax, nc, dt), my = oracle_motion(ay, nc, dt);
+        sl_set set = {&mx, &my, NULL};
+        const double mu = 0.05;
+        sl_slide_opts o = opts_default(), ot = opts_default();
+        ot.rtol = 1e-6;
+        ot.atol_m = 1e-9;
+        sl_slide_result a, r;
+        sl_slide_run(&set, &mu, 1, &o, &a, NULL);
+        sl_slide_run(&set, &mu, 1, &ot, &r, NULL);
+        CHECK(r.t_peak_s > (double)(nc - 1) * dt, "peak in the tail: t %g", r.t_peak_s);
+        CHECK(a.err_est_m >= fabs(a.peak_m - r.peak_m), "tail: estimate %.3g, error %.3g",
+              a.err_est_m, fabs(a.peak_m - r.peak_m));
+        free(ax);
+        free(ay);
+    }
 }
 
 /* Bad options are errors, never silent. */

@@ -446,8 +446,7 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
         const double t1 = s.t0 + dt;
         /* held at both ends of the sample: held throughout, since |a| is
          * convex and mu N linear (one test per sample) */
-        const double a0m = sqrt(s.ax0 * s.ax0 + s.ay0 * s.ay0);
-        const double a1m = sqrt(s.ax1 * s.ax1 + s.ay1 * s.ay1);
+        const double a0m = hypot(s.ax0, s.ay0), a1m = hypot(s.ax1, s.ay1);
         const double p0 = fmax(s.n0, 0.0), p1 = fmax(s.n1, 0.0);
         size_t na = 0;
         for (size_t k = 0; k < m; k++)
