@@ -26,7 +26,7 @@
  * per component against 16 at 1.0, RG 1.60, 12 sets). */
 #define SYNTH_RELAX 1.6
 /* Iterations without improvement after which an attempt is given up. */
-#define SYNTH_STALL 6u
+#define SYNTH_STALL 8u
 #define SYNTH_COARSE_MARGIN 0.02
 /* Smallest motion handled, samples. */
 #define SYNTH_MIN_N 16
