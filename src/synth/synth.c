@@ -653,6 +653,7 @@ static sl_status spectrum_of_acc(sl_synth_motion *m, sl_error *err)
     sl_spectrum_opts o;
     sl_spectrum_opts_default(&o);
     o.steps_per_period = SYNTH_COARSE_SPP;
+    o.free_vibration = 0; /* coarse: no free-vibration tail (about 10 % of the time) */
     sl_status st = sl_spectrum_compute_opts(m->acc, s->n, s->dt, f, nc, m->damping, &o, v,
                                             NULL, NULL, err);
     for (size_t q = 0; q < nc && !st; q++)
