@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <zlib.h>
 
 #include "method/asce.h"
 #include "method/asce_input.h"
+#include "method/stats.h"
 #include "slide/slide.h"
 #include "signal/spectrum.h"
 #include "core/units.h"
@@ -25,19 +25,75 @@ static double wall_s(void)
 void sl_analysis_opts_default(sl_analysis_opts *o)
 {
     memset(o, 0, sizeof *o);
-    o->n_sets = SL_ANALYSIS_DEFAULT_SETS;
+    o->n_sets = 0; /* adaptive */
+    o->rel_se = SL_ANALYSIS_REL_SE;
+    o->abs_se_m = SL_ANALYSIS_ABS_SE_M;
+    o->max_sets = SL_ANALYSIS_MAX_SETS;
+    o->first_batch = SL_ANALYSIS_FIRST_BATCH;
+    o->min_batch = SL_ANALYSIS_MIN_BATCH;
+    o->boot_resamples = SL_STATS_BOOT_RESAMPLES;
+    o->band_level = SL_STATS_BAND_LEVEL;
     o->seed = 1;
     o->substeps = SL_SLIDE_DEFAULT_SUBSTEPS;
+    o->rtol = SL_SLIDE_DEFAULT_RTOL;
     o->policy = SL_CLEARANCE_NLTHA;
     o->fs_nltha = SL_NLTHA_FS;
     o->fs_asce = SL_ASCE_FS;
 }
 
-uint64_t sl_analysis_floor_seed(uint64_t seed, const char *floor_name)
+static const char *const stop_names[] = {"fixed", "converged", "max_sets"};
+
+const char *sl_analysis_stop_name(sl_analysis_stop s)
 {
-    uLong c = crc32(0L, Z_NULL, 0);
-    c = crc32(c, (const Bytef *)floor_name, (uInt)strlen(floor_name));
-    return seed ^ ((uint64_t)(c & 0xffffffffUL) << 32);
+    return ((int)s >= 0 && s <= SL_ANALYSIS_STOP_MAX_SETS) ? stop_names[s] : "unknown";
+}
+
+/* SplitMix64 finaliser (Steele, Lea and Flood 2014). */
+static uint64_t mix64(uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+/* FNV-1a, 64 bits, over the IEEE-754 bits of v, least significant byte
+ * first (the same on every byte order). */
+static uint64_t fnv_double(uint64_t h, double v)
+{
+    uint64_t b;
+    if (v == 0)
+        v = 0.0; /* -0 and +0 alike */
+    memcpy(&b, &v, sizeof b);
+    for (int i = 0; i < 8; i++) {
+        h ^= (b >> (8 * i)) & 0xffu;
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+uint64_t sl_analysis_floor_seed(uint64_t seed, const sl_floor *fl)
+{
+    uint64_t base;
+    if (fl->has_seed) {
+        base = fl->seed;
+    } else {
+        base = 0xcbf29ce484222325ULL; /* FNV offset basis */
+        for (int c = 0; c < SL_FLOOR_NCOMP; c++) {
+            const sl_floor_component *fc = &fl->comp[c];
+            base = fnv_double(base, (double)c);
+            base = fnv_double(base, fc->zpa_ms2);
+            for (size_t d = 0; d < fc->nspec; d++) {
+                const sl_spectrum *sp = &fc->spec[d];
+                base = fnv_double(base, sp->damping);
+                for (size_t j = 0; j < sp->n; j++) {
+                    base = fnv_double(base, sp->f_hz[j]);
+                    base = fnv_double(base, sp->sa_ms2[j]);
+                }
+            }
+        }
+    }
+    return mix64(base) ^ seed;
 }
 
 void sl_analysis_free(sl_analysis *a)
@@ -45,6 +101,9 @@ void sl_analysis_free(sl_analysis *a)
     if (!a)
         return;
     sl_design_free(a->design);
+    free(a->conv);
+    free(a->design_lo_m);
+    free(a->design_hi_m);
     if (a->sets)
         for (size_t s = 0; s < a->n_sets; s++)
             sl_synth_set_clear(&a->sets[s]);
@@ -98,85 +157,244 @@ static sl_spectrum *mean_spectrum(const sl_analysis *a, int c, sl_error *err)
     return sp;
 }
 
+/* The convergence statistics of the n sets so far (section "Convergence"
+ * of analysis.h), into a->conv; returns the number of sets the worst mu
+ * needs by n (SE / target)^2 (n when every mu is converged). */
+static sl_status conv_update(sl_analysis *a, const double *peak, size_t n,
+                             const sl_analysis_opts *o, size_t *n_needed, sl_error *err)
+{
+    sl_stats_mean sp;
+    if (sl_stats_mean_compute(a->pgd_m, n, 1, &sp, err))
+        return err ? err->code : SL_EINVAL;
+    double cap = SL_DESIGN_CAP_FACTOR * sp.mean;
+    double cap_se = SL_DESIGN_CAP_FACTOR * sp.se;
+    double need = (double)n;
+    a->n_unconverged = 0;
+    a->worst_rel_se = 0;
+    for (size_t k = 0; k < o->n_mu; k++) {
+        sl_analysis_conv *c = &a->conv[k];
+        sl_stats_mean st;
+        if (sl_stats_mean_compute(peak + k, n, o->n_mu, &st, err))
+            return err ? err->code : SL_EINVAL;
+        c->n_sets = n;
+        c->mean_m = st.mean;
+        c->se_m = st.se;
+        c->lognormal_mean_m = st.ln_mean;
+        c->p_slide = st.p_pos;
+        double dn = o->fs_nltha * st.mean;
+        if (dn > cap) {
+            c->design_m = cap;
+            c->design_se_m = cap_se;
+        } else {
+            c->design_m = dn;
+            c->design_se_m = o->fs_nltha * st.se;
+        }
+        c->target_se_m = fmax(o->rel_se * c->design_m, o->abs_se_m);
+        c->converged = c->design_se_m <= c->target_se_m;
+        c->design_lo_m = c->design_hi_m = NAN;
+        a->n_unconverged += (size_t)!c->converged;
+        double rel = c->design_se_m / fmax(c->design_m, o->rel_se > 0 ? o->abs_se_m / o->rel_se
+                                                                       : c->design_m);
+        if (isfinite(rel) && rel > a->worst_rel_se)
+            a->worst_rel_se = rel;
+        if (c->target_se_m > 0) {
+            double r = c->design_se_m / c->target_se_m;
+            need = fmax(need, (double)n * r * r);
+        }
+    }
+    *n_needed = need > 1e9 ? (size_t)1e9 : (size_t)ceil(need);
+    return SL_OK;
+}
+
+/* Percentile bootstrap band of the design value at every mu: resample the
+ * n sets (their peaks and PGD together), recompute min(FS mean, cap). */
+static sl_status conv_band(sl_analysis *a, const double *peak, size_t n, const sl_analysis_opts *o,
+                           sl_error *err)
+{
+    size_t B = o->boot_resamples;
+    if (B == 0)
+        return SL_OK;
+    size_t *idx = malloc(n * sizeof *idx);
+    double *v = malloc(B * o->n_mu * sizeof *v);
+    double *sum = malloc(o->n_mu * sizeof *sum);
+    sl_stats_boot *b = sl_stats_boot_alloc(a->floor_seed ^ 0x626f6f7473747261ULL, err);
+    if (!idx || !v || !sum || !b) {
+        free(idx);
+        free(v);
+        free(sum);
+        sl_stats_boot_free(b);
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "analysis: out of memory");
+    }
+    for (size_t r = 0; r < B; r++) {
+        sl_stats_boot_draw(b, n, idx);
+        double pgd = 0;
+        memset(sum, 0, o->n_mu * sizeof *sum);
+        for (size_t i = 0; i < n; i++) {
+            const double *row = peak + idx[i] * o->n_mu;
+            pgd += a->pgd_m[idx[i]];
+            for (size_t k = 0; k < o->n_mu; k++)
+                sum[k] += row[k];
+        }
+        double cap = SL_DESIGN_CAP_FACTOR * pgd / (double)n;
+        for (size_t k = 0; k < o->n_mu; k++)
+            v[k * B + r] = fmin(o->fs_nltha * sum[k] / (double)n, cap);
+    }
+    for (size_t k = 0; k < o->n_mu; k++)
+        sl_stats_band(v + k * B, B, o->band_level, &a->conv[k].design_lo_m,
+                      &a->conv[k].design_hi_m);
+    free(idx);
+    free(v);
+    free(sum);
+    sl_stats_boot_free(b);
+    return SL_OK;
+}
+
+static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err)
+{
+    const char *path = fl ? fl->path : NULL;
+    if (!fl || !o || !o->mu || o->n_mu < 1)
+        return sl_error_set(err, SL_EINVAL, path, 0, "analysis: no friction values");
+    if (o->n_sets == 0) {
+        if (!(o->rel_se >= 0) || !(o->abs_se_m >= 0) || !(o->rel_se > 0 || o->abs_se_m > 0))
+            return sl_error_set(err, SL_EINVAL, path, 0, "analysis: target standard errors "
+                                "(relative %g, absolute %g m) must be >= 0, one > 0",
+                                o->rel_se, o->abs_se_m);
+        if (o->max_sets < 2 || o->first_batch < 2 || o->min_batch < 1)
+            return sl_error_set(err, SL_EINVAL, path, 0, "analysis: max_sets %zu and first "
+                                "batch %zu must be >= 2, min batch %zu >= 1", o->max_sets,
+                                o->first_batch, o->min_batch);
+    }
+    if (o->boot_resamples > 0 && !(o->band_level > 0 && o->band_level < 1))
+        return sl_error_set(err, SL_EINVAL, path, 0, "analysis: band level %g outside (0, 1)",
+                            o->band_level);
+    return SL_OK;
+}
+
 sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err)
 {
-    if (!fl || !o || o->n_sets < 1 || !o->mu || o->n_mu < 1) {
-        sl_error_set(err, SL_EINVAL, fl ? fl->path : NULL, 0, "analysis: no sets or no friction values");
+    if (check_opts(fl, o, err))
         return NULL;
-    }
+    const int adaptive = o->n_sets == 0;
+    const size_t cap_sets = adaptive ? o->max_sets : o->n_sets;
+    const size_t n_mu = o->n_mu;
     sl_analysis *a = calloc(1, sizeof *a);
     sl_synth *plan = NULL;
     sl_set *sets = NULL;
     sl_slide_result *res = NULL;
     double *peak = NULL, *best = NULL;
     int *noslide = NULL;
+    size_t *n_skip = NULL;
     sl_spectrum *fb[2] = {NULL, NULL};
     sl_asce *asce = NULL;
     if (!a)
         goto nomem;
-    a->n_sets = o->n_sets;
-    a->sets = calloc(o->n_sets, sizeof *a->sets);
-    a->pgd_m = calloc(o->n_sets, sizeof *a->pgd_m);
-    if (!a->sets || !a->pgd_m)
+    a->sets = calloc(cap_sets, sizeof *a->sets);
+    a->pgd_m = calloc(cap_sets, sizeof *a->pgd_m);
+    a->conv = calloc(n_mu, sizeof *a->conv);
+    a->design_lo_m = calloc(n_mu, sizeof *a->design_lo_m);
+    a->design_hi_m = calloc(n_mu, sizeof *a->design_hi_m);
+    sets = calloc(cap_sets, sizeof *sets);
+    res = calloc(cap_sets * n_mu, sizeof *res);
+    peak = calloc(cap_sets * n_mu, sizeof *peak);
+    n_skip = calloc(n_mu, sizeof *n_skip);
+    noslide = calloc(n_mu, sizeof *noslide);
+    best = calloc(n_mu, sizeof *best);
+    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !sets ||
+        !res || !peak || !n_skip || !noslide || !best)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
     a->av_ms2 = fl->comp[SL_FLOOR_V].zpa_ms2;
+    a->floor_seed = sl_analysis_floor_seed(o->seed, fl);
 
-    /* 1. synthesis */
-    double t0 = wall_s();
     sl_synth_params sp;
     sl_synth_params_default(&sp);
     sl_synth_target tgt[SL_SYNTH_NCOMP];
     if (sl_synth_targets_floor(fl, 0.0, tgt, err))
         goto fail;
-    size_t n = (size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1;
-    plan = sl_synth_alloc(n, SL_SYNTH_DT_S, &sp, err);
+    size_t n_t = (size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1;
+    plan = sl_synth_alloc(n_t, SL_SYNTH_DT_S, &sp, err);
     if (!plan)
         goto fail;
-    prog_ctx pc = {o};
-    sl_status st = sl_synth_make_sets(plan, tgt, sl_analysis_floor_seed(o->seed, fl->name), 0,
-                                      o->n_sets, a->sets, synth_progress, &pc, err);
-    if (st != SL_OK && st != SL_ENOCONV)
-        goto fail;
-    for (size_t s = 0; s < o->n_sets; s++)
-        for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-            a->n_failed_motions += !a->sets[s].check[c].pass;
-
-    a->time_synth_s = wall_s() - t0;
-    t0 = wall_s();
-    /* 2. NLTHA */
-    sets = calloc(o->n_sets, sizeof *sets);
-    res = calloc(o->n_sets * o->n_mu, sizeof *res);
-    peak = calloc(o->n_sets * o->n_mu, sizeof *peak);
-    noslide = calloc(o->n_mu, sizeof *noslide);
-    best = calloc(o->n_mu, sizeof *best);
-    if (!sets || !res || !peak || !noslide || !best)
-        goto nomem;
-    for (size_t s = 0; s < o->n_sets; s++) {
-        sets[s] = a->sets[s].set;
-        a->pgd_m[s] = sl_set_pgd_100_40(&sets[s]);
-    }
-    if (o->progress)
-        o->progress(o->progress_ctx, "nltha", 0, o->n_sets);
     sl_slide_opts so;
     sl_slide_opts_default(&so);
     so.substeps = o->substeps;
-    if (sl_slide_batch(sets, o->n_sets, o->mu, o->n_mu, &so, res, err))
-        goto fail;
-    if (o->progress)
-        o->progress(o->progress_ctx, "nltha", o->n_sets, o->n_sets);
-    for (size_t k = 0; k < o->n_mu; k++) {
-        int all = 1;
-        for (size_t s = 0; s < o->n_sets; s++) {
-            const sl_slide_result *r = &res[s * o->n_mu + k];
-            peak[s * o->n_mu + k] = r->peak_m;
-            all &= (r->flags & SL_SLIDE_SKIPPED) != 0;
+    so.rtol = o->rtol;
+    prog_ctx pc = {o};
+
+    /* 1-2. batches of synthesis and NLTHA until converged (or the fixed count) */
+    size_t n = 0, want = adaptive ? (o->first_batch < cap_sets ? o->first_batch : cap_sets)
+                                  : o->n_sets;
+    for (;;) {
+        size_t nb = want - n;
+        double t0 = wall_s();
+        sl_status st = sl_synth_make_sets(plan, tgt, a->floor_seed, n, nb, a->sets + n,
+                                          synth_progress, &pc, err);
+        if (st != SL_OK && st != SL_ENOCONV)
+            goto fail;
+        a->n_sets = want;
+        for (size_t s = n; s < want; s++)
+            for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+                a->n_failed_motions += !a->sets[s].check[c].pass;
+        a->time_synth_s += wall_s() - t0;
+
+        t0 = wall_s();
+        for (size_t s = n; s < want; s++) {
+            sets[s] = a->sets[s].set;
+            a->pgd_m[s] = sl_set_pgd_100_40(&sets[s]);
         }
-        noslide[k] = all;
-        a->n_mu_skipped += (size_t)all;
+        if (o->progress)
+            o->progress(o->progress_ctx, "nltha", n, want);
+        if (sl_slide_batch(sets + n, nb, o->mu, n_mu, &so, res + n * n_mu, err))
+            goto fail;
+        if (o->progress)
+            o->progress(o->progress_ctx, "nltha", want, want);
+        for (size_t s = n; s < want; s++)
+            for (size_t k = 0; k < n_mu; k++) {
+                const sl_slide_result *r = &res[s * n_mu + k];
+                peak[s * n_mu + k] = r->peak_m;
+                n_skip[k] += (r->flags & SL_SLIDE_SKIPPED) != 0;
+            }
+        a->time_nltha_s += wall_s() - t0;
+        n = want;
+        a->n_batches++;
+
+        t0 = wall_s();
+        size_t needed = 0;
+        if (conv_update(a, peak, n, o, &needed, err))
+            goto fail;
+        a->time_stats_s += wall_s() - t0;
+        if (!adaptive) {
+            a->stop = SL_ANALYSIS_STOP_FIXED;
+            break;
+        }
+        if (a->n_unconverged == 0) {
+            a->stop = SL_ANALYSIS_STOP_CONVERGED;
+            break;
+        }
+        if (n >= cap_sets) {
+            a->stop = SL_ANALYSIS_STOP_MAX_SETS;
+            break;
+        }
+        /* next batch: what the worst mu needs, >= min_batch more, <= doubling */
+        want = needed;
+        if (want < n + o->min_batch)
+            want = n + o->min_batch;
+        if (want > 2 * n)
+            want = 2 * n;
+        if (want > cap_sets)
+            want = cap_sets;
+    }
+    double t0 = wall_s();
+    if (conv_band(a, peak, n, o, err))
+        goto fail;
+    a->time_stats_s += wall_s() - t0;
+    for (size_t k = 0; k < n_mu; k++) {
+        a->design_lo_m[k] = a->conv[k].design_lo_m;
+        a->design_hi_m[k] = a->conv[k].design_hi_m;
+        noslide[k] = n_skip[k] == n;
+        a->n_mu_skipped += (size_t)noslide[k];
     }
 
-    a->time_nltha_s = wall_s() - t0;
     t0 = wall_s();
     /* 3. ASCE on the 10 % spectra (or the documented fallback) */
     const sl_spectrum *s10[2] = {sl_floor_sa10(fl, SL_FLOOR_H1), sl_floor_sa10(fl, SL_FLOOR_H2)};
@@ -195,7 +413,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     asce = sl_asce_alloc(&ai.in, err);
     if (!asce)
         goto fail;
-    for (size_t k = 0; k < o->n_mu; k++) {
+    for (size_t k = 0; k < n_mu; k++) {
         sl_asce_result ar;
         if (sl_asce_eval(asce, o->mu[k], &ar, err))
             goto fail;
@@ -205,8 +423,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     /* 4. design */
     sl_design_input di;
     sl_design_input_default(&di);
-    di.n_mu = o->n_mu;
-    di.n_sets = o->n_sets;
+    di.n_mu = n_mu;
+    di.n_sets = n;
     di.mu = o->mu;
     di.peak_m = peak;
     di.no_slide = noslide;
@@ -229,14 +447,18 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         if (w_ > 0 && (size_t)w_ < sizeof a->note - used)                                  \
             used += (size_t)w_;                                                            \
     } while (0)
+    if (a->stop == SL_ANALYSIS_STOP_MAX_SETS)
+        NOTE("not converged: after %zu sets the standard error of the design value is above "
+             "its target at %zu friction value(s), at worst %.1f %% of the value. ",
+             n, a->n_unconverged, 100 * a->worst_rel_se);
     if (a->sa10_fallback)
         NOTE("the file gives no 10 %%-damped horizontal spectra: the ASCE method uses the "
-             "mean 10 %%-damped spectra of the %zu synthesized sets. ", o->n_sets);
+             "mean 10 %%-damped spectra of the %zu synthesized sets. ", n);
     if (a->n_failed_motions)
         NOTE("%zu synthesized motion(s) failed a quality check (see Motion quality). ",
              a->n_failed_motions);
-    if (o->n_sets < SL_NLTHA_MIN_SETS)
-        NOTE("only %zu motion sets: ASCE/SEI 43-05 asks for at least %d. ", o->n_sets,
+    if (n < SL_NLTHA_MIN_SETS)
+        NOTE("only %zu motion sets: ASCE/SEI 43-05 asks for at least %d. ", n,
              SL_NLTHA_MIN_SETS);
 #undef NOTE
     goto cleanup;
@@ -251,6 +473,7 @@ cleanup:
     free(sets);
     free(res);
     free(peak);
+    free(n_skip);
     free(noslide);
     free(best);
     sl_spectrum_free(fb[0]);

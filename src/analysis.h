@@ -3,17 +3,38 @@
  * sliding spectra out (the main job, `seislide run`, one floor at a time).
  *
  * For one floor:
- *  1. synthesize n_sets spectrum-compatible three-component motion sets
- *     from the floor's spectra (synth.h), with their quality checks;
+ *  1. synthesize spectrum-compatible three-component motion sets from the
+ *     floor's spectra (synth.h), with their quality checks;
  *  2. NLTHA of every set over the friction grid, both horizontals coupled,
  *     with the vertical (slide.h); friction values whose mu g is at or above
  *     what a set can ever demand are not integrated (exactly zero);
+ *     steps 1-2 run in batches of sets until the NLTHA design value is
+ *     converged at every mu (below), or a fixed number of sets when
+ *     opts.n_sets > 0;
  *  3. the ASCE/SEI 43-05 method on the floor's 10 %-damped spectra (asce.h),
  *     or, when the file lacks them, on the mean 10 %-damped spectra of the
  *     synthesized motions (the documented fallback, stated in `note`);
  *  4. design spectra, cap, crossover and clearance (design.h).
- * The seed of a floor is seed XOR (CRC-32 of its name) << 32, so a floor's
- * results do not depend on which other floors are run with it.
+ *
+ * Convergence (docs/run.md, "Convergence"). The NLTHA design value at mu is
+ * D = min(FS m, cap) with m the sample mean of the sets' peaks (stats.h)
+ * and cap = 1.5 x the mean 100-40 floor displacement. Its standard error is
+ * FS SE(m) (uncapped) or 1.5 SE(mean PGD) (capped), SE(m) = s / sqrt(n) the
+ * sample standard error (stats.h; the log-normal fit is reported only). After each
+ * batch: stop when SE(D) <= max(rel_se D, abs_se_m) at every mu
+ * (SL_ANALYSIS_STOP_CONVERGED), else when max_sets are done
+ * (SL_ANALYSIS_STOP_MAX_SETS, the floor is flagged). The next batch aims at the
+ * count the worst mu needs, n (SE / target)^2, at least min_batch more sets
+ * and at most doubling. Set i is always the same motions (synth seeds per
+ * set index) and the statistics are sums in set order, so the result does
+ * not depend on batch sizes or threads. The 90 % band of D is a percentile
+ * bootstrap over sets (peaks and PGD resampled together).
+ *
+ * Seed. A floor's seed is splitmix64(base) XOR the run's seed, where base
+ * is the floor file's `seed =` when given, else a 64-bit FNV-1a hash of the
+ * floor's numbers (per component: every damping, frequency and value in
+ * m/s^2, and the ZPA). A floor's motions therefore change neither with its
+ * name nor with the other floors of the run.
  */
 #ifndef SL_ANALYSIS_H
 #define SL_ANALYSIS_H
@@ -25,16 +46,43 @@
 #include "io/floor.h"
 #include "core/status.h"
 #include "synth/synth.h"
+#include "method/stats.h"
 
-/* Default number of motion sets per floor (ASCE 43-05 needs at least 5). */
-#define SL_ANALYSIS_DEFAULT_SETS 7
+/* Convergence defaults (docs/run.md): target standard error of the design
+ * value, relative and absolute (m); most sets per floor; the first batch
+ * (enough for a first estimate of the scatter; ASCE 43-05 needs >= 5) and
+ * the smallest further batch. */
+#define SL_ANALYSIS_REL_SE 0.05
+#define SL_ANALYSIS_ABS_SE_M 0.001
+#define SL_ANALYSIS_MAX_SETS 200
+#define SL_ANALYSIS_FIRST_BATCH 10
+#define SL_ANALYSIS_MIN_BATCH 4
+
+/* Why a floor stopped adding sets. */
+typedef enum sl_analysis_stop {
+    SL_ANALYSIS_STOP_FIXED = 0,   /* a fixed count was asked for (opts.n_sets > 0) */
+    SL_ANALYSIS_STOP_CONVERGED,   /* the target SE was reached at every mu */
+    SL_ANALYSIS_STOP_MAX_SETS     /* max_sets reached before that: flagged */
+} sl_analysis_stop;
+
+/* "fixed", "converged", "max_sets". */
+const char *sl_analysis_stop_name(sl_analysis_stop s);
 
 typedef struct sl_analysis_opts {
-    size_t n_sets;               /* >= 1; < SL_NLTHA_MIN_SETS is flagged in the note */
+    size_t n_sets;               /* > 0: exactly this many sets (< SL_NLTHA_MIN_SETS is
+                                    flagged in the note); 0 (default): adaptive */
+    double rel_se;               /* adaptive: target SE / design value (SL_ANALYSIS_REL_SE) */
+    double abs_se_m;             /* adaptive: target SE floor, m (SL_ANALYSIS_ABS_SE_M) */
+    size_t max_sets;             /* adaptive: at most this many (SL_ANALYSIS_MAX_SETS) */
+    size_t first_batch;          /* adaptive: sets of the first batch (SL_ANALYSIS_FIRST_BATCH) */
+    size_t min_batch;            /* adaptive: smallest further batch (SL_ANALYSIS_MIN_BATCH) */
+    size_t boot_resamples;       /* bootstrap resamples of the band (SL_STATS_BOOT_RESAMPLES) */
+    double band_level;           /* level of the band (SL_STATS_BAND_LEVEL) */
     uint64_t seed;
     const double *mu;            /* friction grid, increasing */
     size_t n_mu;
-    unsigned substeps;           /* 2-D sub-steps per sample */
+    unsigned substeps;           /* 2-D sub-steps per sample: 0 = error-controlled by rtol */
+    double rtol;                 /* 2-D: relative error of the peaks (SL_SLIDE_DEFAULT_RTOL) */
     sl_clearance_policy policy;
     double fs_nltha, fs_asce;
     /* progress: step is "synthesis", "nltha", "asce"; done of total */
@@ -44,8 +92,18 @@ typedef struct sl_analysis_opts {
 
 void sl_analysis_opts_default(sl_analysis_opts *o);
 
+/* The statistics of the NLTHA design value at one mu: stats.h. */
+typedef sl_stats_conv sl_analysis_conv;
+
 typedef struct sl_analysis {
     sl_design *design;
+    sl_analysis_conv *conv;     /* one per mu, as design->rows */
+    double *design_lo_m, *design_hi_m; /* the band of conv[], as plain arrays (report.h) */
+    sl_analysis_stop stop;      /* why the floor stopped adding sets */
+    size_t n_batches;           /* batches run */
+    size_t n_unconverged;       /* mu where design_se_m > target_se_m */
+    double worst_rel_se;        /* max over mu of design_se_m / max(design_m, abs_se_m / rel_se) */
+    uint64_t floor_seed;        /* the seed the motions came from */
     double zpa_h_ms2;           /* larger horizontal ZPA of the floor */
     double av_ms2;              /* vertical ZPA (A_v of the ASCE method) */
     size_t n_sets;
@@ -55,17 +113,19 @@ typedef struct sl_analysis {
     size_t n_mu_skipped;        /* friction values not integrated for any set */
     int sa10_fallback;          /* 1: ASCE used the motions' mean 10 % spectra */
     double time_synth_s, time_nltha_s, time_asce_s; /* wall time of each step, s */
+    double time_stats_s;        /* wall time of the convergence statistics and band, s */
     char note[512];             /* what a reader must know ("" when nothing) */
 } sl_analysis;
 
 /* Run the study of one floor. Returns NULL and fills err on failure (bad
  * options, synthesis error, solver failure); quality-check failures of
- * individual motions are not errors: they are counted and kept. */
+ * individual motions are not errors: they are counted and kept. Not
+ * converging within max_sets is not an error either: stop says so. */
 sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err);
 
 void sl_analysis_free(sl_analysis *a);
 
-/* The seed used for a floor (see above). */
-uint64_t sl_analysis_floor_seed(uint64_t seed, const char *floor_name);
+/* The seed used for a floor (see "Seed" above). */
+uint64_t sl_analysis_floor_seed(uint64_t seed, const sl_floor *fl);
 
 #endif

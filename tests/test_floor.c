@@ -50,6 +50,7 @@ static void test_good_small(void)
         return;
     CHECK(fl->h2_same_as_h1 && isnan(fl->elevation_m) && !strcmp(fl->description, ""),
           "header");
+    CHECK(!fl->has_seed && fl->seed == 0, "no seed given");
     const sl_spectrum *h1 = sl_floor_sa10(fl, SL_FLOOR_H1), *h2 = sl_floor_sa10(fl, SL_FLOOR_H2);
     CHECK(h1 && h2 && h1 != h2 && h2->n == 6, "H2 is a copy of H1");
     for (size_t j = 0; h1 && h2 && j < 6; j++)
@@ -79,6 +80,7 @@ static const struct {
     {"bad-duplicate-key.ini", 10, "'f_hz' repeated"},
     {"bad-empty-name.ini", 3, "name is empty"},
     {"bad-freq-nonpositive.ini", 8, "must be positive"},
+    {"bad-freq-range.ini", 8, "frequency 1e-300 Hz outside 0.001-10000 Hz"},
     {"bad-h2-both.ini", 5, "give one"},
     {"bad-h2-value.ini", 5, "same_as_h1"},
     {"bad-indented-key.ini", 9, "continuation"},
@@ -92,6 +94,7 @@ static const struct {
     {"bad-number.ini", 8, "'5x' is not a finite number"},
     {"bad-one-point.ini", 13, "at least 2"},
     {"bad-repeated-section.ini", 12, "section [h1] repeated"},
+    {"bad-seed.ini", 6, "seed: '-3' is not an integer"},
     {"bad-syntax.ini", 7, "syntax error"},
     {"bad-units.ini", 4, "unknown units 'furlongs/fortnight2'"},
     {"bad-unknown-floor-key.ini", 3, "unknown key 'nmae'"},
@@ -99,7 +102,9 @@ static const struct {
     {"bad-unknown-section.ini", 12, "unknown section [h3]"},
     {"bad-value-nan.ini", 10, "'nan' is not a finite number"},
     {"bad-value-nonpositive.ini", 9, "value -4 must be positive"},
+    {"bad-value-overflow.ini", 9, "sa_0.1: value 1e+308 g is above 1000 g"},
     {"bad-zpa.ini", 15, "zpa: value -1 must be positive"},
+    {"bad-zpa-huge.ini", 15, "zpa: value 2000 g is above 1000 g"},
 };
 #define N_BAD (sizeof bad / sizeof bad[0])
 

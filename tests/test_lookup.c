@@ -49,19 +49,21 @@ typedef struct lcase {
     const char *floor; /* "" = blank */
     double mu;         /* NAN = blank */
     const char *check; /* expected input check */
+    const char *mu_text; /* non-NULL: text typed as mu */
 } lcase;
 
 static const lcase cases[] = {
-    {"Roof, el. 36 m", 0.30, "ok"},        /* on the grid */
-    {"Roof, el. 36 m", 0.337, "ok"},       /* between grid points */
-    {"Ground", 0.0712, "ok"},              /* between, first interval */
-    {"ground", 0.80, "ok"},                /* last row; MATCH ignores case */
-    {"Ground", 0.05, "ok"},                /* first row */
-    {"Ground", 0.9, "mu outside the table"},
-    {"Ground", 0.01, "mu outside the table"},
-    {"Attic", 0.3, "unknown floor: choose one from the list"},
-    {"", 0.3, "choose a floor from the list"},
-    {"Roof, el. 36 m", NAN, "type mu"},
+    {"Roof, el. 36 m", 0.30, "ok", NULL}, /* on the grid */
+    {"Roof, el. 36 m", 0.337, "ok", NULL}, /* between grid points */
+    {"Ground", 0.0712, "ok", NULL}, /* between, first interval */
+    {"ground", 0.80, "ok", NULL}, /* last row; MATCH ignores case */
+    {"Ground", 0.05, "ok", NULL}, /* first row */
+    {"Ground", 0.9, "mu outside the table", NULL},
+    {"Ground", 0.01, "mu outside the table", NULL},
+    {"Attic", 0.3, "unknown floor: choose one from the list", NULL},
+    {"", 0.3, "choose a floor from the list", NULL},
+    {"Roof, el. 36 m", NAN, "type mu", NULL},
+    {"Roof, el. 36 m", NAN, "mu must be a number", "0,3"},
 };
 #define N_CASES (sizeof cases / sizeof cases[0])
 
@@ -151,6 +153,7 @@ static void test_lookup_libreoffice(void)
         r.floors = fl;
         r.lookup_floor = cases[c].floor;
         r.lookup_mu = cases[c].mu;
+        r.lookup_mu_text = cases[c].mu_text;
         r.lookup_zero_cache = 1;
         char path[600];
         snprintf(path, sizeof path, "%s/case%02zu.xlsx", dir, c);

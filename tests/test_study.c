@@ -16,6 +16,7 @@
 #include "harness.h"
 #include "io/setdir.h"
 #include "study/study.h"
+#include "study/study_parts.h"
 #include "core/units.h"
 
 /* A folder under TMPDIR with AT2 files of the given names and lengths. */
@@ -361,9 +362,8 @@ static void test_part4_asce_conservative(void)
 {
     if (!harness_shared_dir())
         SKIP("../shared not found: part 4 not checked");
-    double mu[76];
-    for (size_t k = 0; k < 76; k++)
-        mu[k] = 0.05 + 0.01 * (double)k;
+    double mu[SL_MU_GRID_N];
+    sl_mu_grid_default(mu);
     for (int g = 0; g < SL_STUDY_NGROUPS; g++) {
         const sl_study_group *gr = &sl_study_groups[g];
         sl_set rec[16];
@@ -395,8 +395,24 @@ static void test_part4_asce_conservative(void)
     }
 }
 
+/* The default friction grid (core/standards.h): 0.05 to 0.80 step 0.01,
+ * 76 values, each from its index; and the percent change of the claims. */
+static void test_grid_and_pct(void)
+{
+    double mu[SL_MU_GRID_N];
+    sl_mu_grid_default(mu);
+    CHECK(SL_MU_GRID_N == 76, "%d values", SL_MU_GRID_N);
+    CHECK_CLOSE(mu[0], 0.05, 0, 0);
+    CHECK_CLOSE(mu[SL_MU_GRID_N - 1], 0.80, 1e-15, 0);
+    for (size_t k = 0; k < SL_MU_GRID_N; k++)
+        CHECK_CLOSE(mu[k], 0.05 + 0.01 * (double)k, 0, 0);
+    CHECK_CLOSE(sl_study_pct(19.0, 100.0), -81.0, 1e-12, 0);
+    CHECK(isnan(sl_study_pct(1.0, 0.0)), "change from 0 is not a number");
+}
+
 int main(void)
 {
+    RUN(test_grid_and_pct);
     RUN(test_record_read_conventions);
     RUN(test_record_read_errors);
     RUN(test_study_sets_present);

@@ -295,6 +295,24 @@ static int take(const char *cmd, const cli_opt *o, const char *arg, void *dst)
     case CLI_STRING: *(const char **)(void *)at = arg; return CLI_EXIT_OK;
     case CLI_FLAG: *(int *)(void *)at = 1; return CLI_EXIT_OK;
     case CLI_POSITIVE: return cli_positive(cmd, opt, arg, o->unit, (double *)(void *)at);
+    case CLI_NONNEG: {
+        double v;
+        if (cli_parse_double(arg, &v) || !(v >= 0))
+            return cli_usage(cmd, "%s '%s' must be a number >= 0%s%s%s", opt, arg,
+                             o->unit ? " (" : "", o->unit ? o->unit : "", o->unit ? ")" : "");
+        *(double *)(void *)at = v;
+        return CLI_EXIT_OK;
+    }
+    case CLI_LIST: {
+        cli_list *l = (cli_list *)(void *)at;
+        free(l->v);
+        if (cli_parse_list(arg, &l->v, &l->n))
+            return cli_usage(cmd, "bad %s '%s'", opt, arg);
+        return CLI_EXIT_OK;
+    }
+    case CLI_GRID:
+        return cli_grid_option(cmd, (cli_grid_opt)(o->key - CLI_OPT_GRID), arg,
+                               (cli_grid *)(void *)at);
     case CLI_UNITS: return cli_units(cmd, arg, (sl_unit *)(void *)at);
     case CLI_MU_LIST:
     case CLI_MU_RANGE: {
@@ -338,7 +356,7 @@ void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col)
 {
     for (size_t i = 0; i < n; i++) {
         const cli_opt *o = &opts[i];
-        if (!o->name) {
+        if (!o->name && !o->show) {
             if (o->head)
                 fprintf(f, "%s\n", o->head);
             continue;
@@ -364,5 +382,66 @@ void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col)
                 fprintf(f, "%*s", col, "");
         }
         fputc('\n', f);
+    }
+}
+
+void cli_put_num(const char *fmt, double v, int width)
+{
+    if (isnan(v))
+        printf("%*s", width, "nan");
+    else
+        printf(fmt, width, v);
+}
+
+void cli_put_csv(double v, int last)
+{
+    if (isnan(v))
+        fputs("nan", stdout);
+    else
+        printf("%.8g", v);
+    putchar(last ? '\n' : ',');
+}
+
+void cli_put_field(const char *s)
+{
+    if (!strpbrk(s, ",\" \t\r\n")) {
+        fputs(s, stdout);
+        return;
+    }
+    putchar('"');
+    for (; *s; s++) {
+        if (*s == '"')
+            putchar('"');
+        putchar(*s);
+    }
+    putchar('"');
+}
+
+void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], size_t ncol,
+                     const double *vals)
+{
+    int w = 12;
+    for (size_t j = 0; j < ncol; j++)
+        if ((int)strlen(names[j]) > w)
+            w = (int)strlen(names[j]);
+    fputs(csv ? "f_hz" : "      f_hz", stdout);
+    for (size_t j = 0; j < ncol; j++) {
+        if (csv) {
+            putchar(',');
+            cli_put_field(names[j]);
+        } else {
+            printf(" %*s", w, names[j]);
+        }
+    }
+    putchar('\n');
+    for (size_t p = 0; p < nf; p++) {
+        printf(csv ? "%.6g" : "%10.5g", f[p]);
+        for (size_t j = 0; j < ncol; j++) {
+            if (csv)
+                printf(",%.8g", vals[j * nf + p]);
+            else
+                printf(" %*.6g", w, vals[j * nf + p]);
+        }
+        putchar('\n');
     }
 }

@@ -14,6 +14,7 @@
 
 #include "core/status.h"
 #include "core/units.h"
+#include "signal/spectrum.h"
 
 #define CLI_EXIT_OK 0
 #define CLI_EXIT_ERROR 1
@@ -51,10 +52,12 @@ int cmd_study(int argc, char **argv);
  *
  * and calls cli_parse("asce", opts, CLI_NOPTS(opts), argc, argv, &a, NULL,
  * NULL). Kinds: CLI_STRING (const char *), CLI_FLAG (int set to 1),
- * CLI_POSITIVE (double > 0; `unit` named in the message), CLI_COUNT1
- * (unsigned long >= 1), CLI_UNITS (sl_unit), CLI_MU_LIST / CLI_MU_RANGE
- * (cli_mu: --mu 0.1,0.2 or --mu-range A:B:S), CLI_CALL (handed to the
- * command's callback with its key and value: options that need more).
+ * CLI_POSITIVE / CLI_NONNEG (double > 0 / >= 0; `unit` named in the
+ * message), CLI_COUNT1 (unsigned long >= 1), CLI_UNITS (sl_unit),
+ * CLI_MU_LIST / CLI_MU_RANGE (cli_mu: --mu 0.1,0.2 or --mu-range A:B:S),
+ * CLI_LIST (cli_list: a comma list of numbers), CLI_GRID (cli_grid: the
+ * frequency options, see CLI_GRID_OPTS), CLI_CALL (handed to the command's
+ * callback with its key and value: options that need more).
  *
  * --help prints the command's own usage and prose around
  * cli_help_options(stdout, opts, n, col): for each option "  --fs F"
@@ -63,7 +66,8 @@ int cmd_study(int argc, char **argv);
  * retyped; a literal percent sign is %%); a newline in the text continues
  * at the column. `show` replaces the generated "--name ARG" (letter keys
  * give "-o, --output DIR"); help NULL hides an option another line
- * describes; an entry with only `head` prints that line. --help and -h
+ * describes; an entry with only `head` prints that line; one with `show`
+ * and no name documents an operand ("FILE...") and is not parsed. --help and -h
  * need no entry. Option ids start at CLI_OPT_ID; a letter key is also -x.
  */
 #define CLI_OPT_ID 256 /* first key of an option without a letter */
@@ -73,15 +77,17 @@ int cmd_study(int argc, char **argv);
 #define CLI_MAX_OPTS 48
 
 typedef enum cli_kind {
-    CLI_CALL = 0, CLI_STRING, CLI_FLAG, CLI_POSITIVE, CLI_COUNT1, CLI_UNITS, CLI_MU_LIST,
-    CLI_MU_RANGE
+    CLI_CALL = 0, CLI_STRING, CLI_FLAG, CLI_POSITIVE, CLI_NONNEG, CLI_COUNT1, CLI_UNITS,
+    CLI_MU_LIST, CLI_MU_RANGE, CLI_LIST, CLI_GRID
 } cli_kind;
 
-/* Friction values given by --mu or --mu-range (v owned; free(v)). */
+/* Values given as a list (--damping 0.05,0.1) or by --mu / --mu-range
+ * (v owned; free(v)). */
 typedef struct cli_mu {
     double *v;
     size_t n;
 } cli_mu;
+typedef cli_mu cli_list;
 
 typedef struct cli_opt {
     const char *name;  /* long name without "--"; NULL for a heading */
@@ -138,6 +144,20 @@ int cli_usage(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
+/* Tables on stdout. A number in a column of `width` with fmt ("%*.3f"),
+ * or "nan" (never "-nan"). */
+void cli_put_num(const char *fmt, double v, int width);
+/* A CSV number (8 significant digits, or "nan"), then ',' or, when last,
+ * a newline. */
+void cli_put_csv(double v, int last);
+/* A CSV field, quoted when it holds a comma, quote or blank. */
+void cli_put_field(const char *s);
+/* A table of ncol columns over the frequencies f (nf rows): header "f_hz"
+ * and names[j]; values vals[j * nf + p]. CSV (",%.8g") or aligned (each
+ * column as wide as its name, at least 12; "%.6g"). */
+void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], size_t ncol,
+                     const double *vals);
+
 /* Monotonic wall-clock time, s (for the timings commands report). */
 double cli_now_s(void);
 
@@ -165,6 +185,19 @@ typedef struct cli_grid {
     int grid_opts; /* 1 when --fmin, --fmax or --per-decade was given */
 } cli_grid;
 void cli_grid_init(cli_grid *g);
+/* The four table entries of the frequency options (keys CLI_OPT_GRID + a
+ * cli_grid_opt), for a cli_grid at offsetof(settings, field) `off`. */
+#define CLI_OPT_GRID 900
+#define CLI_GRID_OPTS(grid_off)                                                                  \
+    {"fmin", CLI_OPT_GRID + CLI_GRID_FMIN, "HZ", "frequency range (default %g to %g Hz)",   \
+     {SL_SPECTRUM_FMIN_HZ, SL_SPECTRUM_FMAX_HZ}, .show = "--fmin HZ, --fmax HZ",           \
+     .kind = CLI_GRID, .off = (grid_off)},                                                        \
+    {"fmax", CLI_OPT_GRID + CLI_GRID_FMAX, "HZ", NULL, .kind = CLI_GRID, .off = (grid_off)},      \
+    {"per-decade", CLI_OPT_GRID + CLI_GRID_PER_DECADE, "N",                                 \
+     "log-spaced points per decade (default %g)", {SL_SPECTRUM_PER_DECADE},                 \
+     .kind = CLI_GRID, .off = (grid_off)},                                                        \
+    {"freq", CLI_OPT_GRID + CLI_GRID_FREQ, "LIST",                                           \
+     "explicit frequencies, Hz, instead of the grid", .kind = CLI_GRID, .off = (grid_off)}
 void cli_grid_free(cli_grid *g);
 /* Take one frequency option. Returns CLI_EXIT_OK or (message printed)
  * CLI_EXIT_USAGE. */

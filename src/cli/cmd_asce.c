@@ -79,25 +79,6 @@ static const cli_opt asce_opts[] = {
     {"csv", OPT_CSV, NULL, "CSV instead of an aligned table (stdout)", .kind = CLI_FLAG, A(csv)},
 };
 
-/* Print a number in a table column of `width`, or "nan" (never "-nan"). */
-static void put_num(const char *fmt, double v, int width)
-{
-    if (isnan(v))
-        printf("%*s", width, "nan");
-    else
-        printf(fmt, width, v);
-}
-
-/* Print a CSV number: 8 significant digits, or "nan". */
-static void put_csv(double v, int last)
-{
-    if (isnan(v))
-        fputs("nan", stdout);
-    else
-        printf("%.8g", v);
-    putchar(last ? '\n' : ',');
-}
-
 /* The method's input from whichever source, its description and the PGV
  * for Newmark's estimates. Returns 0 or -1 (err filled). */
 static int make_source(const asce_args *a, sl_asce_source *src, sl_floor **fl, sl_motion *m[3],
@@ -144,22 +125,22 @@ static void print_row(const sl_asce_result *r, double nm1, double nm2, int csv)
         printf("%.6g,%.6g,", r->mu, r->mu_e);
         const double v[] = {r->cs_ms2 / SL_G, r->fes_hz, r->delta_best_m, r->delta_design_m};
         for (int i = 0; i < 4; i++)
-            put_csv(v[i], 0);
+            cli_put_csv(v[i], 0);
         printf("%s,", st);
-        put_csv(r->cap_m, 0);
-        put_csv(nm1, 0);
-        put_csv(nm2, 1);
+        cli_put_csv(r->cap_m, 0);
+        cli_put_csv(nm1, 0);
+        cli_put_csv(nm2, 1);
         return;
     }
     printf("%8.4f %8.4f %8.4f ", r->mu, r->mu_e, r->cs_ms2 / SL_G);
-    put_num("%*.4f", r->fes_hz, 9);
+    cli_put_num("%*.4f", r->fes_hz, 9);
     const char *fmt[] = {"%*.3f", "%*.3f", "%*.1f", "%*.3f", "%*.3f"};
     const double v[] = {1e3 * r->delta_best_m, 1e3 * r->delta_design_m, 1e3 * r->cap_m,
                         1e3 * nm1, 1e3 * nm2};
     const int w[] = {12, 14, 9, 13, 14};
     for (int i = 0; i < 5; i++) {
         putchar(' ');
-        put_num(fmt[i], v[i], w[i]);
+        cli_put_num(fmt[i], v[i], w[i]);
     }
     printf("  %s\n", st);
 }

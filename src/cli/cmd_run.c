@@ -22,7 +22,8 @@
 typedef struct run_args {
     const char *out;
     int quiet, motions, force;
-    unsigned long sets, substeps;
+    unsigned long sets, substeps, max_sets;
+    double rel_se, abs_se_mm;
     cli_mu mu;
     double accuracy, created;
     uint64_t seed;
@@ -31,24 +32,34 @@ typedef struct run_args {
 } run_args;
 #define A(f) .off = offsetof(run_args, f)
 enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
-       O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE };
+       O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
+       O_REL_SE, O_ABS_SE, O_MAX_SETS };
 static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
      "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
      A(out)},
     {"quiet", 'q', NULL, "no progress on stderr", .kind = CLI_FLAG, A(quiet)},
-    {"sets", O_SETS, "N", "motion sets per floor (default %g; ASCE 43-05: >= %g)",
-     {SL_ANALYSIS_DEFAULT_SETS, SL_NLTHA_MIN_SETS}, .kind = CLI_COUNT1, A(sets)},
-    {"seed", O_SEED, "S", "random seed (default 1); a floor's seed also depends on its name",
+    {"sets", O_SETS, "N", "a fixed number of motion sets per floor (ASCE 43-05: >= %g);\n"
+     "default: sets are added until converged (docs/run.md, Convergence):",
+     {SL_NLTHA_MIN_SETS}, .kind = CLI_COUNT1, A(sets)},
+    {"rel-se", O_REL_SE, "R", "target standard error of the design value, relative (default %g),",
+     {SL_ANALYSIS_REL_SE}, .kind = CLI_NONNEG, A(rel_se)},
+    {"abs-se", O_ABS_SE, "MM", "or absolute, mm (default %g), whichever is larger, at every mu",
+     {1e3 * SL_ANALYSIS_ABS_SE_M}, .kind = CLI_NONNEG, A(abs_se_mm)},
+    {"max-sets", O_MAX_SETS, "N", "stop there when not converged; the floor is flagged (default %g)",
+     {SL_ANALYSIS_MAX_SETS}, .kind = CLI_COUNT1, A(max_sets)},
+    {"seed", O_SEED, "S", "random seed (default 1); a floor's seed also depends on its\n"
+     "spectra's numbers (or its 'seed ='), never on its name or the other floors",
      .kind = CLI_CALL},
     {"mu-range", O_MU_RANGE, "A:B:S", "friction grid (default " SL_MU_GRID_TEXT ")",
      .kind = CLI_MU_RANGE, A(mu)},
     {"mu", O_MU, "LIST", "explicit friction values, increasing", .kind = CLI_MU_LIST, A(mu)},
     {"policy", O_POLICY, "P", "required clearance: nltha (default), asce or envelope",
      .kind = CLI_CALL},
-    {"accuracy", O_ACC, "E", "2-D integration accuracy: 0.01 -> 1 sub-step, 0.001 (default) -> 8,\n"
-     "0.0001 -> 32 (docs/performance.md)", .kind = CLI_POSITIVE, A(accuracy)},
-    {"substeps", O_SUB, "N", "set the 2-D sub-steps directly", .kind = CLI_COUNT1, A(substeps)},
+    {"accuracy", O_ACC, "E", "relative error of every NLTHA peak the 2-D engine aims at (its\n"
+     "rtol, default 0.001, at most 0.1; docs/integrators.md)", .kind = CLI_POSITIVE, A(accuracy)},
+    {"substeps", O_SUB, "N", "expert: N fixed 2-D sub-steps per sample, no error control",
+     .kind = CLI_COUNT1, A(substeps)},
     {"motions", O_MOTIONS, NULL, "also write every motion to DIR/motions/<floor id>/*.AT2",
      .kind = CLI_FLAG, A(motions)},
     {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\nelse now)",
@@ -133,7 +144,9 @@ int cmd_run(int argc, char **argv)
 {
     const char *sde = getenv("SOURCE_DATE_EPOCH"), *dflt[] = {"floors"};
     double v;
-    run_args a = {.out = "output", .sets = SL_ANALYSIS_DEFAULT_SETS, .accuracy = 1e-3, .seed = 1,
+    run_args a = {.out = "output", .sets = 0, .accuracy = 1e-3, .seed = 1,
+                  .rel_se = SL_ANALYSIS_REL_SE, .abs_se_mm = 1e3 * SL_ANALYSIS_ABS_SE_M,
+                  .max_sets = SL_ANALYSIS_MAX_SETS,
                   .created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL)};
     char cmdline[8192] = "seislide", date[32], warn[4096], r[512];
     static sl_deliver_inputs in; /* large: not on the stack */
@@ -146,6 +159,12 @@ int cmd_run(int argc, char **argv)
         help();
     if (rc || (!a.mu.v && cli_parse_range(SL_MU_GRID_TEXT, &a.mu.v, &a.mu.n)))
         goto done;
+    if (!(a.rel_se < 1) || !(a.rel_se > 0 || a.abs_se_mm > 0) || !isfinite(a.abs_se_mm) ||
+        a.max_sets < 2 || a.max_sets > 10000) {
+        rc = cli_usage("run", "--rel-se must be below 1, --rel-se and --abs-se not both 0, "
+                       "--max-sets from 2 to 10000");
+        goto done;
+    }
     rc = CLI_EXIT_ERROR;
     /* every floor read and checked, and the output folder made, before any long work */
     int nargs = optind < argc ? argc - optind : 1;
@@ -164,9 +183,12 @@ int cmd_run(int argc, char **argv)
     signal(SIGHUP, on_signal);
     sl_analysis_opts ao;
     sl_analysis_opts_default(&ao);
-    double e = a.accuracy; /* measured sub-steps per accuracy: docs/performance.md */
-    ao.substeps = a.substeps ? (unsigned)a.substeps : e >= 1e-2 ? 1 : e >= 1e-3 ? 8 : e >= 1e-4 ? 32 : 128;
-    ao.n_sets = a.sets;
+    ao.substeps = (unsigned)a.substeps; /* 0: error-controlled by rtol (docs/integrators.md) */
+    ao.rtol = a.accuracy;
+    ao.n_sets = a.sets; /* 0: adaptive */
+    ao.rel_se = a.rel_se;
+    ao.abs_se_m = 1e-3 * a.abs_se_mm;
+    ao.max_sets = a.max_sets;
     ao.seed = a.seed;
     ao.mu = a.mu.v;
     ao.n_mu = a.mu.n;
@@ -174,7 +196,7 @@ int cmd_run(int argc, char **argv)
     progress_ctx pc;
     ao.progress = progress;
     ao.progress_ctx = &pc;
-    if (a.sets < SL_NLTHA_MIN_SETS && !a.quiet)
+    if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS && !a.quiet)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",
                 a.sets, SL_NLTHA_MIN_SETS);
     for (size_t i = 0; i < in.n; i++) {
@@ -187,6 +209,22 @@ int cmd_run(int argc, char **argv)
                     an[i]->zpa_h_ms2 / SL_G, an[i]->n_mu_skipped, ao.n_mu,
                     sl_report_ranges_text(an[i]->design, r, sizeof r),
                     an[i]->note[0] ? "; note: " : "", an[i]->note);
+        const sl_analysis *q = an[i];
+        if (!a.quiet && q->stop == SL_ANALYSIS_STOP_FIXED)
+            cli_msg("run: floor '%s': %zu motion sets (fixed by --sets)", in.floors[i]->name,
+                    q->n_sets);
+        else if (!a.quiet)
+            cli_msg("run: floor '%s': %zu motion sets in %zu batches: %s (worst standard error "
+                    "%.1f %% of the design value)", in.floors[i]->name, q->n_sets, q->n_batches,
+                    q->stop == SL_ANALYSIS_STOP_CONVERGED ? "converged"
+                                                          : "NOT converged, --max-sets reached",
+                    100 * q->worst_rel_se);
+        if (!a.quiet)
+            cli_msg("run: floor '%s': wall time: synthesis %.2f s, NLTHA %.2f s, statistics "
+                    "%.3f s, ASCE and design %.3f s (%.3f s per set)", in.floors[i]->name,
+                    q->time_synth_s, q->time_nltha_s, q->time_stats_s, q->time_asce_s,
+                    (q->time_synth_s + q->time_nltha_s + q->time_stats_s + q->time_asce_s) /
+                        (double)q->n_sets);
     }
     for (int i = 0; i < argc && strlen(cmdline) + strlen(argv[i]) + 2 < sizeof cmdline; i++)
         strcat(strcat(cmdline, " "), argv[i]);

@@ -13,7 +13,7 @@ static const char slide_help[] =
     "usage: seislide slide --h1 FILE [--h2 FILE] [--v FILE] [--units g|m/s2|cm/s2]\n"
     "                      [--dt S] (--mu LIST | --mu-range A:B:S) [--scale-pga G]\n"
     "                      [--one-way | --up-ratio R] [--invert] [--history OUT.csv]\n"
-    "                      [--csv] [--truncate] [--substeps N] [--model M ...]\n"
+    "                      [--csv] [--truncate] [--rtol R] [--model M ...]\n"
     "\n"
     "Peak sliding displacement of a rigid block on a level floor with Coulomb\n"
     "friction (static = kinetic) under the floor motion H1 [, H2] [, V]:\n"
@@ -43,16 +43,22 @@ static const char slide_help[] =
     "  --up-ratio R           1-D: friction toward +x is R*mu (default 1)\n"
     "model:\n"
     "  --model M              exact (default), smooth or plastic (reference models)\n"
-    "  --substeps N           2-D projection sub-steps per sample (default %u)\n"
+    "  --rtol R, --accuracy R exact model: relative error of every peak the 2-D engine\n"
+    "                         aims at (default %g; 1-D is exact); smooth model: the\n"
+    "                         solver's relative tolerance (1e-6)\n"
+    "  --atol A               exact model: error not worth refining, m (default %g);\n"
+    "                         smooth model: the solver's absolute tolerance (1e-9 m)\n"
+    "  --substeps N           expert: N fixed 2-D sub-steps per sample, no error control\n"
     "  --eta E, --uy M        smooth model: exponent (5), yield displacement, m (1e-4)\n"
-    "  --rtol R, --atol A     smooth model: solver tolerances (1e-6, 1e-9 m)\n"
     "  --solver S             smooth model: msbdf, rk4imp, bsimp or rkf45\n"
     "  --plastic-uy M         plastic model: yield displacement, m (1e-4)\n"
     "output:\n"
     "  --csv                  one CSV row per mu on stdout: mu, peak_m, residual_m,\n"
     "                         peak_x_m, peak_y_m, t_peak_s, residual_x_m,\n"
     "                         residual_y_m, path_m, max_speed_m_s, t_rest_s,\n"
-    "                         slide_time_s, episodes, liftoff_samples, status\n"
+    "                         slide_time_s, episodes, liftoff_samples, err_est_m\n"
+    "                         (estimated error of peak_m: 0 in 1-D, empty when not\n"
+    "                         estimated), status\n"
     "  --history OUT.csv      time history of u, u' and F/W per axis (one mu only)\n"
     "\n"
     "status: ok; no_sliding (mu g at or above the largest demand: not integrated);\n"
@@ -84,6 +90,7 @@ static const struct option slide_opts[] = {
     {"eta", required_argument, 0, OPT_ETA},
     {"uy", required_argument, 0, OPT_UY},
     {"rtol", required_argument, 0, OPT_RTOL},
+    {"accuracy", required_argument, 0, OPT_RTOL},
     {"atol", required_argument, 0, OPT_ATOL},
     {"solver", required_argument, 0, OPT_SOLVER},
     {"plastic-uy", required_argument, 0, OPT_PUY},
@@ -128,7 +135,7 @@ int cmd_slide(int argc, char **argv)
     sl_read_opts ro = {SL_FORMAT_AUTO, SL_UNIT_NONE, 0.0};
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    double *mu = NULL, scale_g = 0.0;
+    double *mu = NULL, scale_g = 0.0, rtol = 0.0, atol = 0.0;
     size_t n_mu = 0;
     int csv = 0, truncate = 0, one_way = 0, have_ratio = 0, rc = CLI_EXIT_ERROR;
     unsigned long ul;
@@ -216,13 +223,13 @@ int cmd_slide(int argc, char **argv)
             }
             break;
         case OPT_RTOL:
-            if (cli_positive("slide", "--rtol", arg, NULL, &so.smooth_rtol)) {
+            if (cli_positive("slide", "--rtol", arg, NULL, &rtol)) {
                 rc = CLI_EXIT_USAGE;
                 goto done;
             }
             break;
         case OPT_ATOL:
-            if (cli_positive("slide", "--atol", arg, "m", &so.smooth_atol)) {
+            if (cli_positive("slide", "--atol", arg, "m", &atol)) {
                 rc = CLI_EXIT_USAGE;
                 goto done;
             }
@@ -247,7 +254,7 @@ int cmd_slide(int argc, char **argv)
             }
             break;
         case OPT_HELP:
-            printf(slide_help, SL_SLIDE_DEFAULT_SUBSTEPS);
+            printf(slide_help, SL_SLIDE_DEFAULT_RTOL, SL_SLIDE_DEFAULT_ATOL_M);
             rc = CLI_EXIT_OK;
             goto done;
         case ':':
@@ -262,6 +269,18 @@ int cmd_slide(int argc, char **argv)
         rc = cli_usage("slide", "unexpected argument '%s'", argv[optind]);
         goto done;
     }
+    /* --rtol/--atol: the engine's accuracy, or the smooth model's solver tolerances */
+    if (rtol > 0 && so.model == SL_MODEL_SMOOTH)
+        so.smooth_rtol = rtol;
+    else if (rtol > 0 && !(rtol >= 1e-9 && rtol <= 0.1)) {
+        rc = cli_usage("slide", "--rtol %g must be in [1e-9, 0.1]", rtol);
+        goto done;
+    } else if (rtol > 0)
+        so.rtol = rtol;
+    if (atol > 0 && so.model == SL_MODEL_SMOOTH)
+        so.smooth_atol = atol;
+    else if (atol > 0)
+        so.atol_m = atol;
     if (!path[0]) {
         rc = cli_usage("slide", "--h1 FILE is required");
         goto done;
@@ -342,13 +361,17 @@ int cmd_slide(int argc, char **argv)
 
     if (csv) {
         printf("mu,peak_m,residual_m,peak_x_m,peak_y_m,t_peak_s,residual_x_m,residual_y_m,"
-               "path_m,max_speed_m_s,t_rest_s,slide_time_s,episodes,liftoff_samples,status\n");
+               "path_m,max_speed_m_s,t_rest_s,slide_time_s,episodes,liftoff_samples,err_est_m,"
+               "status\n");
         for (size_t k = 0; k < n_mu; k++) {
             const sl_slide_result *r = &res[k];
-            printf("%.6g,%.9g,%.9g,%.9g,%.9g,%.4f,%.9g,%.9g,%.9g,%.9g,%.4f,%.4f,%ld,%ld,%s\n",
+            char est[32] = "";
+            if (!isnan(r->err_est_m))
+                snprintf(est, sizeof est, "%.3g", r->err_est_m);
+            printf("%.6g,%.9g,%.9g,%.9g,%.9g,%.4f,%.9g,%.9g,%.9g,%.9g,%.4f,%.4f,%ld,%ld,%s,%s\n",
                    r->mu, r->peak_m, r->residual_m, r->peak_x_m, r->peak_y_m, r->t_peak_s,
                    r->residual_x_m, r->residual_y_m, r->path_m, r->max_speed_ms, r->t_rest_s,
-                   r->slide_time_s, r->episodes, r->liftoff_samples, status_word(r));
+                   r->slide_time_s, r->episodes, r->liftoff_samples, est, status_word(r));
         }
     } else {
         printf("# seislide slide: %s%s%s%s%s, %zu samples at dt = %g s\n", path[0],

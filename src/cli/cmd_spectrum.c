@@ -1,6 +1,6 @@
 /* cmd_spectrum.c - `seislide spectrum`: response spectra of motions. */
-#include <getopt.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,30 +13,18 @@
 /* Largest damping ratio accepted (the oscillator must be underdamped). */
 #define SPECTRUM_MAX_DAMPING 1.0
 
-static const char spectrum_help[] =
+static const char spectrum_head[] =
     "usage: seislide spectrum FILE... [--damping LIST] [--units U] [--dt S]\n"
     "                         [--fmin HZ] [--fmax HZ] [--per-decade N | --freq LIST]\n"
     "                         [--all] [--csv]\n"
     "\n"
     "Linear response spectra of acceleration records by the exact piecewise-linear\n"
-    "recurrence (Nigam-Jennings 1969), sub-stepped so that dt <= T/20, oscillator\n"
+    "recurrence (Nigam-Jennings 1969), sub-stepped so that dt <= T/%g, oscillator\n"
     "from rest, free vibration after the record until the first extremum.\n"
     "PSA = (2 pi f)^2 max|u| (pseudo-spectral acceleration).\n"
-    "\n"
-    "input:\n"
-    "  FILE...                motions: PEER .AT2, one column (needs --dt), two\n"
-    "                         columns time+acc, or CSV with a header\n"
-    "  --units U              g, m/s2 or cm/s2 (= gal) for files that do not name\n"
-    "                         their unit (AT2 headers do)\n"
-    "  --dt S                 sample interval for one-column files, s\n"
-    "spectrum:\n"
-    "  --damping LIST         damping ratios in [0, 1), e.g. 0.05,0.10 (default %g)\n"
-    "  --fmin HZ, --fmax HZ   frequency range (default %g to %g Hz)\n"
-    "  --per-decade N         log-spaced points per decade (default %g)\n"
-    "  --freq LIST            explicit frequencies, Hz, instead of the grid\n"
-    "output (stdout):\n"
-    "  --csv                  CSV instead of an aligned table\n"
-    "  --all                  also spectral displacement and absolute acceleration\n"
+    "\n";
+
+static const char spectrum_tail[] =
     "\n"
     "columns: f_hz, then per file and per damping psa_g (and with --all sd_m,\n"
     "sa_abs_g). With several dampings the names end in _z<damping>, e.g.\n"
@@ -44,21 +32,31 @@ static const char spectrum_help[] =
     "psa_g_z0.05_H1.AT2 (the path as given when two names coincide).\n"
     "Exit status: 0 success, 1 bad input or failed run, 2 usage error.\n";
 
-enum { OPT_DAMPING = 256, OPT_UNITS, OPT_DT, OPT_FMIN, OPT_FMAX, OPT_PER_DECADE, OPT_FREQ,
-       OPT_ALL, OPT_CSV, OPT_HELP };
+typedef struct spectrum_args {
+    cli_list damp;
+    sl_read_opts ro;
+    cli_grid grid;
+    int all, csv;
+} spectrum_args;
 
-static const struct option spectrum_opts[] = {
-    {"damping", required_argument, 0, OPT_DAMPING},
-    {"units", required_argument, 0, OPT_UNITS},
-    {"dt", required_argument, 0, OPT_DT},
-    {"fmin", required_argument, 0, OPT_FMIN},
-    {"fmax", required_argument, 0, OPT_FMAX},
-    {"per-decade", required_argument, 0, OPT_PER_DECADE},
-    {"freq", required_argument, 0, OPT_FREQ},
-    {"all", no_argument, 0, OPT_ALL},
-    {"csv", no_argument, 0, OPT_CSV},
-    {"help", no_argument, 0, OPT_HELP},
-    {0, 0, 0, 0}};
+#define A(f) .off = offsetof(spectrum_args, f)
+static const cli_opt spectrum_opts[] = {
+    {.head = "input:"},
+    {.show = "FILE...", .help = "motions: PEER .AT2, one column (needs --dt), two\ncolumns "
+     "time+acc, or CSV with a header"},
+    {"units", CLI_OPT_ID, "U", "g, m/s2 or cm/s2 (= gal) for files that do not name\ntheir unit "
+     "(AT2 headers do)", .kind = CLI_UNITS, A(ro.units)},
+    {"dt", CLI_OPT_ID + 1, "S", "sample interval for one-column files, s", .kind = CLI_POSITIVE,
+     A(ro.dt_s)},
+    {.head = "spectrum:"},
+    {"damping", CLI_OPT_ID + 2, "LIST", "damping ratios in [0, 1), e.g. 0.05,0.10 (default %g)",
+     {SPECTRUM_DEFAULT_DAMPING}, .kind = CLI_LIST, A(damp)},
+    CLI_GRID_OPTS(offsetof(spectrum_args, grid)),
+    {.head = "output (stdout):"},
+    {"csv", CLI_OPT_ID + 3, NULL, "CSV instead of an aligned table", .kind = CLI_FLAG, A(csv)},
+    {"all", CLI_OPT_ID + 4, NULL, "also spectral displacement and absolute acceleration",
+     .kind = CLI_FLAG, A(all)},
+};
 
 static const char *base_name(const char *p)
 {
@@ -66,159 +64,15 @@ static const char *base_name(const char *p)
     return s ? s + 1 : p;
 }
 
-/* Write a CSV field, quoted when it holds a comma, quote or blank. */
-static void put_field(const char *s)
+/* Column names: per file, per damping: psa_g [, sd_m, sa_abs_g], with
+ * _z<damping> and _<file label> when there are several. */
+static char (*column_names(size_t nm, char *const *label, const double *damp, size_t nd,
+                           size_t nq))[320]
 {
-    if (!strpbrk(s, ",\" \t\r\n")) {
-        fputs(s, stdout);
-        return;
-    }
-    putchar('"');
-    for (; *s; s++) {
-        if (*s == '"')
-            putchar('"');
-        putchar(*s);
-    }
-    putchar('"');
-}
-
-int cmd_spectrum(int argc, char **argv)
-{
-    double default_damping = SPECTRUM_DEFAULT_DAMPING;
-    double *damp = NULL, *f = NULL;
-    size_t nd = 0, nf = 0;
-    cli_grid grid;
-    cli_grid_init(&grid);
-    int csv = 0, all = 0, rc = CLI_EXIT_ERROR;
-    sl_read_opts ro = {SL_FORMAT_AUTO, SL_UNIT_NONE, 0.0};
-    sl_motion **m = NULL;
-    size_t nm = 0;
-    double *psa = NULL, *sd = NULL, *sa = NULL;
-    char **label = NULL;
-    sl_error err;
-    sl_error_clear(&err);
-
-    optind = 1;
-    opterr = 0;
-    int c;
-    while ((c = getopt_long(argc, argv, ":", spectrum_opts, NULL)) != -1) {
-        const char *arg = optarg;
-        switch (c) {
-        case OPT_DAMPING:
-            free(damp);
-            if (cli_parse_list(arg, &damp, &nd)) {
-                rc = cli_usage("spectrum", "bad --damping '%s'", arg);
-                goto done;
-            }
-            break;
-        case OPT_UNITS:
-            if (cli_units("spectrum", arg, &ro.units)) {
-                rc = CLI_EXIT_USAGE;
-                goto done;
-            }
-            break;
-        case OPT_DT:
-            if (cli_positive("spectrum", "--dt", arg, NULL, &ro.dt_s)) {
-                rc = CLI_EXIT_USAGE;
-                goto done;
-            }
-            break;
-        case OPT_FMIN:
-        case OPT_FMAX:
-        case OPT_PER_DECADE:
-        case OPT_FREQ:
-            if (cli_grid_option("spectrum", c == OPT_FMIN ? CLI_GRID_FMIN : c == OPT_FMAX ? CLI_GRID_FMAX
-                                : c == OPT_PER_DECADE ? CLI_GRID_PER_DECADE : CLI_GRID_FREQ,
-                                arg, &grid)) {
-                rc = CLI_EXIT_USAGE;
-                goto done;
-            }
-            break;
-        case OPT_ALL: all = 1; break;
-        case OPT_CSV: csv = 1; break;
-        case OPT_HELP:
-            printf(spectrum_help, SPECTRUM_DEFAULT_DAMPING, SL_SPECTRUM_FMIN_HZ,
-                   SL_SPECTRUM_FMAX_HZ, SL_SPECTRUM_PER_DECADE);
-            rc = CLI_EXIT_OK;
-            goto done;
-        case ':':
-            rc = cli_usage("spectrum", "option '%s' needs a value", argv[optind - 1]);
-            goto done;
-        default:
-            rc = cli_usage("spectrum", "unknown option '%s'", argv[optind - 1]);
-            goto done;
-        }
-    }
-    if (optind >= argc) {
-        rc = cli_usage("spectrum", "give at least one motion FILE");
-        goto done;
-    }
-    if (!damp) {
-        damp = &default_damping;
-        nd = 1;
-    }
-    for (size_t k = 0; k < nd; k++)
-        if (!(damp[k] >= 0 && damp[k] < SPECTRUM_MAX_DAMPING)) {
-            rc = cli_usage("spectrum", "damping %g outside [0, 1)", damp[k]);
-            goto done;
-        }
-    if ((rc = cli_grid_make("spectrum", &grid, &f, &nf)) != CLI_EXIT_OK)
-        goto done;
-    rc = CLI_EXIT_ERROR;
-
-    nm = (size_t)(argc - optind);
-    m = calloc(nm, sizeof *m);
-    label = calloc(nm, sizeof *label);
-    if (!m || !label) {
-        cli_msg("out of memory");
-        goto done;
-    }
-    for (size_t i = 0; i < nm; i++) {
-        m[i] = sl_motion_read(argv[optind + (int)i], &ro, &err);
-        if (!m[i]) {
-            cli_print_error(&err);
-            goto done;
-        }
-    }
-    /* file labels for column names: base names unless two coincide */
-    int clash = 0;
-    for (size_t i = 0; i < nm; i++)
-        for (size_t j = i + 1; j < nm; j++)
-            if (!strcmp(base_name(argv[optind + (int)i]), base_name(argv[optind + (int)j])))
-                clash = 1;
-    for (size_t i = 0; i < nm; i++)
-        label[i] = clash ? argv[optind + (int)i] : (char *)base_name(argv[optind + (int)i]);
-
-    size_t per = nm * nf;
-    psa = malloc(nd * per * sizeof *psa);
-    if (all) {
-        sd = malloc(nd * per * sizeof *sd);
-        sa = malloc(nd * per * sizeof *sa);
-    }
-    if (!psa || (all && (!sd || !sa))) {
-        cli_msg("out of memory");
-        goto done;
-    }
-    for (size_t k = 0; k < nd; k++) {
-        if (sl_spectrum_batch((const sl_motion *const *)m, nm, f, nf, damp[k], NULL,
-                              psa + k * per, all ? sd + k * per : NULL,
-                              all ? sa + k * per : NULL, &err)) {
-            cli_print_error(&err);
-            goto done;
-        }
-    }
-
-    /* columns: per file, per damping: psa_g [, sd_m, sa_abs_g] */
-    size_t nq = all ? 3 : 1;
     static const char *const qname[3] = {"psa_g", "sd_m", "sa_abs_g"};
-    size_t ncol = nm * nd * nq;
-    char (*name)[320] = calloc(ncol, sizeof *name);
-    if (!name) {
-        cli_msg("out of memory");
-        goto done;
-    }
+    char (*name)[320] = calloc(nm * nd * nq, sizeof *name);
     size_t col = 0;
-    for (size_t i = 0; i < nm; i++)
+    for (size_t i = 0; name && i < nm; i++)
         for (size_t k = 0; k < nd; k++)
             for (size_t q = 0; q < nq; q++) {
                 char zs[40] = "", fs[300] = "";
@@ -228,66 +82,126 @@ int cmd_spectrum(int argc, char **argv)
                     snprintf(fs, sizeof fs, "_%s", label[i]);
                 snprintf(name[col++], sizeof name[0], "%s%s%s", qname[q], zs, fs);
             }
+    return name;
+}
 
+/* The table (or CSV): f, then every column; out[q] holds quantity q
+ * (psa, sd, sa) as out[q][k * nm * nf + i * nf + j]. Returns 0 or -1 (no
+ * memory). */
+static int print_table(int csv, char *const *files, sl_motion *const *m, size_t nm,
+                       char *const *label, const double *damp, size_t nd, const double *f,
+                       size_t nf, double *const out[3], size_t nq)
+{
+    char (*name)[320] = column_names(nm, label, damp, nd, nq);
+    double *vals = malloc(nm * nd * nq * nf * sizeof *vals);
+    if (!name || !vals) {
+        free(name);
+        free(vals);
+        return -1;
+    }
     if (!csv) {
         printf("# seislide spectrum: Nigam-Jennings, dt <= T/%g, %zu frequencies\n",
                SL_SPECTRUM_STEPS_PER_PERIOD, nf);
         for (size_t i = 0; i < nm; i++)
-            printf("# %s: %zu samples at dt = %g s, PGA %.4f g\n", argv[optind + (int)i],
-                   m[i]->n, m[i]->dt_s, sl_motion_pga(m[i]) / SL_G);
+            printf("# %s: %zu samples at dt = %g s, PGA %.4f g\n", files[i], m[i]->n, m[i]->dt_s,
+                   sl_motion_pga(m[i]) / SL_G);
     }
-    int w = 12;
-    for (size_t j = 0; j < ncol; j++)
-        if ((int)strlen(name[j]) > w)
-            w = (int)strlen(name[j]);
-    if (csv) {
-        fputs("f_hz", stdout);
-        for (size_t j = 0; j < ncol; j++) {
-            putchar(',');
-            put_field(name[j]);
-        }
-        putchar('\n');
-    } else {
-        printf("%10s", "f_hz");
-        for (size_t j = 0; j < ncol; j++)
-            printf(" %*s", w, name[j]);
-        putchar('\n');
-    }
-    for (size_t p = 0; p < nf; p++) {
-        if (csv)
-            printf("%.6g", f[p]);
-        else
-            printf("%10.5g", f[p]);
-        for (size_t i = 0; i < nm; i++)
-            for (size_t k = 0; k < nd; k++)
-                for (size_t q = 0; q < nq; q++) {
-                    size_t at = k * per + i * nf + p;
-                    double v = q == 0 ? psa[at] / SL_G : q == 1 ? sd[at] : sa[at] / SL_G;
-                    if (csv)
-                        printf(",%.8g", v);
-                    else
-                        printf(" %*.6g", w, v);
+    size_t col = 0;
+    for (size_t i = 0; i < nm; i++)
+        for (size_t k = 0; k < nd; k++)
+            for (size_t q = 0; q < nq; q++, col++)
+                for (size_t p = 0; p < nf; p++) {
+                    double v = out[q][k * nm * nf + i * nf + p];
+                    vals[col * nf + p] = q == 1 ? v : v / SL_G; /* sd in m, accelerations in g */
                 }
-        putchar('\n');
-    }
+    cli_print_table(csv, f, nf, name, nm * nd * nq, vals);
     free(name);
+    free(vals);
+    return 0;
+}
+
+int cmd_spectrum(int argc, char **argv)
+{
+    spectrum_args a = {.ro = {SL_FORMAT_AUTO, SL_UNIT_NONE, 0.0}};
+    cli_grid_init(&a.grid);
+    double default_damping = SPECTRUM_DEFAULT_DAMPING, *f = NULL, *out[3] = {NULL, NULL, NULL};
+    size_t nf = 0, nm = 0;
+    sl_motion **m = NULL;
+    char **label = NULL;
+    sl_error err;
+    sl_error_clear(&err);
+    int rc = cli_parse("spectrum", spectrum_opts, CLI_NOPTS(spectrum_opts), argc, argv, &a, NULL);
+    if (rc == CLI_OPT_HELP) {
+        printf(spectrum_head, SL_SPECTRUM_STEPS_PER_PERIOD);
+        cli_help_options(stdout, spectrum_opts, CLI_NOPTS(spectrum_opts), 25);
+        fputs(spectrum_tail, stdout);
+        rc = CLI_EXIT_OK;
+        goto done;
+    }
+    if (rc)
+        goto done;
+    if (optind >= argc) {
+        rc = cli_usage("spectrum", "give at least one motion FILE");
+        goto done;
+    }
+    const double *damp = a.damp.v ? a.damp.v : &default_damping;
+    size_t nd = a.damp.v ? a.damp.n : 1, nq = a.all ? 3 : 1;
+    for (size_t k = 0; k < nd; k++)
+        if (!(damp[k] >= 0 && damp[k] < SPECTRUM_MAX_DAMPING)) {
+            rc = cli_usage("spectrum", "damping %g outside [0, 1)", damp[k]);
+            goto done;
+        }
+    if ((rc = cli_grid_make("spectrum", &a.grid, &f, &nf)) != CLI_EXIT_OK)
+        goto done;
+    rc = CLI_EXIT_ERROR;
+    nm = (size_t)(argc - optind);
+    char **files = argv + optind;
+    m = calloc(nm, sizeof *m);
+    label = calloc(nm, sizeof *label);
+    for (size_t q = 0; q < nq; q++)
+        out[q] = malloc(nd * nm * nf * sizeof *out[q]);
+    if (!m || !label || !out[0] || (a.all && (!out[1] || !out[2]))) {
+        cli_msg("out of memory");
+        goto done;
+    }
+    for (size_t i = 0; i < nm; i++)
+        if (!(m[i] = sl_motion_read(files[i], &a.ro, &err))) {
+            cli_print_error(&err);
+            goto done;
+        }
+    /* file labels for column names: base names unless two coincide */
+    int clash = 0;
+    for (size_t i = 0; i < nm; i++)
+        for (size_t j = i + 1; j < nm; j++)
+            clash |= !strcmp(base_name(files[i]), base_name(files[j]));
+    for (size_t i = 0; i < nm; i++)
+        label[i] = clash ? files[i] : (char *)base_name(files[i]);
+    for (size_t k = 0; k < nd; k++) {
+        size_t at = k * nm * nf;
+        if (sl_spectrum_batch((const sl_motion *const *)m, nm, f, nf, damp[k], NULL, out[0] + at,
+                              a.all ? out[1] + at : NULL, a.all ? out[2] + at : NULL, &err)) {
+            cli_print_error(&err);
+            goto done;
+        }
+    }
+    if (print_table(a.csv, files, m, nm, label, damp, nd, f, nf, out, nq)) {
+        cli_msg("out of memory");
+        goto done;
+    }
     if (fflush(stdout) || ferror(stdout)) {
         cli_msg("error writing the output");
         goto done;
     }
     rc = CLI_EXIT_OK;
 done:
-    if (damp != &default_damping)
-        free(damp);
-    cli_grid_free(&grid);
+    free(a.damp.v);
+    cli_grid_free(&a.grid);
     free(f);
-    free(psa);
-    free(sd);
-    free(sa);
+    for (int q = 0; q < 3; q++)
+        free(out[q]);
     free(label);
-    if (m)
-        for (size_t i = 0; i < nm; i++)
-            sl_motion_free(m[i]);
+    for (size_t i = 0; m && i < nm; i++)
+        sl_motion_free(m[i]);
     free(m);
     return rc;
 }

@@ -92,7 +92,8 @@ typedef struct ctx {
     sl_error *err;
     int failed;
     long fail_line;     /* line of the first error we found */
-    long floor_line, name_line, elev_line, units_line, h2_line, desc_line;
+    long floor_line, name_line, elev_line, units_line, h2_line, desc_line, seed_line;
+    unsigned long long seed;
     char *name, *description;
     double elevation_m;
     sl_unit units;
@@ -286,13 +287,14 @@ static int check_positive(ctx *c, const numlist *l, double x, const char *key)
 }
 
 /* Keys of [floor], declared once (STYLE 9). */
-typedef enum { FK_NAME, FK_ELEV, FK_UNITS, FK_H2, FK_DESC, FK_COUNT } floor_key;
+typedef enum { FK_NAME, FK_ELEV, FK_UNITS, FK_H2, FK_DESC, FK_SEED, FK_COUNT } floor_key;
 static const char *const floor_keys[FK_COUNT] = {
     [FK_NAME] = "name",         /* the floor's name (required) */
     [FK_ELEV] = "elevation_m",  /* elevation, m (optional) */
     [FK_UNITS] = "units",       /* units of all spectral values (required) */
     [FK_H2] = "h2",             /* 'same_as_h1' when there is no [h2] section */
     [FK_DESC] = "description",  /* free text (optional) */
+    [FK_SEED] = "seed",         /* the floor's own seed, integer >= 0 (optional) */
 };
 
 static long *floor_key_line(ctx *c, floor_key k)
@@ -302,6 +304,7 @@ static long *floor_key_line(ctx *c, floor_key k)
     case FK_ELEV: return &c->elev_line;
     case FK_UNITS: return &c->units_line;
     case FK_H2: return &c->h2_line;
+    case FK_SEED: return &c->seed_line;
     default: return &c->desc_line;
     }
 }
@@ -340,6 +343,15 @@ static int handle_floor(ctx *c, const char *name, const char *value)
         if (!(c->description = strdup(value)))
             return fail(c, SL_ENOMEM, c->lineno, "out of memory");
         return 1;
+    case FK_SEED: {
+        char *end;
+        errno = 0;
+        c->seed = strtoull(value, &end, 10);
+        if (!*value || *value == '-' || *value == '+' || *end || errno)
+            return fail(c, SL_EPARSE, c->lineno,
+                        "seed: '%s' is not an integer from 0 to 18446744073709551615", value);
+        return 1;
+    }
     case FK_ELEV:
         if (parse_number(value, &c->elevation_m))
             return fail(c, SL_EPARSE, c->lineno, "elevation_m: '%s' is not a finite number",
@@ -606,6 +618,8 @@ sl_floor *sl_floor_load(const char *path, sl_error *err)
             fl->units = c.units;
             fl->units_line = c.units_line;
             fl->h2_same_as_h1 = c.h2_line != 0;
+            fl->has_seed = c.seed_line != 0;
+            fl->seed = (uint64_t)c.seed;
             if (!fl->path || !fl->description)
                 fail(&c, SL_ENOMEM, 0, "out of memory");
             double to_si = sl_unit_to_ms2(c.units);

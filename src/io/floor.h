@@ -8,6 +8,9 @@
  *     units       = g                              ; required: g, m/s2, cm/s2, gal, mm/s2
  *     h2          = same_as_h1                     ; only when there is no [h2]
  *     description = ...                            ; optional, free text
+ *     seed        = 12345                          ; optional, integer >= 0: the
+ *                                                  ; floor's own seed (else its
+ *                                                  ; spectra's content is used)
  *
  *     [h1]                    ; also [h2] and [v]
  *     f_hz    = 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 33, 50
@@ -42,6 +45,7 @@
 #define SL_FLOOR_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "signal/spectrum.h"
 #include "core/standards.h"
@@ -92,6 +96,8 @@ typedef struct sl_floor {
     sl_unit units;      /* units of the file (values stored in m/s^2) */
     long units_line;    /* line of the units key */
     int h2_same_as_h1;  /* 1 when the file declared `h2 = same_as_h1` (H2 copies H1) */
+    int has_seed;       /* 1 when the file gave `seed =` */
+    uint64_t seed;      /* that seed (0 when not given) */
     sl_floor_component comp[SL_FLOOR_NCOMP];
 } sl_floor;
 

@@ -83,7 +83,10 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
                                   .description = fl->description, .elevation_m = fl->elevation_m,
                                   .units = sl_unit_name(fl->units), .zpa_h_ms2 = an[i]->zpa_h_ms2,
                                   .design = an[i]->design, .note = an[i]->note,
-                                  .n_mu_skipped = an[i]->n_mu_skipped};
+                                  .n_mu_skipped = an[i]->n_mu_skipped,
+                                  .design_lo_m = an[i]->design_lo_m,
+                                  .design_hi_m = an[i]->design_hi_m,
+                                  .sets_stop = sl_analysis_stop_name(an[i]->stop)};
         st = file_crc(fl->path, &rf[i].crc32, &rf[i].size_bytes, err);
         for (size_t s = 0; s < an[i]->n_sets; s++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++, q++) {
@@ -106,11 +109,20 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
     if (st)
         goto done;
     const sl_design *d0 = an[0]->design;
-    char s_sets[32], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160];
-    snprintf(s_sets, sizeof s_sets, "%zu", an[0]->n_sets);
+    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160];
+    /* per floor: the sets it needed and why it stopped */
+    size_t used = 0;
+    for (size_t i = 0; i < n && used < sizeof s_sets; i++) {
+        int w = snprintf(s_sets + used, sizeof s_sets - used, "%s%s: %zu (%s)", i ? "; " : "",
+                         ids[i], an[i]->n_sets, sl_analysis_stop_name(an[i]->stop));
+        used += w > 0 ? (size_t)w : 0;
+    }
     snprintf(s_seed, sizeof s_seed, "%llu", (unsigned long long)o->seed);
     snprintf(s_mu, sizeof s_mu, "%zu values, %g to %g", d0->n, d0->rows[0].mu, d0->rows[d0->n - 1].mu);
-    snprintf(s_sub, sizeof s_sub, "%u per sample (requested accuracy %g)", o->substeps, o->accuracy);
+    if (o->substeps) /* fixed sub-steps (expert), else the engine's error control */
+        snprintf(s_sub, sizeof s_sub, "%u per sample (fixed)", o->substeps);
+    else
+        snprintf(s_sub, sizeof s_sub, "error-controlled, relative error %g", o->accuracy);
     snprintf(s_fs, sizeof s_fs, "NLTHA %g x mean; ASCE %g x best estimate; cap %g x mean PGD",
              d0->fs_nltha, d0->fs_asce, d0->cap_factor);
     snprintf(s_synth, sizeof s_synth, "%g s at %g s, matched at %g %% damping (SRP 3.7.1 checks)",

@@ -12,6 +12,7 @@
 
 #include "core/units.h"
 #include "io/atomic.h"
+#include "method/stats.h"
 
 #define MM_PER_M 1000.0
 #define SHEET_NAME_MAX 31  /* Excel's limit */
@@ -191,6 +192,22 @@ static double design_se_m(const sl_design *d, size_t k)
     return d->fs_nltha * w->nltha_sd_m / sqrt((double)d->n_sets);
 }
 
+/* Clearances in summary.csv and the Summary sheet are shown to the place of
+ * their SE's leading digit, between these steps, mm (shown_decimals). */
+#define SHOWN_MIN_STEP_MM 0.1
+#define SHOWN_MAX_STEP_MM 1.0
+
+/* Decimals to show the clearance of row k with: 0 when the standard error
+ * of the NLTHA design value is 1 mm or more, else 1 (stats.h:
+ * sl_stats_step). An ASCE clearance comes from the floor's spectra: 1. The
+ * value itself is not rounded (the Lookup interpolates the exact values). */
+static int shown_decimals(const sl_design *d, size_t k)
+{
+    const sl_design_row *w = &d->rows[k];
+    double se_mm = w->clearance_m == w->nltha_design_m ? MM_PER_M * design_se_m(d, k) : 0.0;
+    return sl_stats_step_decimals(sl_stats_step(se_mm, SHOWN_MIN_STEP_MM, SHOWN_MAX_STEP_MM));
+}
+
 /* Every number the report writes must be finite: ASCE may be undefined
  * (NAN, written as an empty cell), nothing may be infinite. */
 static sl_status check_finite(const sl_report *r, sl_error *err)
@@ -301,11 +318,17 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
     csv_comment(f, "crossover", crossover_text(d, buf, sizeof buf));
     csv_comment(f, "asce_below_nltha_mu", sl_report_ranges_text(d, buf, sizeof buf));
     csv_comment(f, "note", fl->note && *fl->note ? fl->note : "-");
+    csv_comment(f, "nltha_design_lo90_mm, nltha_design_hi90_mm",
+                fl->design_lo_m && fl->design_hi_m ? "the 90 % band of the NLTHA design value"
+                : "the 90 % band of the NLTHA design value (empty: not computed in this run)");
     fputs("mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,nltha_design_se_mm,"
-          "asce_best_mm,asce_design_mm,cap_mm,clearance_mm,flags\r\n", f);
+          "nltha_design_lo90_mm,nltha_design_hi90_mm,asce_best_mm,asce_design_mm,cap_mm,"
+          "clearance_mm,flags\r\n", f);
     for (size_t k = 0; k < d->n; k++) {
         const sl_design_row *w = &d->rows[k];
         const double mm[] = {w->nltha_mean_m, w->nltha_sd_m, w->nltha_design_m, design_se_m(d, k),
+                             fl->design_lo_m ? fl->design_lo_m[k] : NAN,
+                             fl->design_hi_m ? fl->design_hi_m[k] : NAN,
                              w->asce_best_m, w->asce_design_m, w->cap_m, w->clearance_m};
         fprintf(f, "%.4g,%.5g,", w->mu, w->x);
         for (size_t c = 0; c < sizeof mm / sizeof mm[0]; c++) {
@@ -331,7 +354,9 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     if (csv_open(dir, "summary.csv", &a, err))
         return err ? err->code : SL_EIO;
     FILE *f = sl_atomic_file(a);
-    csv_head(f, r, "required clearance (mm) per floor; columns named <floor_id>_clearance_mm");
+    csv_head(f, r, "required clearance (mm) per floor; columns named <floor_id>_clearance_mm; "
+             "shown to the digit of its standard error (1 mm or 0.1 mm; the floor files hold "
+             "every digit)");
     csv_comment(f, "units", "clearance in mm; mu dimensionless");
     for (size_t i = 0; i < r->n_floors; i++) {
         snprintf(buf, sizeof buf, "%s (file %s, horizontal ZPA %.4f g)", r->floors[i].name,
@@ -348,8 +373,10 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     for (size_t k = 0; k < n; k++) {
         fprintf(f, "%.4g", r->floors[0].design->rows[k].mu);
         for (size_t i = 0; i < r->n_floors; i++) {
+            double v = MM_PER_M * r->floors[i].design->rows[k].clearance_m;
             fputc(',', f);
-            csv_num(f, MM_PER_M * r->floors[i].design->rows[k].clearance_m, "%.4f");
+            if (isfinite(v))
+                fprintf(f, "%.*f", shown_decimals(r->floors[i].design, k), v);
         }
         fputs("\r\n", f);
     }
@@ -363,7 +390,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     csv_comment(f, "crossover", "the mu where 2.0 x ASCE rises above 3.0 x NLTHA mean when ASCE is "
                 "below NLTHA at the lowest mu of the grid; 'none' otherwise (docs/run.md)");
     fputs("floor_id,floor,file,elevation_m,zpa_h_g,crossover_mu,crossover_mu_g_over_zpa,"
-          "n_asce_below_nltha_ranges,clearance_policy,mu_without_nltha,note\r\n", f);
+          "n_asce_below_nltha_ranges,clearance_policy,mu_without_nltha,n_sets,sets_stop,note\r\n",
+          f);
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
         const sl_design *d = fl->design;
@@ -378,8 +406,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
             fprintf(f, "%.4f,%.4f", d->crossover_mu, d->crossover_x);
         else
             fputs("none,none", f);
-        fprintf(f, ",%zu,%s,%zu,", d->n_ranges, sl_clearance_policy_name(d->policy),
-                fl->n_mu_skipped);
+        fprintf(f, ",%zu,%s,%zu,%zu,%s,", d->n_ranges, sl_clearance_policy_name(d->policy),
+                fl->n_mu_skipped, d->n_sets, fl->sets_stop ? fl->sets_stop : "");
         csv_field(f, fl->note && *fl->note ? fl->note : "");
         fputs("\r\n", f);
     }
@@ -439,8 +467,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
 /* ---- XLSX --------------------------------------------------------------- */
 
 typedef struct fmts {
-    lxw_format *bold, *title, *mm, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
-        *note, *label;
+    lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
+        *note, *label, *sci;
 } fmts;
 
 /* Layout (0-based rows): the title block, then each table. */
@@ -457,7 +485,7 @@ enum {
     LK_HOW = 21, LK_COL, LK_ROW, LK_MU0, LK_MU1, LK_C0, LK_C1, LK_POLICY = 29
 };
 /* Data sheet series per floor (chart columns). */
-enum { DS_NDESIGN, DS_ADESIGN, DS_MEAN, DS_CAP, DS_CLEAR, DS_N };
+enum { DS_NDESIGN, DS_ADESIGN, DS_MEAN, DS_CAP, DS_CLEAR, DS_LO, DS_HI, DS_N };
 
 /* A sheet name Excel accepts and that is unique in the workbook. */
 static void sheet_name(const char *name, size_t index, char *buf, size_t n)
@@ -637,7 +665,9 @@ static void data_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, cons
         snprintf(buf, sizeof buf, "%s: flags", fl->id);
         worksheet_write_string(ws, DATA_HEAD, data_col_flags(nf, i), buf, F->header);
         static const char *const sname[DS_N] = {"NLTHA design, mm", "ASCE design, mm",
-                                                "NLTHA mean, mm", "cap, mm", "clearance, mm"};
+                                                "NLTHA mean, mm", "cap, mm", "clearance, mm",
+                                                "NLTHA design 90 % band low, mm",
+                                                "NLTHA design 90 % band high, mm"};
         for (int s = 0; s < DS_N; s++) {
             snprintf(buf, sizeof buf, "%s: %s", fl->id, sname[s]);
             worksheet_write_string(ws, DATA_HEAD, data_col_series(nf, i, s), buf, F->header);
@@ -654,8 +684,10 @@ static void data_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, cons
             worksheet_write_number(ws, row, data_col_se(nf, i), MM_PER_M * design_se_m(d, k), F->mm);
             sl_report_flags(w->flags, flags, sizeof flags);
             worksheet_write_string(ws, row, data_col_flags(nf, i), flags[0] ? flags : "-", NULL);
+            const sl_report_floor *fl = &r->floors[i];
             const double v[DS_N] = {w->nltha_design_m, w->asce_design_m, w->nltha_mean_m, w->cap_m,
-                                    w->clearance_m};
+                                    w->clearance_m, fl->design_lo_m ? fl->design_lo_m[k] : NAN,
+                                    fl->design_hi_m ? fl->design_hi_m[k] : NAN};
             for (int s = 0; s < DS_N; s++) {
                 double mm = MM_PER_M * v[s];
                 if (isfinite(mm) && mm > 0)
@@ -728,15 +760,25 @@ static lxw_chart *floor_chart(lxw_workbook *wb, const sl_report *r, size_t i, co
     snprintf(name, sizeof name, "cap (%g x mean peak floor displacement)", d->cap_factor);
     add_series(ch, "Data", 0, data_col_series(nf, i, DS_CAP), r0, r1, name, C_CAP, 1.0f,
                LXW_CHART_LINE_DASH_LONG_DASH, 0);
+    int extra = 0;
+    if (fl->design_lo_m && fl->design_hi_m) { /* the convergence band, when computed */
+        add_series(ch, "Data", 0, data_col_series(nf, i, DS_LO), r0, r1,
+                   "NLTHA design, 90 % band", C_NLTHA, 0.75f, LXW_CHART_LINE_DASH_ROUND_DOT, 0);
+        add_series(ch, "Data", 0, data_col_series(nf, i, DS_HI), r0, r1, "", C_NLTHA, 0.75f,
+                   LXW_CHART_LINE_DASH_ROUND_DOT, 0);
+        extra = 2;
+    }
     lxw_row_t b = data_band_row(r, i);
     for (size_t q = 0; q < d->n_ranges; q++, b += 2)
         add_series(ch, "Data", 1, 2, b, b + 1, q ? "" : "ASCE below NLTHA (band)", C_BAND, 9.0f,
                    LXW_CHART_LINE_DASH_SOLID, 50);
-    if (d->n_ranges > 1) {
+    if (d->n_ranges > 1 || extra) {
         int16_t del[64];
         size_t k = 0;
+        if (extra)
+            del[k++] = 5; /* the band's second line */
         for (size_t q = 1; q < d->n_ranges && k + 1 < 64; q++)
-            del[k++] = (int16_t)(4 + q);
+            del[k++] = (int16_t)(4 + extra + (int)q);
         del[k] = -1;
         chart_legend_delete_series(ch, del);
     }
@@ -860,15 +902,18 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
     for (size_t k = 0; k < n; k++) {
         lxw_row_t row = (lxw_row_t)(SUM_HEAD + 1 + k);
         worksheet_write_number(ws, row, 0, r->floors[0].design->rows[k].mu, F->mu);
-        for (size_t i = 0; i < nf; i++)
+        for (size_t i = 0; i < nf; i++) {
             write_num_or_blank(ws, row, (lxw_col_t)(i + 1),
-                               MM_PER_M * r->floors[i].design->rows[k].clearance_m, F->mm);
+                               MM_PER_M * r->floors[i].design->rows[k].clearance_m,
+                               shown_decimals(r->floors[i].design, k) ? F->mm : F->mm0);
+        }
     }
     lxw_row_t b = (lxw_row_t)(SUM_HEAD + n + 2);
     static const char *const lab[] = {"floor id", "floor file", "elevation, m", "description",
                                       "horizontal ZPA, g", "crossover (docs/run.md)",
-                                      "ASCE below NLTHA for mu in", "note"};
-    for (lxw_row_t q = 0; q < 8; q++)
+                                      "ASCE below NLTHA for mu in", "note", "motion sets",
+                                      "sets stopped because"};
+    for (lxw_row_t q = 0; q < 10; q++)
         worksheet_write_string(ws, b + q, 0, lab[q], F->label);
     char buf[600];
     for (size_t i = 0; i < nf; i++) {
@@ -882,6 +927,8 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
         worksheet_write_string(ws, b + 5, c, crossover_text(fl->design, buf, sizeof buf), NULL);
         worksheet_write_string(ws, b + 6, c, sl_report_ranges_text(fl->design, buf, sizeof buf), NULL);
         worksheet_write_string(ws, b + 7, c, or_dash(fl->note), NULL);
+        worksheet_write_number(ws, b + 8, c, (double)fl->design->n_sets, NULL);
+        worksheet_write_string(ws, b + 9, c, or_dash(fl->sets_stop), NULL);
     }
     /* named ranges the Lookup formulas read */
     char last_col[8], def[160];
@@ -965,7 +1012,9 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     dv.error_message = "Choose a floor from the list (the names of the Summary sheet).";
     worksheet_data_validation_cell(ws, LK_FLOOR, 1, &dv);
     worksheet_write_string(ws, LK_MU, 0, "Friction coefficient mu (type it)", F->bold);
-    if (isfinite(r->lookup_mu))
+    if (r->lookup_mu_text)
+        worksheet_write_string(ws, LK_MU, 1, r->lookup_mu_text, F->input);
+    else if (isfinite(r->lookup_mu))
         worksheet_write_number(ws, LK_MU, 1, r->lookup_mu, F->input);
     else
         worksheet_write_blank(ws, LK_MU, 1, F->input);
@@ -994,7 +1043,9 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
         check = "choose a floor from the list";
     else if (fi == nf)
         check = "unknown floor: choose one from the list";
-    else if (!isfinite(mu0))
+    else if (r->lookup_mu_text && *r->lookup_mu_text)
+        check = "mu must be a number";
+    else if (!isfinite(mu0) || r->lookup_mu_text)
         check = "type mu";
     else if (mu0 < mu_min || mu0 > mu_max)
         check = "mu outside the table";
@@ -1119,14 +1170,16 @@ static void quality_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Motion quality");
     static const char *const head[] = {
         "floor id", "set", "comp.", "PGA, g", "D5-75, s", "min ratio to target",
-        "max ratio to target", "longest run of points below target", "max |correlation|",
+        "max ratio to target", "longest run below target", "max abs. correlation",
         "v end, m/s", "d end, m", "pass", "failed checks"};
     for (lxw_col_t c = 0; c < 13; c++)
         worksheet_write_string(ws, 0, c, head[c], F->header);
-    worksheet_set_row(ws, 0, 45, NULL);
+    worksheet_set_row(ws, 0, 62, NULL);
     worksheet_set_column(ws, 0, 0, 14, NULL);
     worksheet_set_column(ws, 1, 2, 5, NULL);
-    worksheet_set_column(ws, 3, 11, 8.5, NULL);
+    worksheet_set_column(ws, 3, 8, 8.5, NULL);
+    worksheet_set_column(ws, 9, 10, 9.5, F->sci);
+    worksheet_set_column(ws, 11, 11, 5, NULL);
     worksheet_set_column(ws, 12, 12, 24, F->wrap);
     worksheet_freeze_panes(ws, 1, 0);
     for (size_t q = 0; q < r->n_quality; q++) {
@@ -1141,8 +1194,8 @@ static void quality_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
         write_num_or_blank(ws, row, 6, m->max_ratio, F->ratio);
         worksheet_write_number(ws, row, 7, m->max_run_below, NULL);
         write_num_or_blank(ws, row, 8, m->max_corr, F->ratio);
-        write_num_or_blank(ws, row, 9, m->v_end_ms, NULL);
-        write_num_or_blank(ws, row, 10, m->d_end_m, NULL);
+        write_num_or_blank(ws, row, 9, m->v_end_ms, F->sci);
+        write_num_or_blank(ws, row, 10, m->d_end_m, F->sci);
         worksheet_write_string(ws, row, 11, m->pass ? "yes" : "NO", m->pass ? NULL : F->bold);
         worksheet_write_string(ws, row, 12, m->why && *m->why ? m->why : "-", NULL);
     }
@@ -1225,7 +1278,11 @@ static void inputs_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     worksheet_write_string(ws, row, 0, "program", F->bold);
     worksheet_write_string(ws, row++, 1, r->version, NULL);
     worksheet_write_string(ws, row, 0, "command", F->bold);
-    worksheet_write_string(ws, row++, 1, r->command_line ? r->command_line : "", NULL);
+    const char *cl = r->command_line ? r->command_line : "";
+    worksheet_write_string(ws, row, 1, cl, F->note);
+    /* a wrapped cell's height (LibreOffice does not grow it): 15 points a line of about
+     * 75 characters in the 60-wide column */
+    worksheet_set_row(ws, row++, 15.0 * (double)(1 + strlen(cl) / 75), NULL);
     char buf[64];
     struct tm tmv;
     gmtime_r(&r->created, &tmv);
@@ -1270,11 +1327,15 @@ static void make_formats(lxw_workbook *wb, fmts *F)
     format_set_font_size(F->title, 14);
     F->mm = workbook_add_format(wb);
     format_set_num_format(F->mm, "0.0");
+    F->mm0 = workbook_add_format(wb);
+    format_set_num_format(F->mm0, "0");
     F->mmbold = workbook_add_format(wb);
     format_set_num_format(F->mmbold, "0.0");
     format_set_bold(F->mmbold);
     F->ratio = workbook_add_format(wb);
     format_set_num_format(F->ratio, "0.000");
+    F->sci = workbook_add_format(wb);
+    format_set_num_format(F->sci, "0.0E+00");
     F->mu = workbook_add_format(wb);
     format_set_num_format(F->mu, "0.00");
     F->wrap = workbook_add_format(wb);

@@ -50,6 +50,8 @@ typedef struct sl_report_floor {
      * of the design rows only): per row of the design, the 90 % band of the
      * NLTHA design value, m. */
     const double *design_lo_m, *design_hi_m;
+    const char *sets_stop;   /* why the floor stopped adding motion sets: "converged",
+                                "max_sets" or "fixed" (NULL: not given) */
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */
@@ -94,6 +96,7 @@ typedef struct sl_report {
      * the grid is kept, the sheet then says so). Tests set them. */
     const char *lookup_floor;
     double lookup_mu;
+    const char *lookup_mu_text; /* non-NULL: the mu cell holds this text instead */
     /* Tests: write 0 as every Lookup formula's cached value, so that values
      * read back can only come from a recalculation (tests/test_lookup.c). */
     int lookup_zero_cache;

@@ -27,6 +27,7 @@
  * (stop after |v|/(mu g), a further v|v|/(2 mu g)).
  */
 #include "slide/engine.h"
+#include "slide/kernel2d.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,6 +37,14 @@
  * the exact kernel; real records need a handful at most. Past it the step
  * is finished stuck and the result is flagged (never silently). */
 #define EVENTS_PER_STEP_MAX 64
+
+/* Most runs of the 2-D kernel for one block: the first, then reruns with a
+ * tighter share of the tolerance while the estimate exceeds it. */
+#define SL_SLIDE_ROUNDS_MAX 4
+
+/* Share of the one-sub-step peak taken as the a-priori scale of the
+ * tolerance (below 1: that peak may be too large). */
+#define SL_SLIDE_SCALE_SHARE 0.5
 
 /* A history tail after the record is sampled at dt for at most this long. */
 #define TAIL_MAX_S 600.0
@@ -319,155 +328,6 @@ static void kernel_1d(const input *in, state1d *S, sl_history *hist)
     }
 }
 
-/* ---- projection 2-D kernel -------------------------------------------- */
-
-typedef struct state2d {
-    size_t m;
-    double *mu;
-    double *ux, *uy, *vx, *vy;
-    double *peak2, *tpeak, *px, *py, *path, *vmax2, *tstop, *spd, *tslide;
-    long *episodes;
-} state2d;
-
-/* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
-static double mean_positive(double n0, double n1)
-{
-    if (n0 >= 0.0 && n1 >= 0.0)
-        return 0.5 * (n0 + n1);
-    if (n0 <= 0.0 && n1 <= 0.0)
-        return 0.0;
-    double p = n0 > 0.0 ? n0 : n1, q = n0 > 0.0 ? n1 : n0;
-    return 0.5 * p * p / (p - q);
-}
-
-static void kernel_2d(const input *in, unsigned substeps, state2d *S, double *sub,
-                      size_t *live, sl_history *hist)
-{
-    const double dt = in->dt, h = dt / substeps, g = in->g, h2_12 = h * h / 12.0;
-    const size_t m = S->m;
-    double *restrict ux = S->ux, *restrict uy = S->uy, *restrict vx = S->vx,
-                     *restrict vy = S->vy, *restrict peak2 = S->peak2,
-                     *restrict tpeak = S->tpeak, *restrict px = S->px, *restrict py = S->py,
-                     *restrict path = S->path, *restrict vmax2 = S->vmax2,
-                     *restrict tstop = S->tstop, *restrict spd = S->spd,
-                     *restrict tslide = S->tslide;
-    const double *restrict mu = S->mu;
-    long *restrict episodes = S->episodes;
-    /* per sub-step forcing, shared by every mu: h a*_x, h a*_y, h N*, t_end */
-    double *restrict sax = sub, *restrict say = sub + substeps, *restrict sN = sub + 2 * substeps,
-                     *restrict st = sub + 3 * substeps;
-    for (size_t i = 0; i + 1 < in->n; i++) {
-        const double ax0 = in_ax(in, i), ax1 = in_ax(in, i + 1);
-        const double ay0 = in_ay(in, i), ay1 = in_ay(in, i + 1);
-        const double n0 = in_n(in, i), n1 = in_n(in, i + 1);
-        /* (a_end - a_start) over a sub-step, for the position correction (4) */
-        const double dax = (ax1 - ax0) / substeps, day = (ay1 - ay0) / substeps;
-        for (unsigned j = 0; j < substeps; j++) {
-            const double x0 = (double)j / substeps, x1 = (double)(j + 1) / substeps;
-            const double xm = 0.5 * (x0 + x1);
-            sax[j] = h * (ax0 + (ax1 - ax0) * xm); /* h a*, exact mean */
-            say[j] = h * (ay0 + (ay1 - ay0) * xm);
-            sN[j] = h * mean_positive(n0 + (n1 - n0) * x0, n0 + (n1 - n0) * x1);
-            st[j] = (double)i * dt + (double)(j + 1) * h;
-        }
-        /* held at both ends of the step: held on every sub-step, since |a| is
-         * convex and mu N linear (one test per sample instead of per sub-step) */
-        const double a0m = sqrt(ax0 * ax0 + ay0 * ay0), a1m = sqrt(ax1 * ax1 + ay1 * ay1);
-        const double p0 = fmax(n0, 0.0), p1 = fmax(n1, 0.0);
-        size_t na = 0;
-        for (size_t k = 0; k < m; k++)
-            if (!(vx[k] == 0.0 && vy[k] == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
-                live[na++] = k;
-        /* sub-steps outer, the live blocks inner: their updates are
-         * independent, so the processor overlaps their square roots */
-        for (unsigned j = 0; j < substeps && na > 0; j++) {
-            const double hax = sax[j], hay = say[j], hN = sN[j], t = st[j];
-            for (size_t li = 0; li < na; li++) {
-                const size_t k = live[li];
-                const double f = hN * mu[k];
-                const double vx0 = vx[k], vy0 = vy[k];
-                double nvx, nvy, dux, duy;
-                if (vx0 == 0.0 && vy0 == 0.0) {
-                    /* at rest: (2) with v_n = 0; held while |h a*| <= h mu N* */
-                    const double w2 = hax * hax + hay * hay;
-                    if (w2 <= f * f)
-                        continue; /* stays stuck: nothing moves */
-                    const double sc = 1.0 - f / sqrt(w2);
-                    nvx = -hax * sc;
-                    nvy = -hay * sc;
-                    dux = 0.5 * h * nvx;
-                    duy = 0.5 * h * nvy;
-                    episodes[k]++;
-                } else {
-                    const double wx = vx0 - hax, wy = vy0 - hay;
-                    /* (3) implicit midpoint: friction along v_n + v_{n+1} =
-                     * y (1 - f/|y|), y = v_n + w; kept while sliding on */
-                    const double yx = vx0 + wx, yy = vy0 + wy;
-                    const double yn = sqrt(yx * yx + yy * yy);
-                    const double sm = yn > f ? 1.0 - f / yn : 0.0;
-                    const double mx = yx * sm - vx0, my = yy * sm - vy0;
-                    if (yn > f && mx * vx0 + my * vy0 > 0.0) {
-                        nvx = mx;
-                        nvy = my;
-                        /* (4) trapezoid + h^2/12 (a_1 - a_0): exact for a
-                         * linear in time and a constant friction force */
-                        dux = 0.5 * h * (vx0 + nvx) + h2_12 * dax;
-                        duy = 0.5 * h * (vy0 + nvy) + h2_12 * day;
-                    } else {
-                        /* (5) stop or reversal inside the sub-step: slide with
-                         * the old direction e until the speed along e vanishes
-                         * at tau, then project (2) over the rest */
-                        const double vn = sqrt(vx0 * vx0 + vy0 * vy0);
-                        const double ex = vx0 / vn, ey = vy0 / vn;
-                        const double dec = (hax * ex + hay * ey + f) / h;
-                        const double tau = dec > 0.0 ? fmin(vn / dec, h) : h;
-                        const double q = tau / h, rest = 1.0 - q;
-                        const double tx = vx0 - q * (hax + f * ex), ty = vy0 - q * (hay + f * ey);
-                        const double w2x = tx - rest * hax, w2y = ty - rest * hay;
-                        const double w2n = sqrt(w2x * w2x + w2y * w2y);
-                        const double s2 = w2n > rest * f ? 1.0 - rest * f / w2n : 0.0;
-                        nvx = w2x * s2;
-                        nvy = w2y * s2;
-                        dux = 0.5 * (tau * (vx0 + tx) + (h - tau) * (tx + nvx));
-                        duy = 0.5 * (tau * (vy0 + ty) + (h - tau) * (ty + nvy));
-                    }
-                }
-                ux[k] += dux;
-                uy[k] += duy;
-                const double sp2 = nvx * nvx + nvy * nvy, sp = sqrt(sp2);
-                path[k] += 0.5 * h * (spd[k] + sp);
-                spd[k] = sp;
-                tslide[k] += h;
-                vmax2[k] = fmax(vmax2[k], sp2);
-                if (sp2 == 0.0)
-                    tstop[k] = t;
-                vx[k] = nvx;
-                vy[k] = nvy;
-                const double r2 = ux[k] * ux[k] + uy[k] * uy[k];
-                tpeak[k] = r2 > peak2[k] ? t : tpeak[k];
-                peak2[k] = fmax(peak2[k], r2);
-                px[k] = fmax(px[k], fabs(ux[k]));
-                py[k] = fmax(py[k], fabs(uy[k]));
-            }
-        }
-        if (hist) {
-            /* F/W = absolute block acceleration / g at the sample */
-            double fx = 0.0, fy = 0.0;
-            double sp = hypot(vx[0], vy[0]);
-            if (sp > 0.0 && n1 > 0.0) {
-                fx = -mu[0] * n1 * vx[0] / sp / g;
-                fy = -mu[0] * n1 * vy[0] / sp / g;
-            } else if (sp == 0.0) {
-                fx = ax1 / g; /* stuck: moves with the floor */
-                fy = ay1 / g;
-            }
-            sl_history_push(hist, (double)(i + 1) * dt, ux[0], uy[0], vx[0], vy[0], fx, fy);
-        }
-    }
-}
-
-/* ---- driver ------------------------------------------------------------ */
-
 static void result_init(sl_slide_result *r, double mu, long liftoff)
 {
     memset(r, 0, sizeof *r);
@@ -511,6 +371,108 @@ static void finish(sl_slide_result *r, double t_end, double t_stop, double ux, d
     r->residual_x_m = ux;
     r->residual_y_m = uy;
     r->residual_m = mag;
+}
+
+/* Result of one 2-D block: the closed-form tail after the record, and the
+ * error estimate of the peak: the kernel's, plus the tail's share of the
+ * velocity error, d(v^2/(2 mu g)) = |v| dv/(mu g), when the peak is there. */
+static void fill_2d(sl_slide_result *r, const sl_k2_out *q, double mu_g, double t_end,
+                    int keep_going)
+{
+    r->peak_m = q->peak_m;
+    r->t_peak_s = q->t_peak_s;
+    r->peak_x_m = q->peak_x_m;
+    r->peak_y_m = q->peak_y_m;
+    r->path_m = q->path_m;
+    r->max_speed_ms = q->max_speed_ms;
+    r->slide_time_s = q->slide_time_s;
+    r->episodes = q->episodes;
+    finish(r, t_end, q->t_stop_s, q->ux, q->uy, q->vx, q->vy, mu_g, keep_going);
+    const double sp = hypot(q->vx, q->vy);
+    r->err_est_m = q->err_m;
+    if (r->peak_m > q->peak_m) /* the peak is at the end of the tail */
+        r->err_est_m = q->err_end_m + (mu_g > 0.0 ? sp * q->err_v_ms / mu_g : 0.0);
+}
+
+/* The 2-D kernel over the active blocks, then again, with a tighter share
+ * of the tolerance, for those whose estimate exceeds max(rtol peak, atol). */
+static sl_status run_2d(const input *in, const double *mu, const size_t *act, size_t m,
+                        const sl_slide_opts *o, sl_slide_result *res, sl_history *hist,
+                        double t_end, sl_error *err)
+{
+    const sl_k2_motion km = {in->n, in->dt, in->g, in->sign, in->ax, in->ay, in->av};
+    const sl_k2_opts ko = {o->substeps, o->rtol, o->atol_m};
+    double *mus = malloc(5 * m * sizeof *mus), *eta = mus ? mus + m : NULL,
+           *eta_all = mus ? mus + 2 * m : NULL, *scale = mus ? mus + 3 * m : NULL,
+           *scale_all = mus ? mus + 4 * m : NULL;
+    sl_k2_out *q = malloc(m * sizeof *q);
+    size_t *idx = malloc(m * sizeof *idx);
+    sl_status st = SL_OK;
+    if (!mus || !q || !idx) {
+        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
+        goto done;
+    }
+    for (size_t j = 0; j < m; j++) {
+        mus[j] = mu[act[j]];
+        eta_all[j] = SL_K2_ETA;
+        idx[j] = j;
+    }
+    if (o->substeps == 0) {
+        /* the scale of each peak, for the tolerance, from one sub-step per
+         * sample (cheap; within a few % on records) */
+        const sl_k2_opts k1 = {1, o->rtol, o->atol_m};
+        if (sl_kernel2d_run(&km, mus, NULL, NULL, m, &k1, q, NULL)) {
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
+            goto done;
+        }
+        for (size_t j = 0; j < m; j++) {
+            sl_slide_result R;
+            result_init(&R, mu[act[j]], 0);
+            fill_2d(&R, &q[j], mu[act[j]] * in->g, t_end, o->keep_going);
+            scale_all[j] = SL_SLIDE_SCALE_SHARE * R.peak_m;
+        }
+    } else {
+        for (size_t j = 0; j < m; j++)
+            scale_all[j] = 0.0;
+    }
+    size_t nr = m;
+    for (int round = 0; nr > 0; round++) {
+        for (size_t r = 0; r < nr; r++) {
+            eta[r] = eta_all[idx[r]];
+            scale[r] = scale_all[idx[r]];
+            mus[r] = mu[act[idx[r]]];
+        }
+        if (hist)
+            hist->n = 1; /* the history restarts with the run */
+        if (sl_kernel2d_run(&km, mus, eta, scale, nr, &ko, q, hist)) {
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
+            goto done;
+        }
+        size_t nn = 0;
+        for (size_t r = 0; r < nr; r++) {
+            const size_t j = idx[r];
+            sl_slide_result *R = &res[act[j]];
+            const long liftoff = R->liftoff_samples;
+            result_init(R, mu[act[j]], liftoff);
+            fill_2d(R, &q[r], mu[act[j]] * in->g, t_end, o->keep_going);
+            const double target = fmax(o->rtol * R->peak_m, o->atol_m);
+            if (o->substeps == 0 && R->err_est_m > target && round < SL_SLIDE_ROUNDS_MAX) {
+                eta_all[j] *= 0.5 * target / R->err_est_m;
+                scale_all[j] = R->peak_m; /* now known to the tolerance */
+                idx[nn++] = j;
+            }
+        }
+        if (hist && nn == 0 &&
+            history_tail(hist, t_end, in->dt, q[0].ux, q[0].uy, q[0].vx, q[0].vy,
+                         mus[0] * in->g, in->g))
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
+        nr = nn;
+    }
+done:
+    free(mus);
+    free(q);
+    free(idx);
+    return st;
 }
 
 sl_status sl_engine_run(const sl_set *set, const double *mu, size_t n_mu,
@@ -594,44 +556,7 @@ sl_status sl_engine_run(const sl_set *set, const double *mu, size_t n_mu,
         free(S.dir);
         free(S.episodes);
     } else if (m > 0) {
-        state2d S = {.m = m};
-        double *buf = calloc(15 * m, sizeof *buf);
-        /* per-sub-step forcing (4 x substeps) and the live blocks of a sample */
-        double *sub = malloc(4 * (size_t)o->substeps * sizeof *sub);
-        size_t *live = malloc(m * sizeof *live);
-        S.episodes = calloc(m, sizeof(long));
-        if (!buf || !S.episodes || !sub || !live) {
-            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
-        } else {
-            double **f[] = {&S.mu, &S.ux, &S.uy, &S.vx, &S.vy, &S.peak2,
-                            &S.tpeak, &S.px, &S.py, &S.path, &S.vmax2, &S.tstop, &S.spd, &S.tslide};
-            for (size_t q = 0; q < sizeof f / sizeof f[0]; q++)
-                *f[q] = buf + q * m;
-            for (size_t j = 0; j < m; j++)
-                S.mu[j] = mu[act[j]];
-            kernel_2d(in, o->substeps, &S, sub, live, hist);
-            for (size_t j = 0; j < m; j++) {
-                sl_slide_result *r = &res[act[j]];
-                r->peak_m = sqrt(S.peak2[j]);
-                r->t_peak_s = S.tpeak[j];
-                r->peak_x_m = S.px[j];
-                r->peak_y_m = S.py[j];
-                r->path_m = S.path[j];
-                r->max_speed_ms = sqrt(S.vmax2[j]);
-                r->slide_time_s = S.tslide[j];
-                r->episodes = S.episodes[j];
-                finish(r, t_end, S.tstop[j], S.ux[j], S.uy[j], S.vx[j], S.vy[j], S.mu[j] * in->g,
-                       o->keep_going);
-            }
-            if (hist && m == 1 &&
-                history_tail(hist, t_end, in->dt, S.ux[0], S.uy[0], S.vx[0], S.vy[0],
-                             S.mu[0] * in->g, in->g))
-                st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
-        }
-        free(buf);
-        free(sub);
-        free(live);
-        free(S.episodes);
+        st = run_2d(in, mu, act, m, o, res, hist, t_end, err);
     }
     free(act);
     if (hist_out) {

@@ -10,6 +10,8 @@ void sl_slide_opts_default(sl_slide_opts *o)
     memset(o, 0, sizeof *o);
     o->model = SL_MODEL_EXACT;
     o->g_ms2 = SL_G;
+    o->rtol = SL_SLIDE_DEFAULT_RTOL;
+    o->atol_m = SL_SLIDE_DEFAULT_ATOL_M;
     o->substeps = SL_SLIDE_DEFAULT_SUBSTEPS;
     o->up_ratio = 1.0;
     o->invert = 0;

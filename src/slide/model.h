@@ -18,13 +18,22 @@ typedef enum sl_model {
     SL_MODEL_PLASTIC    /* elastic-perfectly-plastic, Newmark average acceleration */
 } sl_model;
 
-/* Default number of 2-D projection sub-steps per input step. */
-#define SL_SLIDE_DEFAULT_SUBSTEPS 8u
+/* Default accuracy of the engine: relative error of every reported peak
+ * (the bound the 2-D error control aims at; the 1-D kernel is exact), and
+ * the absolute error below which nothing is refined, m (a peak under 1 mm
+ * is then held to 1 um). docs/integrators.md. */
+#define SL_SLIDE_DEFAULT_RTOL 1e-3
+#define SL_SLIDE_DEFAULT_ATOL_M 1e-6
+/* Default 2-D sub-steps per sample: 0 = error-controlled (rtol, atol_m). */
+#define SL_SLIDE_DEFAULT_SUBSTEPS 0u
 
 typedef struct sl_slide_opts {
     sl_model model;
     double g_ms2;        /* gravity, m/s^2 (SL_G) */
-    unsigned substeps;   /* 2-D sub-steps per input sample (>= 1) */
+    double rtol;         /* 2-D: relative error of the peak (SL_SLIDE_DEFAULT_RTOL), in [1e-9, 0.1] */
+    double atol_m;       /* 2-D: absolute error of the peak not worth refining, m (1e-6), > 0 */
+    unsigned substeps;   /* 2-D: 0 (default) error control by rtol/atol_m; N >= 1 expert
+                            override, N equal sub-steps per sample and no estimate */
     double up_ratio;     /* 1-D: resistance toward +x = mu * up_ratio (1 = symmetric,
                             INFINITY = one-way); must be 1 in 2-D */
     int invert;          /* 1: multiply the horizontal records by -1 (SLAMMER "inverted") */
@@ -63,6 +72,8 @@ typedef struct sl_slide_result {
     double path_m;        /* sliding path length, integral of |u'| dt */
     double max_speed_ms;  /* max |u'| */
     double t_rest_s;      /* time the block came to rest for good */
+    double err_est_m;     /* estimated absolute error of peak_m, m: 0 for the exact 1-D
+                             kernel, NAN for fixed 2-D sub-steps and the reference models */
     double slide_time_s;  /* total time spent sliding (2-D: to the sub-step) */
     long episodes;        /* number of stick-to-slip transitions */
     long liftoff_samples; /* samples with a_v <= -g */

@@ -23,8 +23,11 @@ static sl_status check_opts(const sl_set *set, const double *mu, size_t n_mu,
                             "slide: components differ in length (check the set first)");
     if (!(o->g_ms2 > 0.0))
         return sl_error_set(err, SL_EINVAL, NULL, 0, "slide: gravity %g must be > 0", o->g_ms2);
-    if (o->substeps < 1)
-        return sl_error_set(err, SL_EINVAL, NULL, 0, "slide: substeps must be >= 1");
+    if (!(o->rtol >= 1e-9 && o->rtol <= 0.1))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "slide: rtol %g must be in [1e-9, 0.1]",
+                            o->rtol);
+    if (!(o->atol_m > 0.0) || !isfinite(o->atol_m))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "slide: atol %g m must be > 0", o->atol_m);
     if (!(o->up_ratio > 0.0))
         return sl_error_set(err, SL_EINVAL, NULL, 0, "slide: up_ratio %g must be > 0",
                             o->up_ratio);
@@ -65,6 +68,7 @@ static sl_status run_any(const sl_set *set, const double *mu, size_t n_mu,
             st = sl_refmodel_run(set, mu[k], opts, &res[k], hist, err);
             if (st)
                 return st;
+            res[k].err_est_m = NAN; /* the reference models do not estimate */
         }
         return SL_OK;
     }

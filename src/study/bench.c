@@ -337,20 +337,29 @@ static void bench_floors(sl_bench *b)
         sl_floor *fl = sl_floor_load(sl_bench_floors[i], &fe);
         if (!fl)
             continue;
-        sl_analysis_opts ao;
-        sl_analysis_opts_default(&ao);
-        ao.mu = mu;
-        ao.n_mu = SL_MU_GRID_N;
-        sl_analysis *an = sl_analysis_run(fl, &ao, &fe);
-        b->floor_found[i] = an ? 1 : -1;
         snprintf(b->floor_name[i], sizeof b->floor_name[i], "%s", fl->name);
-        if (an) {
-            b->floor_t[i][0] = an->time_synth_s;
-            b->floor_t[i][1] = an->time_nltha_s;
-            b->floor_t[i][2] = an->time_asce_s;
-            b->floor_skipped[i] = an->n_mu_skipped;
+        b->floor_found[i] = 1;
+        for (int mode = 0; mode < 2; mode++) {
+            sl_analysis_opts ao;
+            sl_analysis_opts_default(&ao);
+            ao.mu = mu;
+            ao.n_mu = SL_MU_GRID_N;
+            ao.n_sets = mode == 0 ? SL_BENCH_FIXED_SETS : 0;
+            sl_analysis *an = sl_analysis_run(fl, &ao, &fe);
+            if (!an)
+                b->floor_found[i] = -1;
+            if (an) {
+                double *t = b->floor_t[i][mode];
+                t[0] = an->time_synth_s;
+                t[1] = an->time_nltha_s;
+                t[2] = an->time_stats_s;
+                t[3] = an->time_asce_s;
+                b->floor_sets[i][mode] = an->n_sets;
+                b->floor_stop[i][mode] = (int)an->stop;
+                b->floor_skipped[i] = an->n_mu_skipped;
+            }
+            sl_analysis_free(an);
         }
-        sl_analysis_free(an);
         sl_floor_free(fl);
     }
 }

@@ -77,6 +77,10 @@ typedef struct sl_bench_limit {
     double per_slide_s;  /* engine time per sliding update, at most */
 } sl_bench_limit;
 
+/* Section 6: the fixed count the converged run is compared with (the former
+ * default of `seislide run`). */
+#define SL_BENCH_FIXED_SETS 7
+
 typedef struct sl_bench {
     int n_sets;
     sl_set set[SL_BENCH_MAX_SETS];   /* owned */
@@ -95,7 +99,11 @@ typedef struct sl_bench {
     int threads;                     /* threads of the main job */
     int floor_found[SL_BENCH_NFLOORS];
     char floor_name[SL_BENCH_NFLOORS][128];
-    double floor_t[SL_BENCH_NFLOORS][3];  /* synthesis, NLTHA, ASCE + design, s */
+    /* per floor and setting (0: a fixed 7 sets, the former default; 1: converged, the
+     * default): synthesis, NLTHA, statistics, ASCE + design, s; sets; stop reason */
+    double floor_t[SL_BENCH_NFLOORS][2][4];
+    size_t floor_sets[SL_BENCH_NFLOORS][2];
+    int floor_stop[SL_BENCH_NFLOORS][2];
     size_t floor_skipped[SL_BENCH_NFLOORS];
     double limit_s;                  /* the arithmetic limit per update */
     sl_bench_limit limit[SL_BENCH_MAX_SETS];

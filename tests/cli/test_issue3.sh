@@ -19,6 +19,22 @@ for cmd in spectrum rg160 asce; do
   t_run $cmd --bogus; t_expect_rc "$cmd-unknown" 2; t_expect_err "$cmd-unknown-msg" "unknown option '--bogus'"
 done
 t_run spectrum; t_expect_rc spectrum-no-file 2
+# options and help come from one table per command (cli.h): -h is --help,
+# a missing value is a usage error naming the option, every listed option
+# is accepted, and the defaults shown are the code's
+for cmd in spectrum rg160 asce study bench; do
+  t_run $cmd -h; t_expect_rc "$cmd-h" 0; t_expect_out "$cmd-h-text" "usage: seislide $cmd"
+done
+t_run asce --rg160; t_expect_rc asce-missing-value 2; t_expect_err asce-missing-value-msg "option '--rg160' needs a value"
+t_run asce --help
+for o in rg160 floor h1 h2 units dt truncate mu mu-range fs pgd pgv csv; do
+  grep -q -- "--$o\b" "$T_OUT" && t_pass || t_fail "asce --help does not list --$o"
+done
+t_expect_out asce-fs-default "--fs F +factor of safety on the best estimate \(default 2\)"
+t_run asce --rg160 0.3 --mu 0.1 --fs 0; t_expect_rc asce-bad-fs 2; t_expect_err asce-bad-fs-msg "--fs '0' must be a number > 0"
+t_run rg160 --help; t_expect_out rg160-grid-default "--fmin HZ, --fmax HZ +frequency range \(default 0.1 to 50 Hz\)"
+t_run spectrum --help; t_expect_out spectrum-operand "^  FILE\.\.\. +motions: PEER"
+t_run bench --repeat 0; t_expect_rc bench-bad-repeat 2; t_expect_err bench-bad-repeat-msg "--repeat '0' must be an integer >= 1"
 t_run rg160 --damping 0.05; t_expect_rc rg160-no-pga 2; t_expect_err rg160-no-pga-msg "--pga"
 t_run rg160 --pga 0.3 --damping 0.2; t_expect_rc rg160-bad-damping 2; t_expect_err rg160-bad-damping-msg "outside"
 t_run rg160 --pga 0.3 --freq 1 --fmin 2; t_expect_rc rg160-freq-and-grid 2

@@ -23,7 +23,7 @@ grep -v "^#" "$D/out1/summary.csv" | head -1 | grep -q "^mu,01-ground_clearance_
 head -1 "$D/out1/summary.csv" | od -c | grep -q '\\r  \\n' && t_pass || t_fail "CRLF line ends"
 F0="$D/out1/floor_04-roof36.csv"
 F="$D/roof-table.csv"; grep -v "^#" "$F0" > "$F"
-head -1 "$F" | grep -q "^mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,nltha_design_se_mm,asce_best_mm,asce_design_mm,cap_mm,clearance_mm,flags" && t_pass || t_fail "floor CSV header: $(head -1 "$F")"
+head -1 "$F" | grep -q "^mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,nltha_design_se_mm,nltha_design_lo90_mm,nltha_design_hi90_mm,asce_best_mm,asce_design_mm,cap_mm,clearance_mm,flags" && t_pass || t_fail "floor CSV header: $(head -1 "$F")"
 # self-describing: floor, id, ZPA, units and version in the leading comment lines
 for k in "program: seislide" "floor_id: 04-roof36" "floor: Roof el. 36 m" "horizontal_zpa_g: 0.6300" "units: displacements and clearance in mm"; do
   grep -q "^# $k" "$F0" && t_pass || t_fail "floor CSV lacks '# $k'"
@@ -41,17 +41,17 @@ mean=$(awk -F, '$1 == 0.3 { print $3 }' "$F" | tr -d '\r')
 awk -v s="$sum" -v m="$mean" 'BEGIN { e = s / 5 * 1000 - m; if (e < 0) e = -e; exit !(e <= 1e-3 + 1e-6 * m) }' \
   && t_pass || t_fail "NLTHA mean at mu 0.3: CSV $mean mm, slide on the motions $(awk -v s="$sum" 'BEGIN { print s / 5 * 1000 }') mm"
 # design = min(3.0 x mean, cap); clearance = design (default policy)
-awk -F, 'NR > 1 { d = 3 * $3; if (d > $9) d = $9; e = d - $5; if (e < 0) e = -e; if (e > 2e-4 + 1e-6 * d) bad++; if ($10 != $5) bad++ } END { exit bad > 0 }' "$F" \
+awk -F, 'NR > 1 { d = 3 * $3; if (d > $11) d = $11; e = d - $5; if (e < 0) e = -e; if (e > 2e-4 + 1e-6 * d) bad++; if ($12 != $5) bad++ } END { exit bad > 0 }' "$F" \
   && t_pass || t_fail "NLTHA design or clearance column inconsistent"
 # ASCE best estimate against `seislide asce --floor`
 t_run asce --floor floors/04-roof36.ini --mu 0.1,0.3 --csv
 for mu in 0.1 0.3; do
   a=$(awk -F, -v mu=$mu '$1 == mu { print $5 * 1000 }' "$T_OUT")
-  c=$(awk -F, -v mu=$mu '$1 == mu { print $7 }' "$F" | tr -d '\r')
+  c=$(awk -F, -v mu=$mu '$1 == mu { print $9 }' "$F" | tr -d '\r')
   awk -v a="$a" -v c="$c" 'BEGIN { e = a - c; if (e < 0) e = -e; exit !(e <= 1e-3) }' && t_pass || t_fail "ASCE best at mu $mu: asce $a, run $c"
 done
 # rows flagged asce_below_nltha really are below, and no others
-awk -F, 'NR > 1 && $8 != "" { below = ($8 + 0 < $5 + 0); flag = ($11 ~ /asce_below_nltha/); if (below != flag) bad++ } END { exit bad > 0 }' "$F" \
+awk -F, 'NR > 1 && $10 != "" { below = ($10 + 0 < $5 + 0); flag = ($13 ~ /asce_below_nltha/); if (below != flag) bad++ } END { exit bad > 0 }' "$F" \
   && t_pass || t_fail "asce_below_nltha flags disagree with the columns"
 
 # the workbook: sheets, charts, lookup formulas, drop-down, pinned date

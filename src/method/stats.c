@@ -1,0 +1,141 @@
+/* stats.c - mean, standard errors and bootstrap band; see stats.h. */
+#include "method/stats.h"
+
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
+#include <math.h>
+#include <stdlib.h>
+
+sl_status sl_stats_mean_compute(const double *x, size_t n, size_t stride, sl_stats_mean *out,
+                                sl_error *err)
+{
+    if (!x || !out || n == 0 || stride == 0)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "stats: empty sample");
+    double sum_l = 0;
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        double v = x[i * stride];
+        if (!(v >= 0) || !isfinite(v))
+            return sl_error_set(err, SL_EINVAL, NULL, 0,
+                                "stats: value %g (sample %zu) is not finite and >= 0", v, i + 1);
+        if (v > 0) {
+            k++;
+            sum_l += log(v);
+        }
+    }
+    sl_stats_mean s = {0};
+    s.n = n;
+    s.n_pos = k;
+    /* GSL's running mean and sd, as design.c uses them, so the design
+     * value here and in the design table are the same bits */
+    s.mean = gsl_stats_mean(x, stride, n);
+    double ss_l = 0;
+    double ml = k ? sum_l / (double)k : NAN;
+    for (size_t i = 0; i < n; i++) {
+        double v = x[i * stride];
+        if (v > 0)
+            ss_l += (log(v) - ml) * (log(v) - ml);
+    }
+    s.sd = n > 1 ? gsl_stats_sd_m(x, stride, n, s.mean) : 0.0;
+    s.se = s.sd / sqrt((double)n);
+    s.p_pos = (double)k / (double)n;
+    s.ln_mu = s.ln_sigma = NAN;
+    if (k == 0) {
+        s.ln_mean = s.ln_se = 0.0;
+    } else if (k == 1) {
+        s.ln_mu = ml;
+        s.ln_mean = s.ln_se = NAN;
+    } else {
+        double s2 = ss_l / (double)(k - 1);
+        s.ln_mu = ml;
+        s.ln_sigma = sqrt(s2);
+        s.ln_mean = s.p_pos * exp(ml + 0.5 * s2); /* (1) */
+        double var_ln = (1.0 - s.p_pos) / ((double)n * s.p_pos) + s2 / (double)k +
+                        s2 * s2 / (2.0 * (double)(k - 1)); /* (2) */
+        s.ln_se = s.ln_mean * sqrt(var_ln);
+    }
+    *out = s;
+    return SL_OK;
+}
+
+struct sl_stats_boot {
+    gsl_rng *rng;
+};
+
+sl_stats_boot *sl_stats_boot_alloc(uint64_t seed, sl_error *err)
+{
+    sl_stats_boot *b = malloc(sizeof *b);
+    if (!b || !(b->rng = gsl_rng_alloc(gsl_rng_mt19937))) {
+        free(b);
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "stats: out of memory");
+        return NULL;
+    }
+    /* mt19937 takes an unsigned long: fold the 64-bit seed */
+    gsl_rng_set(b->rng, (unsigned long)((seed ^ (seed >> 32)) & 0xffffffffUL));
+    return b;
+}
+
+void sl_stats_boot_free(sl_stats_boot *b)
+{
+    if (!b)
+        return;
+    gsl_rng_free(b->rng);
+    free(b);
+}
+
+void sl_stats_boot_draw(sl_stats_boot *b, size_t n, size_t *idx)
+{
+    for (size_t i = 0; i < n; i++)
+        idx[i] = (size_t)gsl_rng_uniform_int(b->rng, (unsigned long)n);
+}
+
+void sl_stats_band(double *v, size_t m, double level, double *lo, double *hi)
+{
+    gsl_sort(v, 1, m);
+    *lo = gsl_stats_quantile_from_sorted_data(v, 1, m, 0.5 * (1.0 - level));
+    *hi = gsl_stats_quantile_from_sorted_data(v, 1, m, 0.5 * (1.0 + level));
+}
+
+sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double level,
+                                  uint64_t seed, double *lo, double *hi, sl_error *err)
+{
+    if (!x || n == 0 || B == 0 || !(level > 0 && level < 1))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "stats: bootstrap needs n, B >= 1 and a "
+                            "level in (0, 1) (level %g)", level);
+    size_t *idx = malloc(n * sizeof *idx);
+    double *v = malloc(B * sizeof *v);
+    sl_stats_boot *b = sl_stats_boot_alloc(seed, err);
+    if (!idx || !v || !b) {
+        free(idx);
+        free(v);
+        sl_stats_boot_free(b);
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "stats: out of memory");
+    }
+    for (size_t r = 0; r < B; r++) {
+        sl_stats_boot_draw(b, n, idx);
+        double sum = 0;
+        for (size_t i = 0; i < n; i++)
+            sum += x[idx[i]];
+        v[r] = sum / (double)n;
+    }
+    sl_stats_band(v, B, level, lo, hi);
+    free(idx);
+    free(v);
+    sl_stats_boot_free(b);
+    return SL_OK;
+}
+
+double sl_stats_step(double se, double min_step, double max_step)
+{
+    if (!(se > 0) || !isfinite(se))
+        return min_step;
+    double step = pow(10.0, floor(log10(se) + 1e-12));
+    return step < min_step ? min_step : step > max_step ? max_step : step;
+}
+
+int sl_stats_step_decimals(double step)
+{
+    double d = -floor(log10(step) + 1e-12);
+    return d > 0 ? (int)d : 0;
+}

@@ -1,0 +1,600 @@
+/*
+ * kernel2d.c - the error-controlled 2-D (+ vertical) Coulomb kernel
+ * (kernel2d.h, docs/integrators.md).
+ *
+ * One step of length h over which the forcing is linear in time, from
+ * velocity v_n, with h a* and h N* the exact integrals of a_h and max(N, 0)
+ * over the step and f = mu h N*:
+ *
+ *   from rest, the implicit (Moreau-Jean) projection onto the friction disk
+ *     w = -h a*,  v_{n+1} = w (1 - f/|w|) if |w| > f, else 0          (2)
+ *   sliding on, the implicit midpoint rule (friction along v_n + v_{n+1}):
+ *     y = 2 v_n - h a*,  v_{n+1} = y (1 - f/|y|) - v_n                 (3)
+ *   (which is (2) when v_n = 0), kept while v_{n+1} . v_n > 0 and the
+ *   speed along e = v_n/|v_n| with friction held along e stays positive,
+ *   |v_n| > h a*.e + f (else the block may stop inside the step);
+ *   position by the trapezoid plus the exact correction for a linear a and
+ *   a constant friction force:
+ *     u_{n+1} = u_n + h (v_n + v_{n+1})/2 + h^2/12 (a_1 - a_0)           (4)
+ *   at a stop or reversal inside the step, the split step: slide along the
+ *   old direction e until the speed along e vanishes at tau; if the speed
+ *   left across e is small (a stop, not a turn: |v(tau)| <= c |v_n|, c =
+ *   SL_K2_STOP_REMNANT) and friction holds the block there
+ *   (|a(tau)| <= mu N(tau)), it is at rest until the
+ *   exact onset instant (the root of |a|^2 = (mu N)^2, a quadratic), else
+ *   (2) over the rest of the step                                       (5)
+ *
+ * Error control (substeps == 0): on every sample, each sliding block takes
+ * one step of dt and two of dt/2 with (3)-(4), all blocks together in
+ * branch-free loops over packed arrays (the compiler vectorises them). The
+ * difference of the two is the local error estimate (step doubling,
+ * Richardson: the error of the two half steps is about a third of it where
+ * the solution is smooth, equal to it at a stop). Blocks whose difference
+ * |du| + T_V |dv| exceeds their share eta max(rtol peak, atol), or whose
+ * step needs (5), are redone alone with 1, 2, 4, ... sub-steps and the full
+ * step (2)-(5) until two successive levels agree. The accepted differences
+ * accumulate into the error estimate of the peak: position differences add,
+ * and a velocity difference adds dt per sample until the block stops
+ * (friction is monotone, so velocity differences do not grow).
+ */
+#include "slide/kernel2d.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
+long dbg_cnt[8];
+
+/* The vector pass (doubling_pass and what it inlines) computes every value
+ * on every path and only selects; with GCC it is compiled without
+ * -ftrapping-math (no FP exception flags are used anywhere) so those selects
+ * become vector code. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define VECTOR_PASS __attribute__((optimize("no-trapping-math")))
+#else
+#define VECTOR_PASS
+#endif
+
+/* Most sub-steps one sample is cut into by the refinement. */
+#define NSUB_MAX 4096u
+
+/* max and min of finite values as selects (fmax/fmin may be calls) */
+VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
+VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
+
+/* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
+static double mean_positive(double n0, double n1)
+{
+    if (n0 >= 0.0 && n1 >= 0.0)
+        return 0.5 * (n0 + n1);
+    if (n0 <= 0.0 && n1 <= 0.0)
+        return 0.0;
+    double p = n0 > 0.0 ? n0 : n1, q = n0 > 0.0 ? n1 : n0;
+    return 0.5 * p * p / (p - q);
+}
+
+/* One sample: the linear forcing between its ends. */
+typedef struct sample {
+    double ax0, ax1, ay0, ay1, n0, n1, dt, t0;
+} sample;
+
+/* The forcing integrals of the sub-step [x0, x1] (fractions of the sample):
+ * h a*, h N*, the correction h^2/12 (a(x1) - a(x0)) of (4), h, end time. */
+typedef struct force {
+    double hax, hay, hN, cx, cy, h, t;
+    double ax0, ay0, dax, day, n0, dn; /* a and N at the start, their changes over the step */
+} force;
+
+static force force_of(const sample *s, double x0, double x1)
+{
+    const double h = (x1 - x0) * s->dt, xm = 0.5 * (x0 + x1), c = h * h / 12.0 * (x1 - x0);
+    force F;
+    F.h = h;
+    F.hax = h * (s->ax0 + (s->ax1 - s->ax0) * xm);
+    F.hay = h * (s->ay0 + (s->ay1 - s->ay0) * xm);
+    F.hN = h * mean_positive(s->n0 + (s->n1 - s->n0) * x0, s->n0 + (s->n1 - s->n0) * x1);
+    F.cx = c * (s->ax1 - s->ax0);
+    F.cy = c * (s->ay1 - s->ay0);
+    F.t = s->t0 + x1 * s->dt;
+    F.ax0 = s->ax0 + (s->ax1 - s->ax0) * x0;
+    F.ay0 = s->ay0 + (s->ay1 - s->ay0) * x0;
+    F.n0 = s->n0 + (s->n1 - s->n0) * x0;
+    F.dax = (s->ax1 - s->ax0) * (x1 - x0);
+    F.day = (s->ay1 - s->ay0) * (x1 - x0);
+    F.dn = (s->n1 - s->n0) * (x1 - x0);
+    return F;
+}
+
+/* The state of one block and its running statistics. */
+typedef struct blk {
+    double ux, uy, vx, vy, sp;
+    double peak2, tpeak, px, py, path, vmax2, tstop, tslide;
+    long episodes;
+} blk;
+
+/* Peak bookkeeping after a step from (u0, v0) to the block's new state over
+ * h ending at t: |u|^2 at the end, and inside the step when the radial
+ * speed u.v turns from outward to inward, the maximum of the parabola with
+ * the end slopes d|u|^2/dt = 2 u.v (third-order accurate). */
+static void track_peak(blk *b, double ux0, double uy0, double vx0, double vy0, double h, double t)
+{
+    const double r2 = b->ux * b->ux + b->uy * b->uy;
+    const double p0 = ux0 * vx0 + uy0 * vy0, p1 = b->ux * b->vx + b->uy * b->vy;
+    double c = r2;
+    if (p0 > 0.0 && p1 < 0.0)
+        c = max2(c, ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (p0 - p1));
+    if (c > b->peak2) {
+        b->peak2 = c;
+        b->tpeak = t;
+    }
+    b->px = max2(b->px, fabs(b->ux));
+    b->py = max2(b->py, fabs(b->uy));
+}
+
+/* The full step (2)-(5) of one block. Returns the fraction of the step
+ * used: 1, or tau/h when the block stopped at tau and friction holds it
+ * there (|a(tau)| <= mu N(tau)); the caller then finds the next onset. */
+static double fstep(blk *b, const force *F, double mu)
+{
+    double used = 1.0;
+    const double h = F->h, f = F->hN * mu, hax = F->hax, hay = F->hay;
+    const double vx0 = b->vx, vy0 = b->vy, ux0 = b->ux, uy0 = b->uy;
+    double nvx, nvy, dux, duy;
+    if (vx0 == 0.0 && vy0 == 0.0) {
+        const double w2 = hax * hax + hay * hay;
+        if (w2 <= f * f)
+            return 1.0; /* (2): stays stuck, nothing moves */
+        const double sc = 1.0 - f / sqrt(w2);
+        nvx = -hax * sc;
+        nvy = -hay * sc;
+        dux = 0.5 * h * nvx + F->cx;
+        duy = 0.5 * h * nvy + F->cy;
+        b->episodes++;
+    } else {
+        const double yx = 2.0 * vx0 - hax, yy = 2.0 * vy0 - hay; /* (3) */
+        const double yn = sqrt(yx * yx + yy * yy);
+        const double sm = yn > f ? 1.0 - f / yn : 0.0;
+        const double mx = yx * sm - vx0, my = yy * sm - vy0;
+        /* sliding on only if, with friction held along e = v_n/|v_n|, the
+         * speed along e stays positive over the step: |v_n| > h a*.e + f */
+        const double v2 = vx0 * vx0 + vy0 * vy0, L = v2 - (hax * vx0 + hay * vy0);
+        if (yn > f && mx * vx0 + my * vy0 > 0.0 && L > 0.0 && L * L > f * f * v2) {
+            nvx = mx;
+            nvy = my;
+            dux = 0.5 * h * (vx0 + nvx) + F->cx; /* (4) */
+            duy = 0.5 * h * (vy0 + nvy) + F->cy;
+        } else { /* (5) */
+            const double vn = sqrt(vx0 * vx0 + vy0 * vy0);
+            const double ex = vx0 / vn, ey = vy0 / vn;
+            const double dec = (hax * ex + hay * ey + f) / h;
+            const double tau = dec > 0.0 ? min2(vn / dec, h) : h;
+            const double q = tau / h, rest = 1.0 - q;
+            const double tx = vx0 - q * (hax + f * ex), ty = vy0 - q * (hay + f * ey);
+            const double atx = F->ax0 + F->dax * q, aty = F->ay0 + F->day * q;
+            const double Nt = F->n0 + F->dn * q;
+            /* a stop, not a turn: the speed across e left at tau is small */
+            if (q < 1.0 && atx * atx + aty * aty <= mu * mu * max2(Nt, 0.0) * max2(Nt, 0.0) &&
+                tx * tx + ty * ty <= SL_K2_STOP_REMNANT * SL_K2_STOP_REMNANT * vn * vn) {
+                /* stopped at tau and held there: at rest until the next onset */
+                nvx = nvy = 0.0;
+                dux = 0.5 * tau * (vx0 + tx);
+                duy = 0.5 * tau * (vy0 + ty);
+                used = q;
+            } else {
+                const double w2x = tx - rest * hax, w2y = ty - rest * hay;
+                const double w2n = sqrt(w2x * w2x + w2y * w2y);
+                const double s2 = w2n > rest * f ? 1.0 - rest * f / w2n : 0.0;
+                nvx = w2x * s2;
+                nvy = w2y * s2;
+                dux = 0.5 * (tau * (vx0 + tx) + (h - tau) * (tx + nvx));
+                duy = 0.5 * (tau * (vy0 + ty) + (h - tau) * (ty + nvy));
+            }
+        }
+    }
+    b->ux += dux;
+    b->uy += duy;
+    b->vx = nvx;
+    b->vy = nvy;
+    const double sp2 = nvx * nvx + nvy * nvy, sp = sqrt(sp2);
+    const double hu = h * used, tu = F->t - h + hu;
+    b->path += 0.5 * hu * (b->sp + sp);
+    b->sp = sp;
+    b->tslide += hu;
+    b->vmax2 = max2(b->vmax2, sp2);
+    if (sp2 == 0.0)
+        b->tstop = tu;
+    track_peak(b, ux0, uy0, vx0, vy0, hu, tu);
+    return used;
+}
+
+/* Does a block at rest slip at fraction x of the sample: |a(x)| > mu N(x)
+ * (any |a| > 0 when N <= 0)? */
+static int slips_at(const sample *s, double mu, double x)
+{
+    const double ax = s->ax0 + (s->ax1 - s->ax0) * x, ay = s->ay0 + (s->ay1 - s->ay0) * x;
+    const double N = s->n0 + (s->n1 - s->n0) * x;
+    return ax * ax + ay * ay > mu * mu * max2(N, 0.0) * max2(N, 0.0);
+}
+
+/* The first fraction x in [lo, 1) after which a block at rest slips, or 1
+ * if it stays held. With a and N linear in x, |a|^2 - (mu N)^2 is a quadratic
+ * q2 x^2 + q1 x + q0; the slip condition keeps its truth value between its
+ * roots and the zero of N, so testing one point between consecutive
+ * candidates is exact. */
+static double onset(const sample *s, double mu, double lo_x)
+{
+    const double dax = s->ax1 - s->ax0, day = s->ay1 - s->ay0, dn = s->n1 - s->n0;
+    const double q2 = dax * dax + day * day - mu * mu * dn * dn;
+    const double q1 = 2.0 * (s->ax0 * dax + s->ay0 * day - mu * mu * s->n0 * dn);
+    const double q0 = s->ax0 * s->ax0 + s->ay0 * s->ay0 - mu * mu * s->n0 * s->n0;
+    double c[5] = {lo_x, 1.0, 1.0, 1.0, 1.0};
+    int nc = 1;
+    if (q2 != 0.0) {
+        const double disc = q1 * q1 - 4.0 * q2 * q0;
+        if (disc >= 0.0) {
+            const double qq = -0.5 * (q1 + copysign(sqrt(disc), q1));
+            if (qq != 0.0)
+                c[nc++] = q0 / qq;
+            c[nc++] = qq / q2;
+        }
+    } else if (q1 != 0.0) {
+        c[nc++] = -q0 / q1;
+    }
+    if (dn != 0.0)
+        c[nc++] = -s->n0 / dn;
+    for (int i = 1; i < nc; i++) /* sort the few candidates */
+        for (int j = i; j > 0 && c[j] < c[j - 1]; j--) {
+            const double t = c[j];
+            c[j] = c[j - 1];
+            c[j - 1] = t;
+        }
+    for (int i = 0; i < nc; i++) {
+        const double lo = fmax(c[i], lo_x), hi = i + 1 < nc ? fmin(c[i + 1], 1.0) : 1.0;
+        if (!(lo < 1.0) || !(hi > lo))
+            continue;
+        if (slips_at(s, mu, 0.5 * (lo + hi)))
+            return lo;
+    }
+    return 1.0;
+}
+
+/* Sub-steps of width (1 - x0)/n over the part [x0, 1] of one sample from
+ * b; a block at rest stays held until the exact onset instant. */
+static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
+{
+    const double w = (1.0 - x0) / n;
+    double x = x0;
+    for (unsigned j = 0; j < 4u * n + 8u && x < 1.0; j++) {
+        if (b.vx == 0.0 && b.vy == 0.0) {
+            x = onset(s, mu, x);
+            if (!(x < 1.0))
+                break;
+        }
+        const double x1 = 1.0 - (x + w) < 1e-12 ? 1.0 : x + w;
+        force F = force_of(s, x, x1);
+        const double used = fstep(&b, &F, mu);
+        x = used < 1.0 ? x + (x1 - x) * used : x1;
+    }
+    return b;
+}
+
+/* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
+ * when the step needs the split (5). Inlined into the vector loops. */
+VECTOR_PASS static inline void ustep(double *vx, double *vy, double *ux, double *uy, double *bad,
+                         double hax, double hay, double f, double cx, double cy, double h)
+{
+    /* every value is computed on every path and only selected, so the
+     * compiler can turn the loop into vector code (no traps to guard) */
+    const double vx0 = *vx, vy0 = *vy;
+    const double yx = 2.0 * vx0 - hax, yy = 2.0 * vy0 - hay;
+    const double yn = sqrt(yx * yx + yy * yy);
+    const double s1 = 1.0 - f / (yn > 1e-300 ? yn : 1e-300);
+    const double s = yn > f ? s1 : 0.0;
+    const double mx = yx * s - vx0, my = yy * s - vy0;
+    const double v2 = vx0 * vx0 + vy0 * vy0, L = v2 - (hax * vx0 + hay * vy0);
+    /* 1.0/0.0 masks rather than ints and branches: they vectorise */
+    const double rest = v2 == 0.0 ? 1.0 : 0.0;
+    const double fwd = ((mx * vx0 + my * vy0) > 0.0 ? 1.0 : 0.0) * (L > 0.0 ? 1.0 : 0.0) *
+                       (L * L > f * f * v2 ? 1.0 : 0.0);
+    const double dux = 0.5 * h * (vx0 + mx) + cx, duy = 0.5 * h * (vy0 + my) + cy;
+    const double mv = s > 0.0 ? 1.0 : 0.0;
+    *bad = rest + fwd > 0.0 ? *bad : 1.0;
+    *ux += mv * dux;
+    *uy += mv * duy;
+    *vx = mx;
+    *vy = my;
+}
+
+/* The vector pass over the na packed sliding blocks of one sample: one step
+ * (3)-(4) of dt (Fc) against two of dt/2 (Fa, Fb), the local differences,
+ * the in-sample peak, and the flag pd (1: redo alone). Separate arrays
+ * declared restrict here, so the compiler vectorises both loops. */
+VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *Fa, const force *Fb, double hv,
+                          double amin, double pmax,
+                          const double *restrict pmu, const double *restrict ptol,
+                          double *restrict pux, double *restrict puy, double *restrict pvx,
+                          double *restrict pvy, double *restrict cux, double *restrict cuy,
+                          double *restrict cvx, double *restrict cvy, double *restrict pbad,
+                          double *restrict ppk2, double *restrict pd, double *restrict pdux,
+                          double *restrict pduy, double *restrict pdvx, double *restrict pdvy,
+                          double *restrict pns)
+{
+    /* one step of dt against two of dt/2, every live block at once */
+    const double c_ax = Fc->hax, c_ay = Fc->hay, c_n = Fc->hN, c_cx = Fc->cx, c_cy = Fc->cy,
+                 c_h = Fc->h;
+    const double a_ax = Fa->hax, a_ay = Fa->hay, a_n = Fa->hN, a_cx = Fa->cx, a_cy = Fa->cy,
+                 a_h = Fa->h;
+    const double b_ax = Fb->hax, b_ay = Fb->hay, b_n = Fb->hN, b_cx = Fb->cx, b_cy = Fb->cy,
+                 b_h = Fb->h;
+    for (size_t j = 0; j < na; j++) {
+        double vx = pvx[j], vy = pvy[j], ux = pux[j], uy = puy[j], bad = 0.0;
+        ustep(&vx, &vy, &ux, &uy, &bad, c_ax, c_ay, c_n * pmu[j], c_cx, c_cy, c_h);
+        cux[j] = ux;
+        cuy[j] = uy;
+        cvx[j] = vx;
+        cvy[j] = vy;
+        pbad[j] = bad;
+    }
+    for (size_t j = 0; j < na; j++) {
+        double vx = pvx[j], vy = pvy[j], ux = pux[j], uy = puy[j], bad = pbad[j];
+        const double r0 = ux * ux + uy * uy;
+        ustep(&vx, &vy, &ux, &uy, &bad, a_ax, a_ay, a_n * pmu[j], a_cx, a_cy, a_h);
+        const double uxm = ux, uym = uy, vxm = vx, vym = vy;
+        const double rm = ux * ux + uy * uy;
+        ustep(&vx, &vy, &ux, &uy, &bad, b_ax, b_ay, b_n * pmu[j], b_cx, b_cy, b_h);
+        const double r1 = ux * ux + uy * uy;
+        /* in-step maxima of |u|^2 (track_peak) on both halves */
+        const double q0 = pux[j] * pvx[j] + puy[j] * pvy[j], qm = uxm * vxm + uym * vym,
+                     q1 = ux * vx + uy * vy;
+        const double ha_v = r0 + q0 * a_h * q0 / (q0 - qm > 1e-300 ? q0 - qm : 1e-300);
+        const double hb_v = rm + qm * b_h * qm / (qm - q1 > 1e-300 ? qm - q1 : 1e-300);
+        const double ha = (q0 > 0.0 ? 1.0 : 0.0) * (qm < 0.0 ? ha_v : 0.0);
+        const double hb = (qm > 0.0 ? 1.0 : 0.0) * (q1 < 0.0 ? hb_v : 0.0);
+        ppk2[j] = max2(max2(rm, r1), max2(ha, hb));
+        const double dux = ux - cux[j], duy = uy - cuy[j];
+        const double dvx = vx - cvx[j], dvy = vy - cvy[j];
+        const double eu = sqrt(dux * dux + duy * duy), ev = sqrt(dvx * dvx + dvy * dvy);
+        pdux[j] = dux;
+        pduy[j] = duy;
+        pdvx[j] = dvx;
+        pdvy[j] = dvy;
+        /* near a stop: the speed is within one sample's change of
+         * zero while friction can hold the block (|a| < mu N somewhere
+         * in the sample); (5) and the halving then find the stop */
+        const double sp_min2 = min2(min2(vx * vx + vy * vy, vxm * vxm + vym * vym),
+                                    pvx[j] * pvx[j] + pvy[j] * pvy[j]);
+        const double fc = c_n * pmu[j];
+        const double dv_max = hv + fc;
+        const double can_hold = amin < pmu[j] * pmax ? 1.0 : SL_K2_TURN;
+        const double near_stop =
+            can_hold * (sp_min2 < SL_K2_NEAR_STOP * SL_K2_NEAR_STOP * dv_max * dv_max ? 1.0 : 0.0);
+        const double within = eu + SL_K2_TV * ev <= ptol[j] ? 1.0 : 0.0;
+        pd[j] = within * (near_stop == 0.0 ? 1.0 : 0.0) > 0.0 ? bad : 1.0;
+        pns[j] = near_stop;
+        pux[j] = ux;
+        puy[j] = uy;
+        cux[j] = vxm; /* reused: mid-sample velocity, for the path */
+        cuy[j] = vym;
+        pvx[j] = vx;
+        pvy[j] = vy;
+    }
+}
+
+/* Packed working arrays of the live blocks of one sample. */
+enum { P_MU, P_TOL, P_UX, P_UY, P_VX, P_VY, P_CUX, P_CUY, P_CVX, P_CVY, P_BAD, P_PK2, P_D, P_DUX,
+       P_DUY, P_DVX, P_DVY, P_NS, P_N };
+
+/* Signed error estimates of one block: position (ex, ey), velocity (wx, wy)
+ * and |position error| when the peak was last raised. */
+typedef struct errv {
+    double ex, ey, wx, wy, at_peak;
+} errv;
+
+/* Add the local differences of one accepted sample: a velocity difference
+ * shifts the position by dt per sample until the block stops (friction is
+ * monotone: velocity differences do not grow). */
+static void err_add(errv *e, double dux, double duy, double dvx, double dvy, double dt,
+                    int raised_peak)
+{
+    e->wx += dvx;
+    e->wy += dvy;
+    e->ex += dux + e->wx * dt;
+    e->ey += duy + e->wy * dt;
+    if (raised_peak)
+        e->at_peak = hypot(e->ex, e->ey);
+}
+
+int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
+                    const double *scale_m, size_t m,
+                    const sl_k2_opts *o, sl_k2_out *out, sl_history *hist)
+{
+    blk *B = calloc(m ? m : 1, sizeof *B);
+    errv *E = calloc(m ? m : 1, sizeof *E);
+    double *P = malloc((size_t)P_N * (m ? m : 1) * sizeof *P);
+    size_t *live = malloc((m ? m : 1) * sizeof *live), *redo = malloc((m ? m : 1) * sizeof *redo);
+    long *refined = calloc(m ? m : 1, sizeof *refined);
+    if (!B || !E || !P || !live || !redo || !refined) {
+        free(B);
+        free(E);
+        free(P);
+        free(live);
+        free(redo);
+        free(refined);
+        return -1;
+    }
+    double *restrict pmu = P + P_MU * m, *restrict ptol = P + P_TOL * m;
+    double *restrict pux = P + P_UX * m, *restrict puy = P + P_UY * m;
+    double *restrict pvx = P + P_VX * m, *restrict pvy = P + P_VY * m;
+    double *restrict cux = P + P_CUX * m, *restrict cuy = P + P_CUY * m;
+    double *restrict cvx = P + P_CVX * m, *restrict cvy = P + P_CVY * m;
+    double *restrict pbad = P + P_BAD * m, *restrict ppk2 = P + P_PK2 * m;
+    double *restrict pd = P + P_D * m, *restrict pdux = P + P_DUX * m, *restrict pduy = P + P_DUY * m,
+                     *restrict pdvx = P + P_DVX * m, *restrict pdvy = P + P_DVY * m,
+                     *restrict pns = P + P_NS * m;
+    const double dt = in->dt_s, g = in->g_ms2;
+    const int adaptive = (o->substeps == 0);
+    for (size_t i = 0; i + 1 < in->n; i++) {
+        sample s;
+        s.ax0 = in->sign * in->ax[i];
+        s.ax1 = in->sign * in->ax[i + 1];
+        s.ay0 = in->ay ? in->sign * in->ay[i] : 0.0;
+        s.ay1 = in->ay ? in->sign * in->ay[i + 1] : 0.0;
+        s.n0 = g + (in->av ? in->av[i] : 0.0);
+        s.n1 = g + (in->av ? in->av[i + 1] : 0.0);
+        s.dt = dt;
+        s.t0 = (double)i * dt;
+        const double t1 = s.t0 + dt;
+        /* held at both ends of the sample: held throughout, since |a| is
+         * convex and mu N linear (one test per sample) */
+        const double a0m = sqrt(s.ax0 * s.ax0 + s.ay0 * s.ay0);
+        const double a1m = sqrt(s.ax1 * s.ax1 + s.ay1 * s.ay1);
+        const double p0 = fmax(s.n0, 0.0), p1 = fmax(s.n1, 0.0);
+        size_t na = 0;
+        for (size_t k = 0; k < m; k++)
+            if (!(B[k].vx == 0.0 && B[k].vy == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
+                live[na++] = k;
+        dbg_cnt[7] += (long)na;
+        if (!adaptive) {
+            for (size_t li = 0; li < na; li++) {
+                const size_t k = live[li];
+                B[k] = run_level(B[k], &s, mu[k], o->substeps, 0.0);
+            }
+        } else if (na > 0) {
+            const force Fc = force_of(&s, 0.0, 1.0), Fa = force_of(&s, 0.0, 0.5),
+                        Fb = force_of(&s, 0.5, 1.0);
+            const double hv = dt * fmax(a0m, a1m); /* most the floor changes v in a sample */
+            /* friction may hold a block somewhere in the sample only if the
+             * smallest |a| on the sample (the distance from 0 to the segment
+             * a0-a1) is below the largest mu N */
+            const double dax = s.ax1 - s.ax0, day = s.ay1 - s.ay0, dd = dax * dax + day * day;
+            const double tc = dd > 0.0 ? fmin(fmax(-(s.ax0 * dax + s.ay0 * day) / dd, 0.0), 1.0) : 0.0;
+            const double amin = hypot(s.ax0 + tc * dax, s.ay0 + tc * day), pmax = fmax(p0, p1);
+            for (size_t li = 0; li < na; li++) { /* pack */
+                const size_t k = live[li];
+                const double pk = scale_m ? fmax(scale_m[k], sqrt(B[k].peak2)) : sqrt(B[k].peak2);
+                const double sc = fmax(o->rtol * pk, o->atol_m);
+                pmu[li] = mu[k];
+                ptol[li] = (eta ? eta[k] : SL_K2_ETA) * sc;
+                pux[li] = B[k].ux;
+                puy[li] = B[k].uy;
+                pvx[li] = B[k].vx;
+                pvy[li] = B[k].vy;
+            }
+            doubling_pass(na, &Fc, &Fa, &Fb, hv, amin, pmax, pmu, ptol, pux, puy, pvx, pvy,
+                          cux, cuy, cvx, cvy, pbad, ppk2, pd, pdux, pduy, pdvx, pdvy, pns);
+            size_t nr = 0;
+            for (size_t j = 0; j < na; j++) { /* unpack the accepted, collect the rest */
+                const size_t k = live[j];
+                if (pd[j] != 0.0 || (B[k].vx == 0.0 && B[k].vy == 0.0)) {
+                    redo[nr++] = j;
+                    continue;
+                }
+                blk *b = &B[k];
+                const double spm = sqrt(cux[j] * cux[j] + cuy[j] * cuy[j]);
+                const double sp2 = pvx[j] * pvx[j] + pvy[j] * pvy[j], sp = sqrt(sp2);
+                b->path += 0.25 * dt * (b->sp + 2.0 * spm + sp);
+                b->tslide += dt;
+                b->vmax2 = fmax(b->vmax2, fmax(sp2, spm * spm));
+                b->sp = sp;
+                b->ux = pux[j];
+                b->uy = puy[j];
+                b->vx = pvx[j];
+                b->vy = pvy[j];
+                const int raised = ppk2[j] > b->peak2;
+                if (raised) {
+                    b->peak2 = ppk2[j];
+                    b->tpeak = t1;
+                }
+                b->px = fmax(b->px, fabs(b->ux));
+                b->py = fmax(b->py, fabs(b->uy));
+                /* smooth step: local order 3, the two half steps err about
+                 * a third of their difference from the full step */
+                err_add(&E[k], pdux[j] / SL_K2_RICHARDSON, pduy[j] / SL_K2_RICHARDSON,
+                        pdvx[j] / SL_K2_RICHARDSON, pdvy[j] / SL_K2_RICHARDSON, dt, raised);
+            }
+            for (size_t r = 0; r < nr; r++) { /* the rest alone, halving until it agrees */
+                const size_t j = redo[r], k = live[j];
+                dbg_cnt[0]++; if (B[k].vx == 0.0 && B[k].vy == 0.0) dbg_cnt[1]++; else if (pns[j] != 0.0) dbg_cnt[2]++; else if (pbad[j] != 0.0) dbg_cnt[3]++; else dbg_cnt[4]++;
+                const double tol = ptol[j];
+                /* from rest: held until the exact onset instant, then slide */
+                const double x0 = (B[k].vx == 0.0 && B[k].vy == 0.0) ? onset(&s, mu[k], 0.0) : 0.0;
+                if (!(x0 < 1.0))
+                    continue;
+                /* a slow block (near a stop) starts finer: a stop and restart
+                 * inside one step can look alike at 1 and 2 sub-steps */
+                const unsigned n0 = pns[j] != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+                blk A = run_level(B[k], &s, mu[k], n0, x0), C = run_level(B[k], &s, mu[k], 2 * n0, x0);
+                unsigned n = 2 * n0;
+                for (;;) {
+                    const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
+                    const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
+                    if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
+                        break;
+                    A = C;
+                    n *= 2;
+                    C = run_level(B[k], &s, mu[k], n, x0);
+                }
+                refined[k] += (n > 2); dbg_cnt[5] += n; dbg_cnt[6] += (n > 2 * n0);
+                const int raised = C.peak2 > B[k].peak2;
+                const blk B0 = B[k];
+                B[k] = C;
+                /* a smooth sample (sent here by the tolerance alone) keeps the
+                 * Richardson factor; a stop, onset or turn counts in full */
+                const double rf = (x0 == 0.0 && pns[j] == 0.0 && pbad[j] == 0.0 &&
+                                   C.episodes == B0.episodes && C.tstop == B0.tstop)
+                                      ? SL_K2_RICHARDSON
+                                      : 1.0;
+                err_add(&E[k], (C.ux - A.ux) / rf, (C.uy - A.uy) / rf, (C.vx - A.vx) / rf,
+                        (C.vy - A.vy) / rf, dt, raised);
+            }
+        }
+        for (size_t li = 0; li < na; li++) { /* a block at rest forgets its velocity error */
+            const size_t k = live[li];
+            if (B[k].vx == 0.0 && B[k].vy == 0.0)
+                E[k].wx = E[k].wy = 0.0;
+        }
+        if (hist) {
+            /* F/W = absolute block acceleration / g at the sample */
+            const blk *b = &B[0];
+            double fx = 0.0, fy = 0.0, sp = hypot(b->vx, b->vy);
+            if (sp > 0.0 && s.n1 > 0.0) {
+                fx = -mu[0] * s.n1 * b->vx / sp / g;
+                fy = -mu[0] * s.n1 * b->vy / sp / g;
+            } else if (sp == 0.0) {
+                fx = s.ax1 / g; /* stuck: moves with the floor */
+                fy = s.ay1 / g;
+            }
+            sl_history_push(hist, t1, b->ux, b->uy, b->vx, b->vy, fx, fy);
+        }
+    }
+    if (getenv("DBG")) fprintf(stderr, "m %zu redo %ld rest %ld nearstop %ld bad %ld tol %ld fsteps(final) %ld deeper %ld live-total %ld\n", m, dbg_cnt[0], dbg_cnt[1], dbg_cnt[2], dbg_cnt[3], dbg_cnt[4], dbg_cnt[5], dbg_cnt[6], dbg_cnt[7]);
+    memset(dbg_cnt, 0, sizeof dbg_cnt);
+    for (size_t k = 0; k < m; k++) {
+        const blk *b = &B[k];
+        sl_k2_out *r = &out[k];
+        r->ux = b->ux;
+        r->uy = b->uy;
+        r->vx = b->vx;
+        r->vy = b->vy;
+        r->peak_m = sqrt(b->peak2);
+        r->t_peak_s = b->tpeak;
+        r->peak_x_m = b->px;
+        r->peak_y_m = b->py;
+        r->path_m = b->path;
+        r->max_speed_ms = sqrt(b->vmax2);
+        r->t_stop_s = b->tstop;
+        r->slide_time_s = b->tslide;
+        r->episodes = b->episodes;
+        r->err_m = adaptive ? E[k].at_peak : NAN;
+        r->err_end_m = adaptive ? hypot(E[k].ex, E[k].ey) : NAN;
+        r->err_v_ms = adaptive ? hypot(E[k].wx, E[k].wy) : NAN;
+        r->refined = refined[k];
+    }
+    free(B);
+    free(E);
+    free(P);
+    free(live);
+    free(redo);
+    free(refined);
+    return 0;
+}

@@ -1,0 +1,286 @@
+/* test_analysis.c - the per-floor study (analysis.h): seed independence from
+ * the floor's name, results independent of batch sizes and threads, the
+ * stopping rule, and the stated standard error of the design value against
+ * its scatter over independent seeds (brute force, light version; the heavy
+ * one is tests/converge-bruteforce.sh). Runs from the repository root. */
+#include <omp.h>
+
+#include "analysis.h"
+#include "harness.h"
+
+#define ROOF "floors/04-roof36.ini"
+
+static const double mu3[] = {0.1, 0.3, 0.5};
+
+/* Copy src to dst replacing the line that starts with `key` by `line`
+ * (appended after [floor] when key is absent from src). */
+static int copy_with(const char *src, const char *dst, const char *key, const char *line)
+{
+    FILE *in = fopen(src, "r"), *out = fopen(dst, "w");
+    if (!in || !out) {
+        if (in)
+            fclose(in);
+        if (out)
+            fclose(out);
+        return -1;
+    }
+    char buf[1024];
+    int done = 0;
+    while (fgets(buf, sizeof buf, in)) {
+        if (!done && key && !strncmp(buf, key, strlen(key))) {
+            fprintf(out, "%s\n", line);
+            done = 1;
+        } else {
+            fputs(buf, out);
+            if (!done && !strncmp(buf, "[floor]", 7) && key && !strcmp(key, "seed")) {
+                fprintf(out, "%s\n", line);
+                done = 1;
+            }
+        }
+    }
+    fclose(in);
+    fclose(out);
+    return done ? 0 : -1;
+}
+
+static sl_floor *load(const char *path)
+{
+    sl_error e;
+    sl_floor *fl = sl_floor_load(path, &e);
+    char buf[2200];
+    CHECK(fl != NULL, "%s", sl_error_format(&e, buf, sizeof buf));
+    return fl;
+}
+
+/* A floor's seed depends on its numbers (or its `seed =`), never on its name
+ * or description; a changed number changes it. */
+static void test_seed_from_content(void)
+{
+    char tmp[] = "/tmp/sl_test_analysisXXXXXX";
+    if (!mkdtemp(tmp))
+        SKIP("no temporary folder");
+    char p1[300], p2[300], p3[300], p4[300];
+    snprintf(p1, sizeof p1, "%s/renamed.ini", tmp);
+    snprintf(p2, sizeof p2, "%s/number.ini", tmp);
+    snprintf(p3, sizeof p3, "%s/seed.ini", tmp);
+    snprintf(p4, sizeof p4, "%s/seed-number.ini", tmp);
+    CHECK(!copy_with(ROOF, p1, "name", "name = Something else entirely"), "copy 1");
+    /* the ZPA of [h1] changed in its last digit */
+    CHECK(!copy_with(ROOF, p2, "zpa", "zpa = 0.6300001"), "copy 2");
+    CHECK(!copy_with(ROOF, p3, "seed", "seed = 77"), "copy 3");
+    CHECK(!copy_with(p2, p4, "seed", "seed = 77"), "copy 4");
+    sl_floor *a = load(ROOF), *b = load(p1), *c = load(p2), *d = load(p3), *e = load(p4);
+    if (a && b && c && d && e) {
+        CHECK(strcmp(a->name, b->name) != 0, "renamed");
+        CHECK(sl_analysis_floor_seed(1, a) == sl_analysis_floor_seed(1, b), "name changes seed");
+        CHECK(sl_analysis_floor_seed(1, a) != sl_analysis_floor_seed(1, c), "number ignored");
+        CHECK(sl_analysis_floor_seed(1, a) != sl_analysis_floor_seed(2, a), "run seed ignored");
+        CHECK(d->has_seed && d->seed == 77, "seed key %d %llu", d->has_seed,
+              (unsigned long long)d->seed);
+        CHECK(sl_analysis_floor_seed(1, d) == sl_analysis_floor_seed(1, e),
+              "explicit seed: numbers must not matter");
+        CHECK(sl_analysis_floor_seed(1, d) != sl_analysis_floor_seed(1, a), "explicit seed unused");
+        CHECK(sl_analysis_floor_seed(1, d) != sl_analysis_floor_seed(3, d), "explicit: run seed");
+    }
+    sl_floor_free(a);
+    sl_floor_free(b);
+    sl_floor_free(c);
+    sl_floor_free(d);
+    sl_floor_free(e);
+    remove(p1);
+    remove(p2);
+    remove(p3);
+    remove(p4);
+    rmdir(tmp);
+}
+
+static int same_rows(const sl_analysis *x, const sl_analysis *y)
+{
+    if (x->design->n != y->design->n || x->n_sets != y->n_sets)
+        return 0;
+    for (size_t k = 0; k < x->design->n; k++) {
+        const sl_design_row *p = &x->design->rows[k], *q = &y->design->rows[k];
+        if (p->nltha_mean_m != q->nltha_mean_m || p->nltha_sd_m != q->nltha_sd_m ||
+            p->clearance_m != q->clearance_m || x->conv[k].design_se_m != y->conv[k].design_se_m ||
+            x->conv[k].design_lo_m != y->conv[k].design_lo_m)
+            return 0;
+    }
+    return 1;
+}
+
+/* Set i is always the same motions: an adaptive run that ends at 5 sets in
+ * batches of 2, 4, 5 equals a fixed run of 5, bit for bit, and so does the
+ * fixed run on one thread. */
+static void test_batches_and_threads(void)
+{
+    sl_floor *fl = load(ROOF);
+    if (!fl)
+        return;
+    sl_analysis_opts o;
+    sl_analysis_opts_default(&o);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.first_batch = 2;
+    o.min_batch = 2;
+    o.max_sets = 5;
+    o.rel_se = 1e-9; /* never converges: runs to max_sets */
+    o.abs_se_m = 0;
+    o.boot_resamples = 200;
+    sl_error err;
+    sl_analysis *ad = sl_analysis_run(fl, &o, &err);
+    o.n_sets = 5;
+    sl_analysis *fx = sl_analysis_run(fl, &o, &err);
+    int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    sl_analysis *one = sl_analysis_run(fl, &o, &err);
+    omp_set_num_threads(saved);
+    CHECK(ad && fx && one, "runs");
+    if (ad && fx && one) {
+        CHECK(ad->stop == SL_ANALYSIS_STOP_MAX_SETS && ad->n_sets == 5 && ad->n_batches == 3,
+              "adaptive: stop %s, %zu sets, %zu batches", sl_analysis_stop_name(ad->stop),
+              ad->n_sets, ad->n_batches);
+        CHECK(strstr(ad->note, "not converged") != NULL, "note '%s'", ad->note);
+        CHECK(fx->stop == SL_ANALYSIS_STOP_FIXED && fx->n_batches == 1, "fixed");
+        CHECK(same_rows(ad, fx), "batches change the result");
+        CHECK(same_rows(fx, one), "threads change the result");
+        for (size_t k = 0; k < 3; k++) {
+            const sl_analysis_conv *c = &fx->conv[k];
+            const sl_design_row *r = &fx->design->rows[k];
+            CHECK(c->design_m == r->nltha_design_m && c->n_sets == 5, "conv row %zu", k);
+            /* uncapped: SE of the design = FS x sd / sqrt(n) (stats.h) */
+            if (!(r->flags & SL_DESIGN_NLTHA_CAPPED))
+                CHECK_CLOSE(c->design_se_m, SL_NLTHA_FS * r->nltha_sd_m / sqrt(5.0), 0, 1e-12);
+            CHECK(c->design_lo_m <= c->design_m && c->design_m <= c->design_hi_m,
+                  "band %g %g %g", c->design_lo_m, c->design_m, c->design_hi_m);
+        }
+    }
+    sl_analysis_free(ad);
+    sl_analysis_free(fx);
+    sl_analysis_free(one);
+    sl_floor_free(fl);
+}
+
+/* The stopping rule: converged means SE <= max(rel value, abs) at every mu,
+ * and the previous batch was not converged (it would have stopped). */
+static void test_stopping_rule(void)
+{
+    sl_floor *fl = load(ROOF);
+    if (!fl)
+        return;
+    sl_analysis_opts o;
+    sl_analysis_opts_default(&o);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.rel_se = 0.2;
+    o.abs_se_m = 0.002;
+    o.first_batch = 3;
+    o.boot_resamples = 100;
+    sl_error err;
+    sl_analysis *a = sl_analysis_run(fl, &o, &err);
+    CHECK(a != NULL, "run");
+    if (a) {
+        CHECK(a->stop == SL_ANALYSIS_STOP_CONVERGED && a->n_unconverged == 0, "stop %s",
+              sl_analysis_stop_name(a->stop));
+        for (size_t k = 0; k < 3; k++) {
+            const sl_analysis_conv *c = &a->conv[k];
+            CHECK(c->converged && c->design_se_m <= fmax(0.2 * c->design_m, 0.002),
+                  "mu %g: SE %g, design %g", mu3[k], c->design_se_m, c->design_m);
+        }
+        if (a->n_batches > 1) {
+            /* the first batch alone: not converged somewhere */
+            o.n_sets = 3;
+            sl_analysis *b = sl_analysis_run(fl, &o, &err);
+            int any = 0;
+            for (size_t k = 0; b && k < 3; k++)
+                any |= !b->conv[k].converged;
+            CHECK(b && any, "the first batch was already converged");
+            sl_analysis_free(b);
+        }
+    }
+    sl_analysis_free(a);
+    sl_floor_free(fl);
+}
+
+/* Brute force (light): 20 independent seeds of 4 sets each; the RMS of the
+ * stated SE of the design value matches the standard deviation of the
+ * design value over the seeds within a factor 1.5, at each mu. */
+static void test_stated_se(void)
+{
+    enum { NSEED = 20, NSETS = 4 };
+    sl_floor *fl = load(ROOF);
+    if (!fl)
+        return;
+    sl_analysis_opts o;
+    sl_analysis_opts_default(&o);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.n_sets = NSETS;
+    o.boot_resamples = 0;
+    o.substeps = 2; /* the scatter is the quantity, not the peak's 1e-3 accuracy */
+    double d[NSEED][3], se2[3] = {0, 0, 0};
+    int ok = 1;
+    for (int s = 0; s < NSEED && ok; s++) {
+        o.seed = 1000 + (uint64_t)s;
+        sl_error err;
+        sl_analysis *a = sl_analysis_run(fl, &o, &err);
+        ok = a != NULL;
+        for (size_t k = 0; a && k < 3; k++) {
+            d[s][k] = a->conv[k].design_m;
+            se2[k] += a->conv[k].design_se_m * a->conv[k].design_se_m / NSEED;
+        }
+        sl_analysis_free(a);
+    }
+    CHECK(ok, "runs");
+    for (size_t k = 0; ok && k < 3; k++) {
+        double m = 0, v = 0;
+        for (int s = 0; s < NSEED; s++)
+            m += d[s][k] / NSEED;
+        for (int s = 0; s < NSEED; s++)
+            v += (d[s][k] - m) * (d[s][k] - m) / (NSEED - 1);
+        double ratio = sqrt(se2[k]) / sqrt(v);
+        if (getenv("SEISLIDE_TEST_VERBOSE"))
+            fprintf(stderr, "    mu %g: design %.4f m, stated SE %.4f, scatter %.4f, ratio %.3f\n",
+                    mu3[k], m, sqrt(se2[k]), sqrt(v), ratio);
+        CHECK(ratio > 1 / 1.5 && ratio < 1.5, "mu %g: stated SE %g, scatter %g", mu3[k],
+              sqrt(se2[k]), sqrt(v));
+    }
+    sl_floor_free(fl);
+}
+
+static void test_bad_options(void)
+{
+    sl_floor *fl = load(ROOF);
+    if (!fl)
+        return;
+    sl_analysis_opts o;
+    sl_analysis_opts_default(&o);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.rel_se = 0;
+    o.abs_se_m = 0;
+    sl_error err;
+    sl_error_clear(&err);
+    CHECK(sl_analysis_run(fl, &o, &err) == NULL && err.code == SL_EINVAL &&
+              strstr(err.file, "roof36"),
+          "no target: %s", err.msg);
+    sl_analysis_opts_default(&o);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.max_sets = 1;
+    CHECK(sl_analysis_run(fl, &o, &err) == NULL && err.code == SL_EINVAL, "max_sets 1");
+    CHECK(!strcmp(sl_analysis_stop_name(SL_ANALYSIS_STOP_CONVERGED), "converged") &&
+              !strcmp(sl_analysis_stop_name(SL_ANALYSIS_STOP_MAX_SETS), "max_sets") &&
+              !strcmp(sl_analysis_stop_name(SL_ANALYSIS_STOP_FIXED), "fixed"),
+          "stop names");
+    sl_floor_free(fl);
+}
+
+int main(void)
+{
+    RUN(test_seed_from_content);
+    RUN(test_bad_options);
+    RUN(test_batches_and_threads);
+    RUN(test_stopping_rule);
+    RUN(test_stated_se);
+    return HARNESS_END("analysis");
+}

@@ -1,0 +1,169 @@
+/* test_report.c - report.h: floor ids, the names an output folder may hold,
+ * the ranges text, the convergence band placeholders in the CSV, and the
+ * refusal to write a non-finite result. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/units.h"
+#include "harness.h"
+#include "method/design.h"
+#include "report/report.h"
+
+static void test_floor_id(void)
+{
+    char b[80];
+    CHECK(!strcmp(sl_report_floor_id("floors/04-roof36.ini", b, sizeof b), "04-roof36"), "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("a/b/Aux bldg, el. 12.INI", b, sizeof b), "Aux_bldg__el__12"),
+          "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("x.txt", b, sizeof b), "x_txt"), "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("dir/.ini", b, sizeof b), "_ini"), "%s", b);
+    CHECK(sl_report_owns_name("floor_04-roof36.csv") && sl_report_owns_name("summary.csv") &&
+              sl_report_owns_name("motions") && sl_report_owns_name("seislide-clearance.xlsx"),
+          "own names");
+    CHECK(!sl_report_owns_name("notes.txt") && !sl_report_owns_name("floor_.csv") &&
+              !sl_report_owns_name("README.md"),
+          "foreign names");
+}
+
+/* One set, mu 0.1..0.4; peaks chosen so the design values are hand numbers. */
+static sl_design *design(double peak0)
+{
+    const double mu[4] = {0.1, 0.2, 0.3, 0.4};
+    const double peak[4] = {peak0, 0.1, 0.05, 0.0};
+    const double asce[4] = {0.25, 0.02, 0.01, 0.0};
+    const double pgd[1] = {10.0};
+    sl_design_input in;
+    sl_design_input_default(&in);
+    in.n_mu = 4;
+    in.n_sets = 1;
+    in.mu = mu;
+    in.peak_m = peak;
+    in.asce_best_m = asce;
+    in.pgd_m = pgd;
+    in.zpa_h_ms2 = 0.5 * SL_G;
+    sl_error e;
+    return sl_design_compute(&in, &e);
+}
+
+static void test_ranges_text(void)
+{
+    sl_design *d = design(0.2);
+    CHECK(d != NULL, "design");
+    if (!d)
+        return;
+    /* N = 0.6, 0.3, 0.15, 0; A = 0.5, 0.04, 0.02, 0: below at rows 0-2, from the grid's
+     * start (open) to where A - N reaches 0 at row 3 (mu 0.4) */
+    char b[256];
+    sl_report_ranges_text(d, b, sizeof b);
+    CHECK(!strcmp(b, "<=0.100-0.400"), "ranges '%s'", b);
+    sl_design_free(d);
+}
+
+static void test_csv_band_and_finite(void)
+{
+    char dir[] = "/tmp/sl-report-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    sl_design *d = design(0.2);
+    CHECK(d != NULL, "design");
+    if (!d)
+        return;
+    const double lo[4] = {0.5, 0.25, 0.1, 0.0}, hi[4] = {0.7, 0.35, 0.2, 0.0};
+    sl_report_floor fl = {.id = "f1", .name = "Floor 1", .path = "f1.ini", .elevation_m = NAN,
+                          .units = "g", .zpa_h_ms2 = 0.5 * SL_G, .design = d, .note = "",
+                          .design_lo_m = lo, .design_hi_m = hi};
+    sl_report r;
+    sl_report_init(&r);
+    r.version = "seislide test";
+    r.n_floors = 1;
+    r.floors = &fl;
+    sl_error e;
+    CHECK(sl_report_write_csv(&r, dir, &e) == SL_OK, "csv: %s", e.msg);
+    char path[512], line[1024];
+    snprintf(path, sizeof path, "%s/floor_f1.csv", dir);
+    FILE *f = fopen(path, "r");
+    CHECK(f != NULL, "floor_f1.csv");
+    int found = 0;
+    while (f && fgets(line, sizeof line, f))
+        if (!strncmp(line, "0.2,", 4)) {
+            /* mu, x, mean, sd, design, se, lo, hi, ... */
+            CHECK(strstr(line, ",300.0000,0.0000,250.0000,350.0000,") != NULL, "band: %s", line);
+            found = 1;
+        }
+    if (f)
+        fclose(f);
+    CHECK(found, "row mu 0.2");
+    /* a non-finite result is an error, not a file */
+    d->rows[1].nltha_mean_m = INFINITY;
+    char sub[300];
+    snprintf(sub, sizeof sub, "%s/inf", dir);
+    CHECK(system("true") == 0, "shell");
+    snprintf(line, sizeof line, "mkdir -p '%s'", sub);
+    CHECK(system(line) == 0, "mkdir");
+    CHECK(sl_report_write_csv(&r, sub, &e) == SL_EINVAL && strstr(e.msg, "not finite"),
+          "inf refused: %s", e.msg);
+    snprintf(path, sizeof path, "%s/x.xlsx", sub);
+    CHECK(sl_report_write_xlsx(&r, path, &e) == SL_EINVAL, "xlsx refused");
+    CHECK(access(path, F_OK) != 0, "no workbook written");
+    snprintf(path, sizeof path, "%s/floor_f1.csv", sub);
+    CHECK(access(path, F_OK) != 0, "no CSV written");
+    snprintf(line, sizeof line, "rm -rf '%s'", dir);
+    CHECK(system(line) == 0, "clean up");
+    sl_design_free(d);
+}
+
+/* The standard error of the NLTHA design value: two sets with peaks 0.1 and
+ * 0.3 m: mean 0.2, sample sd sqrt(0.02) = 0.141421 m, design 3 x 0.2 = 0.6 m,
+ * its standard error 3 x sd / sqrt(2) = 0.3 m exactly. */
+static void test_design_se(void)
+{
+    const double mu[2] = {0.1, 0.2};
+    const double peak[4] = {0.1, 0.0, 0.3, 0.0};
+    const double pgd[2] = {10.0, 10.0};
+    sl_design_input in;
+    sl_design_input_default(&in);
+    in.n_mu = 2;
+    in.n_sets = 2;
+    in.mu = mu;
+    in.peak_m = peak;
+    in.pgd_m = pgd;
+    in.zpa_h_ms2 = 0.5 * SL_G;
+    sl_error e;
+    sl_design *d = sl_design_compute(&in, &e);
+    CHECK(d != NULL, "design: %s", e.msg);
+    if (!d)
+        return;
+    char dir[] = "/tmp/sl-report-se-XXXXXX", path[256], line[1024];
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    sl_report_floor fl = {.id = "f", .name = "F", .path = "f.ini", .elevation_m = NAN,
+                          .units = "g", .zpa_h_ms2 = 0.5 * SL_G, .design = d, .note = ""};
+    sl_report r;
+    sl_report_init(&r);
+    r.version = "seislide test";
+    r.n_floors = 1;
+    r.floors = &fl;
+    CHECK(sl_report_write_csv(&r, dir, &e) == SL_OK, "csv: %s", e.msg);
+    snprintf(path, sizeof path, "%s/floor_f.csv", dir);
+    FILE *f = fopen(path, "r");
+    int found = 0;
+    while (f && fgets(line, sizeof line, f))
+        if (!strncmp(line, "0.1,", 4))
+            found = strstr(line, ",200.0000,141.4214,600.0000,300.0000,,,") != NULL;
+    if (f)
+        fclose(f);
+    CHECK(found, "row mu 0.1 with mean 200, sd 141.4214, design 600, se 300: %s", line);
+    snprintf(line, sizeof line, "rm -rf '%s'", dir);
+    CHECK(system(line) == 0, "clean up");
+    sl_design_free(d);
+}
+
+int main(void)
+{
+    RUN(test_floor_id);
+    RUN(test_ranges_text);
+    RUN(test_csv_band_and_finite);
+    RUN(test_design_se);
+    return HARNESS_END("report");
+}
