@@ -29,6 +29,7 @@
 #include "io/floor.h"
 #include "io/motion.h"
 #include "io/setdir.h"
+#include "signal/realism.h"
 #include "signal/spectrum.h"
 #include "slide/slide.h"
 #include "study/building.h"
@@ -135,13 +136,19 @@ static void mean_slide(const sl_set *sets, size_t n, const double *mu, double *m
     sl_slide_opts_default(&so);
     sl_slide_result *res = calloc(n * NMU, sizeof *res);
     if (verbose()) {
-        double th = 0, pg = 0, pgc = 0;
+        double th = 0, pg = 0, pgc = 0, pk = 0;
         for (size_t i = 0; i < n; i++) {
+            pk += (double)(sl_realism_peaks_above(sets[i].h1->acc_ms2, sets[i].h1->n, 0.9) +
+                           sl_realism_peaks_above(sets[i].h2->acc_ms2, sets[i].h2->n, 0.9)) /
+                  (2.0 * (double)n);
             th += sl_slide_mu_threshold(&sets[i], &so) / (double)n;
             pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
             pgc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
         }
-        fprintf(stderr, "    %zu sets: mean mu threshold %.3f, mean PGA_h %.3f g, mean comp PGA %.3f g\n", n, th, pg, pgc);
+        fprintf(stderr,
+                "    %zu sets: mean mu threshold %.3f, mean PGA_h %.3f g, mean comp PGA %.3f g, "
+                "mean peaks above 0.9 PGA %.1f\n",
+                n, th, pg, pgc, pk);
     }
     sl_error e;
     CHECK(sl_slide_batch(sets, n, mu, NMU, &so, res, &e) == SL_OK, "%s", e.msg);
