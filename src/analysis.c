@@ -141,7 +141,7 @@ static sl_spectrum *mean_spectrum(const sl_analysis *a, int c, sl_error *err)
     memcpy(sp->f_hz, f, nf * sizeof *f);
     memset(sp->sa_ms2, 0, nf * sizeof *sp->sa_ms2);
     for (size_t s = 0; s < a->n_sets; s++) {
-        const sl_motion *m = a->sets[s].motion[c];
+        const sl_motion *m = sl_synth_set_motion(&a->sets[s], (sl_synth_comp)c);
         if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, f, nf, SL_ASCE_DAMPING, psa, NULL, NULL,
                                 err)) {
             free(f);
@@ -339,9 +339,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
 
         t0 = wall_s();
         for (size_t s = n; s < want; s++) {
-            sets[s].h1 = a->sets[s].motion[0];
-            sets[s].h2 = a->sets[s].motion[1];
-            sets[s].v = a->sets[s].motion[2];
+            sets[s] = a->sets[s].set;
             a->pgd_m[s] = sl_set_pgd_100_40(&sets[s]);
         }
         if (o->progress)

@@ -420,8 +420,48 @@ static void test_input_from_rg160(void)
     CHECK(sl_asce_input_from_rg160(-1, &src, &err) == SL_EINVAL, "negative PGA accepted");
 }
 
+/* The ASCE input of a motion set (asce_input.h): A_v = the vertical peak,
+ * ZPA_h = the LARGER horizontal peak, PGD = the 100-40 combination, the
+ * spectra at 10 % on the default grid; without V, A_v = 0; without H2 an
+ * error. Constant records (a = c on [0, T]) have closed-form peaks:
+ * PGA = c, PGD = c T^2 / 2. */
+static void test_input_from_set(void)
+{
+    enum { N = 201 };
+    const double dt = 0.01, T = (N - 1) * dt;
+    double a1[N], a2[N], av[N];
+    for (int i = 0; i < N; i++) {
+        a1[i] = 1.0;
+        a2[i] = -2.0;
+        av[i] = 0.5;
+    }
+    sl_motion *h1 = sl_motion_from_array(a1, N, dt, "h1"), *h2 = sl_motion_from_array(a2, N, dt, "h2"),
+              *v = sl_motion_from_array(av, N, dt, "v");
+    sl_set set = {h1, h2, v};
+    sl_asce_source src;
+    sl_error err;
+    sl_error_clear(&err);
+    CHECK(sl_asce_input_from_set(&set, &src, &err) == SL_OK, "%s", err.msg);
+    CHECK_CLOSE(src.in.av_ms2, 0.5, 0, 1e-15);
+    CHECK_CLOSE(src.in.zpa_h_ms2, 2.0, 0, 1e-15);
+    double d1 = 1.0 * T * T / 2, d2 = 2.0 * T * T / 2;
+    CHECK_CLOSE(src.in.pgd_m, d2 + 0.4 * d1, 0, 1e-9);
+    CHECK(src.in.h1 && src.in.h1->damping == 0.10 && src.in.h1->f_hz[0] == SL_SPECTRUM_FMIN_HZ,
+          "10 %% spectra on the default grid");
+    sl_asce_source_free(&src);
+    set.v = NULL;
+    CHECK(sl_asce_input_from_set(&set, &src, &err) == SL_OK && src.in.av_ms2 == 0, "no V: A_v 0");
+    sl_asce_source_free(&src);
+    set.h2 = NULL;
+    CHECK(sl_asce_input_from_set(&set, &src, &err) == SL_EINVAL, "no H2 accepted");
+    sl_motion_free(h1);
+    sl_motion_free(h2);
+    sl_motion_free(v);
+}
+
 int main(void)
 {
+    RUN(test_input_from_set);
     RUN(test_input_from_floor);
     RUN(test_input_from_rg160);
     RUN(test_rg160_power_law_segment);

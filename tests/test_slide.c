@@ -570,6 +570,66 @@ static void test_ramp_position(void)
     free(ay);
 }
 
+/* Error control (issue 14) on synthetic 2-D + vertical motions (no files
+ * needed): the default run is within max(rtol peak, atol) of the engine at
+ * a 1000 x tighter tolerance, and its estimate err_est_m bounds that error;
+ * the tight run is checked against the exact 1-D kernel on the same record
+ * along 30 degrees (an independent method), vertical included. */
+static void test_error_control(void)
+{
+    const size_t n = 3000;
+    const double dt = 0.01, mus[] = {0.08, 0.15, 0.25, 0.35};
+    const size_t nm = sizeof mus / sizeof mus[0];
+    int rows = 0, bounded = 0;
+    for (unsigned seed = 11; seed <= 12; seed++) {
+        double *ax = noise_record(n, dt, 9.0, seed), *ay = noise_record(n, dt, 7.0, seed + 100);
+        double *av = noise_record(n, dt, 6.0, seed + 200);
+        sl_motion mx = oracle_motion(ax, n, dt), my = oracle_motion(ay, n, dt),
+                  mv = oracle_motion(av, n, dt);
+        sl_set set = {&mx, &my, &mv};
+        sl_slide_opts o = opts_default(), ot = opts_default();
+        ot.rtol = 1e-6;
+        ot.atol_m = 1e-9;
+        sl_slide_result a[4], r[4];
+        CHECK(sl_slide_run(&set, mus, nm, &o, a, NULL) == SL_OK, "default");
+        CHECK(sl_slide_run(&set, mus, nm, &ot, r, NULL) == SL_OK, "tight");
+        for (size_t k = 0; k < nm; k++) {
+            const double err = fabs(a[k].peak_m - r[k].peak_m);
+            CHECK(r[k].peak_m > 1e-3, "seed %u mu %g must slide: %g", seed, mus[k], r[k].peak_m);
+            CHECK(err <= fmax(o.rtol * r[k].peak_m, o.atol_m), "seed %u mu %g: error %.3g of %.9g",
+                  seed, mus[k], err, r[k].peak_m);
+            CHECK(a[k].err_est_m > 0 && a[k].err_est_m <= fmax(o.rtol * a[k].peak_m, o.atol_m),
+                  "estimate %g within the tolerance", a[k].err_est_m);
+            rows++;
+            bounded += a[k].err_est_m >= err;
+        }
+        /* the tight run against the exact 1-D answer along 30 degrees */
+        double *b = alloc_n(n), *bx = alloc_n(n), *by = alloc_n(n);
+        for (size_t i = 0; i < n; i++) {
+            b[i] = ax[i];
+            bx[i] = ax[i] * cos(M_PI / 6);
+            by[i] = ax[i] * sin(M_PI / 6);
+        }
+        sl_motion m1 = oracle_motion(b, n, dt), m2x = oracle_motion(bx, n, dt),
+                  m2y = oracle_motion(by, n, dt);
+        sl_set s1 = {&m1, NULL, &mv}, s2 = {&m2x, &m2y, &mv};
+        sl_slide_result e1[4], e2[4];
+        sl_slide_run(&s1, mus, nm, &o, e1, NULL);
+        sl_slide_run(&s2, mus, nm, &ot, e2, NULL);
+        for (size_t k = 0; k < nm; k++) {
+            CHECK(e1[k].err_est_m == 0.0, "1-D exact: estimate %g", e1[k].err_est_m);
+            CHECK_CLOSE(e2[k].peak_m, e1[k].peak_m, 1e-8, 1e-6);
+        }
+        free(ax);
+        free(ay);
+        free(av);
+        free(b);
+        free(bx);
+        free(by);
+    }
+    CHECK(bounded == rows, "the estimate bounds the error in %d of %d rows", bounded, rows);
+}
+
 /* Bad options are errors, never silent. */
 static void test_bad_options(void)
 {
@@ -610,6 +670,7 @@ int main(void)
     RUN(test_vector_and_batch);
     RUN(test_threshold_vector);
     RUN(test_ramp_position);
+    RUN(test_error_control);
     RUN(test_bad_options);
     return HARNESS_END("slide");
 }

@@ -219,8 +219,10 @@ static void test_part2_elcentro(void)
     CHECK(st == SL_OK && ms.pass, "matching: status %d, %s", (int)st, err.msg);
     if (st != SL_OK && st != SL_ENOCONV)
         return;
-    sl_motion *x = ms.motion[0], *y = ms.motion[1], *z = ms.motion[2];
-    CHECK_CLOSE(sl_motion_pga(x), 0.8 * SL_G, 0, 1e-6);
+    sl_motion *x = ms.set.h1, *y = ms.set.h2, *z = ms.set.v;
+    /* the PGA is not pinned: it emerges from the matched high end */
+    CHECK(ms.check[0].ok_pga && fabs(sl_motion_pga(x) / (0.8 * SL_G) - 1) <= 0.3,
+          "PGA/ZPA %g", sl_motion_pga(x) / (0.8 * SL_G));
     sl_motion *ny = sl_motion_copy(x);
     sl_motion_scale(ny, -1.0);
     const double mu = 0.1;
@@ -253,7 +255,7 @@ static sl_study_spectra *ground_spectra(const sl_synth_set *m, double scale, int
     sl_set sets[SL_STUDY_NGROUND];
     for (size_t i = 0; i < SL_STUDY_NGROUND; i++) {
         for (int c = 0; c < 3; c++) {
-            own[i][c] = sl_motion_copy(m[i].motion[c]);
+            own[i][c] = sl_motion_copy(sl_synth_set_motion(&m[i], (sl_synth_comp)c));
             sl_motion_scale(own[i][c], scale);
         }
         sets[i] = (sl_set){own[i][0], own[i][1], vertical ? own[i][2] : NULL};

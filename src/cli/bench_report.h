@@ -6,8 +6,12 @@
 #include <stdio.h>
 
 #include "study/bench.h"
+#include "study/bench_engine.h"
 
 /* Print every section to stdout and to f (the report file). */
 void bench_report(FILE *f, const sl_bench *b, unsigned long repeat);
+
+/* The engine's work-precision section (study/bench_engine.h, issue 14). */
+void bench_report_engine_wp(FILE *f, const sl_bench_wp *w);
 
 #endif

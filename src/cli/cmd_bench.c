@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "io/atomic.h"
 #include "study/bench.h"
+#include "study/bench_engine.h"
 
 static const char bench_help[] =
     "usage: seislide bench [--shared DIR] [--repeat N] [--out FILE] [--quick]\n"
@@ -64,6 +65,15 @@ int cmd_bench(int argc, char **argv)
     }
     bench_report(sl_atomic_file(af), b, a.repeat);
     sl_bench_free(b);
+    progress(NULL, "engine: work-precision on every record set, ratio to the floor");
+    sl_bench_wp *w = sl_bench_wp_run(a.shared, a.repeat, &err);
+    if (!w) {
+        sl_atomic_abort(af);
+        cli_print_error(&err);
+        return CLI_EXIT_ERROR;
+    }
+    bench_report_engine_wp(sl_atomic_file(af), w);
+    sl_bench_wp_free(w);
     if (sl_atomic_commit(af, &err)) {
         cli_print_error(&err);
         return CLI_EXIT_ERROR;

@@ -92,7 +92,7 @@ int study_report_part2(study_out *o, const sl_study_part2 *p)
             "%.0f %% damping (phases kept, ../shared/docs/REFERENCE.md 5 checks: %s), PGA\n"
             "%.1f g (vertical ZPA %.1f g), mu = %.1f (the study's Figures 3-7 to 3-9).\n\n",
             100 * SL_STUDY_ZETA, p->matched.pass ? "all passed" : "SOME FAILED, see motion checks",
-            SL_STUDY_P2_PGA_G, sl_motion_pga(p->matched.motion[2]) / SL_G, SL_STUDY_P2_MU);
+            SL_STUDY_P2_PGA_G, sl_motion_pga(p->matched.set.v) / SL_G, SL_STUDY_P2_MU);
     fprintf(md, "| excitation | peak u_x (mm) | peak u_y (mm) | peak \\|u\\| (mm) | residual \\|u\\| (mm) | "
                 "sliding time (s) |\n|---|---|---|---|---|---|\n");
     for (int i = 0; i < SL_STUDY_P2_NCASES; i++) {
@@ -196,7 +196,7 @@ static void failed_checks(const sl_synth_set *m, char *buf, size_t n)
         char comps[16] = "";
         for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
             const int *ok = (const int *)((const char *)&m->check[c] + checks[k].off);
-            if (m->motion[c] && !*ok) {
+            if (sl_synth_set_motion(m, (sl_synth_comp)c) && !*ok) {
                 strncat(comps, comps[0] ? "," : "", sizeof comps - strlen(comps) - 1);
                 strncat(comps, sl_synth_comp_name((sl_synth_comp)c), sizeof comps - strlen(comps) - 1);
             }

@@ -148,6 +148,8 @@ sl_status sl_outdir_check(const char *dir, sl_outdir_owns_fn owns, sl_error *err
         char *parent = strdup(dir);
         if (!parent)
             return sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+        for (size_t n = strlen(parent); n > 1 && parent[n - 1] == '/'; n--)
+            parent[n - 1] = '\0'; /* "out/" names the folder "out" */
         char *slash = strrchr(parent, '/');
         if (slash == parent)
             slash[1] = '\0';

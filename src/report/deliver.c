@@ -51,7 +51,7 @@ static sl_status write_motions(const char *dir, size_t n, const sl_floor *const 
                 snprintf(path, sizeof path, "%s/set%02zu_%s.AT2", sub, s + 1, cn[c]);
                 snprintf(title, sizeof title, "%s, set %zu, %s, seed %llu", floors[i]->name,
                          s + 1, cn[c], (unsigned long long)seed);
-                if (sl_synth_write_at2(path, an[i]->sets[s].motion[c], title, err))
+                if (sl_synth_write_at2(path, sl_synth_set_motion(&an[i]->sets[s], (sl_synth_comp)c), title, err))
                     return err ? err->code : SL_EIO;
             }
     }

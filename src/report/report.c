@@ -468,7 +468,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
 
 typedef struct fmts {
     lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
-        *note, *label;
+        *note, *label, *sci;
 } fmts;
 
 /* Layout (0-based rows): the title block, then each table. */
@@ -1170,14 +1170,16 @@ static void quality_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Motion quality");
     static const char *const head[] = {
         "floor id", "set", "comp.", "PGA, g", "D5-75, s", "min ratio to target",
-        "max ratio to target", "longest run of points below target", "max |correlation|",
+        "max ratio to target", "longest run below target", "max abs. correlation",
         "v end, m/s", "d end, m", "pass", "failed checks"};
     for (lxw_col_t c = 0; c < 13; c++)
         worksheet_write_string(ws, 0, c, head[c], F->header);
-    worksheet_set_row(ws, 0, 45, NULL);
+    worksheet_set_row(ws, 0, 62, NULL);
     worksheet_set_column(ws, 0, 0, 14, NULL);
     worksheet_set_column(ws, 1, 2, 5, NULL);
-    worksheet_set_column(ws, 3, 11, 8.5, NULL);
+    worksheet_set_column(ws, 3, 8, 8.5, NULL);
+    worksheet_set_column(ws, 9, 10, 9.5, F->sci);
+    worksheet_set_column(ws, 11, 11, 5, NULL);
     worksheet_set_column(ws, 12, 12, 24, F->wrap);
     worksheet_freeze_panes(ws, 1, 0);
     for (size_t q = 0; q < r->n_quality; q++) {
@@ -1192,8 +1194,8 @@ static void quality_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
         write_num_or_blank(ws, row, 6, m->max_ratio, F->ratio);
         worksheet_write_number(ws, row, 7, m->max_run_below, NULL);
         write_num_or_blank(ws, row, 8, m->max_corr, F->ratio);
-        write_num_or_blank(ws, row, 9, m->v_end_ms, NULL);
-        write_num_or_blank(ws, row, 10, m->d_end_m, NULL);
+        write_num_or_blank(ws, row, 9, m->v_end_ms, F->sci);
+        write_num_or_blank(ws, row, 10, m->d_end_m, F->sci);
         worksheet_write_string(ws, row, 11, m->pass ? "yes" : "NO", m->pass ? NULL : F->bold);
         worksheet_write_string(ws, row, 12, m->why && *m->why ? m->why : "-", NULL);
     }
@@ -1276,7 +1278,11 @@ static void inputs_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     worksheet_write_string(ws, row, 0, "program", F->bold);
     worksheet_write_string(ws, row++, 1, r->version, NULL);
     worksheet_write_string(ws, row, 0, "command", F->bold);
-    worksheet_write_string(ws, row++, 1, r->command_line ? r->command_line : "", NULL);
+    const char *cl = r->command_line ? r->command_line : "";
+    worksheet_write_string(ws, row, 1, cl, F->note);
+    /* a wrapped cell's height (LibreOffice does not grow it): 15 points a line of about
+     * 75 characters in the 60-wide column */
+    worksheet_set_row(ws, row++, 15.0 * (double)(1 + strlen(cl) / 75), NULL);
     char buf[64];
     struct tm tmv;
     gmtime_r(&r->created, &tmv);
@@ -1328,6 +1334,8 @@ static void make_formats(lxw_workbook *wb, fmts *F)
     format_set_bold(F->mmbold);
     F->ratio = workbook_add_format(wb);
     format_set_num_format(F->ratio, "0.000");
+    F->sci = workbook_add_format(wb);
+    format_set_num_format(F->sci, "0.0E+00");
     F->mu = workbook_add_format(wb);
     format_set_num_format(F->mu, "0.00");
     F->wrap = workbook_add_format(wb);

@@ -42,6 +42,10 @@
  * tighter share of the tolerance while the estimate exceeds it. */
 #define SL_SLIDE_ROUNDS_MAX 4
 
+/* Share of the one-sub-step peak taken as the a-priori scale of the
+ * tolerance (below 1: that peak may be too large). */
+#define SL_SLIDE_SCALE_SHARE 0.5
+
 /* A history tail after the record is sampled at dt for at most this long. */
 #define TAIL_MAX_S 600.0
 
@@ -398,8 +402,9 @@ static sl_status run_2d(const input *in, const double *mu, const size_t *act, si
 {
     const sl_k2_motion km = {in->n, in->dt, in->g, in->sign, in->ax, in->ay, in->av};
     const sl_k2_opts ko = {o->substeps, o->rtol, o->atol_m};
-    double *mus = malloc(3 * m * sizeof *mus), *eta = mus ? mus + m : NULL,
-           *eta_all = mus ? mus + 2 * m : NULL;
+    double *mus = malloc(5 * m * sizeof *mus), *eta = mus ? mus + m : NULL,
+           *eta_all = mus ? mus + 2 * m : NULL, *scale = mus ? mus + 3 * m : NULL,
+           *scale_all = mus ? mus + 4 * m : NULL;
     sl_k2_out *q = malloc(m * sizeof *q);
     size_t *idx = malloc(m * sizeof *idx);
     sl_status st = SL_OK;
@@ -412,15 +417,34 @@ static sl_status run_2d(const input *in, const double *mu, const size_t *act, si
         eta_all[j] = SL_K2_ETA;
         idx[j] = j;
     }
+    if (o->substeps == 0) {
+        /* the scale of each peak, for the tolerance, from one sub-step per
+         * sample (cheap; within a few % on records) */
+        const sl_k2_opts k1 = {1, o->rtol, o->atol_m};
+        if (sl_kernel2d_run(&km, mus, NULL, NULL, m, &k1, q, NULL)) {
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
+            goto done;
+        }
+        for (size_t j = 0; j < m; j++) {
+            sl_slide_result R;
+            result_init(&R, mu[act[j]], 0);
+            fill_2d(&R, &q[j], mu[act[j]] * in->g, t_end, o->keep_going);
+            scale_all[j] = SL_SLIDE_SCALE_SHARE * R.peak_m;
+        }
+    } else {
+        for (size_t j = 0; j < m; j++)
+            scale_all[j] = 0.0;
+    }
     size_t nr = m;
     for (int round = 0; nr > 0; round++) {
         for (size_t r = 0; r < nr; r++) {
             eta[r] = eta_all[idx[r]];
+            scale[r] = scale_all[idx[r]];
             mus[r] = mu[act[idx[r]]];
         }
         if (hist)
             hist->n = 1; /* the history restarts with the run */
-        if (sl_kernel2d_run(&km, mus, eta, nr, &ko, q, hist)) {
+        if (sl_kernel2d_run(&km, mus, eta, scale, nr, &ko, q, hist)) {
             st = sl_error_set(err, SL_ENOMEM, NULL, 0, "slide: out of memory");
             goto done;
         }
@@ -434,6 +458,7 @@ static sl_status run_2d(const input *in, const double *mu, const size_t *act, si
             const double target = fmax(o->rtol * R->peak_m, o->atol_m);
             if (o->substeps == 0 && R->err_est_m > target && round < SL_SLIDE_ROUNDS_MAX) {
                 eta_all[j] *= 0.5 * target / R->err_est_m;
+                scale_all[j] = R->peak_m; /* now known to the tolerance */
                 idx[nn++] = j;
             }
         }

@@ -42,6 +42,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <stdio.h>
+long dbg_cnt[8];
 
 /* The vector pass (doubling_pass and what it inlines) computes every value
  * on every path and only selects; with GCC it is compiled without
@@ -55,6 +57,10 @@
 
 /* Most sub-steps one sample is cut into by the refinement. */
 #define NSUB_MAX 4096u
+
+/* max and min of finite values as selects (fmax/fmin may be calls) */
+VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
+VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
 
 /* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
 static double mean_positive(double n0, double n1)
@@ -116,13 +122,13 @@ static void track_peak(blk *b, double ux0, double uy0, double vx0, double vy0, d
     const double p0 = ux0 * vx0 + uy0 * vy0, p1 = b->ux * b->vx + b->uy * b->vy;
     double c = r2;
     if (p0 > 0.0 && p1 < 0.0)
-        c = fmax(c, ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (p0 - p1));
+        c = max2(c, ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (p0 - p1));
     if (c > b->peak2) {
         b->peak2 = c;
         b->tpeak = t;
     }
-    b->px = fmax(b->px, fabs(b->ux));
-    b->py = fmax(b->py, fabs(b->uy));
+    b->px = max2(b->px, fabs(b->ux));
+    b->py = max2(b->py, fabs(b->uy));
 }
 
 /* The full step (2)-(5) of one block. Returns the fraction of the step
@@ -161,13 +167,13 @@ static double fstep(blk *b, const force *F, double mu)
             const double vn = sqrt(vx0 * vx0 + vy0 * vy0);
             const double ex = vx0 / vn, ey = vy0 / vn;
             const double dec = (hax * ex + hay * ey + f) / h;
-            const double tau = dec > 0.0 ? fmin(vn / dec, h) : h;
+            const double tau = dec > 0.0 ? min2(vn / dec, h) : h;
             const double q = tau / h, rest = 1.0 - q;
             const double tx = vx0 - q * (hax + f * ex), ty = vy0 - q * (hay + f * ey);
             const double atx = F->ax0 + F->dax * q, aty = F->ay0 + F->day * q;
             const double Nt = F->n0 + F->dn * q;
             /* a stop, not a turn: the speed across e left at tau is small */
-            if (q < 1.0 && hypot(atx, aty) <= mu * fmax(Nt, 0.0) &&
+            if (q < 1.0 && atx * atx + aty * aty <= mu * mu * max2(Nt, 0.0) * max2(Nt, 0.0) &&
                 tx * tx + ty * ty <= SL_K2_STOP_REMNANT * SL_K2_STOP_REMNANT * vn * vn) {
                 /* stopped at tau and held there: at rest until the next onset */
                 nvx = nvy = 0.0;
@@ -194,7 +200,7 @@ static double fstep(blk *b, const force *F, double mu)
     b->path += 0.5 * hu * (b->sp + sp);
     b->sp = sp;
     b->tslide += hu;
-    b->vmax2 = fmax(b->vmax2, sp2);
+    b->vmax2 = max2(b->vmax2, sp2);
     if (sp2 == 0.0)
         b->tstop = tu;
     track_peak(b, ux0, uy0, vx0, vy0, hu, tu);
@@ -207,7 +213,7 @@ static int slips_at(const sample *s, double mu, double x)
 {
     const double ax = s->ax0 + (s->ax1 - s->ax0) * x, ay = s->ay0 + (s->ay1 - s->ay0) * x;
     const double N = s->n0 + (s->n1 - s->n0) * x;
-    return hypot(ax, ay) > mu * fmax(N, 0.0);
+    return ax * ax + ay * ay > mu * mu * max2(N, 0.0) * max2(N, 0.0);
 }
 
 /* The first fraction x in [lo, 1) after which a block at rest slips, or 1
@@ -272,10 +278,6 @@ static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
     return b;
 }
 
-/* max and min of finite values as selects (fmax/fmin may be calls) */
-VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
-VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
-
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
  * when the step needs the split (5). Inlined into the vector loops. */
 VECTOR_PASS static inline void ustep(double *vx, double *vy, double *ux, double *uy, double *bad,
@@ -308,7 +310,7 @@ VECTOR_PASS static inline void ustep(double *vx, double *vy, double *ux, double 
  * the in-sample peak, and the flag pd (1: redo alone). Separate arrays
  * declared restrict here, so the compiler vectorises both loops. */
 VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *Fa, const force *Fb, double hv,
-                          double a0m, double a1m, double p0, double p1,
+                          double amin, double pmax,
                           const double *restrict pmu, const double *restrict ptol,
                           double *restrict pux, double *restrict puy, double *restrict pvx,
                           double *restrict pvy, double *restrict cux, double *restrict cuy,
@@ -357,13 +359,13 @@ VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *F
         pdvx[j] = dvx;
         pdvy[j] = dvy;
         /* near a stop: the speed is within one sample's change of
-         * zero while friction can hold the block (|a| < mu N at an
-         * end); (5) and the halving then find the stop */
+         * zero while friction can hold the block (|a| < mu N somewhere
+         * in the sample); (5) and the halving then find the stop */
         const double sp_min2 = min2(min2(vx * vx + vy * vy, vxm * vxm + vym * vym),
                                     pvx[j] * pvx[j] + pvy[j] * pvy[j]);
         const double fc = c_n * pmu[j];
         const double dv_max = hv + fc;
-        const double can_hold = (a0m < pmu[j] * p0 ? 1.0 : 0.0) + (a1m < pmu[j] * p1 ? 1.0 : 0.0);
+        const double can_hold = amin < pmu[j] * pmax ? 1.0 : SL_K2_TURN;
         const double near_stop =
             can_hold * (sp_min2 < SL_K2_NEAR_STOP * SL_K2_NEAR_STOP * dv_max * dv_max ? 1.0 : 0.0);
         const double within = eu + SL_K2_TV * ev <= ptol[j] ? 1.0 : 0.0;
@@ -402,7 +404,8 @@ static void err_add(errv *e, double dux, double duy, double dvx, double dvy, dou
         e->at_peak = hypot(e->ex, e->ey);
 }
 
-int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta, size_t m,
+int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
+                    const double *scale_m, size_t m,
                     const sl_k2_opts *o, sl_k2_out *out, sl_history *hist)
 {
     blk *B = calloc(m ? m : 1, sizeof *B);
@@ -450,6 +453,7 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
         for (size_t k = 0; k < m; k++)
             if (!(B[k].vx == 0.0 && B[k].vy == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
                 live[na++] = k;
+        dbg_cnt[7] += (long)na;
         if (!adaptive) {
             for (size_t li = 0; li < na; li++) {
                 const size_t k = live[li];
@@ -459,9 +463,16 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
             const force Fc = force_of(&s, 0.0, 1.0), Fa = force_of(&s, 0.0, 0.5),
                         Fb = force_of(&s, 0.5, 1.0);
             const double hv = dt * fmax(a0m, a1m); /* most the floor changes v in a sample */
+            /* friction may hold a block somewhere in the sample only if the
+             * smallest |a| on the sample (the distance from 0 to the segment
+             * a0-a1) is below the largest mu N */
+            const double dax = s.ax1 - s.ax0, day = s.ay1 - s.ay0, dd = dax * dax + day * day;
+            const double tc = dd > 0.0 ? fmin(fmax(-(s.ax0 * dax + s.ay0 * day) / dd, 0.0), 1.0) : 0.0;
+            const double amin = hypot(s.ax0 + tc * dax, s.ay0 + tc * day), pmax = fmax(p0, p1);
             for (size_t li = 0; li < na; li++) { /* pack */
                 const size_t k = live[li];
-                const double sc = fmax(o->rtol * sqrt(B[k].peak2), o->atol_m);
+                const double pk = scale_m ? fmax(scale_m[k], sqrt(B[k].peak2)) : sqrt(B[k].peak2);
+                const double sc = fmax(o->rtol * pk, o->atol_m);
                 pmu[li] = mu[k];
                 ptol[li] = (eta ? eta[k] : SL_K2_ETA) * sc;
                 pux[li] = B[k].ux;
@@ -469,7 +480,7 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                 pvx[li] = B[k].vx;
                 pvy[li] = B[k].vy;
             }
-            doubling_pass(na, &Fc, &Fa, &Fb, hv, a0m, a1m, p0, p1, pmu, ptol, pux, puy, pvx, pvy,
+            doubling_pass(na, &Fc, &Fa, &Fb, hv, amin, pmax, pmu, ptol, pux, puy, pvx, pvy,
                           cux, cuy, cvx, cvy, pbad, ppk2, pd, pdux, pduy, pdvx, pdvy, pns);
             size_t nr = 0;
             for (size_t j = 0; j < na; j++) { /* unpack the accepted, collect the rest */
@@ -496,10 +507,14 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                 }
                 b->px = fmax(b->px, fabs(b->ux));
                 b->py = fmax(b->py, fabs(b->uy));
-                err_add(&E[k], pdux[j], pduy[j], pdvx[j], pdvy[j], dt, raised);
+                /* smooth step: local order 3, the two half steps err about
+                 * a third of their difference from the full step */
+                err_add(&E[k], pdux[j] / SL_K2_RICHARDSON, pduy[j] / SL_K2_RICHARDSON,
+                        pdvx[j] / SL_K2_RICHARDSON, pdvy[j] / SL_K2_RICHARDSON, dt, raised);
             }
             for (size_t r = 0; r < nr; r++) { /* the rest alone, halving until it agrees */
                 const size_t j = redo[r], k = live[j];
+                dbg_cnt[0]++; if (B[k].vx == 0.0 && B[k].vy == 0.0) dbg_cnt[1]++; else if (pns[j] != 0.0) dbg_cnt[2]++; else if (pbad[j] != 0.0) dbg_cnt[3]++; else dbg_cnt[4]++;
                 const double tol = ptol[j];
                 /* from rest: held until the exact onset instant, then slide */
                 const double x0 = (B[k].vx == 0.0 && B[k].vy == 0.0) ? onset(&s, mu[k], 0.0) : 0.0;
@@ -511,18 +526,26 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                 blk A = run_level(B[k], &s, mu[k], n0, x0), C = run_level(B[k], &s, mu[k], 2 * n0, x0);
                 unsigned n = 2 * n0;
                 for (;;) {
-                    const double eu = hypot(C.ux - A.ux, C.uy - A.uy);
-                    const double ev = hypot(C.vx - A.vx, C.vy - A.vy);
+                    const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
+                    const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
                     if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
                         break;
                     A = C;
                     n *= 2;
                     C = run_level(B[k], &s, mu[k], n, x0);
                 }
-                refined[k] += (n > 2);
+                refined[k] += (n > 2); dbg_cnt[5] += n; dbg_cnt[6] += (n > 2 * n0);
                 const int raised = C.peak2 > B[k].peak2;
+                const blk B0 = B[k];
                 B[k] = C;
-                err_add(&E[k], C.ux - A.ux, C.uy - A.uy, C.vx - A.vx, C.vy - A.vy, dt, raised);
+                /* a smooth sample (sent here by the tolerance alone) keeps the
+                 * Richardson factor; a stop, onset or turn counts in full */
+                const double rf = (x0 == 0.0 && pns[j] == 0.0 && pbad[j] == 0.0 &&
+                                   C.episodes == B0.episodes && C.tstop == B0.tstop)
+                                      ? SL_K2_RICHARDSON
+                                      : 1.0;
+                err_add(&E[k], (C.ux - A.ux) / rf, (C.uy - A.uy) / rf, (C.vx - A.vx) / rf,
+                        (C.vy - A.vy) / rf, dt, raised);
             }
         }
         for (size_t li = 0; li < na; li++) { /* a block at rest forgets its velocity error */
@@ -544,6 +567,8 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
             sl_history_push(hist, t1, b->ux, b->uy, b->vx, b->vy, fx, fy);
         }
     }
+    if (getenv("DBG")) fprintf(stderr, "m %zu redo %ld rest %ld nearstop %ld bad %ld tol %ld fsteps(final) %ld deeper %ld live-total %ld\n", m, dbg_cnt[0], dbg_cnt[1], dbg_cnt[2], dbg_cnt[3], dbg_cnt[4], dbg_cnt[5], dbg_cnt[6], dbg_cnt[7]);
+    memset(dbg_cnt, 0, sizeof dbg_cnt);
     for (size_t k = 0; k < m; k++) {
         const blk *b = &B[k];
         sl_k2_out *r = &out[k];

@@ -45,20 +45,29 @@ typedef struct sl_k2_out {
 } sl_k2_out;
 
 /* Run m blocks with friction mu[k] (eta[k] > 0: the share of the tolerance
- * per sample, NULL = the default) over the motion; out[k] receives block k.
+ * per sample, NULL = the default; scale_m[k]: an a-priori estimate of the
+ * peak, m, the tolerance uses the larger of it and the peak so far, NULL =
+ * none) over the motion; out[k] receives block k.
  * hist (may be NULL; then m must be 1) receives the samples 1..n-1 of block
  * 0, with room already reserved. Returns 0, or -1 when out of memory. */
-int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta, size_t m,
+int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
+                    const double *scale_m, size_t m,
                     const sl_k2_opts *o, sl_k2_out *out, sl_history *hist);
 
 /* Default per-sample share of the tolerance, and the time a local velocity
  * difference is charged for in the acceptance test, s. */
 #define SL_K2_ETA 0.05
 #define SL_K2_TV 0.1
+/* Step doubling on a smooth step of local order 3: the error of the two
+ * half steps is the difference from the full step over 2^3/2 - 1 = 3. */
+#define SL_K2_RICHARDSON 3.0
 /* A sliding block is refined alone when its speed in a sample falls below
  * this many times the most a sample can change it, (|a| + mu N) dt, and
  * friction could hold it there (a stop is possible). */
 #define SL_K2_NEAR_STOP 1.0
+/* 1: the same for a slow block that friction cannot hold (it turns through
+ * a near-zero speed, and the friction direction flips within the sample). */
+#define SL_K2_TURN 1.0
 /* Sub-steps a slow block starts its refinement with (against twice as many). */
 #define SL_K2_NEAR_STOP_SUB 8u
 /* In the split step (5) the block is taken to stop at tau only when the

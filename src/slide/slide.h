@@ -18,12 +18,15 @@
  *  - 1-D (H1 only): exact for piecewise-linear input. Within a step the
  *    relative velocity is a quadratic in time; stop, start and lift-off
  *    instants are roots of quadratics or linear functions.
- *  - 2-D (H1 and H2): `substeps` sub-steps per input step; implicit
- *    midpoint friction while sliding on, a split step at stops and
- *    reversals, the implicit velocity projection onto the friction disk
- *    (Moreau-Jean) from rest; forcing integrated exactly. Observed order
- *    about 2 in the sub-step (1.5-2 on real records); error of the peak
- *    about 1e-3 at the default 8 sub-steps; docs/integrators.md.
+ *  - 2-D (H1 and H2): error-controlled (kernel2d.h). Per sample, a step of
+ *    dt against two of dt/2 (implicit midpoint friction, position exact
+ *    for linear forcing); where they disagree by more than the block's
+ *    share of max(rtol peak, atol), or a stop is near, the sample is redone
+ *    with 1, 2, 4, ... sub-steps, with exactly located onsets (roots of
+ *    |a|^2 = (mu N)^2) and stops. The differences give err_est_m, the
+ *    estimated error of the peak; a block whose estimate exceeds the
+ *    tolerance is run again tighter. `substeps` > 0 fixes the sub-steps
+ *    instead (no estimate). docs/integrators.md.
  *  - Asymmetric 1-D: friction mu against sliding toward -x ("downslope",
  *    where a positive floor acceleration pushes the block) and mu*up_ratio
  *    toward +x; up_ratio = INFINITY is one-way sliding as in Newmark's

@@ -109,7 +109,7 @@ sl_status sl_study_part2_run(const char *records, sl_study_part2 *p, sl_error *e
     sl_set_free_motions(&rec);
     if (st && st != SL_ENOCONV)
         return st;
-    sl_motion *x = p->matched.motion[0], *y = p->matched.motion[1], *z = p->matched.motion[2];
+    sl_motion *x = p->matched.set.h1, *y = p->matched.set.h2, *z = p->matched.set.v;
     const struct {
         const char *name, *tag;
         sl_motion *h1, *h2, *v;
@@ -180,7 +180,7 @@ static sl_study_spectra *ground_level(const sl_study_part3 *p, double level_g, s
     int bad = 0;
     for (size_t i = 0; i < SL_STUDY_NGROUND; i++) {
         for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
-            own[i][c] = sl_motion_copy(p->matched[i].motion[c]);
+            own[i][c] = sl_motion_copy(sl_synth_set_motion(&p->matched[i], (sl_synth_comp)c));
             if (own[i][c])
                 sl_motion_scale(own[i][c], level_g);
             else
@@ -223,8 +223,8 @@ sl_status sl_study_part3_run(const char *records, sl_study_part3 *p,
         }
         p->ratio_lo[i] = lo;
         p->ratio_hi[i] = hi;
-        p->pgd_m[i][0] = sl_motion_pgd(p->matched[i].motion[0]);
-        p->pgd_m[i][1] = sl_motion_pgd(p->matched[i].motion[1]);
+        p->pgd_m[i][0] = sl_motion_pgd(p->matched[i].set.h1);
+        p->pgd_m[i][1] = sl_motion_pgd(p->matched[i].set.h2);
         p->pgd_mean_m += p->pgd_m[i][0] / (double)SL_STUDY_NGROUND;
         if (progress) {
             snprintf(msg, sizeof msg, "part 3: matched %s", sl_study_ground.e[i].dir);

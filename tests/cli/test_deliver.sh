@@ -45,6 +45,10 @@ t_run run "$D/fl/01-ground.ini" -o "$D/mine" $FAST; t_expect_rc foreign 1
 t_expect_err foreign-msg "holds 'notes.txt', which seislide did not write"
 [ -s "$D/mine/notes.txt" ] && t_pass || t_fail "a foreign file was touched"
 t_run run "$D/fl/01-ground.ini" -o "$D/no/such/dir" $FAST; t_expect_rc no-parent 1
+# a trailing slash names the same folder, new or existing
+t_run run "$D/fl/01-ground.ini" -o "$D/slash/" $FAST; t_expect_rc slash-new 0
+t_run run "$D/fl/01-ground.ini" -o "$D/slash/" $FAST; t_expect_rc slash-again 0
+[ -s "$D/slash/summary.csv" ] && t_pass || t_fail "trailing slash: $(ls -a "$D")"
 
 # permissions follow the umask
 (umask 022; "$SEISLIDE_BIN" run "$D/fl/01-ground.ini" -o "$D/u022" $FAST) && \
