@@ -23,7 +23,9 @@ s=${SEED0:-1}
 last=$((s + N - 1))
 while [ "$s" -le "$last" ]; do
   "$BIN" run "$FLOOR" -o "$T/s$s" --seed "$s" --created 0 -q "$@" || exit 2
-  cat "$T/s$s"/floor_*.csv | tr -d '\r' | awk -F, -v s="$s" 'NR > 1 { print s, $1, $5, $12, $13, $14, $11 }' >>"$T/all"
+  F=$(ls "$T/s$s"/floor_*.csv | head -1)
+  ns=$(sed -n 's/^# factors:.*; \([0-9]*\) motion sets.*/\1/p' "$F")
+  grep -v '^#' "$F" | tr -d '\r' | awk -F, -v s="$s" -v ns="$ns" 'NR > 1 { print s, $1, $5, $6, $7, $8, ns }' >>"$T/all"
   s=$((s + 1))
 done
 awk -v N="$N" '

@@ -81,6 +81,13 @@ static void test_seed_from_content(void)
               "explicit seed: numbers must not matter");
         CHECK(sl_analysis_floor_seed(1, d) != sl_analysis_floor_seed(1, a), "explicit seed unused");
         CHECK(sl_analysis_floor_seed(1, d) != sl_analysis_floor_seed(3, d), "explicit: run seed");
+        /* every number counts: one spectral value of H1, one frequency of V */
+        uint64_t s0 = sl_analysis_floor_seed(1, a);
+        a->comp[SL_FLOOR_H1].spec[0].sa_ms2[3] *= 1.0 + 1e-12;
+        CHECK(sl_analysis_floor_seed(1, a) != s0, "a spectral value is ignored");
+        a->comp[SL_FLOOR_H1].spec[0].sa_ms2[3] /= 1.0 + 1e-12;
+        a->comp[SL_FLOOR_V].spec[0].f_hz[1] *= 1.0 + 1e-12;
+        CHECK(sl_analysis_floor_seed(1, a) != s0, "a frequency is ignored");
     }
     sl_floor_free(a);
     sl_floor_free(b);
