@@ -104,6 +104,7 @@ void sl_analysis_free(sl_analysis *a)
     free(a->conv);
     free(a->design_lo_m);
     free(a->design_hi_m);
+    free(a->err_est_m);
     if (a->sets)
         for (size_t s = 0; s < a->n_sets; s++)
             sl_synth_set_clear(&a->sets[s]);
@@ -293,13 +294,14 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->conv = calloc(n_mu, sizeof *a->conv);
     a->design_lo_m = calloc(n_mu, sizeof *a->design_lo_m);
     a->design_hi_m = calloc(n_mu, sizeof *a->design_hi_m);
+    a->err_est_m = calloc(n_mu, sizeof *a->err_est_m);
     sets = calloc(cap_sets, sizeof *sets);
     res = calloc(cap_sets * n_mu, sizeof *res);
     peak = calloc(cap_sets * n_mu, sizeof *peak);
     n_skip = calloc(n_mu, sizeof *n_skip);
     noslide = calloc(n_mu, sizeof *noslide);
     best = calloc(n_mu, sizeof *best);
-    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !sets ||
+    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->err_est_m || !sets ||
         !res || !peak || !n_skip || !noslide || !best)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
@@ -352,6 +354,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
             for (size_t k = 0; k < n_mu; k++) {
                 const sl_slide_result *r = &res[s * n_mu + k];
                 peak[s * n_mu + k] = r->peak_m;
+                a->err_est_m[k] = fmax(a->err_est_m[k], r->err_est_m);
                 n_skip[k] += (r->flags & SL_SLIDE_SKIPPED) != 0;
             }
         a->time_nltha_s += wall_s() - t0;

@@ -318,12 +318,14 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
     csv_comment(f, "crossover", crossover_text(d, buf, sizeof buf));
     csv_comment(f, "asce_below_nltha_mu", sl_report_ranges_text(d, buf, sizeof buf));
     csv_comment(f, "note", fl->note && *fl->note ? fl->note : "-");
+    csv_comment(f, "nltha_err_est_mm", "the largest estimated integration error of any motion's "
+                "peak at this mu (the engine's err_est_m; the tolerance is --accuracy)");
     csv_comment(f, "nltha_design_lo90_mm, nltha_design_hi90_mm",
                 fl->design_lo_m && fl->design_hi_m ? "the 90 % band of the NLTHA design value"
                 : "the 90 % band of the NLTHA design value (empty: not computed in this run)");
     fputs("mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,nltha_design_se_mm,"
           "nltha_design_lo90_mm,nltha_design_hi90_mm,asce_best_mm,asce_design_mm,cap_mm,"
-          "clearance_mm,flags\r\n", f);
+          "clearance_mm,flags,nltha_err_est_mm\r\n", f);
     for (size_t k = 0; k < d->n; k++) {
         const sl_design_row *w = &d->rows[k];
         const double mm[] = {w->nltha_mean_m, w->nltha_sd_m, w->nltha_design_m, design_se_m(d, k),
@@ -336,6 +338,8 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
             fputc(',', f);
         }
         csv_field(f, sl_report_flags(w->flags, flags, sizeof flags));
+        fputc(',', f);
+        csv_num(f, fl->err_est_m ? MM_PER_M * fl->err_est_m[k] : NAN, "%.2e");
         fputs("\r\n", f);
     }
     return sl_atomic_commit(a, err);

@@ -50,6 +50,9 @@ typedef struct sl_report_floor {
      * of the design rows only): per row of the design, the 90 % band of the
      * NLTHA design value, m. */
     const double *design_lo_m, *design_hi_m;
+    /* Per row: the largest estimated integration error of any motion's peak
+     * (the engine's err_est_m), m; NULL: not computed. */
+    const double *err_est_m;
     const char *sets_stop;   /* why the floor stopped adding motion sets: "converged",
                                 "max_sets" or "fixed" (NULL: not given) */
 } sl_report_floor;
