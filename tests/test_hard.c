@@ -337,6 +337,37 @@ static void test_large_velocity_pulse(void)
     free(ay);
 }
 
+/* The history runs to rest, however long the tail (docs/model.md): a
+ * rectangular pulse A for t0 at mu = 1e-4 leaves the block coasting for
+ * (A - mu g) t0 / (mu g) = 1019 s after the pulse; its last sample is at rest
+ * at U = V^2/(2 mu g) (1 - mu g/A), V = A t0 (REFERENCE 4). */
+static void test_history_whole_tail(void)
+{
+    const double A = 1.0, t0 = 1.0, dt = 0.01, mu = 1e-4;
+    const size_t n = (size_t)(t0 / dt) + 3;
+    double *a = calloc(n, sizeof *a);
+    for (size_t i = 0; i <= (size_t)(t0 / dt); i++)
+        a[i] = A;
+    sl_motion m = oracle_motion(a, n, dt);
+    sl_set s = {&m, NULL, NULL};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r;
+    sl_history *h = NULL;
+    CHECK(sl_slide_history(&s, mu, &o, &r, &h, NULL) == SL_OK && h, "run");
+    /* piecewise-linear input: the pulse ends with a ramp over one dt (V = A (t0 + dt/2)); the friction
+     * during the pulse changes U by a relative O(mu g / A) already in the formula */
+    double V = A * (t0 + dt / 2), U = V * V / (2 * mu * g) * (1 - mu * g / A);
+    if (h) {
+        size_t e = h->n - 1;
+        CHECK(h->t_s[e] > 1000.0, "history ends at %g s", h->t_s[e]);
+        CHECK(h->vx_ms[e] == 0.0, "at rest: v %g", h->vx_ms[e]);
+        CHECK_CLOSE(fabs(h->ux_m[e]), r.residual_m, 0, 1e-9);
+        CHECK_CLOSE(fabs(h->ux_m[e]), U, 0, 1e-3);
+        sl_history_free(h);
+    }
+    free(a);
+}
+
 int main(void)
 {
     RUN(test_tiny_mu);
@@ -347,5 +378,6 @@ int main(void)
     RUN(test_huge_spike);
     RUN(test_smooth_extreme);
     RUN(test_large_velocity_pulse);
+    RUN(test_history_whole_tail);
     return HARNESS_END("hard");
 }

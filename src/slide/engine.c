@@ -47,7 +47,7 @@
 #define SL_SLIDE_SCALE_SHARE 0.5
 
 /* A history tail after the record is sampled at dt for at most this long. */
-#define TAIL_MAX_S 600.0
+#define TAIL_MAX_SAMPLES 2000000u /* a longer tail is sampled more coarsely, never cut */
 
 /* ---- input view ------------------------------------------------------ */
 
@@ -82,12 +82,20 @@ static long count_liftoff(const input *in)
 
 /* ---- history ---------------------------------------------------------- */
 
-/* Samples needed for a tail of duration T at dt (bounded). */
-static size_t tail_samples(double T, double dt)
+/* Samples of a tail of duration T: every dt, or, when that would take more
+ * than TAIL_MAX_SAMPLES, a coarser step *step so that the whole tail, to
+ * rest, is sampled in TAIL_MAX_SAMPLES (docs/model.md: the history runs
+ * until rest). */
+static size_t tail_samples(double T, double dt, double *step)
 {
+    *step = dt;
     if (!(T > 0))
         return 0;
-    double m = ceil(fmin(T, TAIL_MAX_S) / dt);
+    double m = ceil(T / dt);
+    if (m > (double)(TAIL_MAX_SAMPLES - 1)) {
+        m = (double)(TAIL_MAX_SAMPLES - 1);
+        *step = T / m;
+    }
     return (size_t)m + 1;
 }
 
@@ -101,14 +109,15 @@ static int history_tail(sl_history *h, double t0, double dt, double ux, double u
     if (!(sp > 0) || !(mu_g > 0))
         return 0;
     double T = sp / mu_g, ex = vx / sp, ey = vy / sp;
-    size_t m = tail_samples(T, dt);
+    double step;
+    size_t m = tail_samples(T, dt, &step);
     if (sl_history_reserve(h, h->n + m))
         return -1;
     for (size_t k = 1; k < m; k++) {
-        double s = fmin((double)k * dt, T);
+        double s = fmin((double)k * step, T);
         double d = sp * s - 0.5 * mu_g * s * s, vs = sp - mu_g * s;
         int moving = s < T;
-        sl_history_push(h, t0 + (double)k * dt, ux + ex * d, uy + ey * d, ex * vs, ey * vs,
+        sl_history_push(h, t0 + (double)k * step, ux + ex * d, uy + ey * d, ex * vs, ey * vs,
                     moving ? -ex * mu_g / g : 0.0, moving ? -ey * mu_g / g : 0.0);
         if (!moving)
             break;
