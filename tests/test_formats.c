@@ -6,6 +6,7 @@
  * records/SUMMARY.tsv, the peak against the file's own header, the set
  * reader sl_set_read_dir() on those folders, and bad input.
  */
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -109,6 +110,31 @@ static double pga(const sl_motion *m)
     return p;
 }
 
+/* The peaks a V2A or CSMIP file prints per channel ("Acceleration:  peak
+ * -41.6 mm/s/s at  43.68 sec", "Peak acceleration =  27.114  cm/sec/sec  at
+ * 32.570 sec"), in file order, converted to m/s^2 (mm or cm by the unit
+ * text); returns the count. */
+static size_t header_peaks(const char *path, double *pk, double *tk, size_t max)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    char l[512];
+    size_t n = 0;
+    while (n < max && fgets(l, sizeof l, f)) {
+        double v, t;
+        char u[32];
+        if (sscanf(l, "Acceleration: peak %lf %31s at %lf", &v, u, &t) == 3 ||
+            sscanf(l, "Peak acceleration = %lf %31s at %lf", &v, u, &t) == 3 ||
+            sscanf(l, "PEAK ACCELERATION = %lf %31s AT %lf", &v, u, &t) == 3) {
+            pk[n] = v * (tolower((unsigned char)u[0]) == 'm' ? 1e-3 : 1e-2);
+            tk[n++] = t;
+        }
+    }
+    fclose(f);
+    return n;
+}
+
 /* Every GEONET/CSMIP/CWA file: npts and dt per channel as MANIFEST says. */
 static void test_manifest(void)
 {
@@ -160,6 +186,28 @@ static void test_manifest(void)
                   k + 1, c.m[k]->n, en[k]);
             CHECK(fabs(c.m[k]->dt_s - edt[k]) < 1e-9, "%s channel %zu: dt %g, MANIFEST %g",
                   path, k + 1, c.m[k]->dt_s, edt[k]);
+        }
+        /* the peak value and its time as the file's own header prints them
+         * (rounded to 0.1 mm/s2 or 0.001 cm/s2, time to 0.01 s) */
+        double hp[SL_CHANNELS_MAX], ht[SL_CHANNELS_MAX];
+        size_t nh = strcmp(fmt, "TWOCOL_MS2") ? header_peaks(path, hp, ht, SL_CHANNELS_MAX) : 0;
+        CHECK(!strcmp(fmt, "TWOCOL_MS2") || nh == c.n, "%s: %zu header peaks, %zu channels",
+              path, nh, c.n);
+        for (size_t k = 0; k < nh && k < c.n; k++) {
+            size_t im = 0;
+            for (size_t i = 0; i < c.m[k]->n; i++)
+                if (fabs(c.m[k]->acc_ms2[i]) > fabs(c.m[k]->acc_ms2[im]))
+                    im = i;
+            const double a = c.m[k]->acc_ms2[im], ta = (double)im * c.m[k]->dt_s;
+            CHECK(fabs(a - hp[k]) <= 1e-4 + 1e-4 * fabs(hp[k]),
+                  "%s channel %zu: peak %.5f m/s2, header %.5f", path, k + 1, a, hp[k]);
+            /* GeoNet prints times from the trigger, 5.00 s after the first
+             * sample in these files (the V2A real header, line 3, fields 2-3:
+             * "5.00 5.00"); CSMIP from the first sample */
+            const double t0 = strcmp(fmt, "GEONET_V2A") ? 0.0 : 5.0;
+            CHECK(fabs(ta - t0 - ht[k]) <= 0.5 * c.m[k]->dt_s + 0.006,
+                  "%s channel %zu: peak at %.3f s (sample %zu), header %.3f s + %g", path, k + 1, ta,
+                  im, ht[k], t0);
         }
         sl_channels_free(&c);
     }
