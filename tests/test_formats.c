@@ -99,7 +99,8 @@ static const char *tsv_get(const tsv *t, size_t row, long col)
 
 static int is_new_format(const char *f)
 {
-    return !strcmp(f, "GEONET_V2A") || !strcmp(f, "CSMIP_V2") || !strcmp(f, "TWOCOL_MS2");
+    return !strcmp(f, "GEONET_V2A") || !strcmp(f, "CSMIP_V2") || !strcmp(f, "TWOCOL_MS2") ||
+           !strcmp(f, "SMC");
 }
 
 static double pga(const sl_motion *m)
@@ -174,6 +175,22 @@ static void test_manifest(void)
         if (!strcmp(fmt, "TWOCOL_MS2")) {
             c.m[0] = sl_cwa_acc_read(path, &err);
             c.n = c.m[0] != NULL;
+            CHECK(c.n == 1, "%s: %s (line %ld)", path, err.msg, err.line);
+        } else if (!strcmp(fmt, "SMC")) {
+            c.m[0] = sl_smc_read(path, c.comp[0], sizeof c.comp[0], &err);
+            c.n = c.m[0] != NULL;
+            CHECK(c.n == 1, "%s: %s (line %ld)", path, err.msg, err.line);
+            /* text line 7 prints the peak, "pk     =    104.4" (cm/s/s) */
+            FILE *sf = fopen(path, "rb");
+            char l[256] = "";
+            for (int k = 0; sf && k < 7 && fgets(l, sizeof l, sf); k++)
+                ;
+            if (sf)
+                fclose(sf);
+            const char *q = strstr(l, "pk");
+            double pk = q ? strtod(q + strcspn(q, "=") + 1, NULL) * 1e-2 : -1;
+            CHECK(c.n == 0 || fabs(pga(c.m[0]) - pk) <= 6e-4, "%s: peak %.5f m/s2, header %.5f",
+                  path, c.n ? pga(c.m[0]) : 0.0, pk);
         } else {
             CHECK(sl_channels_read(path, &c, &err) == SL_OK, "%s: %s (line %ld)", path, err.msg,
                   err.line);
@@ -190,8 +207,9 @@ static void test_manifest(void)
         /* the peak value and its time as the file's own header prints them
          * (rounded to 0.1 mm/s2 or 0.001 cm/s2, time to 0.01 s) */
         double hp[SL_CHANNELS_MAX], ht[SL_CHANNELS_MAX];
-        size_t nh = strcmp(fmt, "TWOCOL_MS2") ? header_peaks(path, hp, ht, SL_CHANNELS_MAX) : 0;
-        CHECK(!strcmp(fmt, "TWOCOL_MS2") || nh == c.n, "%s: %zu header peaks, %zu channels",
+        const int one = !strcmp(fmt, "TWOCOL_MS2") || !strcmp(fmt, "SMC");
+        size_t nh = !one ? header_peaks(path, hp, ht, SL_CHANNELS_MAX) : 0;
+        CHECK(one || nh == c.n, "%s: %zu header peaks, %zu channels",
               path, nh, c.n);
         for (size_t k = 0; k < nh && k < c.n; k++) {
             size_t im = 0;
@@ -258,7 +276,7 @@ static void test_summary_and_sets(void)
         sl_set_free_motions(&set);
     }
     tsv_free(&s);
-    CHECK(sets >= 14, "only %zu agency-format sets in SUMMARY", sets);
+    CHECK(sets >= 15, "only %zu agency-format sets in SUMMARY", sets);
     fprintf(stderr, "  %zu agency-format sets read as H1 + H2 + V; PGA as SUMMARY says\n", sets);
 }
 
@@ -307,6 +325,28 @@ static void test_bad_input(void)
     CHECK(sl_channels_read(p, &c, &err) == SL_EINVAL && err.line == 14 &&
               strstr(err.msg, "cm/s/s") != NULL,
           "unit: %ld %s", err.line, err.msg);
+    /* CSMIP: an unknown unit on the "points of accel data" line (line 46) */
+    snprintf(path, sizeof path, "%s/records/CSMIP_2014Napa_58667_Concord/CE58667.V2", shared);
+    f = fopen(path, "rb");
+    n = f ? fread(buf, 1, (1 << 16) - 1, f) : 0;
+    if (f)
+        fclose(f);
+    buf[n] = '\0';
+    u = strstr(buf, "in cm/sec2");
+    CHECK(u != NULL, "%s: no 'in cm/sec2'", path);
+    if (u) {
+        memcpy(u + 3, "ft/", 3);
+        p = harness_tmpfile("unit.V2", buf);
+        sl_error_clear(&err);
+        CHECK(sl_channels_read(p, &c, &err) == SL_EINVAL && err.line == 46 &&
+                  strstr(err.msg, "ft/sec2") != NULL,
+              "CSMIP unit: %ld %s", err.line, err.msg);
+    }
+    /* SMC: not a corrected accelerogram */
+    p = harness_tmpfile("x.smc", "1 UNCORRECTED ACCELEROGRAM\n");
+    sl_error_clear(&err);
+    CHECK(sl_smc_read(p, NULL, 0, &err) == NULL && err.code == SL_EPARSE && err.line == 1,
+          "SMC type: %ld %s", err.line, err.msg);
     free(buf);
     CHECK(sl_component_is_vertical("Up") && sl_component_is_vertical(" UP ") &&
               sl_component_is_vertical("Z") && !sl_component_is_vertical("90 Deg") &&

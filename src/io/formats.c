@@ -414,6 +414,85 @@ void sl_channels_free(sl_channels *c)
     memset(c, 0, sizeof *c);
 }
 
+sl_motion *sl_smc_read(const char *path, char *comp, size_t compn, sl_error *err)
+{
+    enum { TEXT = 11, INT_LINES = 6, INT_PER = 8, REAL_LINES = 10 };
+    lines t;
+    if (lines_read(path, &t, err) != SL_OK)
+        return NULL;
+    sl_motion *m = NULL;
+    double *a = NULL;
+    if (t.n < TEXT + INT_LINES + REAL_LINES || !starts_ci(t.l[0], "2 CORRECTED ACCELEROGRAM")) {
+        sl_error_set(err, SL_EPARSE, path, 1,
+                     "not an SMC corrected accelerogram (line 1 '%.40s', %zu lines)",
+                     t.n ? t.l[0] : "", t.n);
+        goto done;
+    }
+    /* the component: text line 6 "... component=    360" or "... component=   up" */
+    const char *c = find_ci(t.l[5], "component=");
+    if (!c) {
+        sl_error_set(err, SL_EPARSE, path, 6, "no 'component=' in '%s'", t.l[5]);
+        goto done;
+    }
+    c += 10;
+    c += strspn(c, " ");
+    char cbuf[SL_COMP_NAME_MAX];
+    set_comp(cbuf, c, strcspn(c, " "));
+    if (comp && compn) {
+        strncpy(comp, cbuf, compn - 1);
+        comp[compn - 1] = '\0';
+    }
+    /* integer header: 48 values 8I10; field 16 = comment lines, 17 = npts */
+    long ih[INT_LINES * INT_PER];
+    for (int i = 0; i < INT_LINES; i++) {
+        const char *l = t.l[TEXT + i];
+        if (sscanf(l, "%ld %ld %ld %ld %ld %ld %ld %ld", &ih[i * 8], &ih[i * 8 + 1],
+                   &ih[i * 8 + 2], &ih[i * 8 + 3], &ih[i * 8 + 4], &ih[i * 8 + 5],
+                   &ih[i * 8 + 6], &ih[i * 8 + 7]) != 8) {
+            sl_error_set(err, SL_EPARSE, path, TEXT + i + 1, "bad integer header line '%s'", l);
+            goto done;
+        }
+    }
+    const long ncomment = ih[15], npts = ih[16];
+    /* real header: 50 values 5E15.7; field 2 = samples per second */
+    double sps;
+    if (sscanf(t.l[TEXT + INT_LINES], "%*f %lf", &sps) != 1 || !(sps > 0)) {
+        sl_error_set(err, SL_EPARSE, path, TEXT + INT_LINES + 1,
+                     "bad sampling rate (field 2) in '%s'", t.l[TEXT + INT_LINES]);
+        goto done;
+    }
+    if (check_npts_dt(npts, 1.0 / sps, path, TEXT + 3, err) != SL_OK)
+        goto done;
+    if (ncomment < 0 || ncomment > 10000) {
+        sl_error_set(err, SL_EPARSE, path, TEXT + 2, "comment line count %ld", ncomment);
+        goto done;
+    }
+    a = malloc((size_t)npts * sizeof *a);
+    if (!a) {
+        sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
+        goto done;
+    }
+    /* data: 8E10.4, corrected acceleration in cm/s/s (the SMC convention) */
+    if (read_fixed(&t, TEXT + INT_LINES + REAL_LINES + (size_t)ncomment, (size_t)npts, 8, 10,
+                   SL_UNIT_CMS2, path, a, err) != SL_OK)
+        goto done;
+    m = sl_motion_from_array(a, (size_t)npts, 1.0 / sps, cbuf);
+    char *pp = m ? malloc(strlen(path) + 1) : NULL;
+    if (!pp) {
+        sl_motion_free(m);
+        m = NULL;
+        sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
+        goto done;
+    }
+    strcpy(pp, path);
+    free(m->path);
+    m->path = pp;
+done:
+    free(a);
+    lines_free(&t);
+    return m;
+}
+
 sl_motion *sl_cwa_acc_read(const char *path, sl_error *err)
 {
     sl_read_opts ro;

@@ -17,6 +17,12 @@
  *    distribution's, MANIFEST.tsv "TWOCOL_MS2"); the component from the
  *    file name (_E, _N, _Z).
  *
+ *  - USGS SMC ".smc" (type 2, corrected acceleration): one component a
+ *    file; 11 text lines (line 6 "component=  360"), 48 integers 8I10
+ *    (field 16 = comment lines, 17 = npts), 50 reals 5E15.7 (field 2 =
+ *    samples per second), the comment lines, then npts values 8E10 in
+ *    cm/s/s (the format's unit).
+ *
  * Values are converted once to m/s^2 (SI). Errors name file, line, value.
  * Memory: sl_channels_read() fills a sl_channels the caller frees with
  * sl_channels_free(); motions taken out of it must be set to NULL there.
@@ -56,6 +62,11 @@ void sl_channels_free(sl_channels *c);
 /* A CWA/TSMIP .acc component: two columns, time in s and acceleration in
  * m/s^2. NULL and err filled on failure (the two-column reader's errors). */
 sl_motion *sl_cwa_acc_read(const char *path, sl_error *err);
+
+/* A USGS SMC corrected accelerogram (type 2); its component name ("360",
+ * "up") is copied to comp (compn bytes, may be NULL). NULL and err filled
+ * (file, line, value) on failure. */
+sl_motion *sl_smc_read(const char *path, char *comp, size_t compn, sl_error *err);
 
 /* 1 when a component name from a file header names the vertical: "Up",
  * "UP", "Z", "V", "Ver", "Vertical", "Down", "DWN" (any case, surrounding

@@ -73,6 +73,53 @@ static sl_status read_channels_file(const char *path, sl_set *set, sl_error *err
     return SL_OK;
 }
 
+/* Three USGS SMC files, the vertical by its header's component name. */
+static sl_status read_smc(const char *dir, sl_set *set, sl_error *err)
+{
+    char pattern[SETDIR_PATH_MAX];
+    if (snprintf(pattern, sizeof pattern, "%s/*.[sS][mM][cC]", dir) >= (int)sizeof pattern)
+        return sl_error_set(err, SL_EINVAL, dir, 0, "folder name too long");
+    glob_t g;
+    if (glob(pattern, 0, NULL, &g) != 0)
+        return sl_error_set(err, SL_EIO, dir, 0, "cannot list the .smc files");
+    sl_motion *h[2] = {NULL, NULL}, *v = NULL;
+    size_t nh = 0, nv = 0;
+    sl_status st = SL_OK;
+    for (size_t i = 0; i < g.gl_pathc && st == SL_OK; i++) {
+        char comp[SL_COMP_NAME_MAX];
+        sl_motion *m = sl_smc_read(g.gl_pathv[i], comp, sizeof comp, err);
+        if (!m) {
+            st = err ? err->code : SL_EIO;
+            break;
+        }
+        if (sl_component_is_vertical(comp)) {
+            nv++;
+            if (v)
+                sl_motion_free(v);
+            v = m;
+        } else {
+            if (nh < 2)
+                h[nh] = m;
+            else
+                sl_motion_free(m);
+            nh++;
+        }
+    }
+    globfree(&g);
+    set->h1 = h[0];
+    set->h2 = h[1];
+    set->v = v;
+    if (st == SL_OK && (nh != 2 || nv != 1))
+        st = sl_error_set(err, SL_EIO, dir, 0,
+                          "expected 2 horizontal and 1 vertical .smc files, found %zu and %zu",
+                          nh, nv);
+    if (st == SL_OK)
+        st = sl_set_check(set, 1, err);
+    if (st != SL_OK)
+        sl_set_free_motions(set);
+    return st;
+}
+
 /* No .AT2 files: a .V2A / .V2 file with three channels, or three CWA .acc
  * files (_E, _N, _Z). */
 static sl_status read_other(const char *dir, sl_set *set, sl_error *err)
@@ -87,6 +134,9 @@ static sl_status read_other(const char *dir, sl_set *set, sl_error *err)
                                 count);
         st = read_channels_file(path, set, err);
     } else {
+        static const char *const smc[] = {"*.smc", "*.SMC"};
+        if (first_match(dir, smc, 2, path, sizeof path, &count))
+            return read_smc(dir, set, err);
         char pattern[SETDIR_PATH_MAX];
         if (snprintf(pattern, sizeof pattern, "%s/*.acc", dir) >= (int)sizeof pattern)
             return sl_error_set(err, SL_EINVAL, dir, 0, "folder name too long");
@@ -96,7 +146,7 @@ static sl_status read_other(const char *dir, sl_set *set, sl_error *err)
             if (gr != GLOB_NOMATCH)
                 globfree(&g);
             return sl_error_set(err, SL_EIO, dir, 0,
-                                "no .AT2, .V2A, .V2 or .acc files in this folder");
+                                "no .AT2, .V2A, .V2, .smc or .acc files in this folder");
         }
         const char *hor[2] = {NULL, NULL}, *ver = NULL;
         size_t nh = 0, nv = 0;
