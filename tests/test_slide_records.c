@@ -10,6 +10,8 @@
  *    (rtol 1e-5, atol 1e-8 m), checked against a second, independent
  *    method: the exact 1-D kernel on H1 + V, run through the 2-D engine as
  *    H1 along 30 degrees (a rotated 1-D record slides along that line);
+ *  - the sets are PEER .AT2 folders and the GeoNet V2A, CSMIP V2 and CWA
+ *    .acc folders (io/formats.h), every Kaikoura set among them;
  *  - a strong vertical (Rinaldi) and lift-off (Rinaldi's vertical scaled
  *    until a_v reaches -1.3 g) are in the set.
  *
@@ -136,12 +138,15 @@ static void test_all_records(void)
     tally t;
     memset(&t, 0, sizeof t);
     int rinaldi = 0, checked_1d = 0;
+    size_t kaikoura_dirs = 0, kaikoura_read = 0; /* strong-vertical GeoNet sets (issue 14) */
     for (size_t i = 0; i < nn; i++) {
         char dir[1200];
         snprintf(dir, sizeof dir, "%s/%s", root, names[i]);
         struct stat st;
         if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
             continue;
+        const int kaikoura = !strncmp(names[i], "GEONET_2016Kaikoura", 19);
+        kaikoura_dirs += kaikoura;
         sl_set set;
         sl_error err;
         sl_error_clear(&err);
@@ -151,6 +156,7 @@ static void test_all_records(void)
                 fprintf(stderr, "  %-40s not read: %s\n", names[i], err.msg);
             continue;
         }
+        kaikoura_read += kaikoura;
         check_set(names[i], &set, &t, verbose);
         if (checked_1d < 4 && (i % 16) == 0) { /* a spread of records */
             check_reference_1d(names[i], &set);
@@ -180,6 +186,8 @@ static void test_all_records(void)
         free(names[i]);
     CHECK(t.sets >= 60, "only %zu three-component sets read", t.sets);
     CHECK(rinaldi, "Rinaldi (RSN1063_NORTHR_RRS) missing");
+    CHECK(kaikoura_read == kaikoura_dirs, "only %zu of %zu Kaikoura (GeoNet V2A) sets read",
+          kaikoura_read, kaikoura_dirs);
     const double frac = t.rows ? (double)t.bounded / (double)t.rows : 0;
     CHECK(frac >= 0.95, "the estimate bounds the error in %zu of %zu rows (%.1f %%)", t.bounded,
           t.rows, 100 * frac);

@@ -1,7 +1,11 @@
 /*
- * setdir.h - a recorded three-component set read from one folder of PEER
- * .AT2 files (the layout of ../shared/records/RSN*): two horizontals and
- * one vertical, told apart by sl_motion_name_is_vertical().
+ * setdir.h - a recorded three-component set read from one folder: PEER
+ * .AT2 files (the layout of ../shared/records/RSN*), two horizontals and
+ * one vertical told apart by sl_motion_name_is_vertical(); or, in a folder
+ * without .AT2 files, the agency formats of io/formats.h: one GeoNet .V2A
+ * or CSMIP .V2 file with three channels, three USGS .smc files, or three
+ * CWA .acc files (_E, _N, _Z); the vertical by its component name
+ * (sl_component_is_vertical()), H1 and H2 the others in file order.
  *
  * Units: SI (the reader converts). Memory: the set's motions are owned by
  * the caller after a successful read and freed with sl_set_free_motions().
@@ -12,13 +16,14 @@
 #include "core/status.h"
 #include "io/motion.h"
 
-/* Read the set in folder `dir`: its *.AT2 files, exactly two horizontals
- * and one vertical; H1 is the horizontal whose name sorts first.
+/* Read the set in folder `dir`: its *.AT2 files (else the agency files
+ * above), exactly two horizontals and one vertical; H1 is the horizontal
+ * whose name sorts first (the first channel in a multi-channel file).
  * Components of different length are cut to the shortest (PEER sets
  * sometimes differ by a few samples; sl_set_check() with truncate). On
  * success *set holds three motions the caller owns. Returns SL_OK, or an
  * error naming the folder or file (SL_EINVAL for a name too long, SL_EIO
- * when the folder cannot be read or does not hold 2 + 1 files, the
+ * when the folder cannot be read or does not hold 2 + 1 components, the
  * reader's errors). On failure *set is zeroed and nothing is left
  * allocated. */
 sl_status sl_set_read_dir(const char *dir, sl_set *set, sl_error *err);
