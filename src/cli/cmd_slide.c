@@ -3,7 +3,6 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "cli.h"
 #include "io/motion.h"
@@ -95,36 +94,26 @@ static const cli_opt opts[] = {
 /* The options that need more than a kind: names and bounded numbers. */
 static int take(void *dst, int key, const char *arg)
 {
-    static const char *const models[] = {"exact", "smooth", "plastic"};
-    static const char *const solvers[] = {"msbdf", "rk4imp", "bsimp", "rkf45"};
     sl_slide_opts *so = &((slide_args *)dst)->so;
     unsigned long ul;
-    int q = 0;
-    switch (key) {
-    case O_SUBSTEPS:
+    int q;
+    if (key == O_SUBSTEPS) {
         if (cli_parse_ulong(arg, &ul) || ul < 1 || ul > 1000000)
             return cli_usage("slide", "--substeps '%s' must be an integer >= 1", arg);
         so->substeps = (unsigned)ul;
-        return CLI_EXIT_OK;
-    case O_MODEL:
-        while (q < 3 && strcmp(arg, models[q]))
-            q++;
-        if (q == 3)
-            return cli_usage("slide", "unknown model '%s' (exact, smooth, plastic)", arg);
-        so->model = q == 0 ? SL_MODEL_EXACT : q == 1 ? SL_MODEL_SMOOTH : SL_MODEL_PLASTIC;
-        return CLI_EXIT_OK;
-    case O_ETA:
+    } else if (key == O_ETA) {
         if (cli_parse_double(arg, &so->smooth_eta) || so->smooth_eta < 1)
             return cli_usage("slide", "--eta '%s' must be a number >= 1", arg);
-        return CLI_EXIT_OK;
-    default: /* O_SOLVER */
-        while (q < 4 && strcmp(arg, solvers[q]))
-            q++;
-        if (q == 4)
+    } else if (key == O_MODEL) {
+        if ((q = sl_model_parse(arg)) < 0)
+            return cli_usage("slide", "unknown model '%s' (exact, smooth, plastic)", arg);
+        so->model = (sl_model)q;
+    } else { /* O_SOLVER */
+        if ((q = sl_smooth_solver_parse(arg)) < 0)
             return cli_usage("slide", "unknown solver '%s' (msbdf, rk4imp, bsimp, rkf45)", arg);
         so->smooth_solver = q;
-        return CLI_EXIT_OK;
     }
+    return CLI_EXIT_OK;
 }
 
 /* The rules across options; fills so from rtol, atol, one_way, ratio. */
