@@ -1,13 +1,13 @@
 /* cmd_asce.c - `seislide asce`: ASCE/SEI 43-05 approximate sliding
  * displacement (Appendix A.1) for many friction coefficients. The input is
- * assembled by method/asce_input.h; this file parses and prints. */
+ * assembled by method/asce_input.h (asce_output.c); this file parses, calls, prints. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
-#include "method/asce_input.h"
+#include "asce_output.h"
 
 static const char asce_head[] =
     "usage: seislide asce (--rg160 PGA | --floor FILE | --h1 FILE --h2 FILE --v FILE)\n"
@@ -35,13 +35,6 @@ static const char asce_tail[] =
     "(design value cut to the cap); flags joined with '+'.\n"
     "Exit status: 0 success, 1 bad input or failed run, 2 usage error.\n";
 
-typedef struct asce_args {
-    const char *h1, *h2, *v, *floor;
-    double rg_pga_g, fs, pgd_m, pgv_ms;
-    sl_read_opts ro;
-    int truncate, csv;
-    cli_mu mu;
-} asce_args;
 
 enum { OPT_RG160 = CLI_OPT_ID, OPT_FLOOR, OPT_H1, OPT_H2, OPT_V, OPT_UNITS, OPT_DT, OPT_TRUNCATE,
        OPT_MU, OPT_MU_RANGE, OPT_FS, OPT_PGD, OPT_PGV, OPT_CSV };
@@ -78,72 +71,6 @@ static const cli_opt asce_opts[] = {
      "larger horizontal PGV by default)", .kind = CLI_POSITIVE, A(pgv_ms), .unit = "m/s"},
     {"csv", OPT_CSV, NULL, "CSV instead of an aligned table (stdout)", .kind = CLI_FLAG, A(csv)},
 };
-
-/* The method's input from whichever source, its description and the PGV
- * for Newmark's estimates. Returns 0 or -1 (err filled). */
-static int make_source(const asce_args *a, sl_asce_source *src, sl_floor **fl, sl_motion *m[3],
-                       double *pgv_ms, char *what, size_t nw, sl_error *err)
-{
-    *pgv_ms = NAN;
-    if (!isnan(a->rg_pga_g)) {
-        if (sl_asce_input_from_rg160(a->rg_pga_g, src, err))
-            return -1;
-        snprintf(what, nw, "RG 1.60 horizontal at PGA %g g for H1 and H2, A_v = %g g, peak "
-                 "displacement %.4f m (1.4 x 36 in x PGA)", a->rg_pga_g, a->rg_pga_g,
-                 src->in.pgd_m);
-        return 0;
-    }
-    if (a->floor) {
-        if (!(*fl = sl_floor_load(a->floor, err)) || sl_asce_input_from_floor(*fl, NULL, src, err))
-            return -1;
-        snprintf(what, nw, "floor '%s' (%s)%s, horizontal ZPA %.4f g, A_v = %.4f g (V zpa%s)",
-                 (*fl)->name, a->floor, (*fl)->h2_same_as_h1 ? ", H2 declared same as H1" : "",
-                 src->in.zpa_h_ms2 / SL_G, src->in.av_ms2 / SL_G,
-                 (*fl)->comp[SL_FLOOR_V].zpa_given ? "" : " from the high-frequency end");
-        return 0;
-    }
-    const char *path[3] = {a->h1, a->h2, a->v};
-    for (int q = 0; q < 3; q++)
-        if (!(m[q] = sl_motion_read(path[q], &a->ro, err)))
-            return -1;
-    sl_set set = {m[0], m[1], m[2]};
-    if (sl_set_check(&set, a->truncate, err) || sl_asce_input_from_set(&set, src, err))
-        return -1;
-    *pgv_ms = fmax(sl_motion_pgv(m[0]), sl_motion_pgv(m[1]));
-    snprintf(what, nw, "motions %s + %s + V %s, PGA %.4f g, A_v = %.4f g, peak displacement "
-             "%.4f m (100-40)", path[0], path[1], path[2], src->in.zpa_h_ms2 / SL_G,
-             src->in.av_ms2 / SL_G, src->in.pgd_m);
-    return 0;
-}
-
-/* One result row: CSV, or the aligned table. */
-static void print_row(const sl_asce_result *r, double nm1, double nm2, int csv)
-{
-    char st[80];
-    sl_asce_status_name(r->flags, st, sizeof st);
-    if (csv) {
-        printf("%.6g,%.6g,", r->mu, r->mu_e);
-        const double v[] = {r->cs_ms2 / SL_G, r->fes_hz, r->delta_best_m, r->delta_design_m};
-        for (int i = 0; i < 4; i++)
-            cli_put_csv(v[i], 0);
-        printf("%s,", st);
-        cli_put_csv(r->cap_m, 0);
-        cli_put_csv(nm1, 0);
-        cli_put_csv(nm2, 1);
-        return;
-    }
-    printf("%8.4f %8.4f %8.4f ", r->mu, r->mu_e, r->cs_ms2 / SL_G);
-    cli_put_num("%*.4f", r->fes_hz, 9);
-    const char *fmt[] = {"%*.3f", "%*.3f", "%*.1f", "%*.3f", "%*.3f"};
-    const double v[] = {1e3 * r->delta_best_m, 1e3 * r->delta_design_m, 1e3 * r->cap_m,
-                        1e3 * nm1, 1e3 * nm2};
-    const int w[] = {12, 14, 9, 13, 14};
-    for (int i = 0; i < 5; i++) {
-        putchar(' ');
-        cli_put_num(fmt[i], v[i], w[i]);
-    }
-    printf("  %s\n", st);
-}
 
 /* The usage rules across options. Returns CLI_EXIT_OK or a usage error. */
 static int check_args(const asce_args *a)
@@ -187,7 +114,7 @@ int cmd_asce(int argc, char **argv)
     if (rc || (rc = cli_no_operands("asce", argc, argv)) || (rc = check_args(&a)))
         goto done;
     rc = CLI_EXIT_ERROR;
-    if (make_source(&a, &src, &fl, m, &pgv_ms, what, sizeof what, &err)) {
+    if (asce_make_source(&a, &src, &fl, m, &pgv_ms, what, sizeof what, &err)) {
         cli_print_error(&err);
         goto done;
     }
@@ -202,18 +129,7 @@ int cmd_asce(int argc, char **argv)
         cli_print_error(&err);
         goto done;
     }
-    if (a.csv) {
-        printf("mu,mu_e,cs_g,fes_hz,delta_best_m,delta_design_m,status,cap_m,"
-               "newmark_sym_m,newmark_asym_m\n");
-    } else {
-        printf("# seislide asce: ASCE/SEI 43-05 A.1, FS = %g\n# input: %s\n", a.fs, what);
-        if (!isnan(a.pgd_m))
-            printf("# peak input displacement %.4f m from --pgd\n", a.pgd_m);
-        printf("# cap: %s\n", src.in.pgd_m > 0 ? "1.5 x peak input displacement"
-                                                : "none (peak input displacement unknown)");
-        printf("%8s %8s %8s %9s %12s %14s %9s %13s %14s  %s\n", "mu", "mu_e", "cs_g", "fes_hz",
-               "best_mm", "design_mm", "cap_mm", "newmark_s_mm", "newmark_a_mm", "status");
-    }
+    asce_print_head(a.csv, a.fs, what, a.pgd_m, src.in.pgd_m > 0);
     for (size_t k = 0; k < a.mu.n; k++) {
         sl_asce_result r;
         if (sl_asce_eval(plan, a.mu.v[k], &r, &err)) {
@@ -221,7 +137,7 @@ int cmd_asce(int argc, char **argv)
             goto done;
         }
         double zpa = src.in.zpa_h_ms2;
-        print_row(&r, sl_asce_newmark_sym(pgv_ms, zpa, a.mu.v[k], SL_G),
+        asce_print_row(&r, sl_asce_newmark_sym(pgv_ms, zpa, a.mu.v[k], SL_G),
                   sl_asce_newmark_asym(pgv_ms, zpa, a.mu.v[k], SL_G), a.csv);
     }
     if (fflush(stdout) || ferror(stdout)) {

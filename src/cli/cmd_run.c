@@ -10,6 +10,7 @@
 #include "analysis.h"
 #include "cli.h"
 #include "outdir.h"
+#include "run_report.h"
 #include "report/deliver.h"
 
 #include "core/standards.h"
@@ -102,24 +103,6 @@ static void help(void)
          "2 usage error.");
 }
 
-typedef struct progress_ctx {
-    int quiet;
-    size_t floor, n;
-    const char *name, *step;
-    int pct;
-} progress_ctx;
-static void progress(void *ctx, const char *step, size_t done, size_t total)
-{
-    progress_ctx *p = ctx;
-    int pct = total ? (int)(100.0 * (double)done / (double)total) : 0;
-    if (p->quiet || total == 0 || (p->step == step && pct < p->pct + 25 && done != total))
-        return;
-    p->step = step;
-    p->pct = pct;
-    cli_msg("run: floor %zu/%zu '%s': %s %zu/%zu (%d %%)", p->floor, p->n, p->name, step, done,
-            total, pct);
-}
-
 int cmd_run(int argc, char **argv)
 {
     const char *sde = getenv("SOURCE_DATE_EPOCH"), *dflt[] = {"floors"};
@@ -128,7 +111,7 @@ int cmd_run(int argc, char **argv)
                   .rel_se = SL_ANALYSIS_REL_SE, .abs_se_mm = 1e3 * SL_ANALYSIS_ABS_SE_M,
                   .max_sets = SL_ANALYSIS_MAX_SETS,
                   .created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL)};
-    char cmdline[8192] = "seislide", date[32], warn[4096], r[512];
+    char cmdline[8192] = "seislide", date[32], warn[4096];
     static sl_deliver_inputs in; /* large: not on the stack */
     sl_analysis *an[SL_DELIVER_MAX_FLOORS] = {NULL};
     sl_atomic_dir *out = NULL;
@@ -167,38 +150,18 @@ int cmd_run(int argc, char **argv)
     ao.mu = a.mu.v;
     ao.n_mu = a.mu.n;
     ao.policy = a.policy;
-    progress_ctx pc;
-    ao.progress = progress;
+    run_progress pc;
+    ao.progress = run_progress_cb;
     ao.progress_ctx = &pc;
     if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS && !a.quiet)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",
                 a.sets, SL_NLTHA_MIN_SETS);
     for (size_t i = 0; i < in.n; i++) {
-        pc = (progress_ctx){a.quiet, i + 1, in.n, in.floors[i]->name, NULL, -100};
+        pc = (run_progress){a.quiet, i + 1, in.n, in.floors[i]->name, NULL, -100};
         if (!(an[i] = sl_analysis_run(in.floors[i], &ao, &err)))
             goto fail;
         if (!a.quiet)
-            cli_msg("run: floor %zu/%zu '%s': ZPA %.3f g; %zu of %zu friction values need no "
-                    "NLTHA; ASCE below NLTHA for mu in %s%s%s", i + 1, in.n, in.floors[i]->name,
-                    an[i]->zpa_h_ms2 / SL_G, an[i]->n_mu_skipped, ao.n_mu,
-                    sl_report_ranges_text(an[i]->design, r, sizeof r),
-                    an[i]->note[0] ? "; note: " : "", an[i]->note);
-        const sl_analysis *q = an[i];
-        if (!a.quiet && q->stop == SL_ANALYSIS_STOP_FIXED)
-            cli_msg("run: floor '%s': %zu motion sets (fixed by --sets)", in.floors[i]->name,
-                    q->n_sets);
-        else if (!a.quiet)
-            cli_msg("run: floor '%s': %zu motion sets in %zu batches: %s (worst standard error "
-                    "%.1f %% of the design value)", in.floors[i]->name, q->n_sets, q->n_batches,
-                    q->stop == SL_ANALYSIS_STOP_CONVERGED ? "converged"
-                                                          : "NOT converged, --max-sets reached",
-                    100 * q->worst_rel_se);
-        if (!a.quiet)
-            cli_msg("run: floor '%s': wall time: synthesis %.2f s, NLTHA %.2f s, statistics "
-                    "%.3f s, ASCE and design %.3f s (%.3f s per set)", in.floors[i]->name,
-                    q->time_synth_s, q->time_nltha_s, q->time_stats_s, q->time_asce_s,
-                    (q->time_synth_s + q->time_nltha_s + q->time_stats_s + q->time_asce_s) /
-                        (double)q->n_sets);
+            run_report_floor(i + 1, in.n, in.floors[i]->name, an[i], ao.n_mu);
     }
     for (int i = 0; i < argc && strlen(cmdline) + strlen(argv[i]) + 2 < sizeof cmdline; i++)
         strcat(strcat(cmdline, " "), argv[i]);

@@ -90,50 +90,6 @@ static int parse_parts(void *dst, int key, const char *arg)
     return CLI_EXIT_OK;
 }
 
-static void note(void *ctx, const char *msg)
-{
-    if (!*(const int *)ctx)
-        fprintf(stderr, "seislide study: %s\n", msg);
-}
-
-/* Compute and write the parts asked for. 0 or -1 (message printed). */
-static int run_parts(study_out *o, const study_args *a)
-{
-    sl_study_part1 p1 = {0};
-    sl_study_part2 p2 = {0};
-    sl_study_part3 p3 = {0};
-    sl_study_part4 p4 = {0};
-    sl_error *e = &o->err;
-    int q = a->quiet, rc = 0;
-    if (a->parts & 1) {
-        note(&q, "part 1: model validation");
-        rc = sl_study_part1_run(a->records, &p1, e) ? -2 : study_report_part1(o, &p1);
-    }
-    if (!rc && (a->parts & 2)) {
-        note(&q, "part 2: El Centro #9");
-        rc = sl_study_part2_run(a->records, &p2, e) ? -2 : study_report_part2(o, &p2);
-    }
-    if (!rc && (a->parts & 4))
-        rc = sl_study_part3_run(a->records, &p3, note, &q, e) ? -2 : study_report_part3(o, &p3);
-    if (!rc && (a->parts & 8))
-        rc = sl_study_part4_run(a->records, &p4, note, &q, e) ? -2 : study_report_part4(o, &p4);
-    if (!rc)
-        study_report_claims(o, a->parts & 1 ? &p1 : NULL, a->parts & 2 ? &p2 : NULL,
-                            a->parts & 4 ? &p3 : NULL, a->parts & 8 ? &p4 : NULL);
-    if (rc == -2)
-        cli_print_error(e);
-    sl_study_part1_free(&p1);
-    sl_study_part2_free(&p2);
-    sl_study_part3_free(&p3);
-    sl_study_part4_free(&p4);
-    return rc ? -1 : 0;
-}
-
-static int make_dir(const char *path)
-{
-    return mkdir(path, 0777) == 0 || errno == EEXIST ? 0 : -1;
-}
-
 int cmd_study(int argc, char **argv)
 {
     char recdef[4096];
@@ -154,7 +110,7 @@ int cmd_study(int argc, char **argv)
     }
     study_out o = {.out = a.out, .plots = !a.no_plots};
     snprintf(o.figdir, sizeof o.figdir, "%s/" STUDY_FIGDIR, a.out);
-    if (make_dir(a.out) || make_dir(o.figdir)) {
+    if (study_make_dir(a.out) || study_make_dir(o.figdir)) {
         cli_msg("%s: cannot create the output folder: %s", o.figdir, strerror(errno));
         return CLI_EXIT_ERROR;
     }
@@ -164,16 +120,9 @@ int cmd_study(int argc, char **argv)
         cli_msg("out of memory");
         return CLI_EXIT_ERROR;
     }
-    fprintf(o.md,
-            "# Validation: seislide against the source study\n\n"
-            "Made by `seislide study` (`make study`) from the recorded motions in\n"
-            "../shared/records (provenance: ../shared/records/MANIFEST.tsv); every number\n"
-            "below is recomputed by that command. The study and its findings are summarised\n"
-            "in ../shared/docs/REFERENCE.md, section 1. Data and gnuplot scripts of every\n"
-            "figure are in `docs/" STUDY_FIGDIR "/`. Regression tests on the same\n"
-            "computations: tests/test_study.c.\n\n");
+    study_report_preamble(&o);
     double t0 = cli_now_s();
-    rc = run_parts(&o, &a);
+    rc = study_report_run(&o, a.records, a.parts, a.quiet);
     if (!rc && !o.plots)
         fprintf(o.md, "Figures were not drawn in this run (--no-plots).\n\n");
     if (!rc)

@@ -53,5 +53,12 @@ int study_report_part4(study_out *o, const sl_study_part4 *p);
 /* The claims table; a part not in `parts` (bit k = part k+1) is NULL. */
 void study_report_claims(study_out *o, const sl_study_part1 *p1, const sl_study_part2 *p2,
                          const sl_study_part3 *p3, const sl_study_part4 *p4);
+/* The report's opening paragraph. */
+void study_report_preamble(study_out *o);
+/* Compute (study/study_parts.h) and write the parts asked for (bit k = part
+ * k+1), with progress on stderr unless quiet. 0 or -1 (message printed). */
+int study_report_run(study_out *o, const char *records, int parts, int quiet);
+/* mkdir path (an existing one is fine). 0 or -1 (errno set). */
+int study_make_dir(const char *path);
 
 #endif

@@ -482,3 +482,57 @@ void study_report_claims(study_out *o, const sl_study_part1 *p1, const sl_study_
     }
     fprintf(md, "\n");
 }
+
+/* ---- The whole report ------------------------------------------------ */
+
+void study_report_preamble(study_out *o)
+{
+    fprintf(o->md,
+            "# Validation: seislide against the source study\n\n"
+            "Made by `seislide study` (`make study`) from the recorded motions in\n"
+            "../shared/records (provenance: ../shared/records/MANIFEST.tsv); every number\n"
+            "below is recomputed by that command. The study and its findings are summarised\n"
+            "in ../shared/docs/REFERENCE.md, section 1. Data and gnuplot scripts of every\n"
+            "figure are in `docs/" STUDY_FIGDIR "/`. Regression tests on the same\n"
+            "computations: tests/test_study.c.\n\n");
+}
+
+/* A progress line on stderr unless *ctx (quiet) is set. */
+static void note(void *ctx, const char *msg)
+{
+    if (!*(const int *)ctx)
+        fprintf(stderr, "seislide study: %s\n", msg);
+}
+
+int study_report_run(study_out *o, const char *records, int parts, int quiet)
+{
+    sl_study_part1 p1 = {0};
+    sl_study_part2 p2 = {0};
+    sl_study_part3 p3 = {0};
+    sl_study_part4 p4 = {0};
+    sl_error *e = &o->err;
+    int q = quiet, rc = 0;
+    if (parts & 1) {
+        note(&q, "part 1: model validation");
+        rc = sl_study_part1_run(records, &p1, e) ? -2 : study_report_part1(o, &p1);
+    }
+    if (!rc && (parts & 2)) {
+        note(&q, "part 2: El Centro #9");
+        rc = sl_study_part2_run(records, &p2, e) ? -2 : study_report_part2(o, &p2);
+    }
+    if (!rc && (parts & 4))
+        rc = sl_study_part3_run(records, &p3, note, &q, e) ? -2 : study_report_part3(o, &p3);
+    if (!rc && (parts & 8))
+        rc = sl_study_part4_run(records, &p4, note, &q, e) ? -2 : study_report_part4(o, &p4);
+    if (!rc)
+        study_report_claims(o, parts & 1 ? &p1 : NULL, parts & 2 ? &p2 : NULL,
+                            parts & 4 ? &p3 : NULL, parts & 8 ? &p4 : NULL);
+    if (rc == -2)
+        cli_print_error(e);
+    sl_study_part1_free(&p1);
+    sl_study_part2_free(&p2);
+    sl_study_part3_free(&p3);
+    sl_study_part4_free(&p4);
+    return rc ? -1 : 0;
+}
+

@@ -1355,6 +1355,19 @@ double sl_set_pga_h(const sl_set *set)
     return fmax(sl_motion_pga(set->h1), sl_motion_pga(set->h2));
 }
 
+double sl_set_scale_pga_h(sl_set *set, double pga_ms2)
+{
+    double pga = sl_set_pga_h(set);
+    if (!(pga > 0))
+        return 0;
+    double s = pga_ms2 / pga;
+    sl_motion *m[3] = {set->h1, set->h2, set->v};
+    for (int q = 0; q < 3; q++)
+        if (m[q])
+            sl_motion_scale(m[q], s);
+    return s;
+}
+
 double sl_set_pgd_100_40(const sl_set *set)
 {
     if (!set || !set->h1)

@@ -139,6 +139,11 @@ sl_status sl_set_check(sl_set *set, int truncate, sl_error *err);
  * m/s^2. */
 double sl_set_pga_h(const sl_set *set);
 
+/* Scale every component of the set by s = pga_ms2 / sl_set_pga_h(set), so
+ * the larger horizontal peak becomes pga_ms2 (m/s^2). Returns s, or 0 with
+ * the set unchanged when the horizontals are all zero (nothing to scale). */
+double sl_set_scale_pga_h(sl_set *set, double pga_ms2);
+
 /* Peak displacement by the 100-40 rule: max(PGD1 + 0.4 PGD2, PGD2 + 0.4 PGD1),
  * m; PGD1 alone when H2 is absent. */
 double sl_set_pgd_100_40(const sl_set *set);

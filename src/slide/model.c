@@ -1,5 +1,5 @@
 /*
- * model.c - defaults of the sliding-block options (model.h).
+ * model.c - defaults and names of the sliding-block options (model.h).
  */
 #include "slide/model.h"
 
@@ -23,4 +23,27 @@ void sl_slide_opts_default(sl_slide_opts *o)
     o->plastic_uy_m = 1e-4;
     o->plastic_substeps = 8;
     o->keep_going = 1;
+}
+
+/* Index of name in the n names, or -1. */
+static int name_index(const char *name, const char *const *names, int n)
+{
+    for (int q = 0; q < n; q++)
+        if (!strcmp(name, names[q]))
+            return q;
+    return -1;
+}
+
+int sl_model_parse(const char *name)
+{
+    static const char *const names[] = {"exact", "smooth", "plastic"};
+    static const sl_model models[] = {SL_MODEL_EXACT, SL_MODEL_SMOOTH, SL_MODEL_PLASTIC};
+    int q = name_index(name, names, 3);
+    return q < 0 ? -1 : (int)models[q];
+}
+
+int sl_smooth_solver_parse(const char *name)
+{
+    static const char *const names[] = {"msbdf", "rk4imp", "bsimp", "rkf45"};
+    return name_index(name, names, 4);
 }

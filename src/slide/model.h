@@ -52,6 +52,12 @@ typedef struct sl_slide_opts {
 /* Fill defaults (documented next to each field). */
 void sl_slide_opts_default(sl_slide_opts *o);
 
+/* The model named "exact", "smooth" or "plastic"; -1 for any other name. */
+int sl_model_parse(const char *name);
+/* The smoothed model's solver (sl_slide_opts.smooth_solver) named "msbdf",
+ * "rk4imp", "bsimp" or "rkf45": 0..3; -1 for any other name. */
+int sl_smooth_solver_parse(const char *name);
+
 /* Status flags of one result. */
 enum {
     SL_SLIDE_SKIPPED = 1,     /* mu g >= the most the motion can demand: no sliding, not integrated */
