@@ -2,7 +2,6 @@
  * (or recorded motions matched to a target), their files and a match report
  * with every acceptance check. Library: synth.h; method: docs/synthesis.md. */
 #include <errno.h>
-#include <getopt.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -16,6 +15,7 @@
 #include "io/motion.h"
 #include "signal/rg160.h"
 #include "synth/synth.h"
+#include "synth_opts.h"
 #include "synth_output.h"
 
 /* Most records --match takes (H1, H2, V). */
@@ -27,103 +27,17 @@
 /* Relative slack when a duration must be a whole number of steps. */
 #define SYNTH_STEP_SLACK 1e-9
 
-/* ---- The limit and method options: one table, parsed and documented from it. */
-typedef enum opt_kind {
-    K_FRACTION_OPEN, /* [0, 1) */
-    K_FRACTION,      /* [0, 1] */
-    K_NONNEG,        /* >= 0 */
-    K_POSITIVE,      /* > 0 */
-    K_COUNT,         /* integer >= 0 (size_t field) */
-    K_UCOUNT,        /* integer >= 0 (unsigned field) */
-    K_UCOUNT1        /* integer >= 1 (unsigned field) */
-} opt_kind;
-
-typedef struct param_opt {
-    const char *name;   /* long option */
-    size_t offset;      /* field in sl_synth_params */
-    opt_kind kind;
-    const char *unit;   /* shown in help; NULL = dimensionless */
-    const char *help;
-} param_opt;
-
-#define P_OFF(field) offsetof(sl_synth_params, field)
-static const param_opt param_opts[] = {
-    {"tol-below", P_OFF(tol_below), K_FRACTION_OPEN, NULL,
-     "largest fraction a point is below target"},
-    {"tol-above", P_OFF(tol_above), K_NONNEG, NULL,
-     "largest fraction a point is above target"},
-    {"max-run", P_OFF(max_run_below), K_COUNT, "points",
-     "most consecutive points below target"},
-    {"min-d575", P_OFF(min_d5_75_s), K_NONNEG, "s", "least D5-75 strong-motion duration"},
-    {"min-duration", P_OFF(min_duration_s), K_NONNEG, "s", "least total duration"},
-    {"max-corr", P_OFF(max_corr), K_FRACTION, NULL,
-     "largest |correlation| of two components"},
-    {"end-vel-frac", P_OFF(end_vel_frac), K_NONNEG, NULL, "largest |v(end)| as a fraction of PGV"},
-    {"end-disp-frac", P_OFF(end_disp_frac), K_NONNEG, NULL,
-     "largest |d(end)| as a fraction of PGD"},
-    {"fmin", P_OFF(fmin_hz), K_POSITIVE, "Hz", "lowest frequency checked"},
-    {"fmax", P_OFF(fmax_hz), K_POSITIVE, "Hz", "highest frequency checked"},
-    {"per-decade", P_OFF(per_decade), K_POSITIVE, NULL, "grid points per decade"},
-    {"max-iter", P_OFF(max_iter), K_UCOUNT, NULL, "correction iterations per attempt"},
-    {"max-attempts", P_OFF(max_attempts), K_UCOUNT1, NULL,
-     "phase sets tried per synthetic component"},
-    {"aim", P_OFF(aim), K_POSITIVE, NULL,
-     "the correction aims at aim x target (1.10: conservative)"},
-    {"max-peaks", P_OFF(max_peaks), K_COUNT, NULL,
-     "most peaks of |a| above 0.9 PGA (ground-like targets)"},
-    {"pga-tol-below", P_OFF(pga_tol_below), K_FRACTION, NULL,
-     "least PGA/ZPA is 1 - this (targets rigid at the end)"},
-    {"psd-frac", P_OFF(psd_frac), K_NONNEG, NULL,
-     "SRP App. B minimum PSD fraction (0: reported only)"},
-    {"wavelet-rate", P_OFF(wavelet_rate), K_NONNEG, NULL,
-     "wave packets per s per octave (0: random phases)"},
-    {"wavelet-cycles", P_OFF(wavelet_cycles), K_POSITIVE, NULL, "cycles per wave packet"},
-    {"rise-frac", P_OFF(rise_frac), K_POSITIVE, NULL, "envelope rise, fraction of the duration"},
-    {"hold-frac", P_OFF(hold_frac), K_POSITIVE, NULL, "envelope end of hold, fraction"},
-    {"end-amp", P_OFF(end_amp), K_POSITIVE, NULL, "envelope amplitude at the end"},
-};
-#define N_PARAM_OPTS (sizeof param_opts / sizeof param_opts[0])
-
-static double param_get(const sl_synth_params *p, const param_opt *o)
-{
-    const char *base = (const char *)p + o->offset;
-    switch (o->kind) {
-    case K_COUNT: return (double)*(const size_t *)(const void *)base;
-    case K_UCOUNT:
-    case K_UCOUNT1: return (double)*(const unsigned *)(const void *)base;
-    default: return *(const double *)(const void *)base;
-    }
-}
-
-/* Parse one table option into p. Returns CLI_EXIT_OK or a usage error. */
-static int param_set(sl_synth_params *p, const param_opt *o, const char *arg)
-{
-    char *base = (char *)p + o->offset;
-    if (o->kind == K_COUNT || o->kind == K_UCOUNT || o->kind == K_UCOUNT1) {
-        unsigned long v;
-        if (cli_parse_ulong(arg, &v) || v > 1000000UL || (o->kind == K_UCOUNT1 && v < 1))
-            return cli_usage("synth", "--%s '%s' must be a whole number %s", o->name, arg,
-                             o->kind == K_UCOUNT1 ? ">= 1" : ">= 0");
-        if (o->kind == K_COUNT)
-            *(size_t *)(void *)base = (size_t)v;
-        else
-            *(unsigned *)(void *)base = (unsigned)v;
-        return CLI_EXIT_OK;
-    }
-    double v;
-    int bad = cli_parse_double(arg, &v);
-    const char *want = "";
-    switch (o->kind) {
-    case K_FRACTION_OPEN: bad = bad || !(v >= 0 && v < 1); want = "in [0, 1)"; break;
-    case K_FRACTION: bad = bad || !(v >= 0 && v <= 1); want = "in [0, 1]"; break;
-    case K_NONNEG: bad = bad || !(v >= 0); want = ">= 0"; break;
-    default: bad = bad || !(v > 0); want = "> 0"; break;
-    }
-    if (bad)
-        return cli_usage("synth", "--%s '%s' must be a number %s", o->name, arg, want);
-    *(double *)(void *)base = v;
-    return CLI_EXIT_OK;
-}
+typedef struct synth_run {
+    sl_synth_params p;
+    const char *floor_path, *outdir;
+    const char *match[SYNTH_MAX_RECORDS];
+    size_t nmatch;
+    double rg_pga_g, damping, duration_s, dt_s;
+    unsigned long count;
+    unsigned long long seed;
+    int have_count, have_seed, have_duration, csv, quiet;
+    sl_unit units;
+} synth_run;
 
 static const char synth_help_head[] =
     "usage: seislide synth (--floor FILE | --rg160 PGA) --count N --seed S\n"
@@ -144,33 +58,7 @@ static const char synth_help_head[] =
     "Every motion is checked as in US NRC SRP 3.7.1; the report says pass or fail\n"
     "per check. A motion that misses a limit after the iterations is reported as\n"
     "failed and the exit status is 1.\n"
-    "\n"
-    "target (one of):\n"
-    "  --rg160 PGA            Regulatory Guide 1.60, horizontal (H1, H2) and vertical\n"
-    "                         (V) spectra at PGA (g); ZPA = PGA\n"
-    "  --floor FILE           a floor response spectrum file (docs/formats-floor.md):\n"
-    "                         each component at 5 %% damping when given, else its\n"
-    "                         lowest damping; ZPA from the file\n"
-    "  --damping Z            match at damping Z instead (RG 1.60 default %g; with\n"
-    "                         --floor every component must give Z)\n"
-    "motions:\n"
-    "  --count N              sets to make (1-%d)\n"
-    "  --seed S               seed of the random phases (a whole number); each\n"
-    "                         motion's stream comes from (S, set, component)\n"
-    "  --duration S           duration of each motion, s (default %g)\n"
-    "  --dt S                 time step, s (default %g; at most %g s: Nyquist\n"
-    "                         >= 50 Hz); with --match the records are resampled to\n"
-    "                         it (default: the record's step divided by the smallest\n"
-    "                         whole number that makes it <= %g s)\n"
-    "  --match FILE           a recorded motion (AT2, or any format of 'seislide\n"
-    "                         slide'); up to three\n"
-    "  --units U              units of --match files that do not name them\n"
-    "output:\n"
-    "  -o, --output DIR       folder for the files (created if missing)\n"
-    "  --format at2|csv       motion files: PEER-style AT2 in g (default), or CSV\n"
-    "                         with columns time_s,acc_g\n"
-    "  -q, --quiet            no progress on stderr\n"
-    "limits and method (defaults: SRP 3.7.1, docs/synthesis.md):\n";
+    "\n";
 
 static const char synth_help_tail[] =
     "\n"
@@ -179,42 +67,41 @@ static const char synth_help_tail[] =
     "Exit status: 0 every check passed, 1 bad input, failed write or a motion that\n"
     "failed a check (files still written), 2 usage error.\n";
 
-static void print_help(void)
-{
-    sl_synth_params d;
-    sl_synth_params_default(&d);
-    printf(synth_help_head, SL_SYNTH_DAMPING, SYNTH_MAX_COUNT, SL_SYNTH_DURATION_S, SL_SYNTH_DT_S,
-           SL_SYNTH_MAX_DT_S, SL_SYNTH_MAX_DT_S);
-    for (size_t i = 0; i < N_PARAM_OPTS; i++) {
-        char name[64];
-        snprintf(name, sizeof name, "--%s %s", param_opts[i].name,
-                 param_opts[i].kind >= K_COUNT ? "N" : "X");
-        printf("  %-22s %s (default %g%s%s)\n", name, param_opts[i].help,
-               param_get(&d, &param_opts[i]), param_opts[i].unit ? " " : "",
-               param_opts[i].unit ? param_opts[i].unit : "");
-    }
-    fputs(synth_help_tail, stdout);
-}
-
-enum { OPT_FLOOR = 256, OPT_RG160, OPT_DAMPING, OPT_COUNT, OPT_SEED, OPT_DURATION, OPT_DT,
-       OPT_MATCH, OPT_UNITS, OPT_FORMAT, OPT_HELP, OPT_PARAM0 };
-
-static const struct option base_opts[] = {
-    {"floor", required_argument, 0, OPT_FLOOR},
-    {"rg160", required_argument, 0, OPT_RG160},
-    {"damping", required_argument, 0, OPT_DAMPING},
-    {"count", required_argument, 0, OPT_COUNT},
-    {"seed", required_argument, 0, OPT_SEED},
-    {"duration", required_argument, 0, OPT_DURATION},
-    {"dt", required_argument, 0, OPT_DT},
-    {"match", required_argument, 0, OPT_MATCH},
-    {"units", required_argument, 0, OPT_UNITS},
-    {"output", required_argument, 0, 'o'},
-    {"format", required_argument, 0, OPT_FORMAT},
-    {"quiet", no_argument, 0, 'q'},
-    {"help", no_argument, 0, OPT_HELP},
+enum { OPT_FLOOR = CLI_OPT_ID, OPT_RG160, OPT_DAMPING, OPT_COUNT, OPT_SEED, OPT_DURATION, OPT_DT,
+       OPT_MATCH, OPT_UNITS, OPT_FORMAT };
+#define A(f) offsetof(synth_run, f)
+static const cli_opt base_opts[] = {
+    {.head = "target (one of):"},
+    {"rg160", OPT_RG160, "PGA", "Regulatory Guide 1.60, horizontal (H1, H2) and vertical\n"
+     "(V) spectra at PGA (g); ZPA = PGA", .kind = CLI_POSITIVE, .off = A(rg_pga_g), .unit = "g"},
+    {"floor", OPT_FLOOR, "FILE", "a floor response spectrum file (docs/formats-floor.md):\n"
+     "each component at 5 %% damping when given, else its\nlowest damping; ZPA from the file",
+     .kind = CLI_STRING, .off = A(floor_path)},
+    {"damping", OPT_DAMPING, "Z", "match at damping Z instead (RG 1.60 default %g; with\n"
+     "--floor every component must give Z)", {SL_SYNTH_DAMPING}, .kind = CLI_CALL},
+    {.head = "motions:"},
+    {"count", OPT_COUNT, "N", "sets to make (1-%g)", {SYNTH_MAX_COUNT}, .kind = CLI_CALL},
+    {"seed", OPT_SEED, "S", "seed of the random phases (a whole number); each\n"
+     "motion's stream comes from (S, set, component)", .kind = CLI_CALL},
+    {"duration", OPT_DURATION, "S", "duration of each motion, s (default %g)",
+     {SL_SYNTH_DURATION_S}, .kind = CLI_CALL},
+    {"dt", OPT_DT, "S", "time step, s (default %g; at most %g s: Nyquist\n"
+     ">= 50 Hz); with --match the records are resampled to\n"
+     "it (default: the record's step divided by the smallest\n"
+     "whole number that makes it <= %g s)", {SL_SYNTH_DT_S, SL_SYNTH_MAX_DT_S, SL_SYNTH_MAX_DT_S}, .kind = CLI_CALL},
+    {"match", OPT_MATCH, "FILE", "a recorded motion (AT2, or any format of 'seislide\n"
+     "slide'); up to three", .kind = CLI_CALL},
+    {"units", OPT_UNITS, "U", "units of --match files that do not name them", .kind = CLI_UNITS,
+     .off = A(units)},
+    {.head = "output:"},
+    {"output", 'o', "DIR", "folder for the files (created if missing)", .kind = CLI_STRING,
+     .off = A(outdir)},
+    {"format", OPT_FORMAT, "at2|csv", "motion files: PEER-style AT2 in g (default), or CSV\n"
+     "with columns time_s,acc_g", .kind = CLI_CALL},
+    {"quiet", 'q', NULL, "no progress on stderr", .kind = CLI_FLAG, .off = A(quiet)},
+    {.head = "limits and method (defaults: SRP 3.7.1, docs/synthesis.md):"},
 };
-#define N_BASE_OPTS (sizeof base_opts / sizeof base_opts[0])
+#define N_BASE_OPTS CLI_NOPTS(base_opts)
 
 /* ---- Progress --------------------------------------------------------- */
 
@@ -228,18 +115,6 @@ static void progress_cb(void *ctx, size_t done, size_t total)
 }
 
 /* ---- The command ------------------------------------------------------ */
-
-typedef struct synth_run {
-    sl_synth_params p;
-    const char *floor_path, *outdir;
-    const char *match[SYNTH_MAX_RECORDS];
-    size_t nmatch;
-    double rg_pga_g, damping, duration_s, dt_s;
-    unsigned long count;
-    unsigned long long seed;
-    int have_count, have_seed, have_duration, csv, quiet;
-    sl_unit units;
-} synth_run;
 
 /* Describe each component's target for the report and the AT2 title. */
 static void describe_targets(const synth_run *o, const sl_floor *fl,
@@ -293,98 +168,75 @@ static int read_records(const synth_run *o, sl_motion *rec[SL_SYNTH_NCOMP], doub
     return CLI_EXIT_OK;
 }
 
+/* The options that need more than their kind: ranges, flags of presence. */
+static int take(void *dst, int key, const char *arg)
+{
+    synth_run *o = dst;
+    int rc;
+    switch (key) {
+    case OPT_DAMPING:
+        if (cli_parse_double(arg, &o->damping) || !(o->damping > 0 && o->damping < 1))
+            return cli_usage("synth", "--damping '%s' must be a number in (0, 1)", arg);
+        return CLI_EXIT_OK;
+    case OPT_COUNT:
+        if (cli_parse_ulong(arg, &o->count) || o->count < 1 || o->count > SYNTH_MAX_COUNT)
+            return cli_usage("synth", "--count '%s' must be a whole number in [1, %d]", arg,
+                             SYNTH_MAX_COUNT);
+        o->have_count = 1;
+        return CLI_EXIT_OK;
+    case OPT_SEED: {
+        unsigned long v;
+        if (cli_parse_ulong(arg, &v))
+            return cli_usage("synth", "--seed '%s' must be a whole number >= 0", arg);
+        o->seed = v;
+        o->have_seed = 1;
+        return CLI_EXIT_OK;
+    }
+    case OPT_DURATION:
+        if ((rc = cli_positive("synth", "--duration", arg, "s", &o->duration_s)))
+            return rc;
+        if (o->duration_s > SYNTH_MAX_DURATION_S)
+            return cli_usage("synth", "--duration %g above %g s", o->duration_s,
+                             SYNTH_MAX_DURATION_S);
+        o->have_duration = 1;
+        return CLI_EXIT_OK;
+    case OPT_DT:
+        if ((rc = cli_positive("synth", "--dt", arg, "s", &o->dt_s)))
+            return rc;
+        if (o->dt_s > SL_SYNTH_MAX_DT_S * (1 + SYNTH_STEP_SLACK))
+            return cli_usage("synth", "--dt %g above %g s (SRP 3.7.1: Nyquist frequency >= 50 Hz)",
+                             o->dt_s, SL_SYNTH_MAX_DT_S);
+        return CLI_EXIT_OK;
+    case OPT_MATCH:
+        if (o->nmatch == SYNTH_MAX_RECORDS)
+            return cli_usage("synth", "at most %d --match records (H1, H2, V)", SYNTH_MAX_RECORDS);
+        o->match[o->nmatch++] = arg;
+        return CLI_EXIT_OK;
+    case OPT_FORMAT:
+        if (strcmp(arg, "csv") && strcmp(arg, "at2") && strcmp(arg, "AT2"))
+            return cli_usage("synth", "--format '%s' must be at2 or csv", arg);
+        o->csv = !strcmp(arg, "csv");
+        return CLI_EXIT_OK;
+    default: return synth_param_set(&o->p, key, arg) ? CLI_EXIT_USAGE : CLI_EXIT_OK;
+    }
+}
+
 /* Parse the options into o. Returns CLI_EXIT_OK, or an exit code to return
  * (-1 for --help done). */
 static int parse(int argc, char **argv, synth_run *o)
 {
-    struct option longopts[N_BASE_OPTS + N_PARAM_OPTS + 1];
-    memcpy(longopts, base_opts, sizeof base_opts);
-    for (size_t i = 0; i < N_PARAM_OPTS; i++) {
-        longopts[N_BASE_OPTS + i].name = param_opts[i].name;
-        longopts[N_BASE_OPTS + i].has_arg = required_argument;
-        longopts[N_BASE_OPTS + i].flag = NULL;
-        longopts[N_BASE_OPTS + i].val = OPT_PARAM0 + (int)i;
+    cli_opt opts[N_BASE_OPTS + SYNTH_NPARAM];
+    memcpy(opts, base_opts, sizeof base_opts);
+    size_t n = N_BASE_OPTS + synth_param_opts(opts + N_BASE_OPTS);
+    int rc = cli_parse("synth", opts, n, argc, argv, o, take);
+    if (rc == CLI_OPT_HELP) {
+        fputs(synth_help_head, stdout);
+        cli_help_options(stdout, opts, n, 25);
+        fputs(synth_help_tail, stdout);
+        return -1;
     }
-    memset(&longopts[N_BASE_OPTS + N_PARAM_OPTS], 0, sizeof longopts[0]);
-    optind = 1;
-    opterr = 0;
-    int c, rc;
-    while ((c = getopt_long(argc, argv, ":o:q", longopts, NULL)) != -1) {
-        const char *arg = optarg;
-        switch (c) {
-        case OPT_FLOOR: o->floor_path = arg; break;
-        case OPT_RG160:
-            if ((rc = cli_positive("synth", "--rg160", arg, "g", &o->rg_pga_g)))
-                return rc;
-            break;
-        case OPT_DAMPING:
-            if (cli_parse_double(arg, &o->damping) || !(o->damping > 0 && o->damping < 1))
-                return cli_usage("synth", "--damping '%s' must be a number in (0, 1)", arg);
-            break;
-        case OPT_COUNT:
-            if (cli_parse_ulong(arg, &o->count) || o->count < 1 || o->count > SYNTH_MAX_COUNT)
-                return cli_usage("synth", "--count '%s' must be a whole number in [1, %d]", arg,
-                                 SYNTH_MAX_COUNT);
-            o->have_count = 1;
-            break;
-        case OPT_SEED: {
-            unsigned long v;
-            if (cli_parse_ulong(arg, &v))
-                return cli_usage("synth", "--seed '%s' must be a whole number >= 0", arg);
-            o->seed = v;
-            o->have_seed = 1;
-            break;
-        }
-        case OPT_DURATION:
-            if ((rc = cli_positive("synth", "--duration", arg, "s", &o->duration_s)))
-                return rc;
-            if (o->duration_s > SYNTH_MAX_DURATION_S)
-                return cli_usage("synth", "--duration %g above %g s", o->duration_s,
-                                 SYNTH_MAX_DURATION_S);
-            o->have_duration = 1;
-            break;
-        case OPT_DT:
-            if ((rc = cli_positive("synth", "--dt", arg, "s", &o->dt_s)))
-                return rc;
-            if (o->dt_s > SL_SYNTH_MAX_DT_S * (1 + SYNTH_STEP_SLACK))
-                return cli_usage("synth",
-                                 "--dt %g above %g s (SRP 3.7.1: Nyquist frequency >= 50 Hz)",
-                                 o->dt_s, SL_SYNTH_MAX_DT_S);
-            break;
-        case OPT_MATCH:
-            if (o->nmatch == SYNTH_MAX_RECORDS)
-                return cli_usage("synth", "at most %d --match records (H1, H2, V)",
-                                 SYNTH_MAX_RECORDS);
-            o->match[o->nmatch++] = arg;
-            break;
-        case OPT_UNITS:
-            if (cli_units("synth", arg, &o->units))
-                return CLI_EXIT_USAGE;
-            break;
-        case 'o': o->outdir = arg; break;
-        case OPT_FORMAT:
-            if (!strcmp(arg, "csv"))
-                o->csv = 1;
-            else if (!strcmp(arg, "at2") || !strcmp(arg, "AT2"))
-                o->csv = 0;
-            else
-                return cli_usage("synth", "--format '%s' must be at2 or csv", arg);
-            break;
-        case 'q': o->quiet = 1; break;
-        case OPT_HELP: print_help(); return -1;
-        case ':': return cli_usage("synth", "option '%s' needs a value", argv[optind - 1]);
-        case '?': return cli_usage("synth", "unknown option '%s'", argv[optind - 1]);
-        default:
-            if (c >= OPT_PARAM0 && c < OPT_PARAM0 + (int)N_PARAM_OPTS) {
-                if ((rc = param_set(&o->p, &param_opts[c - OPT_PARAM0], arg)))
-                    return rc;
-                break;
-            }
-            return cli_usage("synth", "unknown option '%s'", argv[optind - 1]);
-        }
-    }
-    if (optind < argc)
-        return cli_usage("synth", "unexpected argument '%s'", argv[optind]);
+    if (rc || (rc = cli_no_operands("synth", argc, argv)))
+        return rc;
     if (!o->floor_path == isnan(o->rg_pga_g))
         return cli_usage("synth", "give exactly one target: --floor FILE or --rg160 PGA");
     if (!o->outdir)
@@ -405,7 +257,6 @@ static int parse(int argc, char **argv, synth_run *o)
         return cli_usage("synth", "%s", err.msg);
     return CLI_EXIT_OK;
 }
-
 int cmd_synth(int argc, char **argv)
 {
     synth_run o;
