@@ -2,7 +2,9 @@
  * synth_opts.h. */
 #include "synth_opts.h"
 
+#include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 typedef enum opt_kind {
     K_FRACTION_OPEN, /* [0, 1) */
@@ -118,4 +120,163 @@ size_t synth_param_opts(cli_opt *t)
                          help[i], {param_get(&d, o)}, .kind = CLI_CALL};
     }
     return N_PARAM_OPTS;
+}
+
+/* ---- The command's table and --help. */
+
+static const char synth_help_head[] =
+    "usage: seislide synth (--floor FILE | --rg160 PGA) --count N --seed S\n"
+    "                      [--duration S] [--dt S] -o DIR [options]\n"
+    "       seislide synth --match RECORD [--match H2 [--match V]]\n"
+    "                      (--floor FILE | --rg160 PGA) -o DIR [options]\n"
+    "\n"
+    "Spectrum-compatible acceleration histories (docs/synthesis.md): a random sum\n"
+    "of wave packets (Gabor wavelets) under an intensity envelope, then iterative\n"
+    "correction of the Fourier amplitudes by the ratio target/computed spectrum\n"
+    "with a soft, order-preserving compression of the largest half-cycles (no\n"
+    "clipping, no pinning: the PGA comes out of matching the high-frequency end\n"
+    "and PGA/ZPA is reported); baseline corrected so that velocity and\n"
+    "displacement end at zero. Each set has three independent components H1, H2,\n"
+    "V. --match modifies recorded motions instead (first to H1, then H2, then V),\n"
+    "keeping their Fourier phases; the report gives the correlation with the\n"
+    "record and both peak counts.\n"
+    "Every motion is checked as in US NRC SRP 3.7.1; the report says pass or fail\n"
+    "per check. A motion that misses a limit after the iterations is reported as\n"
+    "failed and the exit status is 1.\n"
+    "\n";
+
+static const char synth_help_tail[] =
+    "\n"
+    "files: DIR/setNN_h1.AT2, setNN_h2.AT2, setNN_v.AT2 (or match_h1.AT2 ...),\n"
+    "DIR/report.csv: one row per motion with every check (docs/synthesis.md).\n"
+    "Exit status: 0 every check passed, 1 bad input, failed write or a motion that\n"
+    "failed a check (files still written), 2 usage error.\n";
+
+enum { OPT_FLOOR = CLI_OPT_ID, OPT_RG160, OPT_DAMPING, OPT_COUNT, OPT_SEED, OPT_DURATION, OPT_DT,
+       OPT_MATCH, OPT_UNITS, OPT_FORMAT };
+#define A(f) offsetof(synth_run, f)
+static const cli_opt base_opts[] = {
+    {.head = "target (one of):"},
+    {"rg160", OPT_RG160, "PGA", "Regulatory Guide 1.60, horizontal (H1, H2) and vertical\n"
+     "(V) spectra at PGA (g); ZPA = PGA", .kind = CLI_POSITIVE, .off = A(rg_pga_g), .unit = "g"},
+    {"floor", OPT_FLOOR, "FILE", "a floor response spectrum file (docs/formats-floor.md):\n"
+     "each component at 5 %% damping when given, else its\nlowest damping; ZPA from the file",
+     .kind = CLI_STRING, .off = A(floor_path)},
+    {"damping", OPT_DAMPING, "Z", "match at damping Z instead (RG 1.60 default %g; with\n"
+     "--floor every component must give Z)", {SL_SYNTH_DAMPING}, .kind = CLI_CALL},
+    {.head = "motions:"},
+    {"count", OPT_COUNT, "N", "sets to make (1-%g)", {SYNTH_MAX_COUNT}, .kind = CLI_CALL},
+    {"seed", OPT_SEED, "S", "seed of the random phases (a whole number); each\n"
+     "motion's stream comes from (S, set, component)", .kind = CLI_CALL},
+    {"duration", OPT_DURATION, "S", "duration of each motion, s (default %g)",
+     {SL_SYNTH_DURATION_S}, .kind = CLI_CALL},
+    {"dt", OPT_DT, "S", "time step, s (default %g; at most %g s: Nyquist\n"
+     ">= 50 Hz); with --match the records are resampled to\n"
+     "it (default: the record's step divided by the smallest\n"
+     "whole number that makes it <= %g s)", {SL_SYNTH_DT_S, SL_SYNTH_MAX_DT_S, SL_SYNTH_MAX_DT_S}, .kind = CLI_CALL},
+    {"match", OPT_MATCH, "FILE", "a recorded motion (AT2, or any format of 'seislide\n"
+     "slide'); up to three", .kind = CLI_CALL},
+    {"units", OPT_UNITS, "U", "units of --match files that do not name them", .kind = CLI_UNITS,
+     .off = A(units)},
+    {.head = "output:"},
+    {"output", 'o', "DIR", "folder for the files (created if missing)", .kind = CLI_STRING,
+     .off = A(outdir)},
+    {"format", OPT_FORMAT, "at2|csv", "motion files: PEER-style AT2 in g (default), or CSV\n"
+     "with columns time_s,acc_g", .kind = CLI_CALL},
+    {"quiet", 'q', NULL, "no progress on stderr", .kind = CLI_FLAG, .off = A(quiet)},
+    {.head = "limits and method (defaults: SRP 3.7.1, docs/synthesis.md):"},
+};
+#define N_BASE_OPTS CLI_NOPTS(base_opts)
+
+/* The options that need more than their kind: ranges, flags of presence. */
+static int take(void *dst, int key, const char *arg)
+{
+    synth_run *o = dst;
+    int rc;
+    switch (key) {
+    case OPT_DAMPING:
+        if (cli_parse_double(arg, &o->damping) || !(o->damping > 0 && o->damping < 1))
+            return cli_usage("synth", "--damping '%s' must be a number in (0, 1)", arg);
+        return CLI_EXIT_OK;
+    case OPT_COUNT:
+        if (cli_parse_ulong(arg, &o->count) || o->count < 1 || o->count > SYNTH_MAX_COUNT)
+            return cli_usage("synth", "--count '%s' must be a whole number in [1, %d]", arg,
+                             SYNTH_MAX_COUNT);
+        o->have_count = 1;
+        return CLI_EXIT_OK;
+    case OPT_SEED: {
+        unsigned long v;
+        if (cli_parse_ulong(arg, &v))
+            return cli_usage("synth", "--seed '%s' must be a whole number >= 0", arg);
+        o->seed = v;
+        o->have_seed = 1;
+        return CLI_EXIT_OK;
+    }
+    case OPT_DURATION:
+        if ((rc = cli_positive("synth", "--duration", arg, "s", &o->duration_s)))
+            return rc;
+        if (o->duration_s > SYNTH_MAX_DURATION_S)
+            return cli_usage("synth", "--duration %g above %g s", o->duration_s,
+                             SYNTH_MAX_DURATION_S);
+        o->have_duration = 1;
+        return CLI_EXIT_OK;
+    case OPT_DT:
+        if ((rc = cli_positive("synth", "--dt", arg, "s", &o->dt_s)))
+            return rc;
+        if (o->dt_s > SL_SYNTH_MAX_DT_S * (1 + SYNTH_STEP_SLACK))
+            return cli_usage("synth", "--dt %g above %g s (SRP 3.7.1: Nyquist frequency >= 50 Hz)",
+                             o->dt_s, SL_SYNTH_MAX_DT_S);
+        return CLI_EXIT_OK;
+    case OPT_MATCH:
+        if (o->nmatch == SYNTH_MAX_RECORDS)
+            return cli_usage("synth", "at most %d --match records (H1, H2, V)", SYNTH_MAX_RECORDS);
+        o->match[o->nmatch++] = arg;
+        return CLI_EXIT_OK;
+    case OPT_FORMAT:
+        if (strcmp(arg, "csv") && strcmp(arg, "at2") && strcmp(arg, "AT2"))
+            return cli_usage("synth", "--format '%s' must be at2 or csv", arg);
+        o->csv = !strcmp(arg, "csv");
+        return CLI_EXIT_OK;
+    default: return synth_param_set(&o->p, key, arg) ? CLI_EXIT_USAGE : CLI_EXIT_OK;
+    }
+}
+
+int synth_parse(int argc, char **argv, synth_run *o)
+{
+    memset(o, 0, sizeof *o);
+    sl_synth_params_default(&o->p);
+    o->rg_pga_g = NAN;
+    o->duration_s = SL_SYNTH_DURATION_S;
+    o->dt_s = NAN;
+    cli_opt opts[N_BASE_OPTS + SYNTH_NPARAM];
+    memcpy(opts, base_opts, sizeof base_opts);
+    size_t n = N_BASE_OPTS + synth_param_opts(opts + N_BASE_OPTS);
+    int rc = cli_parse("synth", opts, n, argc, argv, o, take);
+    if (rc == CLI_OPT_HELP) {
+        fputs(synth_help_head, stdout);
+        cli_help_options(stdout, opts, n, 25);
+        fputs(synth_help_tail, stdout);
+        return -1;
+    }
+    if (rc || (rc = cli_no_operands("synth", argc, argv)))
+        return rc;
+    if (!o->floor_path == isnan(o->rg_pga_g))
+        return cli_usage("synth", "give exactly one target: --floor FILE or --rg160 PGA");
+    if (!o->outdir)
+        return cli_usage("synth", "-o DIR is required");
+    if (o->nmatch > 0) {
+        if (o->have_count || o->have_seed || o->have_duration)
+            return cli_usage("synth", "--match takes no --count, --seed or --duration");
+    } else {
+        if (!o->have_count)
+            return cli_usage("synth", "--count N is required (or --match FILE)");
+        if (!o->have_seed)
+            return cli_usage("synth", "--seed S is required: it makes the motions reproducible");
+        if (o->units != SL_UNIT_NONE)
+            return cli_usage("synth", "--units applies to --match files only");
+    }
+    sl_error err;
+    if (sl_synth_params_check(&o->p, &err))
+        return cli_usage("synth", "%s", err.msg);
+    return CLI_EXIT_OK;
 }

@@ -1,5 +1,6 @@
-/* synth_opts.h - the limit and method options of `seislide synth`: one
- * table over sl_synth_params, turned into entries of the command's cli_opt
+/* synth_opts.h - the options of `seislide synth`: one cli_opt table of the
+ * command's settings with --help generated from it; the limit and method
+ * options come from a table over sl_synth_params, turned into entries of the command's cli_opt
  * table (help text with the default from sl_synth_params_default) and
  * parsed with their ranges. */
 #ifndef SL_CLI_SYNTH_OPTS_H
@@ -8,7 +9,34 @@
 #include <stddef.h>
 
 #include "cli.h"
+#include "core/units.h"
 #include "synth/synth.h"
+
+/* Most records --match takes (H1, H2, V). */
+#define SYNTH_MAX_RECORDS SL_SYNTH_NCOMP
+/* Most sets per run (a guard against typos). */
+#define SYNTH_MAX_COUNT 1000
+/* Longest accepted motion, s (a guard against typos). */
+#define SYNTH_MAX_DURATION_S 3600.0
+/* Relative slack when a duration must be a whole number of steps. */
+#define SYNTH_STEP_SLACK 1e-9
+
+/* The settings of one `synth` run. */
+typedef struct synth_run {
+    sl_synth_params p;
+    const char *floor_path, *outdir;
+    const char *match[SYNTH_MAX_RECORDS];
+    size_t nmatch;
+    double rg_pga_g, damping, duration_s, dt_s;
+    unsigned long count;
+    unsigned long long seed;
+    int have_count, have_seed, have_duration, csv, quiet;
+    sl_unit units;
+} synth_run;
+
+/* Parse the command line into o (defaults first). Returns CLI_EXIT_OK, an
+ * exit code to return (usage error printed), or -1 after printing --help. */
+int synth_parse(int argc, char **argv, synth_run *o);
 
 #define SYNTH_OPT_PARAM0 (CLI_OPT_ID + 64) /* key of the first parameter option */
 #define SYNTH_NPARAM 22                    /* number of parameter options */
