@@ -3,13 +3,10 @@
  * with every acceptance check. Library: synth.h; method: docs/synthesis.md. */
 #include <errno.h>
 #include <math.h>
-#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
-#include "io/atomic.h"
 #include "cli.h"
 #include "io/floor.h"
 #include "io/motion.h"
@@ -17,7 +14,6 @@
 #include "synth/synth.h"
 #include "synth_opts.h"
 #include "synth_output.h"
-
 
 /* ---- Progress --------------------------------------------------------- */
 
@@ -32,57 +28,6 @@ static void progress_cb(void *ctx, size_t done, size_t total)
 
 /* ---- The command ------------------------------------------------------ */
 
-/* Describe each component's target for the report and the AT2 title. */
-static void describe_targets(const synth_run *o, const sl_floor *fl,
-                             const sl_synth_target tgt[SL_SYNTH_NCOMP],
-                             char desc[SL_SYNTH_NCOMP][512])
-{
-    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
-        if (fl)
-            snprintf(desc[c], sizeof desc[c], "floor %s [%s] at %g damping; ZPA %.4g g",
-                     fl->path, sl_synth_comp_name((sl_synth_comp)c), tgt[c].spec->damping,
-                     tgt[c].zpa_ms2 / SL_G);
-        else
-            snprintf(desc[c], sizeof desc[c], "RG 1.60 %s at %g damping; PGA %g g",
-                     c == SL_SYNTH_V ? "vertical" : "horizontal", tgt[c].spec->damping,
-                     o->rg_pga_g);
-    }
-}
-
-/* Read the --match records, resampled to a common step; sets *dt_out. */
-static int read_records(const synth_run *o, sl_motion *rec[SL_SYNTH_NCOMP], double *dt_out)
-{
-    sl_error err;
-    sl_error_clear(&err);
-    sl_read_opts ro;
-    memset(&ro, 0, sizeof ro);
-    ro.units = o->units;
-    double dt = o->dt_s;
-    for (size_t i = 0; i < o->nmatch; i++) {
-        rec[i] = sl_motion_read(o->match[i], &ro, &err);
-        if (!rec[i]) {
-            cli_print_error(&err);
-            return CLI_EXIT_ERROR;
-        }
-        if (i == 0 && !(dt > 0))
-            dt = sl_synth_match_dt(rec[0]->dt_s);
-    }
-    for (size_t i = 0; i < o->nmatch; i++) {
-        if (fabs(rec[i]->dt_s - dt) <= SYNTH_STEP_SLACK * dt)
-            continue;
-        sl_motion *r2 = sl_synth_resample_motion(rec[i], dt);
-        if (!r2) {
-            cli_msg("%s: cannot resample to dt %g s", o->match[i], dt);
-            return CLI_EXIT_ERROR;
-        }
-        sl_motion_free(rec[i]);
-        rec[i] = r2;
-        if (!o->quiet)
-            cli_msg("%s: resampled to dt %g s (linear interpolation)", o->match[i], dt);
-    }
-    *dt_out = dt;
-    return CLI_EXIT_OK;
-}
 
 int cmd_synth(int argc, char **argv)
 {
@@ -122,13 +67,13 @@ int cmd_synth(int argc, char **argv)
             goto done;
         }
     }
-    describe_targets(&o, fl, tgt, desc);
+    synth_describe_targets(fl, o.rg_pga_g, tgt, desc);
 
     /* Plan and motions. */
     double dt = o.dt_s > 0 ? o.dt_s : SL_SYNTH_DT_S;
     size_t n;
     if (o.nmatch > 0) {
-        if ((rc = read_records(&o, rec, &dt)) != CLI_EXIT_OK)
+        if ((rc = synth_read_records(&o, rec, &dt)) != CLI_EXIT_OK)
             goto done;
         rc = CLI_EXIT_ERROR;
         n = 0;

@@ -1,10 +1,12 @@
-/* synth_opts.c - the limit and method options of `seislide synth`; see
- * synth_opts.h. */
+/* synth_opts.c - the options of `seislide synth` and the records they
+ * name; see synth_opts.h. */
 #include "synth_opts.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+#include "io/motion.h"
 
 typedef enum opt_kind {
     K_FRACTION_OPEN, /* [0, 1) */
@@ -278,5 +280,39 @@ int synth_parse(int argc, char **argv, synth_run *o)
     sl_error err;
     if (sl_synth_params_check(&o->p, &err))
         return cli_usage("synth", "%s", err.msg);
+    return CLI_EXIT_OK;
+}
+
+int synth_read_records(const synth_run *o, sl_motion *rec[SL_SYNTH_NCOMP], double *dt_out)
+{
+    sl_error err;
+    sl_error_clear(&err);
+    sl_read_opts ro;
+    memset(&ro, 0, sizeof ro);
+    ro.units = o->units;
+    double dt = o->dt_s;
+    for (size_t i = 0; i < o->nmatch; i++) {
+        rec[i] = sl_motion_read(o->match[i], &ro, &err);
+        if (!rec[i]) {
+            cli_print_error(&err);
+            return CLI_EXIT_ERROR;
+        }
+        if (i == 0 && !(dt > 0))
+            dt = sl_synth_match_dt(rec[0]->dt_s);
+    }
+    for (size_t i = 0; i < o->nmatch; i++) {
+        if (fabs(rec[i]->dt_s - dt) <= SYNTH_STEP_SLACK * dt)
+            continue;
+        sl_motion *r2 = sl_synth_resample_motion(rec[i], dt);
+        if (!r2) {
+            cli_msg("%s: cannot resample to dt %g s", o->match[i], dt);
+            return CLI_EXIT_ERROR;
+        }
+        sl_motion_free(rec[i]);
+        rec[i] = r2;
+        if (!o->quiet)
+            cli_msg("%s: resampled to dt %g s (linear interpolation)", o->match[i], dt);
+    }
+    *dt_out = dt;
     return CLI_EXIT_OK;
 }

@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "core/units.h"
+#include "io/motion.h"
 #include "synth/synth.h"
 
 /* Most records --match takes (H1, H2, V). */
@@ -46,5 +47,10 @@ size_t synth_param_opts(cli_opt *t);
 /* Parse parameter option `key` into p. Returns CLI_EXIT_OK or (message
  * printed) CLI_EXIT_USAGE; 1 when key is not a parameter option. */
 int synth_param_set(sl_synth_params *p, int key, const char *arg);
+
+/* Read the --match records of o into rec (the caller frees), resampled to
+ * a common step *dt_out (--dt, else from the first record). Returns
+ * CLI_EXIT_OK or CLI_EXIT_ERROR (message printed). */
+int synth_read_records(const synth_run *o, sl_motion *rec[SL_SYNTH_NCOMP], double *dt_out);
 
 #endif

@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "io/atomic.h"
+#include "io/floor.h"
 #include "io/motion.h"
 
 /* mkdir -p. Returns 0 or -1 with errno set. */
@@ -225,4 +226,20 @@ int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t 
         return CLI_EXIT_ERROR;
     }
     return CLI_EXIT_OK;
+}
+
+void synth_describe_targets(const sl_floor *fl, double rg_pga_g,
+                            const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                            char desc[SL_SYNTH_NCOMP][512])
+{
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        if (fl)
+            snprintf(desc[c], sizeof desc[c], "floor %s [%s] at %g damping; ZPA %.4g g",
+                     fl->path, sl_synth_comp_name((sl_synth_comp)c), tgt[c].spec->damping,
+                     tgt[c].zpa_ms2 / SL_G);
+        else
+            snprintf(desc[c], sizeof desc[c], "RG 1.60 %s at %g damping; PGA %g g",
+                     c == SL_SYNTH_V ? "vertical" : "horizontal", tgt[c].spec->damping,
+                     rg_pga_g);
+    }
 }

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 
+#include "io/floor.h"
 #include "synth/synth.h"
 
 /* Longest path built for an output file. */
@@ -26,5 +27,11 @@ int synth_make_dirs(const char *path);
 /* Write every motion of the nsets sets and DIR/report.csv (each atomic).
  * Returns CLI_EXIT_OK or CLI_EXIT_ERROR (message printed). */
 int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t nsets);
+
+/* Describe each component's target for the report and the AT2 title: the
+ * floor file fl, or (fl NULL) RG 1.60 at rg_pga_g, g. */
+void synth_describe_targets(const sl_floor *fl, double rg_pga_g,
+                            const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                            char desc[SL_SYNTH_NCOMP][512]);
 
 #endif
