@@ -28,7 +28,6 @@ static void progress_cb(void *ctx, size_t done, size_t total)
 
 /* ---- The command ------------------------------------------------------ */
 
-
 int cmd_synth(int argc, char **argv)
 {
     synth_run o;

@@ -175,7 +175,8 @@ static const cli_opt base_opts[] = {
     {"dt", OPT_DT, "S", "time step, s (default %g; at most %g s: Nyquist\n"
      ">= 50 Hz); with --match the records are resampled to\n"
      "it (default: the record's step divided by the smallest\n"
-     "whole number that makes it <= %g s)", {SL_SYNTH_DT_S, SL_SYNTH_MAX_DT_S, SL_SYNTH_MAX_DT_S}, .kind = CLI_CALL},
+     "whole number that makes it <= %g s)",
+     {SL_SYNTH_DT_S, SL_SYNTH_MAX_DT_S, SL_SYNTH_MAX_DT_S}, .kind = CLI_CALL},
     {"match", OPT_MATCH, "FILE", "a recorded motion (AT2, or any format of 'seislide\n"
      "slide'); up to three", .kind = CLI_CALL},
     {"units", OPT_UNITS, "U", "units of --match files that do not name them", .kind = CLI_UNITS,

@@ -1,8 +1,8 @@
 /* synth_opts.h - the options of `seislide synth`: one cli_opt table of the
- * command's settings with --help generated from it; the limit and method
- * options come from a table over sl_synth_params, turned into entries of the command's cli_opt
- * table (help text with the default from sl_synth_params_default) and
- * parsed with their ranges. */
+ * command's settings, parsed by cli_parse() and printed by --help; the limit
+ * and method options come from a table over sl_synth_params, turned into
+ * entries of that table (help with the default of sl_synth_params_default)
+ * and parsed with their ranges. */
 #ifndef SL_CLI_SYNTH_OPTS_H
 #define SL_CLI_SYNTH_OPTS_H
 
