@@ -1,0 +1,245 @@
+/* synth_output.c - the files of `seislide synth`; see synth_output.h. */
+#include "synth_output.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "io/atomic.h"
+#include "io/floor.h"
+#include "io/motion.h"
+
+/* mkdir -p. Returns 0 or -1 with errno set. */
+int synth_make_dirs(const char *path)
+{
+    char buf[SYNTH_PATH_MAX];
+    size_t n = strlen(path);
+    if (n == 0 || n >= sizeof buf) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    memcpy(buf, path, n + 1);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] != '/' && buf[i] != '\0')
+            continue;
+        char c = buf[i];
+        buf[i] = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+            return -1;
+        buf[i] = c;
+    }
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return -1;
+    if (!S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return -1;
+    }
+    return 0;
+}
+
+/* Write a motion as CSV: time_s,acc_g (atomic). */
+static sl_status write_csv_motion(const char *path, const sl_motion *m, sl_error *err)
+{
+    sl_atomic *a = sl_atomic_open(path, err);
+    if (!a)
+        return SL_EIO;
+    FILE *f = sl_atomic_file(a);
+    fputs("time_s,acc_g\n", f);
+    for (size_t i = 0; i < m->n; i++)
+        fprintf(f, "%.10g,%.10E\n", m->dt_s * (double)i, m->acc_ms2[i] / SL_G);
+    return sl_atomic_commit(a, err);
+}
+
+/* One CSV field, quoted when it holds a comma, quote or line break (RFC 4180). */
+static void csv_string(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* One report row. */
+typedef struct report_row {
+    unsigned set;                 /* 1-based */
+    const char *comp;             /* h1, h2, v */
+    const char *file;             /* motion file name (in DIR) */
+    const char *source;           /* target and origin */
+    const char *seed;             /* decimal, or "" for records */
+    const sl_synth_check *k;
+    const double *corr;           /* the set's three pair values */
+    const sl_synth_params *p;
+} report_row;
+
+/* The report's columns: name, printf format, value. Header and rows come
+ * from this one list. */
+#define REPORT_NUM_COLUMNS(X)                                        \
+    X("attempt", "%u", r->k->attempt)                                \
+    X("iterations", "%u", r->k->iterations)                          \
+    X("damping", "%.4g", r->k->damping)                              \
+    X("f_lo_hz", "%.6g", r->k->f_lo_hz)                              \
+    X("f_hi_hz", "%.6g", r->k->f_hi_hz)                              \
+    X("points", "%zu", r->k->npoints)                                \
+    X("min_ratio", "%.5f", r->k->min_ratio)                          \
+    X("f_min_ratio_hz", "%.6g", r->k->f_min_ratio_hz)                \
+    X("max_ratio", "%.5f", r->k->max_ratio)                          \
+    X("f_max_ratio_hz", "%.6g", r->k->f_max_ratio_hz)                \
+    X("run_below", "%zu", r->k->run_below)                           \
+    X("points_below", "%zu", r->k->n_below)                          \
+    X("pga_g", "%.8g", r->k->pga_ms2 / SL_G)                          \
+    X("zpa_g", "%.8g", r->k->zpa_ms2 / SL_G)                          \
+    X("pgv_m_s", "%.6g", r->k->pgv_ms)                               \
+    X("pgd_m", "%.6g", r->k->pgd_m)                                  \
+    X("v_end_m_s", "%.3e", r->k->v_end_ms)                           \
+    X("d_end_m", "%.3e", r->k->d_end_m)                              \
+    X("d5_75_s", "%.4f", r->k->d5_75_s)                              \
+    X("duration_s", "%.6g", r->k->duration_s)                        \
+    X("corr_h1_h2", "%.4f", r->corr[0])                              \
+    X("corr_h1_v", "%.4f", r->corr[1])                               \
+    X("corr_h2_v", "%.4f", r->corr[2])                               \
+    X("corr_max_abs", "%.4f", r->k->max_corr)                        \
+    X("pga_zpa", "%.4f", r->k->pga_zpa)                              \
+    X("peaks_above_0.9pga", "%zu", r->k->peaks)                      \
+    X("v_over_a_s", "%.4f", r->k->va_s)                              \
+    X("v_over_a_expected_s", "%.4f", r->k->va_expect_s)              \
+    X("ad_over_v2", "%.3f", r->k->adv2)                              \
+    X("ad_over_v2_expected", "%.3f", r->k->adv2_expect)              \
+    X("psd_min_ratio", "%.3f", r->k->psd_min_ratio)                  \
+    X("f_psd_min_hz", "%.4g", r->k->f_psd_min_hz)                    \
+    X("corr_record", "%.4f", r->k->corr_record)                      \
+    X("peaks_record", "%.0f", r->k->peaks_record)                    \
+    X("lim_min_ratio", "%.6g", 1 - r->p->tol_below)                  \
+    X("lim_max_ratio", "%.6g", 1 + r->p->tol_above)                  \
+    X("lim_run", "%zu", r->p->max_run_below)                         \
+    X("lim_d5_75_s", "%.6g", r->p->min_d5_75_s)                      \
+    X("lim_duration_s", "%.6g", r->p->min_duration_s)                \
+    X("lim_corr", "%.6g", r->p->max_corr)                            \
+    X("lim_end_vel_frac", "%.6g", r->p->end_vel_frac)                \
+    X("lim_end_disp_frac", "%.6g", r->p->end_disp_frac)              \
+    X("lim_pga_zpa_min", "%.6g", 1 - r->p->pga_tol_below)            \
+    X("lim_peaks", "%zu", r->p->max_peaks)                           \
+    X("lim_psd_frac", "%.6g", r->p->psd_frac)                        \
+    X("ok_below", "%d", r->k->ok_below)                              \
+    X("ok_above", "%d", r->k->ok_above)                              \
+    X("ok_run", "%d", r->k->ok_run)                                  \
+    X("ok_d5_75", "%d", r->k->ok_d5_75)                              \
+    X("ok_duration", "%d", r->k->ok_duration)                        \
+    X("ok_end", "%d", r->k->ok_end)                                  \
+    X("ok_pga", "%d", r->k->ok_pga)                                  \
+    X("ok_corr", "%d", r->k->ok_corr)                                \
+    X("ok_peaks", "%d", r->k->ok_peaks)                              \
+    X("ok_psd", "%d", r->k->ok_psd)                                  \
+    X("pass", "%d", r->k->pass)
+
+static void report_header(FILE *f)
+{
+    fputs("set,component,file,target,seed", f);
+#define X(name, fmt, expr) fputs("," name, f);
+    REPORT_NUM_COLUMNS(X)
+#undef X
+    fputc('\n', f);
+}
+
+static void report_line(FILE *f, const report_row *r)
+{
+    fprintf(f, "%u,%s,", r->set, r->comp);
+    csv_string(f, r->file);
+    fputc(',', f);
+    csv_string(f, r->source);
+    fprintf(f, ",%s", r->seed);
+#define X(name, fmt, expr) fprintf(f, "," fmt, expr);
+    REPORT_NUM_COLUMNS(X)
+#undef X
+    fputc('\n', f);
+}
+
+
+int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t nsets)
+{
+    int match = o->match != NULL;
+    const char(*desc)[512] = o->desc;
+    sl_error err;
+    sl_error_clear(&err);
+    char path[SYNTH_PATH_MAX], file[256], title[1024], seed[32];
+    if (match)
+        seed[0] = '\0';
+    else
+        snprintf(seed, sizeof seed, "%llu", o->seed);
+    snprintf(path, sizeof path, "%s/report.csv", o->outdir);
+    sl_atomic *rep = sl_atomic_open(path, &err);
+    if (!rep) {
+        cli_print_error(&err);
+        return CLI_EXIT_ERROR;
+    }
+    FILE *rf = sl_atomic_file(rep);
+    report_header(rf);
+    for (size_t k = 0; k < nsets; k++) {
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+            const sl_motion *m = sl_synth_set_motion(&sets[k], (sl_synth_comp)c);
+            if (!m)
+                continue;
+            const char *cn = sl_synth_comp_name((sl_synth_comp)c);
+            const char *ext = o->csv ? "csv" : "AT2";
+            if (match)
+                snprintf(file, sizeof file, "match_%s.%s", cn, ext);
+            else
+                snprintf(file, sizeof file, "set%02lu_%s.%s", (unsigned long)(k + 1), cn, ext);
+            int w = snprintf(path, sizeof path, "%s/%s", o->outdir, file);
+            if (w < 0 || (size_t)w >= sizeof path) {
+                cli_msg("%s: output path too long", o->outdir);
+                sl_atomic_abort(rep);
+                return CLI_EXIT_ERROR;
+            }
+            /* A title too long for one line is cut (it is free text). */
+            int tw = match ? snprintf(title, sizeof title, "%s matched to %s (seislide %s)",
+                                      o->match[c], desc[c], SEISLIDE_VERSION)
+                           : snprintf(title, sizeof title,
+                                      "set %02lu %s: %s, seed %s (seislide %s)",
+                                      (unsigned long)(k + 1), cn, desc[c], seed,
+                                      SEISLIDE_VERSION);
+            if (tw < 0)
+                title[0] = '\0';
+            sl_status st = o->csv ? write_csv_motion(path, m, &err)
+                                  : sl_synth_write_at2(path, m, title, &err);
+            if (st) {
+                cli_print_error(&err);
+                sl_atomic_abort(rep);
+                return CLI_EXIT_ERROR;
+            }
+            report_row row = {(unsigned)(k + 1), cn, file, desc[c], seed,
+                              &sets[k].check[c], sets[k].corr, o->p};
+            report_line(rf, &row);
+        }
+    }
+    if (sl_atomic_commit(rep, &err)) {
+        cli_print_error(&err);
+        return CLI_EXIT_ERROR;
+    }
+    return CLI_EXIT_OK;
+}
+
+void synth_describe_targets(const sl_floor *fl, double rg_pga_g,
+                            const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                            char desc[SL_SYNTH_NCOMP][512])
+{
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        if (fl)
+            snprintf(desc[c], sizeof desc[c], "floor %s [%s] at %g damping; ZPA %.4g g",
+                     fl->path, sl_synth_comp_name((sl_synth_comp)c), tgt[c].spec->damping,
+                     tgt[c].zpa_ms2 / SL_G);
+        else
+            snprintf(desc[c], sizeof desc[c], "RG 1.60 %s at %g damping; PGA %g g",
+                     c == SL_SYNTH_V ? "vertical" : "horizontal", tgt[c].spec->damping,
+                     rg_pga_g);
+    }
+}
