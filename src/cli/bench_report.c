@@ -199,8 +199,12 @@ void bench_report_engine_wp(FILE *f, const sl_bench_wp *w)
             snprintf(name, sizeof name, "%u fixed sub-steps", x->substeps);
         else
             snprintf(name, sizeof name, "rtol %g%s", x->rtol, x->rtol == SL_SLIDE_DEFAULT_RTOL ? " (default)" : "");
-        out(f, "| %s | %.3f | %.2e | %.2e | %.1f %% | %.1f %% |\n", name, x->time_s, x->median_rel,
-            x->worst_rel, 100 * x->bounded, 100 * x->within);
+        if (isfinite(x->bounded) && isfinite(x->within))
+            out(f, "| %s | %.3f | %.2e | %.2e | %.1f %% | %.1f %% |\n", name, x->time_s,
+                x->median_rel, x->worst_rel, 100 * x->bounded, 100 * x->within);
+        else /* fixed sub-steps: no error estimate, no tolerance */
+            out(f, "| %s | %.3f | %.2e | %.2e | - | - |\n", name, x->time_s, x->median_rel,
+                x->worst_rel);
     }
     out(f, "\nDefault engine against the arithmetic floor (a branch-free first-order update of\n"
         "all mu per sample), %d mu from 0.05 to 0.80, 2-D + vertical, one thread:\n\n"
