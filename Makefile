@@ -42,7 +42,7 @@ $(LIB): $(LIB_OBJ)
 $(PROG): $(CLI_OBJ) $(LIB)
 	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LIBS_ALL)
 
-$(BUILD)/tests/%: tests/%.c $(LIB) tests/harness.h tests/oracle.h
+$(BUILD)/tests/%: tests/%.c $(LIB) tests/harness.h tests/oracle.h tests/tsv.h
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LIB) $(LIBS_ALL)
 
