@@ -61,6 +61,11 @@ static const param_opt param_opts[] = {
     {"rise-frac", P_OFF(rise_frac), K_POSITIVE, NULL, "envelope rise, fraction of the duration"},
     {"hold-frac", P_OFF(hold_frac), K_POSITIVE, NULL, "envelope end of hold, fraction"},
     {"end-amp", P_OFF(end_amp), K_POSITIVE, NULL, "envelope amplitude at the end"},
+    {"hp-frac", P_OFF(hp_frac), K_FRACTION_OPEN, NULL,
+     "high-pass corner / lowest checked frequency (0: none)"},
+    {"hp-order", P_OFF(hp_order), K_POSITIVE, NULL, "order of the Butterworth high-pass"},
+    {"match-margin", P_OFF(match_margin), K_NONNEG, NULL,
+     "records: no correction where S/T is in\n[1 + X, 1 + tol-above - X] (0: none; 0.01 keeps more)"},
 };
 #define N_PARAM_OPTS (sizeof param_opts / sizeof param_opts[0])
 

@@ -40,7 +40,7 @@ typedef struct synth_run {
 int synth_parse(int argc, char **argv, synth_run *o);
 
 #define SYNTH_OPT_PARAM0 (CLI_OPT_ID + 64) /* key of the first parameter option */
-#define SYNTH_NPARAM 22                    /* number of parameter options */
+#define SYNTH_NPARAM 25                    /* number of parameter options */
 
 /* Write the SYNTH_NPARAM option entries (kind CLI_CALL) to t; returns how many. */
 size_t synth_param_opts(cli_opt *t);

@@ -66,6 +66,9 @@ void sl_synth_params_default(sl_synth_params *p)
     p->hold_frac = SL_SYNTH_HOLD_FRAC;
     p->end_amp = SL_SYNTH_END_AMP;
     p->taper_s = SL_SYNTH_TAPER_S;
+    p->hp_frac = SL_SYNTH_HP_FRAC;
+    p->hp_order = SL_SYNTH_HP_ORDER;
+    p->match_margin = SL_SYNTH_MATCH_MARGIN;
 }
 
 sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)
@@ -101,6 +104,10 @@ sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)
                   "envelope needs 0 < rise_frac <= hold_frac < 1");
     SYNTH_REQUIRE(p->end_amp > 0 && p->end_amp <= 1, "end_amp must be in (0, 1]");
     SYNTH_REQUIRE(p->taper_s >= 0 && isfinite(p->taper_s), "taper_s must be >= 0");
+    SYNTH_REQUIRE(p->hp_frac >= 0 && p->hp_frac < 1, "hp_frac must be in [0, 1)");
+    SYNTH_REQUIRE(p->match_margin >= 0 && isfinite(p->match_margin),
+                  "match_margin must be >= 0");
+    SYNTH_REQUIRE(p->hp_order > 0 && p->hp_order <= 32, "hp_order must be in (0, 32]");
 #undef SYNTH_REQUIRE
     return SL_OK;
 }
@@ -467,12 +474,14 @@ struct sl_synth_motion {
     double fc_hz;          /* compression: content above this only (compress_peaks) */
     double knee;           /* compression knee: SL_SYNTH_KNEE, records SL_SYNTH_KNEE_RECORD */
     double level;          /* compression level / ZPA (peak_level()) */
+    int record;            /* started from a record: dead-band correction */
     size_t j_lo, j_hi;     /* checked grid points [j_lo, j_hi) */
     unsigned iter;         /* iterations since set_* */
     unsigned attempt;
     double *tgt;           /* grid: target (NAN outside) */
     double *psa;           /* grid: spectrum of the current iterate */
     double *lnr;           /* grid: ln of the correction ratio */
+    double *hp;            /* nbin: high-pass magnitude H(f_k) (set_target) */
     fftw_complex *cwork;   /* nbin */
     double *rwork;         /* N */
     double *acc;           /* n: current iterate */
@@ -491,6 +500,7 @@ void sl_synth_motion_free(sl_synth_motion *m)
     free(m->tgt);
     free(m->psa);
     free(m->lnr);
+    free(m->hp);
     fftw_free(m->cwork);
     fftw_free(m->rwork);
     free(m->acc);
@@ -510,12 +520,13 @@ sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err)
     m->tgt = malloc(s->ngrid * sizeof *m->tgt);
     m->psa = malloc(s->ngrid * sizeof *m->psa);
     m->lnr = malloc(s->ngrid * sizeof *m->lnr);
+    m->hp = malloc(s->nbin * sizeof *m->hp);
     m->best_psa = malloc(s->ngrid * sizeof *m->best_psa);
     m->cwork = fftw_malloc(s->nbin * sizeof *m->cwork);
     m->rwork = fftw_malloc(s->nfft * sizeof *m->rwork);
     m->acc = malloc(s->n * sizeof *m->acc);
     m->best_acc = malloc(s->n * sizeof *m->best_acc);
-    if (!m->tgt || !m->psa || !m->lnr || !m->best_psa || !m->cwork || !m->rwork || !m->acc ||
+    if (!m->tgt || !m->psa || !m->lnr || !m->hp || !m->best_psa || !m->cwork || !m->rwork || !m->acc ||
         !m->best_acc) {
         sl_synth_motion_free(m);
         sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
@@ -562,7 +573,30 @@ static sl_status set_target(sl_synth_motion *m, const sl_synth_target *t, sl_err
                             "synth: the target (%g-%g Hz) does not overlap the check grid "
                             "(%g-%g Hz)",
                             tf0, tf1, s->grid[0], s->grid[s->ngrid - 1]);
+    /* Zero-phase Butterworth high-pass magnitude at fc = hp_frac x f_lo:
+     * H(f) = 1/sqrt(1 + (fc/f)^(2 order)) (H(0) = 0: no mean). */
+    const double fc = s->p.hp_frac * s->grid[m->j_lo];
+    m->hp[0] = 0;
+    for (size_t k = 1; k < s->nbin; k++)
+        m->hp[k] = fc > 0 ? 1 / sqrt(1 + pow(fc / (s->df * (double)k), 2 * s->p.hp_order)) : 1;
     return SL_OK;
+}
+
+/* m->acc <- the high-pass H of m->acc (zero-padded DFT, first n samples). */
+static void highpass(sl_synth_motion *m)
+{
+    const sl_synth *s = m->s;
+    for (size_t j = 0; j < s->nfft; j++)
+        m->rwork[j] = j < s->n ? m->acc[j] : 0.0;
+    fftw_execute_dft_r2c(s->r2c, m->rwork, m->cwork);
+    for (size_t k = 0; k < s->nbin; k++) {
+        m->cwork[k][0] *= m->hp[k];
+        m->cwork[k][1] *= m->hp[k];
+    }
+    fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
+    const double inv_n = 1.0 / (double)s->nfft;
+    for (size_t j = 0; j < s->n; j++)
+        m->acc[j] = m->rwork[j] * inv_n;
 }
 
 /* Target PSA at any frequency: log-log inside, constant SD below, constant
@@ -766,6 +800,8 @@ static sl_status start(sl_synth_motion *m, sl_error *err)
     m->iter = 0;
     m->stride = SYNTH_COARSE_STRIDE;
     m->coarse = s->p.max_iter > 1 && (m->stride > 1 || SYNTH_COARSE_SPP < 20.0);
+    if (s->p.hp_frac > 0)
+        highpass(m);
     sl_status st = spectrum_of_acc(m, err);
     if (st)
         return st;
@@ -805,6 +841,7 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
                               size_t set, sl_synth_comp comp, unsigned attempt, sl_error *err)
 {
     m->ready = 0;
+    m->record = 0;
     sl_status st = set_target(m, t, err);
     if (st)
         return st;
@@ -821,7 +858,8 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
          *   s_q = cycles/(2 f_q), f_q log-uniform on [f0/2, f1], t_q drawn
          *   with density E(t)^2, phi_q uniform, A_q = T(f_q) sqrt(f_q),
          * K = rate x log2(2 f1/f0) x 0.4 T (0.4 T: the energy width of E^2). */
-        const double f0 = t->spec->f_hz[0] / 2, f1 = t->spec->f_hz[t->spec->n - 1];
+        const double f0 = SL_SYNTH_WAVELET_FLO_FRAC * t->spec->f_hz[0];
+        const double f1 = t->spec->f_hz[t->spec->n - 1];
         const double T = s->dt * (double)(s->n - 1), nc = s->p.wavelet_cycles;
         const size_t K = (size_t)ceil(s->p.wavelet_rate * log2(f1 / f0) * T * 0.4);
         for (size_t j = 0; j < s->n; j++)
@@ -901,6 +939,7 @@ sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
     m->attempt = 0;
     m->knee = SL_SYNTH_KNEE_RECORD;
     m->level = s->p.aim;
+    m->record = 1;
     return start(m, err);
 }
 
@@ -926,11 +965,19 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
         return SL_OK;
     }
     const double lo = -log(SL_SYNTH_RATIO_CLAMP), hi = log(SL_SYNTH_RATIO_CLAMP);
+    /* records: the dead band where S/T already complies (no correction) */
+    const double band_lo = m->record && s->p.match_margin > 0 ? 1 + s->p.match_margin : INFINITY;
+    const double band_hi = 1 + s->p.tol_above - s->p.match_margin;
     size_t jprev = m->j_lo;
     for (size_t j = m->j_lo; j < m->j_hi; j++) {
         if (isnan(m->psa[j]) && m->coarse)
             continue;
-        double x = SYNTH_RELAX * log(s->p.aim * m->tgt[j] / m->psa[j]);
+        double ratio = m->psa[j] / m->tgt[j];
+        /* records: no correction inside the dead band; elsewhere (and for
+         * synthetic motions) towards aim x T */
+        double x = ratio >= band_lo && ratio <= band_hi
+                       ? 0.0
+                       : SYNTH_RELAX * log(s->p.aim * m->tgt[j] / m->psa[j]);
         if (!isfinite(x)) {
             m->ready = 0;
             return sl_error_set(err, SL_ESOLVER, NULL, 0, "synth: spectrum not finite at %g Hz",
@@ -966,7 +1013,7 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
         }
         double oct = f < f_lo ? log2(f_lo / f) : f > f_hi ? log2(f / f_hi) : 0.0;
         double fade = oct >= SL_SYNTH_EDGE_OCTAVES ? 0.0 : 1.0 - oct / SL_SYNTH_EDGE_OCTAVES;
-        double g = exp(fade * x);
+        double g = exp(fade * x) * m->hp[k]; /* correction, then the high-pass */
         m->cwork[k][0] *= g;
         m->cwork[k][1] *= g;
     }

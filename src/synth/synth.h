@@ -146,9 +146,27 @@
  * peaks keep their spacing (Taft 021: 3 peaks above 0.9 PGA before and
  * after matching; 8 with the knee at 0.9). */
 #define SL_SYNTH_KNEE_RECORD 0.6
+/* Record matching that keeps more of the record (docs/synthesis.md 3.6):
+ * with match_margin X > 0, grid points where the record's S/T is already
+ * inside the dead band [1 + X, 1 + tol_above - X] get no correction (r = 1),
+ * so frequencies that comply are left as recorded. 0 (the default): every
+ * point is corrected towards aim x T, as synthesis does; the dead band
+ * biases a matched set's mean spectrum up (up to 1 + tol_above - X inside
+ * the band), which the study's sets (means) must not have. */
+#define SL_SYNTH_MATCH_MARGIN 0.0
 /* ... applied to the content above fc = this x the frequency of the
  * target's largest SA only (the long-period content is left alone). */
 #define SL_SYNTH_COMPRESS_FC_FRAC 0.5
+/* Zero-phase high-pass below the lowest checked frequency f_lo of the
+ * target (docs/synthesis.md 3.2): every DFT step multiplies bin f_k by the
+ * Butterworth magnitude H(f) = 1/sqrt(1 + (f_c/f)^(2 order)),
+ * f_c = hp_frac x f_lo, as record processing does (PEER corners
+ * 0.03-0.1 Hz). Content below f_lo is not checked, hardly changes SA at
+ * f >= f_lo, and is what makes ground displacement (D ~ A/(2 pi f)^2). */
+#define SL_SYNTH_HP_FRAC 0.7
+#define SL_SYNTH_HP_ORDER 4.0
+/* Lowest frequency of the start wavelets, as a fraction of f_lo. */
+#define SL_SYNTH_WAVELET_FLO_FRAC 1.0
 /* Outside the checked frequency range the correction fades to none over
  * this many octaves. */
 #define SL_SYNTH_EDGE_OCTAVES 1.0
@@ -207,6 +225,13 @@ typedef struct sl_synth_params {
     /* each end is multiplied by a half-cosine taper over this time, s, so
      * the motion starts and ends at rest (SL_SYNTH_TAPER_S) */
     double taper_s;
+    /* zero-phase Butterworth high-pass at hp_frac x the target's lowest
+     * checked frequency, of order hp_order (SL_SYNTH_HP_FRAC,
+     * SL_SYNTH_HP_ORDER); hp_frac = 0: none */
+    double hp_frac, hp_order;
+    /* records: when > 0, no correction where S/T is in [1 + match_margin,
+     * 1 + tol_above - match_margin] (SL_SYNTH_MATCH_MARGIN; 0: none) */
+    double match_margin;
 } sl_synth_params;
 
 /* Fill p with the defaults above (grid: SL_SPECTRUM_FMIN_HZ..FMAX_HZ at
