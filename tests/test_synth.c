@@ -679,6 +679,119 @@ static void test_match_keeps_record(void)
     }
 }
 
+/* Every other damping of a floor file (sl_synth_check_dampings): a floor
+ * file giving RG 1.60 at 5 % and 10 % (0.3 g); three sets matched at 5 %.
+ * The per-motion and set-mean S/T at 10 % equal an independent
+ * computation (each motion's own 10 % spectrum against sl_rg160_psa at
+ * 10 %), and RG 1.60's own damping scaling agrees with the motions: set
+ * mean within [0.85, 1.25] (measured 0.873-1.122 for these 3 sets; the mean
+ * of 3 carries a standard error of about 0.04). */
+static void test_other_dampings(void)
+{
+    enum { NS = 3 };
+    static char text[65536];
+    size_t len = 0, nf = 0;
+    len += (size_t)snprintf(text + len, sizeof text - len,
+                            "[floor]\nname = rg160\nunits = g\n");
+    for (int c = 0; c < 3; c++) {
+        sl_rg160_dir dir = c == 2 ? SL_RG160_VERTICAL : SL_RG160_HORIZONTAL;
+        double *f = sl_rg160_grid(dir, 0.1, 50, 20, &nf);
+        len += (size_t)snprintf(text + len, sizeof text - len, "[%s]\nf_hz =",
+                                c == 0 ? "h1" : c == 1 ? "h2" : "v");
+        for (size_t j = 0; j < nf; j++)
+            len += (size_t)snprintf(text + len, sizeof text - len, "%s %.12g",
+                                    j == 0 ? "" : j % 6 ? "," : ",\n   ", f[j]);
+        for (int z = 0; z < 2; z++) {
+            len += (size_t)snprintf(text + len, sizeof text - len, "\nsa_%s =",
+                                    z ? "0.1" : "0.05");
+            for (size_t j = 0; j < nf; j++) {
+                double sa = NAN;
+                sl_rg160_psa(dir, z ? 0.10 : 0.05, 0.3 * SL_G, &f[j], 1, &sa, NULL);
+                len += (size_t)snprintf(text + len, sizeof text - len, "%s %.12g",
+                                        j == 0 ? "" : j % 6 ? "," : ",\n   ", sa / SL_G);
+            }
+        }
+        len += (size_t)snprintf(text + len, sizeof text - len, "\nzpa = 0.3\n");
+        free(f);
+    }
+    CHECK(len < sizeof text - 1, "floor text too long");
+    sl_error e;
+    const char *path = harness_tmpfile("rg160-2z.ini", text);
+    sl_floor *fl = path ? sl_floor_load(path, &e) : NULL;
+    sl_synth *s = sl_synth_alloc(T_N, T_DT, NULL, &e);
+    sl_synth_target tgt[3];
+    if (!fl || !s || sl_synth_targets_floor(fl, 0, tgt, &e)) {
+        CHECK(0, "%s", e.msg);
+        sl_floor_free(fl);
+        sl_synth_free(s);
+        return;
+    }
+    sl_synth_set sets[NS];
+    sl_status st = sl_synth_make_sets(s, tgt, 17, 0, NS, sets, NULL, NULL, &e);
+    CHECK(st == SL_OK, "status %d: %s", st, e.msg);
+    if (st && st != SL_ENOCONV) {
+        sl_floor_free(fl);
+        sl_synth_free(s);
+        return;
+    }
+    CHECK(sl_synth_check_dampings(s, fl, sets, NS, &e) == SL_OK, "%s", e.msg);
+    size_t ng;
+    const double *g = sl_synth_grid(s, &ng);
+    double *psa = malloc(ng * sizeof *psa), *t10 = malloc(ng * sizeof *t10);
+    double *mean = malloc(ng * sizeof *mean);
+    for (int c = 0; c < 3; c++) {
+        sl_rg160_dir dir = c == 2 ? SL_RG160_VERTICAL : SL_RG160_HORIZONTAL;
+        sl_rg160_psa(dir, 0.10, 0.3 * SL_G, g, ng, t10, NULL);
+        for (size_t j = 0; j < ng; j++)
+            mean[j] = 0;
+        for (int k = 0; k < NS; k++) {
+            const sl_synth_check *ck = &sets[k].check[c];
+            CHECK(ck->damping == 0.05 && ck->n_other == 1 &&
+                      fabs(ck->other[0].damping - 0.10) < 1e-12,
+                  "set %d %s: %zu other dampings, first %g", k, sl_synth_comp_name(c),
+                  ck->n_other, ck->n_other ? ck->other[0].damping : NAN);
+            const sl_motion *m = sl_synth_set_motion(&sets[k], (sl_synth_comp)c);
+            sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, g, ng, 0.10, psa, NULL, NULL, NULL);
+            double lo = INFINITY, hi = 0;
+            for (size_t j = 0; j < ng; j++) {
+                double r = psa[j] / t10[j];
+                lo = fmin(lo, r);
+                hi = fmax(hi, r);
+                mean[j] += r / NS;
+            }
+            CHECK_CLOSE(ck->other[0].min_ratio, lo, 0, 1e-6);
+            CHECK_CLOSE(ck->other[0].max_ratio, hi, 0, 1e-6);
+        }
+        double lo = INFINITY, hi = 0;
+        for (size_t j = 0; j < ng; j++) {
+            lo = fmin(lo, mean[j]);
+            hi = fmax(hi, mean[j]);
+        }
+        const sl_synth_other *o = &sets[NS - 1].check[c].other[0];
+        CHECK_CLOSE(o->set_min, lo, 0, 1e-6);
+        CHECK_CLOSE(o->set_max, hi, 0, 1e-6);
+        CHECK(o->ok_set == (lo >= 0.9 && hi <= 1.3), "verdict %d for %g-%g", o->ok_set, lo, hi);
+        CHECK(lo >= 0.85 && hi <= 1.25, "%s: set mean S/T at 10 %% %.3f-%.3f",
+              sl_synth_comp_name(c), lo, hi);
+        if (verbose())
+            fprintf(stderr, "  %s: 10 %% of RG 1.60 against motions matched at 5 %%: set mean "
+                    "%.3f-%.3f, per motion %.3f-%.3f (set 1)\n", sl_synth_comp_name(c), lo, hi,
+                    sets[0].check[c].other[0].min_ratio, sets[0].check[c].other[0].max_ratio);
+    }
+    CHECK(sl_synth_dampings_ok(sets, NS) == (sets[0].check[0].other[0].ok_set &&
+                                             sets[0].check[1].other[0].ok_set &&
+                                             sets[0].check[2].other[0].ok_set),
+          "set-mean verdict");
+    free(psa);
+    free(t10);
+    free(mean);
+    for (int k = 0; k < NS; k++)
+        sl_synth_set_clear(&sets[k]);
+    remove(path);
+    sl_floor_free(fl);
+    sl_synth_free(s);
+}
+
 /* AT2 output reads back through motion.h; resampling is exact for lines. */
 static void test_io(void)
 {
@@ -906,5 +1019,6 @@ int main(void)
     RUN(test_bench_one_set);
     RUN(test_realism_seeds);
     RUN(test_match_keeps_record);
+    RUN(test_other_dampings);
     return HARNESS_END("synth");
 }

@@ -109,10 +109,17 @@ int cmd_synth(int argc, char **argv)
         cli_print_error(&err);
         goto done;
     }
+    /* every other damping the floor file gives, on the motions' own spectra */
+    if (fl && sl_synth_check_dampings(plan, fl, sets, nsets, &err)) {
+        cli_print_error(&err);
+        goto done;
+    }
     synth_output out = {o.outdir, o.csv, o.seed, o.nmatch > 0 ? o.match : NULL,
                         (const char(*)[512])desc, &o.p};
     if (synth_write_outputs(&out, sets, nsets) != CLI_EXIT_OK)
         goto done;
+    if (fl && !o.quiet)
+        synth_print_dampings(sets, nsets, &o.p);
     size_t total = 0, failed = 0;
     for (size_t k = 0; k < nsets; k++)
         for (int c = 0; c < SL_SYNTH_NCOMP; c++)

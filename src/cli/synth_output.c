@@ -79,6 +79,7 @@ typedef struct report_row {
     const sl_synth_check *k;
     const double *corr;           /* the set's three pair values */
     const sl_synth_params *p;
+    size_t nblk;                  /* other-damping blocks in the header */
 } report_row;
 
 /* The report's columns: name, printf format, value. Header and rows come
@@ -141,12 +142,31 @@ typedef struct report_row {
     X("ok_psd", "%d", r->k->ok_psd)                                  \
     X("pass", "%d", r->k->pass)
 
-static void report_header(FILE *f)
+/* Then one block per other damping of a floor file (sl_synth_other;
+ * blocks 1..nblk, nblk the most any component has; empty fields where a
+ * component has fewer): the damping, this motion's lowest and highest S/T
+ * at it, the set mean's lowest and highest S/T and where, its verdict. */
+#define REPORT_OTHER_COLUMNS(X)                                      \
+    X("damping", "%.4g", o->damping)                                 \
+    X("min_ratio", "%.5f", o->min_ratio)                             \
+    X("max_ratio", "%.5f", o->max_ratio)                             \
+    X("set_mean_min", "%.5f", o->set_min)                            \
+    X("f_set_mean_min_hz", "%.6g", o->f_set_min_hz)                  \
+    X("set_mean_max", "%.5f", o->set_max)                            \
+    X("f_set_mean_max_hz", "%.6g", o->f_set_max_hz)                  \
+    X("ok_set_mean", "%d", o->ok_set)
+
+static void report_header(FILE *f, size_t nblk)
 {
     fputs("set,component,file,target,seed", f);
 #define X(name, fmt, expr) fputs("," name, f);
     REPORT_NUM_COLUMNS(X)
 #undef X
+    for (size_t q = 1; q <= nblk; q++) {
+#define X(name, fmt, expr) fprintf(f, ",other%zu_" name, q);
+        REPORT_OTHER_COLUMNS(X)
+#undef X
+    }
     fputc('\n', f);
 }
 
@@ -160,6 +180,18 @@ static void report_line(FILE *f, const report_row *r)
 #define X(name, fmt, expr) fprintf(f, "," fmt, expr);
     REPORT_NUM_COLUMNS(X)
 #undef X
+    for (size_t q = 0; q < r->nblk; q++) {
+        const sl_synth_other *o = &r->k->other[q];
+        if (q >= r->k->n_other) {
+#define X(name, fmt, expr) fputc(',', f);
+            REPORT_OTHER_COLUMNS(X)
+#undef X
+            continue;
+        }
+#define X(name, fmt, expr) fprintf(f, "," fmt, expr);
+        REPORT_OTHER_COLUMNS(X)
+#undef X
+    }
     fputc('\n', f);
 }
 
@@ -182,7 +214,11 @@ int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t 
         return CLI_EXIT_ERROR;
     }
     FILE *rf = sl_atomic_file(rep);
-    report_header(rf);
+    size_t nblk = 0;
+    for (size_t k = 0; k < nsets; k++)
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+            nblk = sets[k].check[c].n_other > nblk ? sets[k].check[c].n_other : nblk;
+    report_header(rf, nblk);
     for (size_t k = 0; k < nsets; k++) {
         for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
             const sl_motion *m = sl_synth_set_motion(&sets[k], (sl_synth_comp)c);
@@ -217,7 +253,7 @@ int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t 
                 return CLI_EXIT_ERROR;
             }
             report_row row = {(unsigned)(k + 1), cn, file, desc[c], seed,
-                              &sets[k].check[c], sets[k].corr, o->p};
+                              &sets[k].check[c], sets[k].corr, o->p, nblk};
             report_line(rf, &row);
         }
     }
@@ -242,4 +278,19 @@ void synth_describe_targets(const sl_floor *fl, double rg_pga_g,
                      c == SL_SYNTH_V ? "vertical" : "horizontal", tgt[c].spec->damping,
                      rg_pga_g);
     }
+}
+
+void synth_print_dampings(const sl_synth_set *sets, size_t nsets, const sl_synth_params *p)
+{
+    if (nsets == 0)
+        return;
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        for (size_t q = 0; q < sets[0].check[c].n_other; q++) {
+            const sl_synth_other *o = &sets[0].check[c].other[q];
+            cli_msg("synth: [%s] %g %% table against the motions' own %g %% spectra: set mean "
+                    "S/T %.3f (%.3g Hz) to %.3f (%.3g Hz), %s (limits %g-%g)",
+                    sl_synth_comp_name((sl_synth_comp)c), 100 * o->damping, 100 * o->damping,
+                    o->set_min, o->f_set_min_hz, o->set_max, o->f_set_max_hz,
+                    o->ok_set ? "ok" : "OUTSIDE", 1 - p->tol_below, 1 + p->tol_above);
+        }
 }

@@ -28,6 +28,11 @@ int synth_make_dirs(const char *path);
  * Returns CLI_EXIT_OK or CLI_EXIT_ERROR (message printed). */
 int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t nsets);
 
+/* Print (stderr) the set-mean check of every other damping of a floor file
+ * (sl_synth_check_dampings) of sets[0..nsets-1]: one line per component
+ * and damping. Reported, not part of the exit status (docs/synthesis.md 4). */
+void synth_print_dampings(const sl_synth_set *sets, size_t nsets, const sl_synth_params *p);
+
 /* Describe each component's target for the report and the AT2 title: the
  * floor file fl, or (fl NULL) RG 1.60 at rg_pga_g, g. */
 void synth_describe_targets(const sl_floor *fl, double rg_pga_g,

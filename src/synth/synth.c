@@ -1446,6 +1446,144 @@ sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYN
 }
 
 /* ------------------------------------------------------------------ */
+/* Other dampings of a floor file                                      */
+/* ------------------------------------------------------------------ */
+
+/* Component c of every set against table `spec` (damping z): per-motion
+ * and set-mean S/T on the plan's grid inside the table's range, into
+ * check[c].other[q]. */
+static sl_status check_one_damping(const sl_synth *s, const sl_spectrum *spec,
+                                   sl_synth_set *sets, size_t nsets, sl_synth_comp c, size_t q,
+                                   sl_error *err)
+{
+    const double slack = 1e-12; /* as set_target */
+    const double f0 = spec->f_hz[0], f1 = spec->f_hz[spec->n - 1];
+    size_t ja = s->ngrid, jb = 0;
+    for (size_t j = 0; j < s->ngrid; j++)
+        if (s->grid[j] >= f0 * (1 - slack) && s->grid[j] <= f1 * (1 + slack)) {
+            ja = ja == s->ngrid ? j : ja;
+            jb = j + 1;
+        }
+    for (size_t k = 0; k < nsets; k++) {
+        sl_synth_other *o = &sets[k].check[c].other[q];
+        o->damping = spec->damping;
+        o->min_ratio = o->max_ratio = o->set_min = o->set_max = NAN;
+        o->f_set_min_hz = o->f_set_max_hz = NAN;
+        o->ok_set = 1;
+    }
+    if (ja >= jb)
+        return SL_OK; /* no grid point inside the table: nothing to check */
+    const size_t nf = jb - ja;
+    double *tgt = malloc(nf * sizeof *tgt);
+    double *sum = calloc(nf, sizeof *sum);
+    double *psa = malloc(nsets * nf * sizeof *psa);
+    if (!tgt || !sum || !psa) {
+        free(tgt);
+        free(sum);
+        free(psa);
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+    }
+    for (size_t j = 0; j < nf; j++) {
+        double f = s->grid[ja + j];
+        tgt[j] = sl_spectrum_interp(spec, f < f0 ? f0 : f > f1 ? f1 : f);
+    }
+    sl_status st = SL_OK;
+    long long nk = (long long)nsets;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long long k = 0; k < nk; k++) {
+        const sl_motion *mo = sl_synth_set_motion(&sets[k], c);
+        sl_error e;
+        sl_status sk = sl_spectrum_compute(mo->acc_ms2, mo->n, mo->dt_s, s->grid + ja, nf,
+                                           spec->damping, psa + (size_t)k * nf, NULL, NULL, &e);
+        if (sk) {
+#pragma omp critical(sl_synth_dampings)
+            if (!st)
+                st = sl_error_set(err, sk, NULL, 0, "%s", e.msg);
+        }
+    }
+    for (size_t k = 0; k < nsets && !st; k++) {
+        sl_synth_other *o = &sets[k].check[c].other[q];
+        o->min_ratio = INFINITY;
+        o->max_ratio = -INFINITY;
+        for (size_t j = 0; j < nf; j++) {
+            double r = psa[k * nf + j] / tgt[j];
+            o->min_ratio = r < o->min_ratio ? r : o->min_ratio;
+            o->max_ratio = r > o->max_ratio ? r : o->max_ratio;
+            sum[j] += r; /* summed in set order: the same bits for any thread count */
+        }
+    }
+    if (!st) {
+        double lo = INFINITY, hi = -INFINITY, flo = NAN, fhi = NAN;
+        for (size_t j = 0; j < nf; j++) {
+            double r = sum[j] / (double)nsets;
+            if (r < lo) {
+                lo = r;
+                flo = s->grid[ja + j];
+            }
+            if (r > hi) {
+                hi = r;
+                fhi = s->grid[ja + j];
+            }
+        }
+        int ok = lo >= 1 - s->p.tol_below && hi <= 1 + s->p.tol_above;
+        for (size_t k = 0; k < nsets; k++) {
+            sl_synth_other *o = &sets[k].check[c].other[q];
+            o->set_min = lo;
+            o->set_max = hi;
+            o->f_set_min_hz = flo;
+            o->f_set_max_hz = fhi;
+            o->ok_set = ok;
+        }
+    }
+    free(tgt);
+    free(sum);
+    free(psa);
+    return st;
+}
+
+sl_status sl_synth_check_dampings(const sl_synth *s, const sl_floor *fl, sl_synth_set *sets,
+                                  size_t nsets, sl_error *err)
+{
+    if (!s || !fl || !sets || nsets == 0)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: no sets to check");
+    /* (components absent from a set, as with records, are skipped) */
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        int absent = 0; /* records: a component not given is not checked */
+        for (size_t k = 0; k < nsets; k++) {
+            sets[k].check[c].n_other = 0;
+            absent = absent || !sl_synth_set_motion(&sets[k], (sl_synth_comp)c);
+        }
+        if (absent)
+            continue;
+        const sl_floor_component *fc = &fl->comp[c];
+        const double zm = sets[0].check[c].damping;
+        size_t q = 0;
+        for (size_t i = 0; i < fc->nspec && q < SL_SYNTH_MAX_OTHER; i++) {
+            const sl_spectrum *sp = &fc->spec[i];
+            if (fabs(sp->damping - zm) <= SL_FLOOR_DAMPING_TOL * (zm > 1 ? zm : 1))
+                continue; /* the damping matched */
+            sl_status st = check_one_damping(s, sp, sets, nsets, (sl_synth_comp)c, q, err);
+            if (st)
+                return st;
+            q++;
+        }
+        for (size_t k = 0; k < nsets; k++)
+            sets[k].check[c].n_other = q;
+    }
+    return SL_OK;
+}
+
+int sl_synth_dampings_ok(const sl_synth_set *sets, size_t nsets)
+{
+    for (size_t k = 0; k < nsets; k++)
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+            for (size_t q = 0; q < sets[k].check[c].n_other; q++)
+                if (!sets[k].check[c].other[q].ok_set)
+                    return 0;
+    return 1;
+}
+
+/* ------------------------------------------------------------------ */
 /* Input and output                                                    */
 /* ------------------------------------------------------------------ */
 

@@ -310,6 +310,18 @@ unsigned long sl_synth_stream_seed(uint64_t seed, size_t set, sl_synth_comp comp
 /* One motion: set / iterate / test (STYLE 5)                          */
 /* ------------------------------------------------------------------ */
 
+/* Every other damping a floor file gives (docs/synthesis.md 4): the
+ * motion's own spectrum at that damping against the file's table. */
+#define SL_SYNTH_MAX_OTHER 8
+typedef struct sl_synth_other {
+    double damping;              /* the table's damping ratio */
+    double min_ratio, max_ratio; /* this motion: lowest and highest S/T over the grid */
+    double set_min, set_max;     /* the mean S/T of the sets checked together:
+                                    lowest and highest over the grid */
+    double f_set_min_hz, f_set_max_hz; /* where */
+    int ok_set;                  /* set mean within [1 - tol_below, 1 + tol_above] */
+} sl_synth_other;
+
 /* Result of the checks of one motion. Ratios are computed / target PSA. */
 typedef struct sl_synth_check {
     double damping;          /* damping matched */
@@ -338,6 +350,10 @@ typedef struct sl_synth_check {
     int ok_below, ok_above, ok_run, ok_d5_75, ok_duration, ok_end, ok_pga, ok_corr;
     int ok_peaks, ok_psd;
     int pass;                /* all of the above */
+    /* other dampings of a floor file (sl_synth_check_dampings; 0 = none);
+     * reported, not part of pass: the check is on the set mean */
+    size_t n_other;
+    sl_synth_other other[SL_SYNTH_MAX_OTHER];
 } sl_synth_check;
 
 typedef struct sl_synth_motion sl_synth_motion;
@@ -449,6 +465,24 @@ sl_status sl_synth_make_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNT
 sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
                              const sl_motion *const rec[SL_SYNTH_NCOMP], sl_synth_set *out,
                              sl_error *err);
+
+/* Every other damping of a floor file, checked on the motions' own spectra
+ * (the ASCE method reads e.g. the 10 % table while the NLTHA sees the
+ * motions matched at 5 %): for each component c of sets[0..nsets-1] and
+ * each spectrum fl gives for c at a damping other than check[c].damping
+ * (at most SL_SYNTH_MAX_OTHER), the motion's PSA at that damping on the
+ * plan's grid inside the table's frequency range, S/T per motion (min,
+ * max) and the mean of S/T over the nsets sets (lowest and highest over
+ * the grid, ok_set when inside [1 - tol_below, 1 + tol_above] of the plan's
+ * parameters). Fills check[c].n_other and other[] (0 for a component
+ * absent from some set, as with records). Returns SL_OK, SL_EINVAL (no
+ * sets), SL_ENOMEM, SL_ESOLVER. */
+sl_status sl_synth_check_dampings(const sl_synth *s, const sl_floor *fl, sl_synth_set *sets,
+                                  size_t nsets, sl_error *err);
+
+/* 1 when every set-mean check of the other dampings passed (or there are
+ * none) for sets[0..nsets-1] after sl_synth_check_dampings. */
+int sl_synth_dampings_ok(const sl_synth_set *sets, size_t nsets);
 
 /* ------------------------------------------------------------------ */
 /* Input and output helpers                                            */

@@ -92,6 +92,20 @@ all_rows "$D/floor/report.csv" damping 0.05 && t_pass || t_fail "floor not match
 grep -q 'floor templates/floor.ini \[h2\]' "$D/floor/report.csv" && t_pass || t_fail "report target names the floor"
 t_run spectrum "$D/floor/set01_v.csv" --freq 10 --csv; t_expect_rc csv-reads 0
 
+# every other damping of a floor file (02-el12 gives 2, 5 and 10 %): matched
+# at 5 %, the 2 % and 10 % tables checked on each motion's own spectra; the
+# set-mean verdict on stderr
+t_run synth --floor floors/02-el12.ini --count 2 --seed 3 -o "$D/el12"; t_expect_rc el12 0
+t_expect_err el12-10pct "\[h1\] 10 % table against the motions' own 10 % spectra: set mean S/T"
+all_rows "$D/el12/report.csv" other1_damping 0.02 && all_rows "$D/el12/report.csv" other2_damping 0.1 \
+  && t_pass || t_fail "other dampings 0.02 and 0.1 not reported"
+col_in_range "$D/el12/report.csv" other2_min_ratio 0.6 1.0 && col_in_range "$D/el12/report.csv" other2_max_ratio 1.0 1.5 \
+  && t_pass || t_fail "10 % per-motion ratios implausible"
+[ "$(col "$D/el12/report.csv" other2_ok_set_mean)" -gt "$(col "$D/el12/report.csv" pass)" ] && t_pass || t_fail "other-damping blocks not after pass"
+awk -F, 'NR == 1 { n = NF } NF != n { bad++ } END { exit bad > 0 }' "$D/el12/report.csv" && t_pass || t_fail "rows of unequal width"
+all_rows "$D/floor/report.csv" other1_damping 0.1 && [ -z "$(col "$D/floor/report.csv" other2_damping)" ] \
+  && t_pass || t_fail "template floor: its 10 % table is the one other damping"
+
 # a floor without the asked damping: error naming the file and section
 t_run synth --floor tests/data/floors/good-small.ini --damping 0.07 --count 1 --seed 1 -o "$D/bad"
 t_expect_rc floor-damping 1; t_expect_err floor-damping-msg "good-small.ini:[0-9]+: \[h1\] gives no spectrum at damping 0.07"
