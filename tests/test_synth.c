@@ -460,10 +460,12 @@ static void test_steps(void)
     sl_synth_check k;
     sl_synth_check_motion(m, &k);
     CHECK(k.pass && isnan(k.max_corr) && k.ok_corr, "single-motion check");
-    /* the best iterate is the last one, except when the cap ends the coarse
-     * phase: that last step re-evaluates the best coarse iterate on the
-     * full grid (docs/synthesis.md 3.2) */
-    CHECK(k.iterations == it || (it == SL_SYNTH_MAX_ITER && k.iterations < it),
+    /* the best iterate is the last one, except when the step that ends the
+     * coarse phase re-evaluates the best coarse iterate on the full grid
+     * (docs/synthesis.md 3.2) and it passes: then it is the one before, or
+     * any earlier one when the cap ended the coarse phase */
+    CHECK(k.iterations == it || k.iterations + 1 == it ||
+              (it == SL_SYNTH_MAX_ITER && k.iterations < it),
           "best iterate %u, iterations %u", k.iterations, it);
     /* the spectrum the library stores is the spectrum of the motion it returns */
     size_t nf;

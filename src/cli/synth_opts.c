@@ -65,7 +65,8 @@ static const param_opt param_opts[] = {
      "high-pass corner / lowest checked frequency (0: none)"},
     {"hp-order", P_OFF(hp_order), K_POSITIVE, NULL, "order of the Butterworth high-pass"},
     {"match-margin", P_OFF(match_margin), K_NONNEG, NULL,
-     "records: no correction where S/T is in\n[1 + X, 1 + tol-above - X] (0: none; 0.01 keeps more)"},
+     "records: no correction where S/T is in\n"
+     "[1 + X, 1 + tol-above - X] (0: none; 0.01 keeps more)"},
 };
 #define N_PARAM_OPTS (sizeof param_opts / sizeof param_opts[0])
 

@@ -526,8 +526,8 @@ sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err)
     m->rwork = fftw_malloc(s->nfft * sizeof *m->rwork);
     m->acc = malloc(s->n * sizeof *m->acc);
     m->best_acc = malloc(s->n * sizeof *m->best_acc);
-    if (!m->tgt || !m->psa || !m->lnr || !m->hp || !m->best_psa || !m->cwork || !m->rwork || !m->acc ||
-        !m->best_acc) {
+    if (!m->tgt || !m->psa || !m->lnr || !m->hp || !m->best_psa || !m->cwork || !m->rwork ||
+        !m->acc || !m->best_acc) {
         sl_synth_motion_free(m);
         sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
         return NULL;

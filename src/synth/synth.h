@@ -10,18 +10,22 @@
  *
  * Start (iteration 0). Synthetic: K Gabor wavelets (docs/synthesis.md 3.1)
  *     a(t) = sum_q A_q exp(-(t - t_q)^2/(2 s_q^2)) cos(2 pi f_q (t - t_q) + phi_q),
- * s_q = cycles/(2 f_q), f_q log-uniform over [f0/2, f1] of the target, t_q
+ * s_q = cycles/(2 f_q), f_q log-uniform over [f0, f1] of the target, t_q
  * with density E(t)^2, phi_q uniform (GSL mt19937), A_q = T(f_q) sqrt(f_q).
- * Recorded: a = the record. Either is scaled by one gain so that its
- * spectrum is aim x T on average (log mean), then made admissible (below).
+ * Recorded: a = the record. Either is high-passed (H below) and scaled by
+ * one gain so that its spectrum is aim x T on average (log mean), then made
+ * admissible (below). Records with match_margin > 0: r = 1 where S/T is in
+ * the dead band [1 + margin, 1 + tol_above - margin].
  *
  * Iteration i -> i + 1, on the N-point DFT grid f_k = k/(N dt), N >= n + pad
  * (pad = one period of the lowest checked frequency):
  *     r_m   = (aim T_m / S_m)^1.6 at grid frequency f_m, clamped to [1/4, 4]
  *     X_k   = DFT of the zero-padded a_i (FFTW r2c, unnormalised)
- *     X_k  *= r(f_k)   (mean of ln r over the grid points within f_k +- df/2,
- *                       else log-log interpolation; fading to 1 one octave
- *                       outside the checked range)
+ *     X_k  *= r(f_k) H(f_k)   (r: mean of ln r over the grid points within
+ *                       f_k +- df/2, else log-log interpolation; fading to 1
+ *                       one octave outside the checked range; H: zero-phase
+ *                       Butterworth high-pass, 1/sqrt(1 + (fc/f)^(2 order)),
+ *                       fc = hp_frac x the lowest checked frequency)
  *     a     = first n samples of (1/N) c2r(X)
  * then admissible:
  *     a    *= w(t)  half-cosine taper over taper_s at each end (rest at ends)
