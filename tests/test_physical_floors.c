@@ -3,24 +3,24 @@
  * floor motions behind their spectrum (issue 12; docs/synthesis.md 10).
  *
  * Physical floor motions: real three-component records of ../shared/records
- * (scaled to a horizontal PGA of 0.3 g) through the 3-storey building of
- * study/building.h (H modes 3.0/8.4/12.1 Hz and 4.2/11.8/17.0 Hz, V 14 Hz,
- * 5 %). Their mean 5 % and 10 % spectra and mean PGA are written as a floor
- * file (io/floor.h format) and read back; sets are synthesized for it
- * (synth.h, default method); the same NLTHA engine (sl_slide_batch) slides
- * a block on the physical and on the synthesized sets. The ratio of the
- * mean peak sliding, synthesized / physical, must lie in [0.75, 1.33] at
- * mu g/ZPA = 0.1 ... 0.9 on every floor. MEASURED: met at mu g/ZPA = 0.1
- * on every floor and 0.3-0.5 on floor 1 only; at 0.7 and 0.9 the
- * synthesized sets slide 0.3-0.5 x and 0.04-0.16 x the physical ones (their
- * thresholds max|a_h|/N are lower: 0.44 against 0.53 on floor 1); the test
- * asserts the measured state (LO_NOW, HI_NOW) and prints every ratio with
- * SEISLIDE_TEST_VERBOSE. The 10 % table of the file is
- * checked against the synthesized motions' own 10 % spectra (set mean).
- * With the spectra broadened +-15 % (peak spread), the ratio is reported.
- * Ground: synthesized RG 1.60 sets against the same records matched to
- * RG 1.60 (sl_study_match_rg160), same mu grid, same limits.
- * SEISLIDE_TEST_VERBOSE prints every ratio.
+ * (study/physfloor.h: rule, scaled to a larger horizontal PGA of 0.3 g)
+ * through the 3-storey building of study/building.h (H modes 3.0/8.4/12.1 Hz
+ * and 4.2/11.8/17.0 Hz, V 14 Hz, 5 %). Their mean 5 % and 10 % spectra and
+ * mean PGA are written as a floor file (sl_pf_write_floor) and read back;
+ * sets are synthesized for it (synth.h defaults); the same NLTHA engine
+ * (sl_slide_batch) slides a block on the physical and on the synthesized
+ * sets. The issue asks for the ratio of the mean peak sliding, synthesized /
+ * physical, in [0.75, 1.33] at mu g/ZPA = 0.1 ... 0.9 on every floor.
+ * MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 10): met at
+ * mu g/ZPA = 0.1 only; 0.34-0.54 at 0.5, 0.11-0.23 at 0.7, 0.01-0.05 at 0.9.
+ * This test, on 16 of those records, asserts: agreement with the full
+ * comparison within 3 SE of its own ratio (+ 0.02), the issue's band within
+ * 2 SE where the full comparison meets it, broadened (+-15 %) spectra sliding
+ * more than plain ones, the floor file's ZPA, the 10 % table against the
+ * synthesized motions' own 10 % spectra (set mean), the ratio's SE (P1 of
+ * physfloor.h) and the record rule. Ground: synthesized RG 1.60 sets against
+ * the same records matched to RG 1.60 (sl_study_match_rg160), same checks.
+ * SEISLIDE_TEST_VERBOSE prints every ratio with its SE.
  */
 #include <omp.h>
 #include <stdint.h>
@@ -38,7 +38,7 @@
 
 static int verbose(void) { return getenv("SEISLIDE_TEST_VERBOSE") != NULL; }
 
-/* Records: 16 three-component records of ../shared/records, 14 events on
+/* Records: 16 three-component records of ../shared/records, 16 events on
  * 3 continents (the full comparison, tools/physfloors.c, uses every record
  * that passes the rule of study/physfloor.h: 83). */
 static const char *const recs[] = {
@@ -77,9 +77,10 @@ static int read_recs(const char *shared, sl_set *g)
         char dir[1024];
         sl_error e;
         snprintf(dir, sizeof dir, "%s/records/%s", shared, recs[r]);
-        if (sl_pf_read_record(dir, &rule, PGA_G * SL_G, &g[n], &e) == SL_OK)
+        if (sl_pf_read_record(dir, &rule, PGA_G * SL_G, &g[n], &e) == SL_OK) {
+            CHECK_CLOSE(sl_set_pga_h(&g[n]), PGA_G * SL_G, 0, 1e-12);
             n++;
-        else
+        } else
             fprintf(stderr, "  skipped: %s\n", e.msg);
     }
     return n;
@@ -220,6 +221,16 @@ static void test_floors(void)
             CHECK(sl_pf_write_floor(path, "physical floor", fm, nrec, f, NF, broaden, &e) ==
                       SL_OK,
                   "%s", e.msg);
+            sl_floor *flf = sl_floor_load(path, &e);
+            CHECK(flf, "%s", e.msg);
+            for (int c = 0; c < 3 && flf; c++) { /* ZPA = mean component PGA */
+                double z = 0;
+                for (size_t r = 0; r < nrec; r++)
+                    z += sl_motion_pga(c == 0 ? fm[r].h1 : c == 1 ? fm[r].h2 : fm[r].v) /
+                         (double)nrec;
+                CHECK_CLOSE(flf->comp[c].zpa_ms2, z, 0, 1e-5);
+            }
+            sl_floor_free(flf);
             double syn[NSYN * NMU], r10lo = NAN, r10hi = NAN;
             floor_synth(path, mu, syn, &r10lo, &r10hi);
             check_ratio(what, syn, NSYN, phys, nrec, broaden ? NULL : ref_floor[fl - 1],
@@ -337,8 +348,82 @@ static void test_ground(void)
     sl_synth_free(s);
 }
 
+/* (P1) against a hand calculation and against the scatter of the ratio
+ * over many independent samples (the delta method is first order: with 40
+ * values per sample its SE is within a few % of the true one). */
+static void test_ratio_se(void)
+{
+    const double a[3] = {1, 2, 3}, b[2] = {2, 4};
+    double se, r = sl_pf_ratio(a, 3, 1, b, 2, 1, &se);
+    /* R = 2/3, SE = R sqrt(1/(3 2^2) + 2/(2 3^2)) */
+    CHECK_CLOSE(r, 2.0 / 3.0, 1e-15, 0);
+    CHECK_CLOSE(se, 2.0 / 3.0 * sqrt(1.0 / 12 + 1.0 / 9), 1e-15, 0);
+    /* exponential samples (skewed, as peak sliding is), means 1 and 2 */
+    enum { NA = 40, NB = 40, REP = 4000 };
+    uint64_t x = 12345;
+    double sr = 0, sr2 = 0, sse = 0;
+    for (int q = 0; q < REP; q++) {
+        double va[NA], vb[NB];
+        for (int i = 0; i < NA + NB; i++) {
+            x = x * 6364136223846793005ULL + 1442695040888963407ULL; /* LCG (Knuth MMIX) */
+            double u = ((double)(x >> 11) + 0.5) / 9007199254740992.0;
+            if (i < NA)
+                va[i] = -log(u);
+            else
+                vb[i - NA] = -2 * log(u);
+        }
+        double s1, r1 = sl_pf_ratio(va, NA, 1, vb, NB, 1, &s1);
+        sr += r1 / REP;
+        sr2 += r1 * r1 / REP;
+        sse += s1 / REP;
+    }
+    double sd = sqrt(sr2 - sr * sr);
+    /* true SE: 0.5 sqrt(1/40 + 1/40) = 0.112 (delta method); empirical within 8 % */
+    CHECK_CLOSE(sse, sd, 0, 0.08);
+    CHECK_CLOSE(sd, 0.5 * sqrt(2.0 / 40), 0, 0.08);
+}
+
+/* The record rule: a record below the rule is refused with the value named;
+ * a used record is scaled to the requested larger horizontal PGA. */
+static void test_record_rule(void)
+{
+    const char *shared = harness_shared_dir();
+    if (!shared)
+        SKIP("../shared not found (set SEISLIDE_SHARED): record rule not checked");
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/records/%s", shared, recs[1]);
+    sl_pf_rule rule;
+    sl_pf_rule_default(&rule);
+    sl_set s;
+    sl_error e;
+    if (sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) != SL_OK) {
+        CHECK(0, "%s", e.msg);
+        return;
+    }
+    CHECK_CLOSE(sl_set_pga_h(&s), 0.3 * SL_G, 0, 1e-12);
+    CHECK(s.h1->dt_s <= 0.01 + 1e-12 && s.v && s.h2, "dt %g", s.h1->dt_s);
+    sl_set_free_motions(&s);
+    rule.min_pga_g = 5.0;
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) == SL_EINVAL &&
+              strstr(e.msg, "PGA") && strstr(e.msg, " 5 g"),
+          "rule PGA: %s", e.msg);
+    sl_pf_rule_default(&rule);
+    rule.min_duration_s = 1e4;
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) == SL_EINVAL &&
+              strstr(e.msg, "duration"),
+          "rule duration: %s", e.msg);
+    sl_pf_rule_default(&rule);
+    rule.max_dt_s = 1e-4;
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) == SL_EINVAL && strstr(e.msg, "dt"),
+          "rule dt: %s", e.msg);
+    snprintf(dir, sizeof dir, "%s/records/RSN15_KERN_TAF", shared); /* no vertical */
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) != SL_OK, "Taft: no vertical");
+}
+
 int main(void)
 {
+    RUN(test_ratio_se);
+    RUN(test_record_rule);
     RUN(test_building_model);
     RUN(test_ground);
     RUN(test_floors);

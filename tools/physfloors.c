@@ -59,10 +59,20 @@ static void describe(const char *what, const sl_set *sets, size_t n)
 {
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0;
+    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0;
     for (size_t i = 0; i < n; i++) {
         for (int c = 0; c < 2; c++) {
             const sl_motion *m = c ? sets[i].h2 : sets[i].h1;
+            /* duration of the half-cycle holding the PGA (sign change to sign change) */
+            size_t ip = 0;
+            for (size_t j = 0; j < m->n; j++)
+                ip = fabs(m->acc_ms2[j]) > fabs(m->acc_ms2[ip]) ? j : ip;
+            size_t j0 = ip, j1 = ip;
+            while (j0 > 0 && (m->acc_ms2[j0 - 1] > 0) == (m->acc_ms2[ip] > 0))
+                j0--;
+            while (j1 + 1 < m->n && (m->acc_ms2[j1 + 1] > 0) == (m->acc_ms2[ip] > 0))
+                j1++;
+            hw += m->dt_s * (double)(j1 - j0 + 1) / (2.0 * (double)n);
             double sa;
             sl_error e;
             if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, &f50, 1, 0.05, &sa, NULL, NULL,
@@ -74,8 +84,8 @@ static void describe(const char *what, const sl_set *sets, size_t n)
         pc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
     }
     printf("  %s (%zu sets): mean threshold mu %.3f, mean larger H PGA %.3f g, mean H component "
-           "PGA %.3f g, ratio %.3f, SA(50 Hz)/PGA %.3f\n",
-           what, n, th, pg, pc, pg / pc, s50);
+           "PGA %.3f g, ratio %.3f, SA(50 Hz)/PGA %.3f, PGA half-cycle %.3f s\n",
+           what, n, th, pg, pc, pg / pc, s50, hw);
 }
 
 /* "| label | R ± SE ... |", '*' where |R - 1| > 2 SE */
@@ -280,6 +290,7 @@ int main(int argc, char **argv)
     int exps = 0, ground_only = 0, no_ground = 0, opt;
     double f_end = 50.0;
     sl_synth_params_default(&P);
+    setvbuf(stdout, NULL, _IOLBF, 0);
     while ((opt = getopt(argc, argv, "r:n:s:S:xa:gGF:")) != -1) {
         switch (opt) {
         case 'r': rdir = optarg; break;
@@ -356,6 +367,8 @@ int main(int argc, char **argv)
         describe("ground, synthesized RG 1.60", syn, nsyn);
         header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
         row("ratio ± SE", sy, nsyn, real, nm);
+        if (exps)
+            experiments(mset, nm, syn, out, nsyn, mu, real, sy);
         free(real);
         free(sy);
         for (size_t k = 0; k < nsyn; k++)
