@@ -1,4 +1,4 @@
-# seislide - see README.md. Targets: all test bench study install clean asan mutate.
+# seislide - see README.md. Targets: all test bench study install clean asan mutate physfloors.
 CC      ?= cc
 PREFIX  ?= /usr/local
 DESTDIR ?=
