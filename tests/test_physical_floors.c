@@ -80,8 +80,10 @@ static int read_recs(const char *shared, sl_set *g)
         if (sl_pf_read_record(dir, &rule, PGA_G * SL_G, &g[n], &e) == SL_OK) {
             CHECK_CLOSE(sl_set_pga_h(&g[n]), PGA_G * SL_G, 0, 1e-12);
             n++;
-        } else
-            fprintf(stderr, "  skipped: %s\n", e.msg);
+        } else {
+            char buf[2200];
+            fprintf(stderr, "  skipped: %s\n", sl_error_format(&e, buf, sizeof buf));
+        }
     }
     return n;
 }
@@ -237,6 +239,9 @@ static void test_floors(void)
                         broaden ? NULL : in_band, ratio[broaden]);
             CHECK(r10lo >= 0.8 && r10hi <= 1.25,
                   "floor %zu: 10 %% table / own 10 %% spectra %.3f-%.3f", fl, r10lo, r10hi);
+            if (verbose())
+                fprintf(stderr, "  %s: 10 %% table / own 10 %% spectra (set mean) %.3f-%.3f\n",
+                        what, r10lo, r10hi);
             remove(path);
         }
         /* design conservatism: the broadened spectra make the sets slide more

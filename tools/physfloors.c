@@ -35,7 +35,8 @@ static sl_synth_params P;
 
 static void die(const sl_error *e)
 {
-    fprintf(stderr, "physfloors: %s\n", e->msg);
+    char buf[2200];
+    fprintf(stderr, "physfloors: %s\n", sl_error_format(e, buf, sizeof buf));
     exit(1);
 }
 
