@@ -122,7 +122,8 @@ static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t see
             fhi += (out[k].check[c].f_min_ratio_hz > 25) / (2.0 * (double)nsyn);
         }
     }
-    printf("  synthesized H components: mean PGA/ZPA %.3f, mean lowest S/T %.3f (above 25 Hz in %.0f %%), highest %.3f\n",
+    printf("  synthesized H components: mean PGA/ZPA %.3f, mean lowest S/T %.3f (above 25 Hz "
+           "in %.0f %%), highest %.3f\n",
            pz, lo, 100 * fhi, hi);
     if (nfail)
         printf("  (%zu of %zu synthesized sets fail a check)\n", nfail, nsyn);
