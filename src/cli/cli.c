@@ -227,6 +227,15 @@ int cli_grid_make(const char *cmd, cli_grid *g, double **f, size_t *nf)
     return CLI_EXIT_OK;
 }
 
+int cli_stdout_done(void)
+{
+    if (fflush(stdout) || ferror(stdout)) {
+        cli_msg("error writing the output");
+        return CLI_EXIT_ERROR;
+    }
+    return CLI_EXIT_OK;
+}
+
 double cli_now_s(void)
 {
     struct timespec ts;

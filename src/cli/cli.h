@@ -181,6 +181,10 @@ void cli_put_field(const char *s);
 void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], size_t ncol,
                      const double *vals);
 
+/* After the last output: flush stdout. CLI_EXIT_OK, or CLI_EXIT_ERROR after
+ * "error writing the output" when stdout failed (a full disk, a closed pipe). */
+int cli_stdout_done(void);
+
 /* Monotonic wall-clock time, s (for the timings commands report). */
 double cli_now_s(void);
 

@@ -134,11 +134,7 @@ int cmd_asce(int argc, char **argv)
         asce_print_row(&r, sl_asce_newmark_sym(pgv_ms, zpa, a.mu.v[k], SL_G),
                   sl_asce_newmark_asym(pgv_ms, zpa, a.mu.v[k], SL_G), a.csv);
     }
-    if (fflush(stdout) || ferror(stdout)) {
-        cli_msg("error writing the output");
-        goto done;
-    }
-    rc = CLI_EXIT_OK;
+    rc = cli_stdout_done();
 done:
     free(a.mu.v);
     sl_asce_free(plan);

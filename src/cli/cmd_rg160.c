@@ -106,11 +106,7 @@ int cmd_rg160(int argc, char **argv)
     for (size_t i = 0; i < nd * nf; i++)
         psa[i] /= SL_G; /* in g */
     cli_print_table(a.csv, f, nf, names, nd, psa);
-    if (fflush(stdout) || ferror(stdout)) {
-        cli_msg("error writing the output");
-        goto done;
-    }
-    rc = CLI_EXIT_OK;
+    rc = cli_stdout_done();
 done:
     free(a.damp.v);
     cli_grid_free(&a.grid);
