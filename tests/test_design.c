@@ -4,6 +4,7 @@
 
 #include "method/design.h"
 #include "harness.h"
+#include "oracle.h"
 #include "core/units.h"
 
 /* Two sets, five mu. Hand values: means, sample sd, the 3.0 / 2.0 factors,
@@ -18,16 +19,8 @@ static void test_hand_example(void)
     const int no_slide[5] = {0, 0, 0, 0, 1};
     const double asce[5] = {0.20, 0.15, 0.06, 0.01, 0.0};
     const double pgd[2] = {0.5, 0.7};
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = 5;
-    in.n_sets = 2;
-    in.mu = mu;
-    in.peak_m = peak;
+    sl_design_input in = oracle_design_input(5, 2, mu, peak, asce, pgd, 0.5 * SL_G);
     in.no_slide = no_slide;
-    in.asce_best_m = asce;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = 0.5 * SL_G;
     sl_error e;
     sl_design *d = sl_design_compute(&in, &e);
     CHECK(d != NULL, "compute: %s", e.msg);
@@ -81,15 +74,7 @@ static void test_inner_range(void)
     const double peak[4] = {0.1, 0.1, 0.1, 0.1};
     const double asce[4] = {0.25, 0.1, 0.1, 0.2};
     const double pgd[1] = {10.0};
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = 4;
-    in.n_sets = 1;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.asce_best_m = asce;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = 0.4 * SL_G;
+    sl_design_input in = oracle_design_input(4, 1, mu, peak, asce, pgd, 0.4 * SL_G);
     sl_error e;
     sl_design *d = sl_design_compute(&in, &e);
     CHECK(d != NULL, "compute: %s", e.msg);
@@ -121,15 +106,7 @@ static void test_crossover_on_curves(void)
         peak[k] = 0.05 * exp(-8 * mu[k]);             /* NLTHA mean */
         asce[k] = 0.02 * exp(-4 * mu[k]);              /* below at low mu, above at high */
     }
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = N;
-    in.n_sets = 1;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.asce_best_m = asce;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = 0.3 * SL_G;
+    sl_design_input in = oracle_design_input(N, 1, mu, peak, asce, pgd, 0.3 * SL_G);
     sl_design *d = sl_design_compute(&in, NULL);
     CHECK(d && d->has_crossover, "crossover expected");
     if (!d || !d->has_crossover) {
@@ -156,15 +133,7 @@ static void test_no_crossover_when_conservative_low(void)
 {
     const double mu[4] = {0.1, 0.2, 0.3, 0.4}, peak[4] = {0.1, 0.05, 0.01, 0.0};
     const double asce[4] = {0.2, 0.01, 0.0, 0.0}, pgd[1] = {10};
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = 4;
-    in.n_sets = 1;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.asce_best_m = asce;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = SL_G;
+    sl_design_input in = oracle_design_input(4, 1, mu, peak, asce, pgd, SL_G);
     sl_design *d = sl_design_compute(&in, NULL);
     CHECK(d && !d->has_crossover && isnan(d->crossover_x), "no crossover expected");
     CHECK(d && d->n_ranges == 1, "one unconservative range");
@@ -176,15 +145,7 @@ static void test_no_crossover_when_conservative_low(void)
 static void test_policies(void)
 {
     const double mu[2] = {0.1, 0.2}, peak[2] = {0.1, 0.01}, asce[2] = {0.01, NAN}, pgd[1] = {1};
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = 2;
-    in.n_sets = 1;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.asce_best_m = asce;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = SL_G;
+    sl_design_input in = oracle_design_input(2, 1, mu, peak, asce, pgd, SL_G);
     for (int p = 0; p < 3; p++) {
         in.policy = (sl_clearance_policy)p;
         sl_design *d = sl_design_compute(&in, NULL);
@@ -204,14 +165,7 @@ static void test_policies(void)
 static void test_bad_input(void)
 {
     const double mu[2] = {0.2, 0.1}, peak[2] = {0.1, 0.01}, pgd[1] = {1};
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = 2;
-    in.n_sets = 1;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = SL_G;
+    sl_design_input in = oracle_design_input(2, 1, mu, peak, NULL, pgd, SL_G);
     sl_error e;
     CHECK(sl_design_compute(&in, &e) == NULL && e.code == SL_EINVAL, "decreasing mu");
     const double mu2[2] = {0.1, 0.2}, badpk[2] = {NAN, 0};

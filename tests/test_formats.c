@@ -4,7 +4,8 @@
  * count, npts and dt per channel against records/MANIFEST.tsv, the peak
  * accelerations per folder (horizontal and vertical) against
  * records/SUMMARY.tsv, the peak against the file's own header, the set
- * reader sl_set_read_dir() on those folders, and bad input.
+ * reader sl_set_read_dir() on those folders and on folders that cannot make
+ * a set, the set of named files (sl_set_read_files), and bad input.
  */
 #include <ctype.h>
 #include <math.h>
@@ -278,10 +279,97 @@ static void test_bad_input(void)
           "component names");
 }
 
+/* A file name in a fresh folder below TMPDIR (made on first use). */
+static const char *tmp_path(const char *sub, const char *name)
+{
+    static char dir[512], path[1024];
+    const char *t = getenv("TMPDIR");
+    snprintf(dir, sizeof dir, "%s/seislide-setdir-%ld-%s", t && *t ? t : "/tmp", (long)getpid(),
+             sub);
+    mkdir(dir, 0755);
+    snprintf(path, sizeof path, "%s/%s", dir, name ? name : "");
+    return name ? path : dir;
+}
+
+/* sl_set_read_dir on folders that cannot make a set: which format it takes
+ * (.AT2 before .V2A/.V2 before .smc before .acc), the component count, the
+ * message naming the folder or file; nothing left allocated. */
+static void test_setdir_layouts(void)
+{
+    static const char *const cases[][5] = {
+        {"a_H1.AT2", "b_H2.AT2", "c_H3.AT2", "d_UP.AT2", NULL},
+        {"x.V2A", "y.V2A", NULL},
+        {"a_E.acc", "b_N.acc", NULL},
+        {"a_E.acc", "b_N.acc", "c_Z.acc", "d.smc", NULL},
+        {"a_H1.AT2", "b_H2.AT2", "c_UP.AT2", "x.V2A", "a_E.acc"},
+        {NULL},
+    };
+    static const char *const expect[] = {
+        "expected 2 horizontal and 1 vertical .AT2 files, found 3 and 1",
+        "2 multi-channel files, expected one",
+        "expected 2 horizontal and 1 vertical .acc files, found 2 and 0",
+        "not an SMC corrected accelerogram",
+        "empty file", /* a_H1.AT2: the .AT2 files are read, not the others */
+        "no .AT2, .V2A, .V2, .smc or .acc files in this folder",
+    };
+    for (size_t i = 0; i < sizeof expect / sizeof expect[0]; i++) {
+        char sub[16];
+        snprintf(sub, sizeof sub, "%zu", i);
+        for (int k = 0; k < 5 && cases[i][k]; k++) {
+            FILE *f = fopen(tmp_path(sub, cases[i][k]), "w");
+            if (f)
+                fclose(f);
+        }
+        sl_set set;
+        sl_error err;
+        sl_error_clear(&err);
+        const char *dir = tmp_path(sub, NULL);
+        sl_status st = sl_set_read_dir(dir, &set, &err);
+        CHECK(st != SL_OK && strstr(err.msg, expect[i]) && !set.h1 && !set.h2 && !set.v &&
+                  !strncmp(err.file, dir, strlen(dir)) && (i != 4 || strstr(err.file, "a_H1.AT2")),
+              "case %zu: %d %s: %s", i, (int)st, err.file, err.msg);
+        for (int k = 0; k < 5 && cases[i][k]; k++)
+            remove(tmp_path(sub, cases[i][k]));
+        rmdir(dir);
+    }
+}
+
+/* sl_set_read_files: H1 and H2 of different length (H2 padded with zeros to
+ * H1's 4 samples, said in fit), no V; a missing file named, nothing left. */
+static void test_set_read_files(void)
+{
+    const char *h1 = harness_tmpfile("h1.txt", "0 0.1\n0.01 -0.2\n0.02 0.3\n0.03 0.05\n");
+    const char *h2 = harness_tmpfile("h2.txt", "0 0.4\n0.01 0.1\n0.02 -0.5\n");
+    sl_read_opts ro = {SL_FORMAT_AUTO, SL_UNIT_G, 0.0};
+    sl_set set;
+    sl_set_fit fit;
+    sl_error err;
+    const char *p[3] = {h1, h2, NULL};
+    CHECK(sl_set_read_files(p, &ro, 0, &set, &fit, &err) == SL_OK, "%s", err.msg);
+    if (set.h1 && set.h2) {
+        CHECK(set.h1->n == 4 && set.h2->n == 4 && !set.v && fit.changed && !fit.truncated &&
+                  fit.n_in[0] == 4 && fit.n_in[1] == 3 && fit.n_in[2] == 0,
+              "n %zu %zu, fit %zu %zu %zu", set.h1->n, set.h2->n, fit.n_in[0], fit.n_in[1],
+              fit.n_in[2]);
+        CHECK_CLOSE(set.h2->acc_ms2[2], -0.5 * SL_G, 0, 1e-12);
+        CHECK(set.h2->acc_ms2[3] == 0.0, "padded with %g", set.h2->acc_ms2[3]);
+        CHECK_CLOSE(sl_set_pga_h(&set), 0.5 * SL_G, 0, 1e-12);
+    }
+    sl_set_free_motions(&set);
+    const char *q[3] = {h1, "/nonexistent/h2.AT2", NULL};
+    CHECK(sl_set_read_files(q, &ro, 1, &set, NULL, &err) != SL_OK && !set.h1 && !set.h2 &&
+              strstr(err.file, "/nonexistent/h2.AT2"),
+          "missing H2: %s %s", err.file, err.msg);
+    remove(h1);
+    remove(h2);
+}
+
 int main(void)
 {
     RUN(test_manifest);
     RUN(test_summary_and_sets);
     RUN(test_bad_input);
+    RUN(test_setdir_layouts);
+    RUN(test_set_read_files);
     return HARNESS_END("formats");
 }

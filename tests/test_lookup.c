@@ -13,6 +13,7 @@
 
 #include "core/units.h"
 #include "harness.h"
+#include "oracle.h"
 #include "method/design.h"
 #include "report/report.h"
 
@@ -32,15 +33,7 @@ static sl_design *make_design(double scale, double zpa_g)
         peak[N_MU + k] = 1.1 * base;
         asce[k] = 1.2 * base;
     }
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = N_MU;
-    in.n_sets = N_SETS;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.asce_best_m = asce;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = zpa_g * SL_G;
+    sl_design_input in = oracle_design_input(N_MU, N_SETS, mu, peak, asce, pgd, zpa_g * SL_G);
     sl_error e;
     return sl_design_compute(&in, &e);
 }

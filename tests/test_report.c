@@ -9,6 +9,7 @@
 
 #include "core/units.h"
 #include "harness.h"
+#include "oracle.h"
 #include "method/design.h"
 #include "report/report.h"
 
@@ -35,15 +36,7 @@ static sl_design *design(double peak0)
     const double peak[4] = {peak0, 0.1, 0.05, 0.0};
     const double asce[4] = {0.25, 0.02, 0.01, 0.0};
     const double pgd[1] = {10.0};
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = 4;
-    in.n_sets = 1;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.asce_best_m = asce;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = 0.5 * SL_G;
+    sl_design_input in = oracle_design_input(4, 1, mu, peak, asce, pgd, 0.5 * SL_G);
     sl_error e;
     return sl_design_compute(&in, &e);
 }
@@ -122,14 +115,7 @@ static void test_design_se(void)
     const double mu[2] = {0.1, 0.2};
     const double peak[4] = {0.1, 0.0, 0.3, 0.0};
     const double pgd[2] = {10.0, 10.0};
-    sl_design_input in;
-    sl_design_input_default(&in);
-    in.n_mu = 2;
-    in.n_sets = 2;
-    in.mu = mu;
-    in.peak_m = peak;
-    in.pgd_m = pgd;
-    in.zpa_h_ms2 = 0.5 * SL_G;
+    sl_design_input in = oracle_design_input(2, 2, mu, peak, NULL, pgd, 0.5 * SL_G);
     sl_error e;
     sl_design *d = sl_design_compute(&in, &e);
     CHECK(d != NULL, "design: %s", e.msg);

@@ -676,6 +676,32 @@ static void test_bad_options(void)
     CHECK(sl_slide_run(&s, &mu, 1, &o, &r, &e) == SL_EINVAL, "atol < 0");
 }
 
+/* sl_slide_opts_set_tol: the engine's tolerances for the exact and plastic
+ * models, the ODE solver's for the smooth one; <= 0 keeps; an engine rtol
+ * outside [1e-9, 0.1] is refused with nothing changed. */
+static void test_set_tol(void)
+{
+    sl_slide_opts o = opts_default(), d = o;
+    sl_error e;
+    CHECK(sl_slide_opts_set_tol(&o, 1e-4, 2e-8, &e) == SL_OK && o.rtol == 1e-4 &&
+              o.atol_m == 2e-8 && o.smooth_rtol == d.smooth_rtol && o.smooth_atol == d.smooth_atol,
+          "exact: rtol %g atol %g smooth %g %g", o.rtol, o.atol_m, o.smooth_rtol, o.smooth_atol);
+    o = d;
+    o.model = SL_MODEL_SMOOTH;
+    CHECK(sl_slide_opts_set_tol(&o, 1e-5, 3e-10, &e) == SL_OK && o.smooth_rtol == 1e-5 &&
+              o.smooth_atol == 3e-10 && o.rtol == d.rtol && o.atol_m == d.atol_m,
+          "smooth: %g %g, engine %g %g", o.smooth_rtol, o.smooth_atol, o.rtol, o.atol_m);
+    o = d;
+    CHECK(sl_slide_opts_set_tol(&o, 0, -1, &e) == SL_OK && !memcmp(&o, &d, sizeof o),
+          "<= 0 keeps the defaults");
+    o.model = d.model = SL_MODEL_PLASTIC;
+    CHECK(sl_slide_opts_set_tol(&o, 0.5, 1e-3, &e) == SL_EINVAL && !memcmp(&o, &d, sizeof o) &&
+              strstr(e.msg, "0.5") != NULL,
+          "rtol 0.5 refused, nothing changed: %s", e.msg);
+    CHECK(sl_slide_opts_set_tol(&o, 1e-12, 0, &e) == SL_EINVAL, "rtol 1e-12 refused");
+    CHECK(sl_slide_opts_set_tol(&o, 0.1, 0, &e) == SL_OK && o.rtol == 0.1, "rtol 0.1 taken");
+}
+
 int main(void)
 {
     RUN(test_rect_pulse_exact);
@@ -693,5 +719,6 @@ int main(void)
     RUN(test_ramp_position);
     RUN(test_error_control);
     RUN(test_bad_options);
+    RUN(test_set_tol);
     return HARNESS_END("slide");
 }

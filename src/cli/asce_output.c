@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "io/setdir.h"
 
 /* The method's input from whichever source, its description and the PGV
  * for Newmark's estimates. Returns 0 or -1 (err filled). */
@@ -30,11 +31,11 @@ int asce_make_source(const asce_args *a, sl_asce_source *src, sl_floor **fl, sl_
         return 0;
     }
     const char *path[3] = {a->h1, a->h2, a->v};
-    for (int q = 0; q < 3; q++)
-        if (!(m[q] = sl_motion_read(path[q], &a->ro, err)))
-            return -1;
-    sl_set set = {m[0], m[1], m[2]};
-    if (sl_set_check(&set, a->truncate, err) || sl_asce_input_from_set(&set, src, err))
+    sl_set set;
+    if (sl_set_read_files(path, &a->ro, a->truncate, &set, NULL, err))
+        return -1;
+    m[0] = set.h1, m[1] = set.h2, m[2] = set.v; /* the caller frees them */
+    if (sl_asce_input_from_set(&set, src, err))
         return -1;
     *pgv_ms = fmax(sl_motion_pgv(m[0]), sl_motion_pgv(m[1]));
     snprintf(what, nw, "motions %s + %s + V %s, PGA %.4f g, A_v = %.4f g, peak displacement "

@@ -227,6 +227,15 @@ int cli_grid_make(const char *cmd, cli_grid *g, double **f, size_t *nf)
     return CLI_EXIT_OK;
 }
 
+int cli_stdout_done(void)
+{
+    if (fflush(stdout) || ferror(stdout)) {
+        cli_msg("error writing the output");
+        return CLI_EXIT_ERROR;
+    }
+    return CLI_EXIT_OK;
+}
+
 double cli_now_s(void)
 {
     struct timespec ts;
@@ -349,6 +358,34 @@ int cli_parse(const char *cmd, const cli_opt *opts, size_t n, int argc, char **a
         if (rc != CLI_EXIT_OK)
             return CLI_EXIT_USAGE;
     }
+    return CLI_EXIT_OK;
+}
+
+int cli_command_parse(const cli_command *c, int argc, char **argv, void *dst)
+{
+    int rc = cli_parse(c->name, c->opts, c->nopts, argc, argv, dst, c->call);
+    if (rc == CLI_OPT_HELP) {
+        fputs(c->head, stdout);
+        cli_help_options(stdout, c->opts, c->nopts, c->col);
+        fputs(c->tail, stdout);
+    }
+    if (rc || (!c->operands && (rc = cli_no_operands(c->name, argc, argv))))
+        return rc;
+    return c->check ? c->check(dst) : CLI_EXIT_OK;
+}
+
+void cli_command_line(char *buf, size_t n, int argc, char **argv)
+{
+    snprintf(buf, n, "seislide");
+    for (int i = 0; i < argc && strlen(buf) + strlen(argv[i]) + 2 < n; i++)
+        strcat(strcat(buf, " "), argv[i]);
+}
+
+int cli_mu_nonneg(const char *cmd, const cli_mu *mu)
+{
+    for (size_t k = 0; k < mu->n; k++)
+        if (!(mu->v[k] >= 0))
+            return cli_usage(cmd, "friction coefficient %g must be >= 0", mu->v[k]);
     return CLI_EXIT_OK;
 }
 

@@ -128,6 +128,29 @@ int cli_no_operands(const char *cmd, int argc, char **argv);
 /* The option lines of a help text, generated from the table. */
 void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col);
 
+/* A command's front end, the same for every command: parse by its table,
+ * print its --help (head, the option lines at column col, tail), refuse
+ * operands unless it takes them, then apply the rules across options. */
+typedef struct cli_command {
+    const char *name;               /* "slide": in usage messages */
+    const char *head, *tail;        /* --help text before and after the option lines */
+    const cli_opt *opts;
+    size_t nopts;
+    int col;                        /* help column of the option texts */
+    int (*call)(void *dst, int key, const char *arg); /* CLI_CALL options, or NULL */
+    int (*check)(void *dst);        /* rules across options, or NULL */
+    int operands;                   /* 1: operands may follow (from optind) */
+} cli_command;
+/* Parse argv into the settings dst. Returns CLI_EXIT_OK (operands, if
+ * allowed, start at optind), CLI_OPT_HELP after printing the help on
+ * stdout, or CLI_EXIT_USAGE (message printed; also what check returns). */
+int cli_command_parse(const cli_command *c, int argc, char **argv, void *dst);
+/* "seislide" and the words of argv (argv[0] the command name), joined by
+ * blanks into buf of size n, up to the first word that does not fit. */
+void cli_command_line(char *buf, size_t n, int argc, char **argv);
+/* CLI_EXIT_OK when every friction value of mu is >= 0, else a usage error. */
+int cli_mu_nonneg(const char *cmd, const cli_mu *mu);
+
 /* Print "seislide: FILE:LINE: message" for a library error. */
 void cli_print_error(const sl_error *err);
 /* Print "seislide: " + message to stderr. */
@@ -157,6 +180,10 @@ void cli_put_field(const char *s);
  * column as wide as its name, at least 12; "%.6g"). */
 void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], size_t ncol,
                      const double *vals);
+
+/* After the last output: flush stdout. CLI_EXIT_OK, or CLI_EXIT_ERROR after
+ * "error writing the output" when stdout failed (a full disk, a closed pipe). */
+int cli_stdout_done(void);
 
 /* Monotonic wall-clock time, s (for the timings commands report). */
 double cli_now_s(void);

@@ -73,8 +73,9 @@ static const cli_opt asce_opts[] = {
 };
 
 /* The usage rules across options. Returns CLI_EXIT_OK or a usage error. */
-static int check_args(const asce_args *a)
+static int check_args(void *dst)
 {
+    const asce_args *a = dst;
     int motion = a->h1 || a->h2 || a->v;
     if (!isnan(a->rg_pga_g) + (a->floor != NULL) + motion != 1)
         return cli_usage("asce", "give exactly one input: --rg160 PGA, --floor FILE or "
@@ -85,11 +86,11 @@ static int check_args(const asce_args *a)
         return cli_usage("asce", "--units, --dt and --truncate apply to motion files only");
     if (!a->mu.v)
         return cli_usage("asce", "give the friction coefficients with --mu or --mu-range");
-    for (size_t k = 0; k < a->mu.n; k++)
-        if (!(a->mu.v[k] >= 0))
-            return cli_usage("asce", "friction coefficient %g must be >= 0", a->mu.v[k]);
-    return CLI_EXIT_OK;
+    return cli_mu_nonneg("asce", &a->mu);
 }
+
+static const cli_command asce_cmd = {"asce", asce_head, asce_tail, asce_opts,
+                                     CLI_NOPTS(asce_opts), 25, NULL, check_args, 0};
 
 int cmd_asce(int argc, char **argv)
 {
@@ -103,15 +104,8 @@ int cmd_asce(int argc, char **argv)
     sl_error_clear(&err);
     char what[1200];
     double pgv_ms;
-    int rc = cli_parse("asce", asce_opts, CLI_NOPTS(asce_opts), argc, argv, &a, NULL);
-    if (rc == CLI_OPT_HELP) {
-        fputs(asce_head, stdout);
-        cli_help_options(stdout, asce_opts, CLI_NOPTS(asce_opts), 25);
-        fputs(asce_tail, stdout);
-        rc = CLI_EXIT_OK;
-        goto done;
-    }
-    if (rc || (rc = cli_no_operands("asce", argc, argv)) || (rc = check_args(&a)))
+    int rc = cli_command_parse(&asce_cmd, argc, argv, &a);
+    if (rc)
         goto done;
     rc = CLI_EXIT_ERROR;
     if (asce_make_source(&a, &src, &fl, m, &pgv_ms, what, sizeof what, &err)) {
@@ -140,11 +134,7 @@ int cmd_asce(int argc, char **argv)
         asce_print_row(&r, sl_asce_newmark_sym(pgv_ms, zpa, a.mu.v[k], SL_G),
                   sl_asce_newmark_asym(pgv_ms, zpa, a.mu.v[k], SL_G), a.csv);
     }
-    if (fflush(stdout) || ferror(stdout)) {
-        cli_msg("error writing the output");
-        goto done;
-    }
-    rc = CLI_EXIT_OK;
+    rc = cli_stdout_done();
 done:
     free(a.mu.v);
     sl_asce_free(plan);
@@ -152,5 +142,5 @@ done:
     sl_floor_free(fl);
     for (int q = 0; q < 3; q++)
         sl_motion_free(m[q]);
-    return rc;
+    return rc == CLI_OPT_HELP ? CLI_EXIT_OK : rc;
 }

@@ -53,8 +53,9 @@ static const cli_opt rg160_opts[] = {
 };
 
 /* The usage rules across options. Returns CLI_EXIT_OK or a usage error. */
-static int check_args(const rg160_args *a)
+static int check_args(void *dst)
 {
+    const rg160_args *a = dst;
     if (isnan(a->pga_g))
         return cli_usage("rg160", "--pga G is required");
     if (a->damp.n > RG160_MAX_DAMPINGS)
@@ -66,6 +67,9 @@ static int check_args(const rg160_args *a)
     return CLI_EXIT_OK;
 }
 
+static const cli_command rg160_cmd = {"rg160", rg160_head, rg160_tail, rg160_opts,
+                                      CLI_NOPTS(rg160_opts), 25, NULL, check_args, 0};
+
 int cmd_rg160(int argc, char **argv)
 {
     rg160_args a = {.pga_g = NAN};
@@ -74,16 +78,8 @@ int cmd_rg160(int argc, char **argv)
     size_t nf = 0;
     sl_error err;
     sl_error_clear(&err);
-    int rc = cli_parse("rg160", rg160_opts, CLI_NOPTS(rg160_opts), argc, argv, &a, NULL);
-    if (rc == CLI_OPT_HELP) {
-        fputs(rg160_head, stdout);
-        cli_help_options(stdout, rg160_opts, CLI_NOPTS(rg160_opts), 25);
-        fputs(rg160_tail, stdout);
-        rc = CLI_EXIT_OK;
-        goto done;
-    }
-    if (rc || (rc = cli_no_operands("rg160", argc, argv)) || (rc = check_args(&a)) ||
-        (rc = cli_grid_make("rg160", &a.grid, &f, &nf)))
+    int rc = cli_command_parse(&rg160_cmd, argc, argv, &a);
+    if (rc || (rc = cli_grid_make("rg160", &a.grid, &f, &nf)))
         goto done;
     const double *damp = a.damp.v ? a.damp.v : &default_damping;
     size_t nd = a.damp.v ? a.damp.n : 1;
@@ -110,15 +106,11 @@ int cmd_rg160(int argc, char **argv)
     for (size_t i = 0; i < nd * nf; i++)
         psa[i] /= SL_G; /* in g */
     cli_print_table(a.csv, f, nf, names, nd, psa);
-    if (fflush(stdout) || ferror(stdout)) {
-        cli_msg("error writing the output");
-        goto done;
-    }
-    rc = CLI_EXIT_OK;
+    rc = cli_stdout_done();
 done:
     free(a.damp.v);
     cli_grid_free(&a.grid);
     free(f);
     free(psa);
-    return rc;
+    return rc == CLI_OPT_HELP ? CLI_EXIT_OK : rc;
 }

@@ -121,11 +121,7 @@ int cmd_spectrum(int argc, char **argv)
         cli_msg("out of memory");
         goto done;
     }
-    if (fflush(stdout) || ferror(stdout)) {
-        cli_msg("error writing the output");
-        goto done;
-    }
-    rc = CLI_EXIT_OK;
+    rc = cli_stdout_done();
 done:
     free(a.damp.v);
     cli_grid_free(&a.grid);

@@ -35,16 +35,44 @@ int study_write_text(study_out *o, const char *dir, const char *name, const char
     return 0;
 }
 
+/* A text built in memory (a stream f over buf, len), then written out. */
+typedef struct mem_text {
+    char *buf;
+    size_t len;
+    FILE *f;
+} mem_text;
+
+/* Open t (which stays where it is until mem_text_write). Its stream, or
+ * NULL (message printed). */
+static FILE *mem_text_open(mem_text *t)
+{
+    t->buf = NULL;
+    t->len = 0;
+    if (!(t->f = open_memstream(&t->buf, &t->len)))
+        cli_msg("out of memory");
+    return t->f;
+}
+
+/* Close t and write its text to figdir/name; frees the text. 0 or -1
+ * (message printed). */
+static int mem_text_write(study_out *o, const char *name, mem_text *t)
+{
+    int rc = -1;
+    if (fclose(t->f))
+        cli_msg("out of memory");
+    else
+        rc = study_write_text(o, o->figdir, name, t->buf, t->len);
+    free(t->buf);
+    return rc;
+}
+
 int study_write_tsv(study_out *o, const char *name, const char *title, const char *const *hdr,
                     const double *const *col, size_t ncol, size_t nrow)
 {
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&buf, &len);
-    if (!f) {
-        cli_msg("out of memory");
+    mem_text t;
+    FILE *f = mem_text_open(&t);
+    if (!f)
         return -1;
-    }
     fprintf(f, "# %s (seislide study)\n#", title);
     for (size_t j = 0; j < ncol; j++)
         fprintf(f, "%s%s", j ? "\t" : " ", hdr[j]);
@@ -57,14 +85,7 @@ int study_write_tsv(study_out *o, const char *name, const char *title, const cha
             else
                 fprintf(f, "%.9g%c", v, j + 1 < ncol ? '\t' : '\n');
         }
-    if (fclose(f)) {
-        free(buf);
-        cli_msg("out of memory");
-        return -1;
-    }
-    int rc = study_write_text(o, o->figdir, name, buf, len);
-    free(buf);
-    return rc;
+    return mem_text_write(o, name, &t);
 }
 
 int study_write_history(study_out *o, const char *name, const char *title,
@@ -126,13 +147,10 @@ static int run_gnuplot(const study_out *o, const char *name)
 
 int study_plot(study_out *o, const char *base, const char *fmt, ...)
 {
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&buf, &len);
-    if (!f) {
-        cli_msg("out of memory");
+    mem_text t;
+    FILE *f = mem_text_open(&t);
+    if (!f)
         return -1;
-    }
     fprintf(f,
             "# %s.gp - drawn by 'seislide study'; run in this folder: gnuplot %s.gp\n"
             "set terminal svg size 900,560 font 'Helvetica,13' background '#ffffff'\n"
@@ -143,15 +161,9 @@ int study_plot(study_out *o, const char *base, const char *fmt, ...)
     va_start(ap, fmt);
     vfprintf(f, fmt, ap);
     va_end(ap);
-    if (fclose(f)) {
-        free(buf);
-        cli_msg("out of memory");
-        return -1;
-    }
     char name[256];
     snprintf(name, sizeof name, "%s.gp", base);
-    int rc = study_write_text(o, o->figdir, name, buf, len);
-    free(buf);
+    int rc = mem_text_write(o, name, &t);
     if (rc || !o->plots)
         return rc;
     return run_gnuplot(o, name);

@@ -11,6 +11,22 @@
 #include "method/design.h"
 #include "study_out.h"
 
+/* A table cell: v in fmt, or `none` where v is not a number. */
+static const char *cell(char *buf, size_t n, const char *fmt, double v, const char *none)
+{
+    if (isnan(v))
+        snprintf(buf, n, "%s", none);
+    else
+        snprintf(buf, n, fmt, v);
+    return buf;
+}
+
+/* The crossover mu g/PGA of a design comparison, or "none". */
+static const char *crossover_cell(const sl_design *d, char *buf, size_t n)
+{
+    return cell(buf, n, "%.3f", d->has_crossover ? d->crossover_x : NAN, "none");
+}
+
 /* ---- Part 1 ---------------------------------------------------------- */
 
 int study_report_part1(study_out *o, const sl_study_part1 *p)
@@ -98,9 +114,9 @@ int study_report_part2(study_out *o, const sl_study_part2 *p)
     for (int i = 0; i < SL_STUDY_P2_NCASES; i++) {
         const sl_study_p2_case *c = &p->c[i];
         char cx[32], cy[32];
-        snprintf(cx, sizeof cx, isnan(c->ux_m) ? "-" : "%.1f", 1e3 * c->ux_m);
-        snprintf(cy, sizeof cy, isnan(c->uy_m) ? "-" : "%.1f", 1e3 * c->uy_m);
-        fprintf(md, "| %s | %s | %s | %.1f | %.1f | %.2f |\n", c->name, cx, cy, 1e3 * c->r.peak_m,
+        fprintf(md, "| %s | %s | %s | %.1f | %.1f | %.2f |\n", c->name,
+                cell(cx, sizeof cx, "%.1f", 1e3 * c->ux_m, "-"),
+                cell(cy, sizeof cy, "%.1f", 1e3 * c->uy_m, "-"), 1e3 * c->r.peak_m,
                 1e3 * c->r.residual_m, c->r.slide_time_s);
         char file[64], title[160];
         snprintf(file, sizeof file, "p2_%s.tsv", c->tag);
@@ -267,10 +283,9 @@ int study_report_part3(study_out *o, const sl_study_part3 *p)
         char rg[512], cross[32], fs3[32];
         ranges_text(d, rg, sizeof rg);
         const sl_design_row *r01 = &d->rows[SL_STUDY_P3_K01];
-        snprintf(cross, sizeof cross, d->has_crossover ? "%.3f" : "none", d->crossover_x);
-        snprintf(fs3, sizeof fs3, isnan(p->fs3_x[l]) ? "nowhere" : "%.3f", p->fs3_x[l]);
-        fprintf(md, "| %.1f | %s | %s | %s | %.0f | %.0f | %.0f |\n", sl_study_levels_g[l], cross,
-                rg, fs3, 1e3 * r01->nltha_design_m, 1e3 * r01->asce_design_m, 1e3 * d->cap_m);
+        fprintf(md, "| %.1f | %s | %s | %s | %.0f | %.0f | %.0f |\n", sl_study_levels_g[l],
+                crossover_cell(d, cross, sizeof cross), rg,
+                cell(fs3, sizeof fs3, "%.3f", p->fs3_x[l], "nowhere"), 1e3 * r01->nltha_design_m, 1e3 * r01->asce_design_m, 1e3 * d->cap_m);
         char file[64], title[128];
         snprintf(file, sizeof file, "p3_ground_%.1fg.tsv", sl_study_levels_g[l]);
         snprintf(title, sizeof title, "ground set matched to RG 1.60, PGA %.1f g",
@@ -343,10 +358,8 @@ int study_report_part4(study_out *o, const sl_study_part4 *p)
                      p->xb_lo[g], p->xb_hi[g]);
         else
             snprintf(bb, sizeof bb, "none of %zu mu", p->defined[g]);
-        snprintf(cross, sizeof cross, sp->design->has_crossover ? "%.3f" : "none",
-                 sp->design->crossover_x);
         fprintf(md, "| %s | %zu | %.3f | %s | %s | %s |\n", gr->name, gr->n, sp->pga_ms2 / SL_G,
-                bb, rg, cross);
+                bb, rg, crossover_cell(sp->design, cross, sizeof cross));
         char file[64], title[128];
         snprintf(file, sizeof file, "p4_%s.tsv", gr->tag);
         snprintf(title, sizeof title, "%s records, unscaled", gr->name);

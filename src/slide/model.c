@@ -25,6 +25,18 @@ void sl_slide_opts_default(sl_slide_opts *o)
     o->keep_going = 1;
 }
 
+sl_status sl_slide_opts_set_tol(sl_slide_opts *o, double rtol, double atol_m, sl_error *err)
+{
+    int smooth = o->model == SL_MODEL_SMOOTH;
+    if (rtol > 0 && !smooth && !(rtol >= SL_SLIDE_RTOL_MIN && rtol <= SL_SLIDE_RTOL_MAX))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "slide: rtol %g must be in [1e-9, 0.1]", rtol);
+    if (rtol > 0)
+        *(smooth ? &o->smooth_rtol : &o->rtol) = rtol;
+    if (atol_m > 0)
+        *(smooth ? &o->smooth_atol : &o->atol_m) = atol_m;
+    return SL_OK;
+}
+
 /* Index of name in the n names, or -1. */
 static int name_index(const char *name, const char *const *names, int n)
 {

@@ -24,6 +24,9 @@ typedef enum sl_model {
  * is then held to 1 um). docs/integrators.md. */
 #define SL_SLIDE_DEFAULT_RTOL 1e-3
 #define SL_SLIDE_DEFAULT_ATOL_M 1e-6
+/* The range of the engine's rtol (sl_slide_opts.rtol). */
+#define SL_SLIDE_RTOL_MIN 1e-9
+#define SL_SLIDE_RTOL_MAX 0.1
 /* Default 2-D sub-steps per sample: 0 = error-controlled (rtol, atol_m). */
 #define SL_SLIDE_DEFAULT_SUBSTEPS 0u
 
@@ -51,6 +54,16 @@ typedef struct sl_slide_opts {
 
 /* Fill defaults (documented next to each field). */
 void sl_slide_opts_default(sl_slide_opts *o);
+
+/* Apply the accuracy a user asks for, one relative tolerance rtol and one
+ * absolute tolerance atol_m (m), to the model o->model: for SL_MODEL_SMOOTH
+ * the GSL ODE driver's eps_rel and eps_abs on u (smooth_rtol, smooth_atol;
+ * refmodel.c, gsl_odeiv2_driver_alloc_scaled_new), for the engine the
+ * bound its 2-D error control aims at, |error of a peak| <= max(rtol peak,
+ * atol_m) (rtol, atol_m; docs/integrators.md). A value <= 0 keeps the
+ * setting as it is. Returns SL_OK, or SL_EINVAL (err set, o unchanged) for
+ * an engine rtol outside [SL_SLIDE_RTOL_MIN, SL_SLIDE_RTOL_MAX]. */
+sl_status sl_slide_opts_set_tol(sl_slide_opts *o, double rtol, double atol_m, sl_error *err);
 
 /* The model named "exact", "smooth" or "plastic"; -1 for any other name. */
 int sl_model_parse(const char *name);

@@ -1,0 +1,117 @@
+/* run_opts.c - the options of `seislide run` (run_opts.h): one cli_opt
+ * table, parsed by cli_parse() and printed by --help, and the rules across
+ * options. */
+#include "run_opts.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "core/standards.h"
+#include "slide/model.h"
+
+static const char run_head[] =
+    "usage: seislide run [FLOOR.ini ... | DIR] [options]\n\nThe main job: for every floor "
+    "response spectrum file (default: every *.ini in floors/),\nsynthesize motion sets, "
+    "compute the peak vector sliding displacement of each by\nNLTHA over the friction grid "
+    "and the ASCE/SEI 43-05 estimate, the design sliding\nspectra, every range where ASCE "
+    "is below NLTHA, and the required clearance; write\nDIR/" SL_DELIVER_WORKBOOK " and "
+    "the CSV files (docs/run.md).\n\noptions:\n";
+static const char run_tail[] =
+    "\nExit status: 0 success, 1 bad input or failed run (the output folder unchanged),\n"
+    "2 usage error.\n";
+
+#define A(f) .off = offsetof(run_args, f)
+enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
+       O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
+       O_REL_SE, O_ABS_SE, O_MAX_SETS };
+static const cli_opt opts[] = {
+    {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
+     "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
+     A(out)},
+    {"quiet", 'q', NULL, "no progress on stderr", .kind = CLI_FLAG, A(quiet)},
+    {"sets", O_SETS, "N", "a fixed number of motion sets per floor (ASCE 43-05: >= %g);\n"
+     "default: sets are added until converged (docs/run.md, Convergence):",
+     {SL_NLTHA_MIN_SETS}, .kind = CLI_COUNT1, A(sets)},
+    {"rel-se", O_REL_SE, "R", "target standard error of the design value, relative (default %g),",
+     {SL_ANALYSIS_REL_SE}, .kind = CLI_NONNEG, A(ao.rel_se)},
+    {"abs-se", O_ABS_SE, "MM", "or absolute, mm (default %g), whichever is larger, at every mu",
+     {1e3 * SL_ANALYSIS_ABS_SE_M}, .kind = CLI_NONNEG, A(abs_se_mm)},
+    {"max-sets", O_MAX_SETS, "N", "stop there when not converged; the floor is flagged (default %g)",
+     {SL_ANALYSIS_MAX_SETS}, .kind = CLI_COUNT1, A(max_sets)},
+    {"seed", O_SEED, "S", "random seed (default 1); a floor's seed also depends on its\n"
+     "spectra's numbers (or its 'seed ='), never on its name or the other floors",
+     .kind = CLI_CALL},
+    {"mu-range", O_MU_RANGE, "A:B:S", "friction grid (default " SL_MU_GRID_TEXT ")",
+     .kind = CLI_MU_RANGE, A(mu)},
+    {"mu", O_MU, "LIST", "explicit friction values, increasing", .kind = CLI_MU_LIST, A(mu)},
+    {"policy", O_POLICY, "P", "required clearance: nltha (default), asce or envelope",
+     .kind = CLI_CALL},
+    {"accuracy", O_ACC, "E", "relative error of every NLTHA peak the 2-D engine aims at (its\n"
+     "rtol, default %g, at most %g; docs/integrators.md)", {SL_SLIDE_DEFAULT_RTOL,
+     SL_SLIDE_RTOL_MAX}, .kind = CLI_POSITIVE, A(ao.rtol)},
+    {"substeps", O_SUB, "N", "expert: N fixed 2-D sub-steps per sample, no error control",
+     .kind = CLI_COUNT1, A(substeps)},
+    {"motions", O_MOTIONS, NULL, "also write every motion to DIR/motions/<floor id>/*.AT2",
+     .kind = CLI_FLAG, A(dop.write_motions)},
+    {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\nelse now)",
+     .kind = CLI_CALL},
+    {"force", O_FORCE, NULL, "run a floor whose horizontal ZPA is outside %g-%g g (warning)",
+     {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_FLAG, A(force)},
+    {.head = "title block of the workbook (Lookup, Summary, page headers, CSV comments):"},
+    {"project", O_PROJECT, "TEXT", "project", .kind = CLI_STRING, A(dop.project.project)},
+    {"document", O_DOCUMENT, "TEXT", "document number", .kind = CLI_STRING,
+     A(dop.project.document)},
+    {"revision", O_REVISION, "TEXT", "revision", .kind = CLI_STRING, A(dop.project.revision)},
+    {"prepared", O_PREPARED, "TEXT", "prepared by", .kind = CLI_STRING, A(dop.project.prepared)},
+    {"checked", O_CHECKED, "TEXT", "checked by", .kind = CLI_STRING, A(dop.project.checked)},
+    {"date", O_DATE, "TEXT", "date (default: the workbook date)", .kind = CLI_STRING,
+     A(dop.project.date)}};
+
+/* The options that need more than their kind. */
+static int take(void *dst, int key, const char *v)
+{
+    run_args *a = dst;
+    unsigned long ul = 0;
+    int p = key == O_POLICY ? sl_clearance_policy_parse(v) : 0;
+    int bad = key == O_SEED ? cli_parse_ulong(v, &ul) : key == O_POLICY ? p < 0
+              : cli_parse_double(v, &a->created) || a->created < 0 || a->created > 4e12;
+    if (bad)
+        return cli_usage("run", "bad value '%s' for --%s", v, key == O_SEED ? "seed"
+                         : key == O_POLICY ? "policy (nltha, asce, envelope)" : "created");
+    if (key == O_SEED)
+        a->ao.seed = ul;
+    if (key == O_POLICY)
+        a->ao.policy = (sl_clearance_policy)p;
+    return CLI_EXIT_OK;
+}
+
+/* The rules across options; the default friction grid. */
+static int check(void *dst)
+{
+    run_args *a = dst;
+    if (!(a->ao.rel_se < 1) || !(a->ao.rel_se > 0 || a->abs_se_mm > 0) ||
+        !isfinite(a->abs_se_mm) || a->max_sets < 2 || a->max_sets > 10000)
+        return cli_usage("run", "--rel-se must be below 1, --rel-se and --abs-se not both 0, "
+                         "--max-sets from 2 to 10000");
+    if (!a->mu.v && cli_parse_range(SL_MU_GRID_TEXT, &a->mu.v, &a->mu.n)) {
+        cli_msg("out of memory");
+        return CLI_EXIT_ERROR;
+    }
+    return CLI_EXIT_OK;
+}
+
+int run_parse(int argc, char **argv, run_args *a)
+{
+    static const cli_command cmd = {"run", run_head, run_tail, opts, CLI_NOPTS(opts), 22, take,
+                                    check, 1};
+    const char *sde = getenv("SOURCE_DATE_EPOCH");
+    double v;
+    *a = (run_args){.out = "output", .abs_se_mm = 1e3 * SL_ANALYSIS_ABS_SE_M,
+                    .max_sets = SL_ANALYSIS_MAX_SETS,
+                    .created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL),
+                    .dop = {.version = "seislide " SEISLIDE_VERSION}};
+    sl_analysis_opts_default(&a->ao);
+    return cli_command_parse(&cmd, argc, argv, a);
+}

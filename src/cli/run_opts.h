@@ -1,0 +1,29 @@
+/* run_opts.h - the settings of `seislide run` from its command line: one
+ * option table (run_opts.c), --help generated from it, the rules across
+ * options. The analysis options and the workbook's record are filled where
+ * the table can (ao, dop); run.c converts the rest. */
+#ifndef SL_CLI_RUN_OPTS_H
+#define SL_CLI_RUN_OPTS_H
+
+#include "analysis.h"
+#include "cli.h"
+#include "report/deliver.h"
+
+typedef struct run_args {
+    const char *out;
+    int quiet, force;
+    unsigned long sets, substeps, max_sets; /* for ao: n_sets, substeps, max_sets */
+    double abs_se_mm, created;              /* for ao.abs_se_m (m), dop.created */
+    cli_mu mu;                              /* the friction grid (default SL_MU_GRID_TEXT) */
+    sl_analysis_opts ao;                    /* --rel-se, --accuracy (rtol), --seed, --policy */
+    sl_deliver_opts dop;                    /* --motions, the title block */
+} run_args;
+
+/* Parse the command line into a (defaults first) and check it; operands
+ * (floor files or folders) start at optind. Returns CLI_EXIT_OK,
+ * CLI_OPT_HELP after printing the help, CLI_EXIT_USAGE (message printed)
+ * or CLI_EXIT_ERROR (out of memory). a->mu.v is owned by the caller either
+ * way. */
+int run_parse(int argc, char **argv, run_args *a);
+
+#endif
