@@ -359,30 +359,42 @@ static void run_block(const work *wk, size_t p0, size_t p1, size_t m, const doub
         tzw[b] = wk->tzw[p];
     }
     const double inv_m = 1.0 / (double)m;
-    const size_t nrec = n > 0 ? (n - 1) * m : 0;
-    for (size_t k = 0; k < nrec + nfree; k++) {
-        double as = 0.0, as1 = 0.0; /* free vibration after the record */
-        if (k < nrec) {
-            size_t i = k / m, s = k - i * m;
+    /* one sub-step of every lane with input as -> as1 (map (2)) */
+#define STEP_BLOCK(as, as1)                                                                   \
+    for (size_t b = 0; b < BLOCK; b++) {                                                      \
+        double un = c11[b] * u[b] + c12[b] * v[b] + bu0[b] * (as) + bu1[b] * (as1);           \
+        double vn = c21[b] * u[b] + c22[b] * v[b] + bv0[b] * (as) + bv1[b] * (as1);           \
+        u[b] = un;                                                                            \
+        v[b] = vn;                                                                            \
+        double au = fabs(un);                                                                 \
+        umax[b] = au > umax[b] ? au : umax[b];                                                \
+    }                                                                                         \
+    if (amax_out)                                                                             \
+        for (size_t b = 0; b < BLOCK; b++) {                                                  \
+            double aa = fabs(w2[b] * u[b] + tzw[b] * v[b]);                                   \
+            amax[b] = aa > amax[b] ? aa : amax[b];                                            \
+        }
+    if (m == 1) {
+        for (size_t i = 0; i + 1 < n; i++) {
+            const double as = acc[i], as1 = acc[i + 1];
+            STEP_BLOCK(as, as1)
+        }
+    } else {
+        for (size_t i = 0; i + 1 < n; i++) {
             /* linear interpolation, endpoint exact */
-            double a0 = acc[i], da = acc[i + 1] - acc[i];
-            as = s == 0 ? a0 : a0 + da * ((double)s * inv_m);
-            as1 = s + 1 == m ? acc[i + 1] : a0 + da * ((double)(s + 1) * inv_m);
-        }
-        for (size_t b = 0; b < BLOCK; b++) {
-            double un = c11[b] * u[b] + c12[b] * v[b] + bu0[b] * as + bu1[b] * as1;
-            double vn = c21[b] * u[b] + c22[b] * v[b] + bv0[b] * as + bv1[b] * as1;
-            u[b] = un;
-            v[b] = vn;
-            double au = fabs(un);
-            umax[b] = au > umax[b] ? au : umax[b];
-        }
-        if (amax_out)
-            for (size_t b = 0; b < BLOCK; b++) {
-                double aa = fabs(w2[b] * u[b] + tzw[b] * v[b]);
-                amax[b] = aa > amax[b] ? aa : amax[b];
+            const double a0 = acc[i], da = acc[i + 1] - acc[i];
+            double as = a0;
+            for (size_t s = 1; s <= m; s++) {
+                const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);
+                STEP_BLOCK(as, as1)
+                as = as1;
             }
+        }
     }
+    for (size_t k = 0; k < nfree; k++) { /* free vibration after the record */
+        STEP_BLOCK(0.0, 0.0)
+    }
+#undef STEP_BLOCK
     for (size_t b = 0; b < nb; b++) {
         umax_out[p0 + b] = umax[b];
         if (amax_out)
@@ -390,8 +402,8 @@ static void run_block(const work *wk, size_t p0, size_t p1, size_t m, const doub
     }
 }
 
-/* Every group of equal m: the record, then (free_vib) the free sub-steps of
- * the group's lowest frequency. */
+/* Every group of equal m, in blocks: the record, then (free_vib) the free
+ * sub-steps of the block's lowest frequency. */
 static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
                        double *amax)
 {
@@ -401,11 +413,16 @@ static void run_groups(const work *wk, const double *acc, size_t n, int free_vib
         size_t p1 = p0 + 1;
         while (p1 < nf && wk->m[p1] == m)
             p1++;
-        size_t nfree = 0;
-        for (size_t p = p0; p < p1 && free_vib; p++)
-            nfree = wk->nfree[p] > nfree ? wk->nfree[p] : nfree;
-        for (size_t q = p0; q < p1; q += BLOCK)
-            run_block(wk, q, q + BLOCK < p1 ? q + BLOCK : p1, m, acc, n, nfree, umax, amax);
+        for (size_t q = p0; q < p1; q += BLOCK) {
+            size_t q1 = q + BLOCK < p1 ? q + BLOCK : p1;
+            /* free sub-steps of the block's lowest frequency; the higher
+             * ones run on past their first extremum, where later extrema
+             * of a free damped vibration are smaller */
+            size_t nfree = 0;
+            for (size_t p = q; p < q1 && free_vib; p++)
+                nfree = wk->nfree[p] > nfree ? wk->nfree[p] : nfree;
+            run_block(wk, q, q1, m, acc, n, nfree, umax, amax);
+        }
         p0 = p1;
     }
 }
