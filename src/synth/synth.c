@@ -951,26 +951,35 @@ sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
     return start(m, err);
 }
 
+/* End of the coarse phase: the best iterate and its spectrum at every
+ * checked point at full accuracy (the checks are always made on this). */
+static sl_status end_coarse(sl_synth_motion *m, sl_error *err)
+{
+    const sl_synth *s = m->s;
+    m->coarse = 0;
+    memcpy(m->acc, m->best_acc, s->n * sizeof *m->acc);
+    sl_status st = spectrum_of_acc(m, err);
+    if (st) {
+        m->ready = 0;
+        return st;
+    }
+    spec_check c;
+    spectral_check(m, m->psa, &c);
+    m->best_score = violation(&s->p, &c, m->j_hi - m->j_lo);
+    memcpy(m->best_psa, m->psa, s->ngrid * sizeof *m->psa);
+    return SL_OK;
+}
+
 sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
 {
     if (!m->ready)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: iterate before set");
     const sl_synth *s = m->s;
     if (m->coarse && (m->best_score == 0 || m->iter + 1 >= s->p.max_iter)) {
-        /* end of the coarse phase: the best iterate on the full grid */
-        m->coarse = 0;
-        memcpy(m->acc, m->best_acc, s->n * sizeof *m->acc);
-        sl_status st = spectrum_of_acc(m, err);
-        if (st) {
-            m->ready = 0;
-            return st;
-        }
-        spec_check c;
-        spectral_check(m, m->psa, &c);
-        m->best_score = violation(&s->p, &c, m->j_hi - m->j_lo);
-        memcpy(m->best_psa, m->psa, s->ngrid * sizeof *m->psa);
-        m->iter++;
-        return SL_OK;
+        sl_status st = end_coarse(m, err);
+        if (!st)
+            m->iter++;
+        return st;
     }
     const double lo = -log(SL_SYNTH_RATIO_CLAMP), hi = log(SL_SYNTH_RATIO_CLAMP);
     size_t jprev = m->j_lo;
@@ -1210,6 +1219,12 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
     while (!jb->st && !sl_synth_test(m) && sl_synth_iterations(m) < s->p.max_iter &&
            sl_synth_iterations(m) < m->best_iter + SYNTH_STALL)
         jb->st = sl_synth_iterate(m, &jb->err);
+    /* An attempt given up in the coarse phase is redone, unless it is the
+     * last: then its best iterate gets the full-accuracy spectrum, so that
+     * what is reported is checked on it (a redone attempt's checks only
+     * decide the redo, and a coarse failure is a failure either way). */
+    if (!jb->st && m->coarse && (jb->rec || jb->attempt + 1 >= s->p.max_attempts))
+        jb->st = end_coarse(m, &jb->err);
     if (jb->st)
         return;
     sl_synth_check_motion(m, &jb->check);
