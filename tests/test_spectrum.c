@@ -501,7 +501,7 @@ static void test_multirate_resonance(void)
 /* Multirate against the full computation on real records (all 271 grid
  * points, 5 %): the worst relative error falls with the ratio and stays
  * within what docs/synthesis.md 8 states (ratio 20: 10.3 %, 40: 3.2 %,
- * 64: 0.7 % on these four; mean over the grid 0.5 %, 0.12 %, 0.04 %). The
+ * 64: 0.7 % on these four; mean over the grid 0.47 %, 0.12 %, 0.034 %). The
  * loss is at the low end, where the content above the cutoff (R f/2) is
  * large against the oscillator's own (records: steep rise of the Fourier
  * amplitude of acceleration from 0.1 to 1 Hz). */
