@@ -1,6 +1,7 @@
 /* spectrum.c - Nigam-Jennings response spectra (see spectrum.h). */
 #include "signal/spectrum.h"
 
+#include <fftw3.h>
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -246,24 +247,25 @@ static size_t free_steps_for(double f, double zeta, double h)
     return (size_t)ceil(0.5 * td / h) + 1;
 }
 
-/* Workspace: one block of SoA arrays, frequencies permuted so that groups of
- * equal sub-step count are contiguous. */
+/* Coefficients of a set of oscillators: SoA arrays, positions permuted so
+ * that groups of equal sub-step count are contiguous. Read-only once made. */
 typedef struct work {
     size_t nf;
-    size_t *perm;   /* position -> index into the caller's f_hz */
+    size_t *perm;   /* position -> index into the frequencies given to work_init */
     size_t *m;      /* sub-steps per input step, per position */
+    size_t *nfree;  /* free-vibration sub-steps, per position */
     double *block;
     double *c[NCOEF];
-    double *w2, *tzw;          /* follow the coefficients in block */
-    double *state;             /* u, v, umax, amax (after w2, tzw) */
-    double *u, *v, *umax, *amax;
+    double *w2, *tzw;
 } work;
 
 static void work_free(work *wk)
 {
     free(wk->perm);
     free(wk->m);
+    free(wk->nfree);
     free(wk->block);
+    memset(wk, 0, sizeof *wk);
 }
 
 /* Insertion sort of indices by m (stable, no global state: qsort's comparator
@@ -286,25 +288,22 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
 {
     memset(wk, 0, sizeof *wk);
     wk->nf = nf;
-    enum { NARR = NCOEF + 6 };
-    size_t *m_of = malloc(nf * sizeof *m_of);
-    wk->perm = malloc(nf * sizeof *wk->perm);
-    wk->m = malloc(nf * sizeof *wk->m);
-    wk->block = malloc((size_t)NARR * nf * sizeof *wk->block);
-    if (!m_of || !wk->perm || !wk->m || !wk->block) {
+    enum { NARR = NCOEF + 2 };
+    size_t cnt = nf ? nf : 1;
+    size_t *m_of = malloc(cnt * sizeof *m_of);
+    wk->perm = malloc(cnt * sizeof *wk->perm);
+    wk->m = malloc(cnt * sizeof *wk->m);
+    wk->nfree = malloc(cnt * sizeof *wk->nfree);
+    wk->block = malloc((size_t)NARR * cnt * sizeof *wk->block);
+    if (!m_of || !wk->perm || !wk->m || !wk->nfree || !wk->block) {
         free(m_of);
         work_free(wk);
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "spectrum: out of memory");
     }
     for (int k = 0; k < NCOEF; k++)
-        wk->c[k] = wk->block + (size_t)k * nf;
-    wk->w2 = wk->block + (size_t)NCOEF * nf;
-    wk->tzw = wk->w2 + nf;
-    wk->state = wk->tzw + nf;
-    wk->u = wk->state;
-    wk->v = wk->state + nf;
-    wk->umax = wk->state + 2 * nf;
-    wk->amax = wk->state + 3 * nf;
+        wk->c[k] = wk->block + (size_t)k * cnt;
+    wk->w2 = wk->block + (size_t)NCOEF * cnt;
+    wk->tzw = wk->w2 + cnt;
     for (size_t j = 0; j < nf; j++) {
         m_of[j] = substeps_for(f[j], dt, spp);
         wk->perm[j] = j;
@@ -319,7 +318,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         for (int k = 0; k < NCOEF; k++)
             wk->c[k][p] = c[k];
         wk->m[p] = m_of[j];
-        wk->u[p] = wk->v[p] = wk->umax[p] = wk->amax[p] = 0.0;
+        wk->nfree[p] = free_steps_for(f[j], zeta, h);
         wk->w2[p] = w * w;
         wk->tzw[p] = 2.0 * zeta * w;
     }
@@ -327,32 +326,86 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
     return SL_OK;
 }
 
-/* One sub-step for positions [p0, p1) with input a0 -> a1. `co` holds the
- * NCOEF coefficient arrays then w^2 and 2 z w (stride nf); `st` holds u, v,
- * max|u| and max|u''+a| (stride nf). Separate restrict arguments let the
- * compiler vectorise the loop over frequencies. */
-static void step_group(size_t p0, size_t p1, size_t nf, double a0, double a1,
-                       const double *restrict co, double *restrict st)
+/* Oscillators stepped together in registers (time loop inside). */
+#define BLOCK 8
+
+/* Positions [p0, p1) (at most BLOCK, one sub-step count m) over the whole
+ * record and nfree free sub-steps; max|u| into umax[p], max|u''+a| into
+ * amax[p] (when amax is not NULL). Time is the inner loop: the block's state
+ * stays in registers and its oscillators are independent, so they run in
+ * parallel lanes. Every oscillator does exactly the arithmetic of map (2)
+ * in the same order as a one-at-a-time loop, so the result does not depend
+ * on the blocking. */
+static void run_block(const work *wk, size_t p0, size_t p1, size_t m, const double *acc,
+                      size_t n, size_t nfree, double *umax_out, double *amax_out)
 {
-    const double *c11 = co + C11 * nf, *c12 = co + C12 * nf, *c21 = co + C21 * nf;
-    const double *c22 = co + C22 * nf, *bu0 = co + BU0 * nf, *bu1 = co + BU1 * nf;
-    const double *bv0 = co + BV0 * nf, *bv1 = co + BV1 * nf;
-    const double *w2 = co + NCOEF * nf, *tzw = co + (NCOEF + 1) * nf;
-    double *u = st, *v = st + nf, *umax = st + 2 * nf, *amax = st + 3 * nf;
-    for (size_t p = p0; p < p1; p++) {
-        double un = c11[p] * u[p] + c12[p] * v[p] + bu0[p] * a0 + bu1[p] * a1;
-        double vn = c21[p] * u[p] + c22[p] * v[p] + bv0[p] * a0 + bv1[p] * a1;
-        u[p] = un;
-        v[p] = vn;
-        double au = fabs(un);
-        double aa = fabs(w2[p] * un + tzw[p] * vn);
-        umax[p] = au > umax[p] ? au : umax[p];
-        amax[p] = aa > amax[p] ? aa : amax[p];
+    double c11[BLOCK], c12[BLOCK], c21[BLOCK], c22[BLOCK];
+    double bu0[BLOCK], bu1[BLOCK], bv0[BLOCK], bv1[BLOCK];
+    double w2[BLOCK], tzw[BLOCK];
+    double u[BLOCK] = {0}, v[BLOCK] = {0}, umax[BLOCK] = {0}, amax[BLOCK] = {0};
+    size_t nb = p1 - p0;
+    /* Unused lanes copy the first oscillator (results discarded). */
+    for (size_t b = 0; b < BLOCK; b++) {
+        size_t p = p0 + (b < nb ? b : 0);
+        c11[b] = wk->c[C11][p];
+        c12[b] = wk->c[C12][p];
+        c21[b] = wk->c[C21][p];
+        c22[b] = wk->c[C22][p];
+        bu0[b] = wk->c[BU0][p];
+        bu1[b] = wk->c[BU1][p];
+        bv0[b] = wk->c[BV0][p];
+        bv1[b] = wk->c[BV1][p];
+        w2[b] = wk->w2[p];
+        tzw[b] = wk->tzw[p];
+    }
+    const double inv_m = 1.0 / (double)m;
+    /* one sub-step of every lane with input as -> as1 (map (2)) */
+#define STEP_BLOCK(as, as1)                                                                   \
+    for (size_t b = 0; b < BLOCK; b++) {                                                      \
+        double un = c11[b] * u[b] + c12[b] * v[b] + bu0[b] * (as) + bu1[b] * (as1);           \
+        double vn = c21[b] * u[b] + c22[b] * v[b] + bv0[b] * (as) + bv1[b] * (as1);           \
+        u[b] = un;                                                                            \
+        v[b] = vn;                                                                            \
+        double au = fabs(un);                                                                 \
+        umax[b] = au > umax[b] ? au : umax[b];                                                \
+    }                                                                                         \
+    if (amax_out)                                                                             \
+        for (size_t b = 0; b < BLOCK; b++) {                                                  \
+            double aa = fabs(w2[b] * u[b] + tzw[b] * v[b]);                                   \
+            amax[b] = aa > amax[b] ? aa : amax[b];                                            \
+        }
+    if (m == 1) {
+        for (size_t i = 0; i + 1 < n; i++) {
+            const double as = acc[i], as1 = acc[i + 1];
+            STEP_BLOCK(as, as1)
+        }
+    } else {
+        for (size_t i = 0; i + 1 < n; i++) {
+            /* linear interpolation, endpoint exact */
+            const double a0 = acc[i], da = acc[i + 1] - acc[i];
+            double as = a0;
+            for (size_t s = 1; s <= m; s++) {
+                const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);
+                STEP_BLOCK(as, as1)
+                as = as1;
+            }
+        }
+    }
+    for (size_t k = 0; k < nfree; k++) { /* free vibration after the record */
+        STEP_BLOCK(0.0, 0.0)
+    }
+#undef STEP_BLOCK
+    for (size_t b = 0; b < nb; b++) {
+        umax_out[p0 + b] = umax[b];
+        if (amax_out)
+            amax_out[p0 + b] = amax[b];
     }
 }
 
-static void run_groups(work *wk, const double *acc, size_t n, const double *f, double dt,
-                       double zeta, int free_vib)
+/* Every group of equal m, in blocks: the record, then (free_vib) the free
+ * sub-steps of the block's lowest frequency. */
+static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
+                       double *amax)
 {
     size_t nf = wk->nf;
     for (size_t p0 = 0; p0 < nf;) {
@@ -360,29 +413,290 @@ static void run_groups(work *wk, const double *acc, size_t n, const double *f, d
         size_t p1 = p0 + 1;
         while (p1 < nf && wk->m[p1] == m)
             p1++;
-        double inv_m = 1.0 / (double)m;
-        for (size_t i = 0; i + 1 < n; i++) {
-            double a0 = acc[i], da = acc[i + 1] - acc[i];
-            double as = a0;
-            for (size_t s = 1; s <= m; s++) {
-                /* linear interpolation, endpoint exact */
-                double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);
-                step_group(p0, p1, nf, as, as1, wk->block, wk->state);
-                as = as1;
-            }
-        }
-        if (free_vib) {
-            double h = dt * inv_m;
+        for (size_t q = p0; q < p1; q += BLOCK) {
+            size_t q1 = q + BLOCK < p1 ? q + BLOCK : p1;
+            /* free sub-steps of the block's lowest frequency; the higher
+             * ones run on past their first extremum, where later extrema
+             * of a free damped vibration are smaller */
             size_t nfree = 0;
-            for (size_t p = p0; p < p1; p++) {
-                size_t k = free_steps_for(f[wk->perm[p]], zeta, h);
-                nfree = k > nfree ? k : nfree;
-            }
-            for (size_t k = 0; k < nfree; k++)
-                step_group(p0, p1, nf, 0.0, 0.0, wk->block, wk->state);
+            for (size_t p = q; p < q1 && free_vib; p++)
+                nfree = wk->nfree[p] > nfree ? wk->nfree[p] : nfree;
+            run_block(wk, q, q1, m, acc, n, nfree, umax, amax);
         }
         p0 = p1;
     }
+}
+
+/* ---- plans: coefficients made once, optional multirate -------------- */
+
+#define MAX_LEVELS 16
+
+/* sinc(x) = sin(pi x)/(pi x). */
+static double sinc(double x)
+{
+    return fabs(x) < 1e-8 ? 1.0 : sin(SL_PI * x) / (SL_PI * x);
+}
+
+typedef struct level {
+    size_t d;        /* decimation factor 2^l */
+    size_t n;        /* samples at this level */
+    size_t nf;       /* oscillators at this level */
+    size_t *out;     /* position -> index into the plan's frequencies */
+    work wk;
+    size_t nkeep;    /* DFT bins kept: k < nkeep */
+    double *gain;    /* nkeep factors: interpolation match / N (eq. M2) */
+    fftw_plan c2r;   /* length nfft / d */
+} level;
+
+struct sl_spectrum_plan {
+    size_t n, nf, nlev, nfft;
+    double dt;
+    int free_vib;
+    fftw_plan r2c;   /* length nfft (multirate only) */
+    level lev[MAX_LEVELS];
+};
+
+void sl_spectrum_plan_free(sl_spectrum_plan *p)
+{
+    if (!p)
+        return;
+    for (size_t l = 0; l < p->nlev; l++) {
+        level *lv = &p->lev[l];
+        free(lv->out);
+        free(lv->gain);
+        work_free(&lv->wk);
+        if (lv->c2r) {
+#pragma omp critical(sl_fftw_planner)
+            fftw_destroy_plan(lv->c2r);
+        }
+    }
+    if (p->r2c) {
+#pragma omp critical(sl_fftw_planner)
+        fftw_destroy_plan(p->r2c);
+    }
+    free(p);
+}
+
+/* Smallest 2-3-5-7-smooth integer >= x. */
+static size_t smooth_at_least(size_t x)
+{
+    for (size_t k = x < 1 ? 1 : x;; k++) {
+        size_t r = k;
+        static const size_t pr[] = {2, 3, 5, 7};
+        for (int i = 0; i < 4; i++)
+            while (r % pr[i] == 0)
+                r /= pr[i];
+        if (r == 1)
+            return k;
+    }
+}
+
+sl_spectrum_plan *sl_spectrum_plan_alloc(size_t n, double dt_s, const double *f_hz, size_t nf,
+                                         double zeta, const sl_spectrum_opts *opts,
+                                         double ratio, sl_error *err)
+{
+    sl_spectrum_opts o;
+    if (opts)
+        o = *opts;
+    else
+        sl_spectrum_opts_default(&o);
+    double dummy = 0.0;
+    if (nf == 0 || !f_hz) {
+        sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: no frequencies");
+        return NULL;
+    }
+    if (check_args(&dummy, 1, dt_s, f_hz, nf, zeta, &o, err))
+        return NULL;
+    if (n == 0) {
+        sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: empty record");
+        return NULL;
+    }
+    if (!(ratio == 0 || (ratio >= SL_SPECTRUM_MIN_RATIO && isfinite(ratio)))) {
+        sl_error_set(err, SL_EINVAL, NULL, 0,
+                     "spectrum: multirate ratio %g must be 0 or at least %g", ratio,
+                     SL_SPECTRUM_MIN_RATIO);
+        return NULL;
+    }
+    sl_spectrum_plan *p = calloc(1, sizeof *p);
+    size_t *lev_of = malloc(nf * sizeof *lev_of);
+    double *fl = malloc(nf * sizeof *fl);
+    if (!p || !lev_of || !fl) {
+        free(p);
+        free(lev_of);
+        free(fl);
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "spectrum: out of memory");
+        return NULL;
+    }
+    p->n = n;
+    p->nf = nf;
+    p->dt = dt_s;
+    p->free_vib = o.free_vibration;
+    /* Level of each oscillator: the largest l with fs/2^l >= ratio f
+     * (eq. M1), keeping at least 8 samples per level. */
+    const double fs = 1.0 / dt_s;
+    size_t top = 0;
+    for (size_t j = 0; j < nf; j++) {
+        size_t l = 0;
+        if (ratio > 0)
+            while (l + 1 < MAX_LEVELS && fs / (double)((size_t)1 << (l + 1)) >= ratio * f_hz[j] &&
+                   (n - 1) / ((size_t)1 << (l + 1)) >= 8)
+                l++;
+        lev_of[j] = l;
+        top = l > top ? l : top;
+    }
+    p->nlev = top + 1;
+    sl_status st = SL_OK;
+    if (top > 0) {
+        /* One zero-padded DFT of length N = 2^top M (so every level's length
+         * N/2^l is an integer); padding n/8 + 2^(top+3) samples keeps the
+         * circular wrap of the band-limited reconstruction off the record. */
+        size_t dmax = (size_t)1 << top;
+        size_t need = n + n / 8 + 8 * dmax;
+        p->nfft = dmax * smooth_at_least((need + dmax - 1) / dmax);
+        if (p->nfft % 2)
+            p->nfft *= 2;
+    }
+    for (size_t l = 0; l < p->nlev && !st; l++) {
+        level *lv = &p->lev[l];
+        lv->d = (size_t)1 << l;
+        lv->n = (n - 1) / lv->d + 1;
+        for (size_t j = 0; j < nf; j++)
+            if (lev_of[j] == l)
+                lv->nf++;
+        lv->out = malloc((lv->nf ? lv->nf : 1) * sizeof *lv->out);
+        if (!lv->out) {
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "spectrum: out of memory");
+            break;
+        }
+        size_t q = 0;
+        for (size_t j = 0; j < nf; j++)
+            if (lev_of[j] == l) {
+                fl[q] = f_hz[j];
+                lv->out[q++] = j;
+            }
+        st = work_init(&lv->wk, fl, lv->nf, dt_s * (double)lv->d, zeta, o.steps_per_period, err);
+        if (st)
+            break;
+        for (size_t pos = 0; pos < lv->nf; pos++) /* position -> caller index */
+            fl[pos] = (double)lv->out[lv->wk.perm[pos]];
+        for (size_t pos = 0; pos < lv->nf; pos++)
+            lv->out[pos] = (size_t)fl[pos];
+        if (l == 0 || lv->nf == 0)
+            continue;
+        /* Bins strictly below the level's Nyquist frequency fs/(2d), each
+         * times sinc^2(f/fs)/sinc^2(f/fs_l): the piecewise-linear reading at
+         * the level's rate then has the baseband spectrum of the
+         * piecewise-linear reading at the full rate (eq. M2). */
+        lv->nkeep = p->nfft / (2 * lv->d);
+        lv->gain = malloc(lv->nkeep * sizeof *lv->gain);
+        if (!lv->gain) {
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "spectrum: out of memory");
+            break;
+        }
+        for (size_t k = 0; k < lv->nkeep; k++) {
+            double fk = (double)k / ((double)p->nfft * dt_s);
+            double s1 = sinc(fk / fs), s2 = sinc(fk * dt_s * (double)lv->d);
+            lv->gain[k] = s1 * s1 / (s2 * s2) / (double)p->nfft;
+        }
+    }
+    free(lev_of);
+    free(fl);
+    if (!st && top > 0) {
+        double *r = fftw_malloc(p->nfft * sizeof *r);
+        fftw_complex *c = fftw_malloc((p->nfft / 2 + 1) * sizeof *c);
+        if (r && c) {
+#pragma omp critical(sl_fftw_planner)
+            {
+                p->r2c = fftw_plan_dft_r2c_1d((int)p->nfft, r, c, FFTW_ESTIMATE);
+                for (size_t l = 1; l < p->nlev; l++)
+                    if (p->lev[l].nf)
+                        p->lev[l].c2r = fftw_plan_dft_c2r_1d((int)(p->nfft / p->lev[l].d), c,
+                                                             r, FFTW_ESTIMATE);
+            }
+        }
+        fftw_free(r);
+        fftw_free(c);
+        int ok = p->r2c != NULL;
+        for (size_t l = 1; l < p->nlev; l++)
+            ok = ok && (p->lev[l].nf == 0 || p->lev[l].c2r);
+        if (!ok)
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "spectrum: cannot make FFTW plans");
+    }
+    if (st) {
+        sl_spectrum_plan_free(p);
+        return NULL;
+    }
+    return p;
+}
+
+size_t sl_spectrum_plan_levels(const sl_spectrum_plan *p) { return p->nlev; }
+
+sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_ms2,
+                                   double *psa_ms2, double *sd_m, double *sa_abs_ms2,
+                                   sl_error *err)
+{
+    if (!acc_ms2)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: empty record");
+    for (size_t i = 0; i < p->n; i++)
+        if (!isfinite(acc_ms2[i]))
+            return sl_error_set(err, SL_EINVAL, NULL, 0, "spectrum: sample %zu is not finite", i);
+    if (sa_abs_ms2 && p->nlev > 1)
+        return sl_error_set(err, SL_EINVAL, NULL, 0,
+                            "spectrum: a multirate plan gives PSA and SD only");
+    double *umax = malloc(2 * p->nf * sizeof *umax);
+    double *r = NULL;
+    fftw_complex *x = NULL, *c = NULL;
+    size_t nbin = p->nfft / 2 + 1;
+    if (p->nlev > 1) {
+        r = fftw_malloc(p->nfft * sizeof *r);
+        x = fftw_malloc(nbin * sizeof *x);
+        c = fftw_malloc(nbin * sizeof *c);
+    }
+    if (!umax || (p->nlev > 1 && (!r || !x || !c))) {
+        free(umax);
+        fftw_free(r);
+        fftw_free(x);
+        fftw_free(c);
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "spectrum: out of memory");
+    }
+    double *amax = sa_abs_ms2 ? umax + p->nf : NULL;
+    if (p->nlev > 1) {
+        for (size_t i = 0; i < p->nfft; i++)
+            r[i] = i < p->n ? acc_ms2[i] : 0.0;
+        fftw_execute_dft_r2c(p->r2c, r, x);
+    }
+    for (size_t l = 0; l < p->nlev; l++) {
+        const level *lv = &p->lev[l];
+        if (lv->nf == 0)
+            continue;
+        const double *a = acc_ms2;
+        if (l > 0) {
+            /* the band-limited copy at step d dt (eq. M2) */
+            size_t nb = p->nfft / lv->d / 2 + 1;
+            for (size_t k = 0; k < nb; k++) {
+                double g = k < lv->nkeep ? lv->gain[k] : 0.0;
+                c[k][0] = x[k][0] * g;
+                c[k][1] = x[k][1] * g;
+            }
+            fftw_execute_dft_c2r(lv->c2r, c, r);
+            a = r;
+        }
+        run_groups(&lv->wk, a, lv->n, p->free_vib, umax, amax);
+        for (size_t pos = 0; pos < lv->nf; pos++) {
+            size_t j = lv->out[pos];
+            if (sd_m)
+                sd_m[j] = umax[pos];
+            if (psa_ms2)
+                psa_ms2[j] = lv->wk.w2[pos] * umax[pos];
+            if (sa_abs_ms2)
+                sa_abs_ms2[j] = amax[pos];
+        }
+    }
+    free(umax);
+    fftw_free(r);
+    fftw_free(x);
+    fftw_free(c);
+    return SL_OK;
 }
 
 sl_status sl_spectrum_compute_opts(const double *acc_ms2, size_t n, double dt_s,
@@ -402,22 +716,14 @@ sl_status sl_spectrum_compute_opts(const double *acc_ms2, size_t n, double dt_s,
     sl_status st = check_args(acc_ms2, n, dt_s, f_hz, nf, zeta, &o, err);
     if (st)
         return st;
-    work wk;
-    st = work_init(&wk, f_hz, nf, dt_s, zeta, o.steps_per_period, err);
-    if (st)
-        return st;
-    run_groups(&wk, acc_ms2, n, f_hz, dt_s, zeta, o.free_vibration);
-    for (size_t p = 0; p < nf; p++) {
-        size_t j = wk.perm[p];
-        if (sd_m)
-            sd_m[j] = wk.umax[p];
-        if (psa_ms2)
-            psa_ms2[j] = wk.w2[p] * wk.umax[p];
-        if (sa_abs_ms2)
-            sa_abs_ms2[j] = wk.amax[p];
-    }
-    work_free(&wk);
-    return SL_OK;
+    sl_error e2;
+    sl_error_clear(&e2);
+    sl_spectrum_plan *p = sl_spectrum_plan_alloc(n, dt_s, f_hz, nf, zeta, &o, 0.0, &e2);
+    if (!p)
+        return sl_error_set(err, e2.code ? e2.code : SL_ENOMEM, NULL, 0, "%s", e2.msg);
+    st = sl_spectrum_plan_compute(p, acc_ms2, psa_ms2, sd_m, sa_abs_ms2, err);
+    sl_spectrum_plan_free(p);
+    return st;
 }
 
 sl_status sl_spectrum_compute(const double *acc_ms2, size_t n, double dt_s,

@@ -37,9 +37,11 @@
  * later extrema decay. The run therefore continues for ceil(T_d/(2 h)) + 1
  * free sub-steps, so a peak after the record end is never cut off.
  *
- * Speed. Coefficients are computed once per (frequency, sub-step); the
- * frequencies are grouped by m and each group is stepped together over
- * structure-of-arrays state (the inner loop over frequencies vectorises).
+ * Speed. Coefficients are computed once per (frequency, sub-step) (once
+ * per plan, below); the frequencies are grouped by m and each group is
+ * stepped in blocks of 8 oscillators with time as the inner loop: a block's
+ * state stays in registers and its independent lanes hide the latency of
+ * the recurrence.
  * sl_spectrum_batch() runs motions in parallel with OpenMP.
  *
  * Units: SI (s, Hz, m, m/s^2). Damping as a ratio of critical, in [0, 1).
@@ -175,5 +177,68 @@ typedef enum sl_spectrum_method {
  * Returns SL_OK, or SL_EINVAL (f <= 0, h <= 0, zeta outside [0, 1)). */
 sl_status sl_spectrum_coefs(double f_hz, double zeta, double h_s,
                             sl_spectrum_method method, double c[8], sl_error *err);
+
+/* ---- plans: coefficients made once; optional multirate ---------------
+ *
+ * A plan holds the recurrence coefficients of one set of oscillators for one
+ * record length, step and damping, so repeated spectra of same-length motions
+ * (the synthesis iteration) skip that set-up. With ratio = 0 a plan computes
+ * exactly sl_spectrum_compute_opts() (the same bits).
+ *
+ * Multirate (ratio R > 0). An oscillator at f whose response is dominated by
+ * content near f does not need the full sampling rate fs. Each oscillator
+ * runs at the rate fs_l = fs/2^l of the largest l with
+ *
+ *     fs_l >= R f                                                       (M1)
+ *
+ * on a band-limited copy of the record: with X_k the DFT of the record
+ * zero-padded to N (a multiple of 2^l), the copy is the inverse DFT of length
+ * N/2^l of
+ *
+ *     X_k sinc^2(f_k/fs) / sinc^2(f_k/fs_l),   f_k < fs_l/2,  0 above,   (M2)
+ *
+ * sampled at step 2^l dt (an exact band-limited resample; the sinc^2 ratio
+ * makes the piecewise-linear reading at fs_l have the baseband spectrum of
+ * the piecewise-linear reading at fs). What is lost is the content above
+ * fs_l/2 >= R f/2, to which the oscillator responds with a gain below
+ * 1/((R/2)^2 - 1) of the static one (1 % at R = 20), and the images of the
+ * linear interpolation, which (M2) does not undo. Measured against the full
+ * computation over the default grid at 5 % (tests/test_spectrum.c,
+ * docs/synthesis.md 8), worst / mean relative error of PSA: four records,
+ * R = 20: 10 % / 0.5 %, R = 40: 3.2 % / 0.12 %, R = 64: 0.7 % / 0.03 %;
+ * synthesized motions, R = 20: 3.5 % / 0.2 %; worst at the lowest
+ * frequencies, where the content above the cutoff is large against the
+ * oscillator's own. So it is an estimate for steering an iteration, not for
+ * checks. Oscillators with fs < R f run at the full rate exactly as without
+ * a plan. A multirate plan gives PSA and SD only. */
+typedef struct sl_spectrum_plan sl_spectrum_plan;
+
+/* Smallest multirate ratio accepted: fs_l >= 8 f keeps the cutoff fs_l/2 at
+ * 4 f or more. */
+#define SL_SPECTRUM_MIN_RATIO 8.0
+
+/* Plan for records of n samples at dt_s, frequencies f_hz[0..nf-1] (any
+ * order), damping zeta, options opts (NULL = defaults), multirate ratio
+ * (0 = none, else >= SL_SPECTRUM_MIN_RATIO). NULL on bad arguments (err
+ * says which) or allocation failure. Makes FFTW plans (inside
+ * "#pragma omp critical(sl_fftw_planner)") when multirate. Free with
+ * sl_spectrum_plan_free(). */
+sl_spectrum_plan *sl_spectrum_plan_alloc(size_t n, double dt_s, const double *f_hz, size_t nf,
+                                         double zeta, const sl_spectrum_opts *opts,
+                                         double ratio, sl_error *err);
+
+/* Free a plan; harmless on NULL. */
+void sl_spectrum_plan_free(sl_spectrum_plan *p);
+
+/* Number of rates the plan uses (1 without multirate). */
+size_t sl_spectrum_plan_levels(const sl_spectrum_plan *p);
+
+/* Spectrum of one record of the plan's length: outputs as in
+ * sl_spectrum_compute() (sa_abs_ms2 must be NULL for a multirate plan).
+ * The plan is only read: one plan may serve several threads at once.
+ * Returns SL_OK, SL_EINVAL (non-finite sample), SL_ENOMEM. */
+sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_ms2,
+                                   double *psa_ms2, double *sd_m, double *sa_abs_ms2,
+                                   sl_error *err);
 
 #endif

@@ -21,7 +21,9 @@
  * (20 sub-steps per period). docs/synthesis.md 3.3. */
 #define SYNTH_COARSE_STRIDE 3
 #define SYNTH_COARSE_SPP 6.0
-#define SYNTH_MAX_COARSE 1024
+/* Multirate ratio of the coarse phase's spectrum (spectrum.h eq. M1): each
+ * oscillator at f runs at the lowest rate fs/2^l >= SYNTH_COARSE_RATIO f. */
+#define SYNTH_COARSE_RATIO 20.0
 /* Over-relaxation of the correction: X_k *= r^SYNTH_RELAX (1.6: 10 iterations
  * per component against 16 at 1.0, RG 1.60, 12 sets). */
 #define SYNTH_RELAX 1.6
@@ -491,6 +493,15 @@ struct sl_synth_motion {
     int coarse;            /* coarse phase: spectrum at every stride-th point */
     size_t stride;         /* SYNTH_COARSE_STRIDE, on SYNTH_COARSE_SPP sub-steps */
     unsigned best_iter;
+    /* Spectrum plans of the checked range (coefficients made once, remade
+     * when the range or damping changes): full accuracy, and the coarse
+     * phase's points (multirate, SYNTH_COARSE_RATIO). */
+    sl_spectrum_plan *plan_full, *plan_coarse;
+    size_t plan_lo, plan_hi;
+    double plan_zeta;
+    size_t *cidx;          /* ngrid: grid index of each coarse point */
+    size_t ncoarse;
+    double *cval;          /* ngrid: coarse spectrum values */
 };
 
 void sl_synth_motion_free(sl_synth_motion *m)
@@ -506,6 +517,10 @@ void sl_synth_motion_free(sl_synth_motion *m)
     free(m->acc);
     free(m->best_acc);
     free(m->best_psa);
+    free(m->cidx);
+    free(m->cval);
+    sl_spectrum_plan_free(m->plan_full);
+    sl_spectrum_plan_free(m->plan_coarse);
     free(m);
 }
 
@@ -526,8 +541,10 @@ sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err)
     m->rwork = fftw_malloc(s->nfft * sizeof *m->rwork);
     m->acc = malloc(s->n * sizeof *m->acc);
     m->best_acc = malloc(s->n * sizeof *m->best_acc);
+    m->cidx = malloc(s->ngrid * sizeof *m->cidx);
+    m->cval = malloc(s->ngrid * sizeof *m->cval);
     if (!m->tgt || !m->psa || !m->lnr || !m->hp || !m->best_psa || !m->cwork || !m->rwork ||
-        !m->acc || !m->best_acc) {
+        !m->acc || !m->best_acc || !m->cidx || !m->cval) {
         sl_synth_motion_free(m);
         sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
         return NULL;
@@ -666,32 +683,62 @@ static double violation(const sl_synth_params *p, const spec_check *c, size_t np
     return v;
 }
 
-/* Spectrum of m->acc into m->psa at the checked grid points j_lo,
- * j_lo + stride, ..., and j_hi - 1 (NAN elsewhere). */
+/* The plans of the checked range [j_lo, j_hi) at m->damping, remade only
+ * when these change. */
+static sl_status make_plans(sl_synth_motion *m, sl_error *err)
+{
+    const sl_synth *s = m->s;
+    if (m->plan_full && m->plan_lo == m->j_lo && m->plan_hi == m->j_hi &&
+        m->plan_zeta == m->damping)
+        return SL_OK;
+    sl_spectrum_plan_free(m->plan_full);
+    sl_spectrum_plan_free(m->plan_coarse);
+    m->plan_full = m->plan_coarse = NULL;
+    /* coarse points: j_lo, j_lo + stride, ..., and j_hi - 1 */
+    size_t nc = 0;
+    for (size_t j = m->j_lo; j < m->j_hi; j += SYNTH_COARSE_STRIDE)
+        m->cidx[nc++] = j;
+    if (m->cidx[nc - 1] != m->j_hi - 1)
+        m->cidx[nc++] = m->j_hi - 1;
+    m->ncoarse = nc;
+    for (size_t q = 0; q < nc; q++)
+        m->cval[q] = s->grid[m->cidx[q]];
+    sl_spectrum_opts o;
+    sl_spectrum_opts_default(&o);
+    m->plan_full = sl_spectrum_plan_alloc(s->n, s->dt, s->grid + m->j_lo, m->j_hi - m->j_lo,
+                                          m->damping, &o, 0.0, err);
+    o.steps_per_period = SYNTH_COARSE_SPP;
+    o.free_vibration = 0; /* coarse: no free-vibration tail (about 10 % of the time) */
+    if (m->plan_full)
+        m->plan_coarse = sl_spectrum_plan_alloc(s->n, s->dt, m->cval, nc, m->damping, &o,
+                                                SYNTH_COARSE_RATIO, err);
+    if (!m->plan_full || !m->plan_coarse) {
+        sl_spectrum_plan_free(m->plan_full);
+        m->plan_full = NULL;
+        return err ? err->code : SL_ENOMEM;
+    }
+    m->plan_lo = m->j_lo;
+    m->plan_hi = m->j_hi;
+    m->plan_zeta = m->damping;
+    return SL_OK;
+}
+
+/* Spectrum of m->acc into m->psa: at every checked grid point at full
+ * accuracy, or in the coarse phase at the coarse points (NAN elsewhere). */
 static sl_status spectrum_of_acc(sl_synth_motion *m, sl_error *err)
 {
     const sl_synth *s = m->s;
     for (size_t j = 0; j < s->ngrid; j++)
         m->psa[j] = NAN;
+    sl_status st = make_plans(m, err);
+    if (st)
+        return st;
     if (!m->coarse)
-        return sl_spectrum_compute(m->acc, s->n, s->dt, s->grid + m->j_lo, m->j_hi - m->j_lo,
-                                   m->damping, m->psa + m->j_lo, NULL, NULL, err);
-    double f[SYNTH_MAX_COARSE], v[SYNTH_MAX_COARSE];
-    size_t idx[SYNTH_MAX_COARSE], nc = 0;
-    for (size_t j = m->j_lo; j < m->j_hi && nc < SYNTH_MAX_COARSE; j += m->stride)
-        idx[nc++] = j;
-    if (idx[nc - 1] != m->j_hi - 1 && nc < SYNTH_MAX_COARSE)
-        idx[nc++] = m->j_hi - 1;
-    for (size_t q = 0; q < nc; q++)
-        f[q] = s->grid[idx[q]];
-    sl_spectrum_opts o;
-    sl_spectrum_opts_default(&o);
-    o.steps_per_period = SYNTH_COARSE_SPP;
-    o.free_vibration = 0; /* coarse: no free-vibration tail (about 10 % of the time) */
-    sl_status st = sl_spectrum_compute_opts(m->acc, s->n, s->dt, f, nc, m->damping, &o, v,
-                                            NULL, NULL, err);
-    for (size_t q = 0; q < nc && !st; q++)
-        m->psa[idx[q]] = v[q];
+        return sl_spectrum_plan_compute(m->plan_full, m->acc, m->psa + m->j_lo, NULL, NULL,
+                                        err);
+    st = sl_spectrum_plan_compute(m->plan_coarse, m->acc, m->cval, NULL, NULL, err);
+    for (size_t q = 0; q < m->ncoarse && !st; q++)
+        m->psa[m->cidx[q]] = m->cval[q];
     return st;
 }
 
@@ -943,26 +990,35 @@ sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
     return start(m, err);
 }
 
+/* End of the coarse phase: the best iterate and its spectrum at every
+ * checked point at full accuracy (the checks are always made on this). */
+static sl_status end_coarse(sl_synth_motion *m, sl_error *err)
+{
+    const sl_synth *s = m->s;
+    m->coarse = 0;
+    memcpy(m->acc, m->best_acc, s->n * sizeof *m->acc);
+    sl_status st = spectrum_of_acc(m, err);
+    if (st) {
+        m->ready = 0;
+        return st;
+    }
+    spec_check c;
+    spectral_check(m, m->psa, &c);
+    m->best_score = violation(&s->p, &c, m->j_hi - m->j_lo);
+    memcpy(m->best_psa, m->psa, s->ngrid * sizeof *m->psa);
+    return SL_OK;
+}
+
 sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
 {
     if (!m->ready)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: iterate before set");
     const sl_synth *s = m->s;
     if (m->coarse && (m->best_score == 0 || m->iter + 1 >= s->p.max_iter)) {
-        /* end of the coarse phase: the best iterate on the full grid */
-        m->coarse = 0;
-        memcpy(m->acc, m->best_acc, s->n * sizeof *m->acc);
-        sl_status st = spectrum_of_acc(m, err);
-        if (st) {
-            m->ready = 0;
-            return st;
-        }
-        spec_check c;
-        spectral_check(m, m->psa, &c);
-        m->best_score = violation(&s->p, &c, m->j_hi - m->j_lo);
-        memcpy(m->best_psa, m->psa, s->ngrid * sizeof *m->psa);
-        m->iter++;
-        return SL_OK;
+        sl_status st = end_coarse(m, err);
+        if (!st)
+            m->iter++;
+        return st;
     }
     const double lo = -log(SL_SYNTH_RATIO_CLAMP), hi = log(SL_SYNTH_RATIO_CLAMP);
     /* records: the dead band where S/T already complies (no correction) */
@@ -1210,6 +1266,12 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
     while (!jb->st && !sl_synth_test(m) && sl_synth_iterations(m) < s->p.max_iter &&
            sl_synth_iterations(m) < m->best_iter + SYNTH_STALL)
         jb->st = sl_synth_iterate(m, &jb->err);
+    /* An attempt given up in the coarse phase is redone, unless it is the
+     * last: then its best iterate gets the full-accuracy spectrum, so that
+     * what is reported is checked on it (a redone attempt's checks only
+     * decide the redo, and a coarse failure is a failure either way). */
+    if (!jb->st && m->coarse && (jb->rec || jb->attempt + 1 >= s->p.max_attempts))
+        jb->st = end_coarse(m, &jb->err);
     if (jb->st)
         return;
     sl_synth_check_motion(m, &jb->check);
