@@ -104,6 +104,7 @@ void sl_analysis_free(sl_analysis *a)
     free(a->conv);
     free(a->design_lo_m);
     free(a->design_hi_m);
+    free(a->design_se_m);
     free(a->err_est_m);
     if (a->sets)
         for (size_t s = 0; s < a->n_sets; s++)
@@ -294,6 +295,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->conv = calloc(n_mu, sizeof *a->conv);
     a->design_lo_m = calloc(n_mu, sizeof *a->design_lo_m);
     a->design_hi_m = calloc(n_mu, sizeof *a->design_hi_m);
+    a->design_se_m = calloc(n_mu, sizeof *a->design_se_m);
     a->err_est_m = calloc(n_mu, sizeof *a->err_est_m);
     sets = calloc(cap_sets, sizeof *sets);
     res = calloc(cap_sets * n_mu, sizeof *res);
@@ -301,7 +303,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     n_skip = calloc(n_mu, sizeof *n_skip);
     noslide = calloc(n_mu, sizeof *noslide);
     best = calloc(n_mu, sizeof *best);
-    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->err_est_m || !sets ||
+    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->design_se_m ||
+        !a->err_est_m || !sets ||
         !res || !peak || !n_skip || !noslide || !best)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
@@ -394,6 +397,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     for (size_t k = 0; k < n_mu; k++) {
         a->design_lo_m[k] = a->conv[k].design_lo_m;
         a->design_hi_m[k] = a->conv[k].design_hi_m;
+        a->design_se_m[k] = a->conv[k].design_se_m;
         noslide[k] = n_skip[k] == n;
         a->n_mu_skipped += (size_t)noslide[k];
     }

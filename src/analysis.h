@@ -99,6 +99,8 @@ typedef struct sl_analysis {
     sl_design *design;
     sl_analysis_conv *conv;     /* one per mu, as design->rows */
     double *design_lo_m, *design_hi_m; /* the band of conv[], as plain arrays (report.h) */
+    double *design_se_m;        /* conv[].design_se_m as a plain array (report.h): the SE of
+                                   the design value actually used, the cap's where it governs */
     double *err_est_m;          /* per mu: the largest estimated integration error of any
                                    set's peak (sl_slide_result.err_est_m), m */
     sl_analysis_stop stop;      /* why the floor stopped adding sets */

@@ -28,6 +28,7 @@ while [ "$s" -le "$last" ]; do
   grep -v '^#' "$F" | tr -d '\r' | awk -F, -v s="$s" -v ns="$ns" 'NR > 1 { print s, $1, $5, $6, $7, $8, ns }' >>"$T/all"
   s=$((s + 1))
 done
+[ -n "$KEEP" ] && cp "$T/all" "$KEEP"
 awk -v N="$N" '
   { k = $2; mu[k] = k; d[k] += $3; dd[k] += $3 * $3; se2[k] += $4 * $4; sets[k] += $7;
     n[k]++; lo[k, n[k]] = $5; hi[k, n[k]] = $6 }

@@ -49,6 +49,15 @@ paste -d' ' "$D/raw" "$D/shown" | awk '{ raw = $2; se = $3; shown = $5; n++; d =
   if ($1 != $4 || dec != want || !(d <= 0.5 * (want ? 0.1 : 1) + 1e-9)) { print "mu " $1 ": " raw " shown " shown " se " se; bad++ } }
   END { exit (bad > 0 || n != 7) }' >"$D/shownbad" && t_pass || t_fail "clearance shown: $(head -3 "$D/shownbad")"
 
+# where the cap governs (mu 0.005 on the roof) the CSV shows the cap's SE, not 0, and a band
+# around the cap; the summary shows that clearance to the SE's digit (whole mm)
+t_run run "$D/a" -o "$D/outcap" --mu 0.005,0.05 --sets 8 --created 0 -q; t_expect_rc run-cap 0
+grep -v '^#' "$D/outcap/floor_04-roof36.csv" | tr -d '\r' | awk -F, 'NR == 2 { d = $5; se = $6; lo = $7; hi = $8; cap = $11;
+  if (!($13 ~ /nltha_capped/ && d == cap && se > 0.01 * d && lo < d && d <= hi + 1e-4)) { print; exit 1 } }' \
+  >"$D/capbad" && t_pass || t_fail "capped row: $(cat "$D/capbad")"
+grep -v '^#' "$D/outcap/summary.csv" | tr -d '\r' | awk -F, 'NR == 2 && $2 !~ /^[0-9]+$/ { print; exit 1 }' >"$D/capshown" \
+  && t_pass || t_fail "capped clearance shown: $(cat "$D/capshown")"
+
 # 3. options
 t_run run "$D/a" -o "$D/outx" --rel-se 0 --abs-se 0; t_expect_rc zero-targets 2
 t_run run "$D/a" -o "$D/outx" --rel-se 1.5; t_expect_rc rel-se-range 2
