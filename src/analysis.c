@@ -33,6 +33,7 @@ void sl_analysis_opts_default(sl_analysis_opts *o)
     o->min_batch = SL_ANALYSIS_MIN_BATCH;
     o->boot_resamples = SL_STATS_BOOT_RESAMPLES;
     o->band_level = SL_STATS_BAND_LEVEL;
+    o->band_method = SL_STATS_BAND_STUDENT;
     o->seed = 1;
     o->substeps = SL_SLIDE_DEFAULT_SUBSTEPS;
     o->rtol = SL_SLIDE_DEFAULT_RTOL;
@@ -208,47 +209,28 @@ static sl_status conv_update(sl_analysis *a, const double *peak, size_t n,
     return SL_OK;
 }
 
-/* Percentile bootstrap band of the design value at every mu: resample the
- * n sets (their peaks and PGD together), recompute min(FS mean, cap). */
+/* Bootstrap band of the design value at every mu (stats.h (3) by default):
+ * resample the n sets (their peaks and PGD together), recompute
+ * min(FS mean, cap) and its SE. */
 static sl_status conv_band(sl_analysis *a, const double *peak, size_t n, const sl_analysis_opts *o,
                            sl_error *err)
 {
-    size_t B = o->boot_resamples;
-    if (B == 0)
+    if (o->boot_resamples == 0)
         return SL_OK;
-    size_t *idx = malloc(n * sizeof *idx);
-    double *v = malloc(B * o->n_mu * sizeof *v);
-    double *sum = malloc(o->n_mu * sizeof *sum);
-    sl_stats_boot *b = sl_stats_boot_alloc(a->floor_seed ^ 0x626f6f7473747261ULL, err);
-    if (!idx || !v || !sum || !b) {
-        free(idx);
-        free(v);
-        free(sum);
-        sl_stats_boot_free(b);
+    double *lo = malloc(2 * o->n_mu * sizeof *lo);
+    if (!lo)
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "analysis: out of memory");
+    double *hi = lo + o->n_mu;
+    sl_status st = sl_stats_design_band(peak, n, o->n_mu, a->pgd_m, o->fs_nltha,
+                                        SL_DESIGN_CAP_FACTOR, o->boot_resamples, o->band_level,
+                                        a->floor_seed ^ 0x626f6f7473747261ULL, o->band_method,
+                                        lo, hi, err);
+    for (size_t k = 0; !st && k < o->n_mu; k++) {
+        a->conv[k].design_lo_m = lo[k];
+        a->conv[k].design_hi_m = hi[k];
     }
-    for (size_t r = 0; r < B; r++) {
-        sl_stats_boot_draw(b, n, idx);
-        double pgd = 0;
-        memset(sum, 0, o->n_mu * sizeof *sum);
-        for (size_t i = 0; i < n; i++) {
-            const double *row = peak + idx[i] * o->n_mu;
-            pgd += a->pgd_m[idx[i]];
-            for (size_t k = 0; k < o->n_mu; k++)
-                sum[k] += row[k];
-        }
-        double cap = SL_DESIGN_CAP_FACTOR * pgd / (double)n;
-        for (size_t k = 0; k < o->n_mu; k++)
-            v[k * B + r] = fmin(o->fs_nltha * sum[k] / (double)n, cap);
-    }
-    for (size_t k = 0; k < o->n_mu; k++)
-        sl_stats_band(v + k * B, B, o->band_level, &a->conv[k].design_lo_m,
-                      &a->conv[k].design_hi_m);
-    free(idx);
-    free(v);
-    free(sum);
-    sl_stats_boot_free(b);
-    return SL_OK;
+    free(lo);
+    return st;
 }
 
 static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err)

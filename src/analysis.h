@@ -27,8 +27,9 @@
  * count the worst mu needs, n (SE / target)^2, at least min_batch more sets
  * and at most doubling. Set i is always the same motions (synth seeds per
  * set index) and the statistics are sums in set order, so the result does
- * not depend on batch sizes or threads. The 90 % band of D is a percentile
- * bootstrap over sets (peaks and PGD resampled together).
+ * not depend on batch sizes or threads. The 90 % band of D is a
+ * bootstrap-t band over sets (stats.h (3); peaks and PGD resampled
+ * together).
  *
  * Seed. A floor's seed is splitmix64(base) XOR the run's seed, where base
  * is the floor file's `seed =` when given, else a 64-bit FNV-1a hash of the
@@ -78,6 +79,7 @@ typedef struct sl_analysis_opts {
     size_t min_batch;            /* adaptive: smallest further batch (SL_ANALYSIS_MIN_BATCH) */
     size_t boot_resamples;       /* bootstrap resamples of the band (SL_STATS_BOOT_RESAMPLES) */
     double band_level;           /* level of the band (SL_STATS_BAND_LEVEL) */
+    sl_stats_band_method band_method; /* bootstrap-t (default) or percentile (stats.h) */
     uint64_t seed;
     const double *mu;            /* friction grid, increasing */
     size_t n_mu;

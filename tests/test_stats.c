@@ -98,7 +98,8 @@ static void brute(double q, double sigma, size_t n, size_t R, const char *what)
     const double truth = (1 - q) * exp(mu_l + 0.5 * sigma * sigma);
     double *x = malloc(n * sizeof *x);
     double sm = 0, smm = 0, sse2 = 0;
-    size_t cover = 0;
+    size_t cover = 0, cover_t = 0, cover_p = 0;
+    double width_t = 0, width_p = 0;
     sl_error err;
     for (size_t r = 0; r < R; r++) {
         for (size_t i = 0; i < n; i++)
@@ -108,6 +109,16 @@ static void brute(double q, double sigma, size_t n, size_t R, const char *what)
         double lo, hi;
         sl_stats_boot_mean_band(x, n, 400, 0.9, 1000 + r, &lo, &hi, &err);
         cover += lo <= truth && truth <= hi;
+        /* the run's band: bootstrap-t (3), and the percentile band beside it */
+        double lt, ht, lp, hp;
+        sl_stats_design_band(x, n, 1, NULL, 1.0, 0.0, 400, 0.9, 1000 + r, SL_STATS_BAND_STUDENT,
+                             &lt, &ht, &err);
+        sl_stats_design_band(x, n, 1, NULL, 1.0, 0.0, 400, 0.9, 1000 + r,
+                             SL_STATS_BAND_PERCENTILE, &lp, &hp, &err);
+        cover_t += lt <= truth && truth <= ht;
+        cover_p += lp <= truth && truth <= hp;
+        width_t += (ht - lt) / (2 * 1.645 * s.se) / (double)R;
+        width_p += (hp - lp) / (2 * 1.645 * s.se) / (double)R;
         sm += s.mean;
         smm += s.mean * s.mean;
         sse2 += s.se * s.se;
@@ -116,9 +127,12 @@ static void brute(double q, double sigma, size_t n, size_t R, const char *what)
     double scatter = sqrt((smm - (double)R * mean * mean) / (double)(R - 1));
     double stated = sqrt(sse2 / (double)R);
     double ratio = stated / scatter, cov = (double)cover / (double)R;
+    double cov_t = (double)cover_t / (double)R, cov_p = (double)cover_p / (double)R;
     if (getenv("SEISLIDE_TEST_VERBOSE"))
-        fprintf(stderr, "    %s: n %zu, stated SE / scatter %.3f, bias %.3f SE, 90 %% band covers %.3f\n",
-            what, n, ratio, (mean - truth) / (scatter / sqrt((double)R)), cov);
+        fprintf(stderr, "    %s: n %zu, stated SE / scatter %.3f, bias %.3f SE, 90 %% band covers: "
+                "percentile %.3f (%.3f; width %.2f x 1.645 SE), bootstrap-t %.3f (width %.2f)\n",
+            what, n, ratio, (mean - truth) / (scatter / sqrt((double)R)), cov, cov_p, width_p,
+            cov_t, width_t);
     CHECK(ratio > 1 / 1.5 && ratio < 1.5, "%s: stated SE %g, scatter %g", what, stated, scatter);
     CHECK(fabs(mean - truth) < 4 * scatter / sqrt((double)R), "%s: biased: %g vs %g", what, mean,
           truth);
@@ -129,10 +143,10 @@ static void brute(double q, double sigma, size_t n, size_t R, const char *what)
 
 static void test_brute_force(void)
 {
-    brute(0.0, 0.4, 20, 400, "all slide, sd_ln 0.4");
-    brute(0.0, 0.4, 100, 200, "all slide, sd_ln 0.4, n 100");
-    brute(0.5, 0.8, 40, 400, "half slide, sd_ln 0.8");
-    brute(0.8, 1.0, 100, 200, "20 % slide, sd_ln 1.0");
+    brute(0.0, 0.4, 20, 1000, "all slide, sd_ln 0.4");
+    brute(0.0, 0.4, 100, 1000, "all slide, sd_ln 0.4, n 100");
+    brute(0.5, 0.8, 40, 1000, "half slide, sd_ln 0.8");
+    brute(0.8, 1.0, 100, 1000, "20 % slide, sd_ln 1.0");
 }
 
 int main(void)
