@@ -31,6 +31,8 @@ void sl_analysis_opts_default(sl_analysis_opts *o)
     o->max_sets = SL_ANALYSIS_MAX_SETS;
     o->first_batch = SL_ANALYSIS_FIRST_BATCH;
     o->min_batch = SL_ANALYSIS_MIN_BATCH;
+    o->plan_margin = SL_ANALYSIS_PLAN_MARGIN;
+    o->plan_growth = SL_ANALYSIS_PLAN_GROWTH;
     o->boot_resamples = SL_STATS_BOOT_RESAMPLES;
     o->band_level = SL_STATS_BAND_LEVEL;
     o->band_method = SL_STATS_BAND_STUDENT;
@@ -161,17 +163,17 @@ static sl_spectrum *mean_spectrum(const sl_analysis *a, int c, sl_error *err)
 }
 
 /* The convergence statistics of the n sets so far (section "Convergence"
- * of analysis.h), into a->conv; returns the number of sets the worst mu
- * needs by n (SE / target)^2 (n when every mu is converged). */
+ * of analysis.h), into a->conv; *worst = the largest SE / target over mu
+ * (<= 1 when every mu is converged). */
 static sl_status conv_update(sl_analysis *a, const double *peak, size_t n,
-                             const sl_analysis_opts *o, size_t *n_needed, sl_error *err)
+                             const sl_analysis_opts *o, double *worst, sl_error *err)
 {
     sl_stats_mean sp;
     if (sl_stats_mean_compute(a->pgd_m, n, 1, &sp, err))
         return err ? err->code : SL_EINVAL;
     double cap = SL_DESIGN_CAP_FACTOR * sp.mean;
     double cap_se = SL_DESIGN_CAP_FACTOR * sp.se;
-    double need = (double)n;
+    double need = 0;
     a->n_unconverged = 0;
     a->worst_rel_se = 0;
     for (size_t k = 0; k < o->n_mu; k++) {
@@ -200,12 +202,10 @@ static sl_status conv_update(sl_analysis *a, const double *peak, size_t n,
                                                                        : c->design_m);
         if (isfinite(rel) && rel > a->worst_rel_se)
             a->worst_rel_se = rel;
-        if (c->target_se_m > 0) {
-            double r = c->design_se_m / c->target_se_m;
-            need = fmax(need, (double)n * r * r);
-        }
+        if (c->target_se_m > 0)
+            need = fmax(need, c->design_se_m / c->target_se_m);
     }
-    *n_needed = need > 1e9 ? (size_t)1e9 : (size_t)ceil(need);
+    *worst = need;
     return SL_OK;
 }
 
@@ -243,6 +243,9 @@ static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_er
             return sl_error_set(err, SL_EINVAL, path, 0, "analysis: target standard errors "
                                 "(relative %g, absolute %g m) must be >= 0, one > 0",
                                 o->rel_se, o->abs_se_m);
+        if (!(o->plan_margin >= 1) || !(o->plan_growth > 1))
+            return sl_error_set(err, SL_EINVAL, path, 0, "analysis: plan margin %g must be >= 1, "
+                                "growth %g > 1", o->plan_margin, o->plan_growth);
         if (o->max_sets < 2 || o->first_batch < 2 || o->min_batch < 1)
             return sl_error_set(err, SL_EINVAL, path, 0, "analysis: max_sets %zu and first "
                                 "batch %zu must be >= 2, min batch %zu >= 1", o->max_sets,
@@ -347,8 +350,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         a->n_batches++;
 
         t0 = wall_s();
-        size_t needed = 0;
-        if (conv_update(a, peak, n, o, &needed, err))
+        double worst = 0;
+        if (conv_update(a, peak, n, o, &worst, err))
             goto fail;
         a->time_stats_s += wall_s() - t0;
         if (!adaptive) {
@@ -363,14 +366,9 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
             a->stop = SL_ANALYSIS_STOP_MAX_SETS;
             break;
         }
-        /* next batch: what the worst mu needs, >= min_batch more, <= doubling */
-        want = needed;
-        if (want < n + o->min_batch)
-            want = n + o->min_batch;
-        if (want > 2 * n)
-            want = 2 * n;
-        if (want > cap_sets)
-            want = cap_sets;
+        /* next batch: what the worst mu needs with the margin (stats.h (4)) */
+        want = sl_stats_plan_next(n, worst, o->plan_margin, o->min_batch, o->plan_growth,
+                                  cap_sets);
     }
     double t0 = wall_s();
     if (conv_band(a, peak, n, o, err))

@@ -244,6 +244,22 @@ done:
     return st;
 }
 
+size_t sl_stats_plan_next(size_t n, double r, double margin, size_t min_batch, double growth,
+                          size_t max_sets)
+{
+    if (!(r > 1) || n >= max_sets)
+        return n;
+    double w = (double)n * r * r * margin * margin; /* (4) */
+    if (w < (double)(n + min_batch))
+        w = (double)(n + min_batch);
+    if (w > growth * (double)n)
+        w = growth * (double)n;
+    if (w > (double)max_sets)
+        w = (double)max_sets;
+    size_t want = (size_t)ceil(w);
+    return want > n ? want : n + 1;
+}
+
 double sl_stats_step(double se, double min_step, double max_step)
 {
     if (!(se > 0) || !isfinite(se))

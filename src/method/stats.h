@@ -136,6 +136,18 @@ sl_status sl_stats_design_band(const double *peak, size_t n, size_t n_mu, const 
                                uint64_t seed, sl_stats_band_method method, double *lo,
                                double *hi, sl_error *err);
 
+/* The next motion count of a sequential run (docs/run.md, "Stopping
+ * rule"): after n sets, with r the largest SE / target over the friction
+ * values, stop (return n) when r <= 1 or n >= max_sets; else aim at
+ *     n r^2 margin^2                                                     (4)
+ * sets (SE falls as 1/sqrt(n): (4) puts the expected SE at target/margin,
+ * so that the next look passes whatever the noise of this SE, instead of
+ * looking again and again at a SE hovering at the target and stopping on a
+ * low fluctuation), at least n + min_batch, at most growth x n, at most
+ * max_sets. */
+size_t sl_stats_plan_next(size_t n, double r, double margin, size_t min_batch, double growth,
+                          size_t max_sets);
+
 /* Showing a design value at the precision its uncertainty supports:
  * the display step is the power of ten at the place of the SE's leading
  * digit (se 26 -> 10, 5.2 -> 1, 0.3 -> 0.1), clamped to [min_step,
