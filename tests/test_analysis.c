@@ -129,6 +129,7 @@ static void test_batches_and_threads(void)
     o.n_mu = 3;
     o.first_batch = 2;
     o.min_batch = 2;
+    o.plan_growth = 2; /* 2, 4, 5 */
     o.max_sets = 5;
     o.rel_se = 1e-9; /* never converges: runs to max_sets */
     o.abs_se_m = 0;
