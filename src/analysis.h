@@ -60,7 +60,7 @@
 #define SL_ANALYSIS_MIN_BATCH 4
 /* The next batch aims at a SE of target / margin, and at most growth x the
  * sets so far (stats.h (4); docs/run.md, "Stopping rule"). */
-#define SL_ANALYSIS_PLAN_MARGIN 1.2
+#define SL_ANALYSIS_PLAN_MARGIN 1.1
 #define SL_ANALYSIS_PLAN_GROWTH 4.0
 
 /* Why a floor stopped adding sets. */
