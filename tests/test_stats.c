@@ -68,6 +68,36 @@ static void test_display(void)
           "decimals");
 }
 
+/* The design value and its SE, by hand: 2 sets, 2 mu; peaks {1, 0.1} and
+ * {3, 0.3}, PGD 1 and 2; FS 3, cap 1.5 x 1.5 = 2.25. mu 1: 3 x 2 = 6 > cap:
+ * D = 2.25, SE = 1.5 sd(PGD) / sqrt 2 = 1.5 x 0.5 = 0.75. mu 2: D = 3 x 0.2
+ * = 0.6, SE = 3 x 0.1 = 0.3. Without PGD: no cap. */
+static void test_design_value(void)
+{
+    const double peak[] = {1.0, 0.1, 3.0, 0.3}, pgd[] = {1.0, 2.0};
+    double d[2], se[2];
+    sl_stats_design_value(peak, 2, 2, pgd, 3.0, 1.5, d, se);
+    CHECK_CLOSE(d[0], 2.25, 0, 1e-15);
+    CHECK_CLOSE(se[0], 0.75, 0, 1e-14);
+    CHECK_CLOSE(d[1], 0.6, 0, 1e-15);
+    CHECK_CLOSE(se[1], 0.3, 0, 1e-14);
+    sl_stats_design_value(peak, 2, 2, NULL, 3.0, 1.5, d, se);
+    CHECK_CLOSE(d[0], 6.0, 0, 1e-15);
+    CHECK_CLOSE(se[0], 3.0, 0, 1e-14);
+    /* the band of a capped value lies around the cap; all alike: [D, D] */
+    double lo[2], hi[2];
+    sl_error err;
+    CHECK(sl_stats_design_band(peak, 2, 2, pgd, 3.0, 1.5, 200, 0.9, 3, SL_STATS_BAND_STUDENT, lo,
+                               hi, &err) == SL_OK, "band");
+    CHECK(lo[0] <= 2.25 && 2.25 <= hi[0] && lo[0] >= 0, "capped band %g %g", lo[0], hi[0]);
+    const double same[] = {0.2, 0.2, 0.2};
+    CHECK(sl_stats_design_band(same, 3, 1, NULL, 3.0, 1.5, 200, 0.9, 3, SL_STATS_BAND_STUDENT,
+                               lo, hi, &err) == SL_OK && lo[0] == hi[0] &&
+              fabs(lo[0] - 0.6) < 1e-15, "all alike: %g %g", lo[0], hi[0]);
+    CHECK(sl_stats_design_band(same, 3, 1, NULL, 3.0, 1.5, 200, 1.0, 3, SL_STATS_BAND_STUDENT,
+                               lo, hi, &err) == SL_EINVAL, "level 1");
+}
+
 /* The next motion count (stats.h (4)) by hand. */
 static void test_plan(void)
 {
@@ -178,6 +208,7 @@ int main(void)
     RUN(test_closed_forms);
     RUN(test_display);
     RUN(test_plan);
+    RUN(test_design_value);
     RUN(test_band_simple);
     RUN(test_brute_force);
     return HARNESS_END("stats");
