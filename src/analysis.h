@@ -61,7 +61,7 @@
 /* The next batch aims at a SE of target / margin, and at most growth x the
  * sets so far (stats.h (4); docs/run.md, "Stopping rule"). */
 #define SL_ANALYSIS_PLAN_MARGIN 1.1
-#define SL_ANALYSIS_PLAN_GROWTH 4.0
+#define SL_ANALYSIS_PLAN_GROWTH 2.0
 
 /* Why a floor stopped adding sets. */
 typedef enum sl_analysis_stop {
