@@ -15,7 +15,8 @@
  * (default targets 5 %, 1 mm; sl_stats_plan_next with MARGIN and GROWTH;
  * FIXED > 0: that many sets instead), then prints the mean sets per run, the
  * RMS stated SE over the scatter of the design value (range over mu and
- * mean), and, with B > 0 resamples, how often the bootstrap-t and the
+ * mean), how often the actual SE (the pool's, at the run's count) misses
+ * the target, and, with B > 0 resamples, how often the bootstrap-t and the
  * percentile bands hold the truth. */
 #include <gsl/gsl_rng.h>
 #include <math.h>
@@ -93,7 +94,9 @@ static int sim(int argc, char **argv)
         for (int k = 0; k < K; k++)
             pk[i * K + k] = P[i][k + 1];
     }
-    sl_stats_design_value(pk, np, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, truth, NULL);
+    double se_pop[K]; /* the SE of a run of n sets is se_pop sqrt(np / n) */
+    sl_stats_design_value(pk, np, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, truth, se_pop);
+    size_t miss_any = 0, miss_mu = 0;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(rng, 11);
     double sd[K] = {0}, sdd[K] = {0}, sse2[K] = {0}, ns = 0;
@@ -121,6 +124,13 @@ static int sim(int argc, char **argv)
             want = next;
         }
         ns += (double)n;
+        /* does the actual SE (of the population, at n sets) meet the target of the truth? */
+        size_t miss = 0;
+        for (int k = 0; k < K; k++)
+            miss += se_pop[k] * sqrt((double)np / (double)n) >
+                    fmax(SL_ANALYSIS_REL_SE * truth[k], SL_ANALYSIS_ABS_SE_M);
+        miss_any += miss > 0;
+        miss_mu += miss;
         if (B) {
             double lo[K], hi[K], lp[K], hp[K];
             sl_stats_design_band(pk, n, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, B, 0.9, 100 + r,
@@ -155,6 +165,8 @@ static int sim(int argc, char **argv)
     printf("first %zu, margin %.2f, growth %.1f, fixed %zu, %zu runs from %zu sets: %.1f sets per "
            "run; stated SE / scatter %.3f to %.3f, mean %.3f", first, margin, growth, fixed, R, np,
            ns / (double)R, rmin, rmax, rs / nk);
+    printf("; actual SE above the target: in %.2f of the runs, at %.3f of the mu",
+           (double)miss_any / (double)R, (double)miss_mu / (double)(R * K));
     if (B)
         printf("; band holds the truth: bootstrap-t %.3f, percentile %.3f", ct / nk, cp / nk);
     printf("\n");
