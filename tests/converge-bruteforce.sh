@@ -40,7 +40,7 @@ awk -v N="$N" '
       sd = sqrt(v); st = sqrt(se2[k] / n[k]);
       # coverage: the band of run i against the mean of the other runs (independent of run i)
       c = 0; for (i = 1; i <= n[k]; i++) { mo = (d[k] - x[k, i]) / (n[k] - 1);
-        h = (lo[k, i] <= mo && mo <= hi[k, i]); c += h; cov[run[k, i]] += h; ncov[run[k, i]]++ }
+        h = (lo[k, i] <= mo && mo <= hi[k, i]); c += h; if (m >= 1) { cov[run[k, i]] += h; ncov[run[k, i]]++ } }
       r = sd > 0 ? st / sd : 0;
       printf "%6s %12.3f %12.3f %12.3f %8.3f %8.2f %8.1f\n", k, m, st, sd, r, c / n[k], sets[k] / n[k] | "sort -n";
       if (m >= 1 && sd > 0) { cnt++; rsum += r; if (r < rmin) rmin = r; if (r > rmax) rmax = r;
@@ -57,5 +57,5 @@ awk -v N="$N" '
     # 2 Phi(1.645 / sqrt(1 + 1 / (N - 1))) - 1 (the mean of the others has its own error)
     z = 1.6449 / sqrt(1 + 1 / (nr - 1)); t = 1 / (1 + 0.2316419 * z);
     p = 1 - exp(-z * z / 2) / sqrt(2 * 3.14159265) * t * (0.319381530 + t * (-0.356563782 + t * (1.781477937 + t * (-1.821255978 + t * 1.330274429))));
-    printf "band holds the mean of the other runs: %.3f +- %.3f (SE over %d runs; a correct 90 %% band: %.3f)\n", cm, sqrt(cv / nr), nr, 2 * p - 1;
+    printf "band holds the mean of the other runs (mu with design >= 1 mm): %.3f +- %.3f (SE over %d runs; a correct 90 %% band: %.3f)\n", cm, sqrt(cv / nr), nr, 2 * p - 1;
     exit bad > 0 }' "$T/all"
