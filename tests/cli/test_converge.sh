@@ -6,8 +6,9 @@
 #  - the options are checked;
 #  - two seeds of the example facility, at the default targets, agree at
 #    every floor and mu within max(30 %, 6 mm) (four standard errors of a
-#    difference at 5 % each: 4 sqrt(2) 5 % = 28 %). This one takes about
-#    25 s of wall time on 2 free cores (2 x 323 motion sets).
+#    difference at 5 % each: 4 sqrt(2) 5 % = 28 %). This one takes 2 x 75-90 s
+#    of CPU (432 and 536 motion sets), under a minute and a half of wall time
+#    on 2 free cores; SEISLIDE_QUICK=1 skips it.
 . "$(dirname "$0")/lib.sh"
 t_suite cli_converge
 D=$T_TMP
