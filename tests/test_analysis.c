@@ -322,6 +322,16 @@ static void test_bad_options(void)
               !strcmp(sl_analysis_stop_name(SL_ANALYSIS_STOP_MAX_SETS), "max_sets") &&
               !strcmp(sl_analysis_stop_name(SL_ANALYSIS_STOP_FIXED), "fixed"),
           "stop names");
+    /* the defaults are the documented ones (docs/run.md, "Convergence") */
+    sl_analysis_opts_default(&o);
+    CHECK(o.band_method == SL_STATS_BAND_STUDENT && o.plan_margin == 1.1 &&
+              o.plan_growth == 2.0 && o.first_batch == 10 && o.band_level == 0.90,
+          "defaults: band %d, margin %g, growth %g", (int)o.band_method, o.plan_margin,
+          o.plan_growth);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.plan_margin = 0.9;
+    CHECK(sl_analysis_run(fl, &o, &err) == NULL && err.code == SL_EINVAL, "margin 0.9");
     sl_floor_free(fl);
 }
 
