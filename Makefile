@@ -1,4 +1,4 @@
-# seislide - see README.md. Targets: all test bench study install clean asan mutate.
+# seislide - see README.md. Targets: all test bench study install clean asan mutate physfloors.
 CC      ?= cc
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -29,7 +29,7 @@ VERSION  := $(shell sed -n 's/^\#define SEISLIDE_VERSION "\(.*\)"/\1/p' src/cli/
 # The public headers: seislide.h and what it includes (not io/atomic.h, cli.h, engine.h ...).
 PUBLIC_H := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
-.PHONY: all test bench study install clean asan check-tools mutate
+.PHONY: all test bench study install clean asan check-tools mutate physfloors
 all: $(PROG) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard src/*.h src/*/*.h tests/*.h)
@@ -58,6 +58,15 @@ bench: all
 # docs/validation.md and docs/validation/ (figures need gnuplot: gnuplot-nox).
 study: $(PROG)
 	./$(PROG) study -o docs
+
+# Synthesized floor sets against physical floor motions from every usable
+# three-component record of ../shared/records (docs/synthesis.md 10; minutes).
+physfloors: $(BUILD)/tools/physfloors
+	nice $(BUILD)/tools/physfloors -x
+
+$(BUILD)/tools/%: tools/%.c $(LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LIB) $(LIBS_ALL)
 
 # ASan + UBSan build in its own directory, running the same tests.
 asan:

@@ -3,24 +3,24 @@
  * floor motions behind their spectrum (issue 12; docs/synthesis.md 10).
  *
  * Physical floor motions: real three-component records of ../shared/records
- * (scaled to a horizontal PGA of 0.3 g) through the 3-storey building of
- * study/building.h (H modes 3.0/8.4/12.1 Hz and 4.2/11.8/17.0 Hz, V 14 Hz,
- * 5 %). Their mean 5 % and 10 % spectra and mean PGA are written as a floor
- * file (io/floor.h format) and read back; sets are synthesized for it
- * (synth.h, default method); the same NLTHA engine (sl_slide_batch) slides
- * a block on the physical and on the synthesized sets. The ratio of the
- * mean peak sliding, synthesized / physical, must lie in [0.75, 1.33] at
- * mu g/ZPA = 0.1 ... 0.9 on every floor. MEASURED: met at mu g/ZPA = 0.1
- * on every floor and 0.3-0.5 on floor 1 only; at 0.7 and 0.9 the
- * synthesized sets slide 0.3-0.5 x and 0.04-0.16 x the physical ones (their
- * thresholds max|a_h|/N are lower: 0.44 against 0.53 on floor 1); the test
- * asserts the measured state (LO_NOW, HI_NOW) and prints every ratio with
- * SEISLIDE_TEST_VERBOSE. The 10 % table of the file is
- * checked against the synthesized motions' own 10 % spectra (set mean).
- * With the spectra broadened +-15 % (peak spread), the ratio is reported.
- * Ground: synthesized RG 1.60 sets against the same records matched to
- * RG 1.60 (sl_study_match_rg160), same mu grid, same limits.
- * SEISLIDE_TEST_VERBOSE prints every ratio.
+ * (study/physfloor.h: rule, scaled to a larger horizontal PGA of 0.3 g)
+ * through the 3-storey building of study/building.h (H modes 3.0/8.4/12.1 Hz
+ * and 4.2/11.8/17.0 Hz, V 14 Hz, 5 %). Their mean 5 % and 10 % spectra and
+ * mean PGA are written as a floor file (sl_pf_write_floor) and read back;
+ * sets are synthesized for it (synth.h defaults); the same NLTHA engine
+ * (sl_slide_batch) slides a block on the physical and on the synthesized
+ * sets. The issue asks for the ratio of the mean peak sliding, synthesized /
+ * physical, in [0.75, 1.33] at mu g/ZPA = 0.1 ... 0.9 on every floor.
+ * MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 10): met at
+ * mu g/ZPA = 0.1 only; 0.34-0.54 at 0.5, 0.11-0.23 at 0.7, 0.01-0.05 at 0.9.
+ * This test, on 16 of those records, asserts: agreement with the full
+ * comparison within 3 SE of its own ratio (+ 0.02), the issue's band within
+ * 2 SE where the full comparison meets it, broadened (+-15 %) spectra sliding
+ * more than plain ones, the floor file's ZPA, the 10 % table against the
+ * synthesized motions' own 10 % spectra (set mean), the ratio's SE (P1 of
+ * physfloor.h) and the record rule. Ground: synthesized RG 1.60 sets against
+ * the same records matched to RG 1.60 (sl_study_match_rg160), same checks.
+ * SEISLIDE_TEST_VERBOSE prints every ratio with its SE.
  */
 #include <omp.h>
 #include <stdint.h>
@@ -29,141 +29,118 @@
 #include "io/floor.h"
 #include "io/motion.h"
 #include "io/setdir.h"
-#include "signal/realism.h"
 #include "signal/spectrum.h"
 #include "slide/slide.h"
 #include "study/building.h"
+#include "study/physfloor.h"
 #include "study/study.h"
 #include "synth/synth.h"
 
 static int verbose(void) { return getenv("SEISLIDE_TEST_VERBOSE") != NULL; }
 
-/* Records (PEER folders), different events and site conditions. */
-static const char *const recs[] = {"RSN15_KERN_TAF",      "RSN1111_KOBE_NIS",
-                                   "RSN1158_KOCAELI_DZC", "RSN1602_DUZCE_BOL",
-                                   "RSN1787_HECTOR_HEC",  "RSN1084_NORTHR_SCS"};
+/* Records: 16 three-component records of ../shared/records, 16 events on
+ * 3 continents (the full comparison, tools/physfloors.c, uses every record
+ * that passes the rule of study/physfloor.h: 83). */
+static const char *const recs[] = {
+    "RSN1063_NORTHR_RRS",      "RSN1111_KOBE_NIS",
+    "RSN1158_KOCAELI_DZC",     "RSN1602_DUZCE_BOL",
+    "RSN1787_HECTOR_HEC",      "RSN879_LANDERS_LCN",
+    "RSN753_LOMAP_CLS",        "RSN174_IMPVALL.H_H-E11",
+    "RSN292_ITALY_A-STU",      "RSN313_CORINTH_COR",
+    "RSN322_COALINGA.H_H-CAK", "RSN458_MORGAN_G04",
+    "RSN587_NEWZEAL_A-MAT",    "CWA_2022Chihshang_HWA004",
+    "GEONET_2016Kaikoura_HSES", "CSMIP_2022Ferndale_89486_Fortuna"};
 #define NREC (sizeof recs / sizeof recs[0])
-#define NSYN 6    /* synthesized sets per floor */
+#define NSYN 8    /* synthesized sets per floor */
 #define NMU 5     /* mu g/ZPA = 0.1, 0.3, ..., 0.9 */
 #define NF 136    /* spectrum grid: 0.1-50 Hz, 50 per decade */
 #define PGA_G 0.3
 #define LO 0.75  /* the issue's band */
 #define HI 1.33
-#define LO_NOW 0.6 /* measured state at mu g/ZPA <= 0.5 (docs/synthesis.md 10) */
-#define HI_NOW 1.7
 
-static const double dampings[2] = {0.05, 0.10};
+/* The full comparison (tools/physfloors.c: 83 records, 24 synthesized sets
+ * per case, seed 12; docs/synthesis.md 10): ratio synthesized / physical at
+ * mu g/ZPA = 0.1 ... 0.9 per floor, and ground (synthesized RG 1.60 /
+ * records matched to RG 1.60). This test's subset must agree with it within
+ * 3 standard errors of its own ratio (P1 of study/physfloor.h) plus 0.02. */
+static const double ref_floor[3][NMU] = {{0.75, 0.59, 0.34, 0.11, 0.01},
+                                         {0.79, 0.76, 0.50, 0.23, 0.05},
+                                         {0.86, 0.82, 0.54, 0.22, 0.04}};
+static const double ref_ground[NMU] = {0.82, 0.79, 0.71, 0.54, 0.36};
 
-/* Read a record set at a step <= 0.01 s, scaled to horizontal PGA 0.3 g. */
-static int read_rec(const char *shared, const char *sub, sl_set *out)
+static int read_recs(const char *shared, sl_set *g)
 {
-    char dir[1024];
-    snprintf(dir, sizeof dir, "%s/records/%s", shared, sub);
-    sl_set raw;
-    sl_error e;
-    if (sl_set_read_dir(dir, &raw, &e)) {
-        fprintf(stderr, "  %s: %s\n", dir, e.msg);
-        return -1;
-    }
-    double dt = sl_synth_match_dt(raw.h1->dt_s);
-    out->h1 = sl_synth_resample_motion(raw.h1, dt);
-    out->h2 = sl_synth_resample_motion(raw.h2, dt);
-    out->v = sl_synth_resample_motion(raw.v, dt);
-    sl_set_free_motions(&raw);
-    double s = PGA_G * SL_G / sl_set_pga_h(out);
-    sl_motion_scale(out->h1, s);
-    sl_motion_scale(out->h2, s);
-    sl_motion_scale(out->v, s);
-    return sl_set_check(out, 1, &e) ? -1 : 0;
-}
-
-/* Write "key = v, v, ..." with continuation lines (inih, < 197 chars). */
-static void write_list(FILE *f, const char *key, const double *v, size_t n, double scale)
-{
-    fprintf(f, "%s =", key);
-    for (size_t i = 0; i < n; i++)
-        fprintf(f, "%s %.6g%s", (i && i % 8 == 0) ? "\n   " : "", v[i] * scale,
-                i + 1 < n ? "," : "");
-    fputc('\n', f);
-}
-
-/* Mean spectra (5 %, 10 %) and mean PGA of the floor motions, optionally
- * broadened (SA_b(f) = max of SA over [f/1.15, 1.15 f]), as a floor file. */
-static int write_floor(const char *path, sl_set *fm, size_t nrec, const double *f, int broaden)
-{
-    FILE *out = fopen(path, "w");
-    if (!out)
-        return -1;
-    fprintf(out, "[floor]\nname = physical floor%s\nunits = m/s2\n", broaden ? " broadened" : "");
-    for (int c = 0; c < 3; c++) {
-        double sa[2][NF], zpa = 0;
-        memset(sa, 0, sizeof sa);
-        for (size_t r = 0; r < nrec; r++) {
-            const sl_motion *m = c == 0 ? fm[r].h1 : c == 1 ? fm[r].h2 : fm[r].v;
-            zpa += sl_motion_pga(m) / (double)nrec;
-            for (int d = 0; d < 2; d++) {
-                double psa[NF];
-                sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, f, NF, dampings[d], psa, NULL,
-                                    NULL, NULL);
-                for (size_t j = 0; j < NF; j++)
-                    sa[d][j] += psa[j] / (double)nrec;
-            }
+    sl_pf_rule rule;
+    sl_pf_rule_default(&rule);
+    int n = 0;
+    for (size_t r = 0; r < NREC; r++) {
+        char dir[1024];
+        sl_error e;
+        snprintf(dir, sizeof dir, "%s/records/%s", shared, recs[r]);
+        if (sl_pf_read_record(dir, &rule, PGA_G * SL_G, &g[n], &e) == SL_OK) {
+            CHECK_CLOSE(sl_set_pga_h(&g[n]), PGA_G * SL_G, 0, 1e-12);
+            n++;
+        } else {
+            char buf[2200];
+            fprintf(stderr, "  skipped: %s\n", sl_error_format(&e, buf, sizeof buf));
         }
-        if (broaden)
-            for (int d = 0; d < 2; d++) {
-                double b[NF];
-                for (size_t j = 0; j < NF; j++) {
-                    b[j] = sa[d][j];
-                    for (size_t q = 0; q < NF; q++)
-                        if (f[q] >= f[j] / 1.15 && f[q] <= f[j] * 1.15 && sa[d][q] > b[j])
-                            b[j] = sa[d][q];
-                }
-                memcpy(sa[d], b, sizeof b);
-            }
-        fprintf(out, "[%s]\n", c == 0 ? "h1" : c == 1 ? "h2" : "v");
-        write_list(out, "f_hz", f, NF, 1);
-        write_list(out, "sa_0.05", sa[0], NF, 1);
-        write_list(out, "sa_0.1", sa[1], NF, 1);
-        fprintf(out, "zpa = %.6g\n", zpa);
     }
-    return fclose(out);
+    return n;
 }
 
-/* Mean peak sliding of sets at mu[]. */
-static void mean_slide(const sl_set *sets, size_t n, const double *mu, double *mean)
+/* Peak sliding pk[i * NMU + k] of sets i at mu[k]. */
+static void slide_all(const sl_set *sets, size_t n, const double *mu, double *pk)
 {
     sl_slide_opts so;
     sl_slide_opts_default(&so);
     sl_slide_result *res = calloc(n * NMU, sizeof *res);
     if (verbose()) {
-        double th = 0, pg = 0, pgc = 0, pk = 0;
+        double th = 0, pg = 0, pgc = 0;
         for (size_t i = 0; i < n; i++) {
-            pk += (double)(sl_realism_peaks_above(sets[i].h1->acc_ms2, sets[i].h1->n, 0.9) +
-                           sl_realism_peaks_above(sets[i].h2->acc_ms2, sets[i].h2->n, 0.9)) /
-                  (2.0 * (double)n);
             th += sl_slide_mu_threshold(&sets[i], &so) / (double)n;
             pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
             pgc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
         }
         fprintf(stderr,
-                "    %zu sets: mean mu threshold %.3f, mean PGA_h %.3f g, mean comp PGA %.3f g, "
-                "mean peaks above 0.9 PGA %.1f\n",
-                n, th, pg, pgc, pk);
+                "    %zu sets: mean mu threshold %.3f, mean PGA_h %.3f g, mean comp PGA %.3f g\n",
+                n, th, pg, pgc);
     }
     sl_error e;
     CHECK(sl_slide_batch(sets, n, mu, NMU, &so, res, &e) == SL_OK, "%s", e.msg);
-    for (int k = 0; k < NMU; k++) {
-        mean[k] = 0;
-        for (size_t i = 0; i < n; i++)
-            mean[k] += res[i * NMU + k].peak_m / (double)n;
-    }
+    for (size_t i = 0; i < n * NMU; i++)
+        pk[i] = res[i].peak_m;
     free(res);
 }
 
-/* Synthesize NSYN sets for a floor file and return the sliding ratio
- * synthesized/physical at mu[]; checks the 10 % table too. */
-static void floor_ratio(const char *path, const double *phys, const double *mu, double *ratio,
-                        double *r10_lo, double *r10_hi)
+/* Ratio and SE at every mu; checks agreement with ref[] (3 SE + 0.02) and,
+ * where in_band[k], consistency with the issue's band within 2 SE. */
+static void check_ratio(const char *what, const double *syn, size_t ns, const double *phys,
+                        size_t np, const double *ref, const int *in_band, double *ratio)
+{
+    if (verbose())
+        fprintf(stderr, "  %s: ratio", what);
+    for (int k = 0; k < NMU; k++) {
+        double se, r = sl_pf_ratio(syn + k, ns, NMU, phys + k, np, NMU, &se);
+        ratio[k] = r;
+        if (verbose())
+            fprintf(stderr, " %.2f±%.2f", r, se);
+        if (ref)
+            CHECK(fabs(r - ref[k]) <= 3 * se + 0.02,
+                  "%s: ratio %.3f ± %.3f at mu g/ZPA %.1f, full comparison %.2f", what, r, se,
+                  0.1 + 0.2 * k, ref[k]);
+        if (in_band && in_band[k])
+            CHECK(r + 2 * se >= LO && r - 2 * se <= HI,
+                  "%s: ratio %.3f ± %.3f at mu g/ZPA %.1f outside [%.2f, %.2f] by > 2 SE", what,
+                  r, se, 0.1 + 0.2 * k, LO, HI);
+    }
+    if (verbose())
+        fprintf(stderr, "\n");
+}
+
+/* Synthesize NSYN sets for a floor file, slide them at mu[] (syn[]), and
+ * check the 10 % table against their own 10 % spectra (set mean). */
+static void floor_synth(const char *path, const double *mu, double *syn, double *r10_lo,
+                        double *r10_hi)
 {
     sl_error e;
     sl_floor *fl = sl_floor_load(path, &e);
@@ -183,10 +160,7 @@ static void floor_ratio(const char *path, const double *phys, const double *mu, 
     sl_set sets[NSYN];
     for (int k = 0; k < NSYN; k++)
         sets[k] = out[k].set;
-    double syn[NMU];
-    mean_slide(sets, NSYN, mu, syn);
-    for (int k = 0; k < NMU; k++)
-        ratio[k] = syn[k] / phys[k];
+    slide_all(sets, NSYN, mu, syn);
     /* the 10 % table against the motions' own 10 % spectra (set mean) */
     *r10_lo = INFINITY;
     *r10_hi = 0;
@@ -218,17 +192,17 @@ static void test_floors(void)
     if (!shared)
         SKIP("../shared not found (set SEISLIDE_SHARED): physical floors not checked");
     sl_set g[NREC];
-    size_t nrec = 0;
-    for (size_t r = 0; r < NREC; r++)
-        if (!read_rec(shared, recs[r], &g[nrec]))
-            nrec++;
-    CHECK(nrec >= 4, "only %zu records readable", nrec);
+    size_t nrec = (size_t)read_recs(shared, g);
+    CHECK(nrec >= 12, "only %zu records usable", nrec);
     double f[NF];
     for (int j = 0; j < NF; j++)
         f[j] = 0.1 * pow(500.0, (double)j / (NF - 1));
     const sl_building b = {3, {3.0, 4.2, 14.0}, 0.05};
     char dir[] = "/tmp/seislide-pf-XXXXXX";
     CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    /* the issue's band holds (within 2 SE of the full comparison) at
+     * mu g/ZPA = 0.1 only (docs/synthesis.md 10) */
+    static const int in_band[NMU] = {1, 0, 0, 0, 0};
     for (size_t fl = 1; fl <= 3; fl++) {
         sl_set fm[NREC];
         sl_error e;
@@ -237,37 +211,44 @@ static void test_floors(void)
         double zpa = 0;
         for (size_t r = 0; r < nrec; r++)
             zpa += sl_set_pga_h(&fm[r]) / (double)nrec;
-        double mu[NMU], phys[NMU];
+        double mu[NMU], phys[NREC * NMU], ratio[2][NMU];
         for (int k = 0; k < NMU; k++)
             mu[k] = (0.1 + 0.2 * k) * zpa / SL_G;
-        mean_slide(fm, nrec, mu, phys);
+        slide_all(fm, nrec, mu, phys);
         for (int broaden = 0; broaden < 2; broaden++) {
-            char path[256];
+            char path[256], what[64];
             snprintf(path, sizeof path, "%s/floor%zu%s.ini", dir, fl, broaden ? "b" : "");
-            CHECK(write_floor(path, fm, nrec, f, broaden) == 0, "write %s", path);
-            double ratio[NMU], r10lo = NAN, r10hi = NAN;
-            floor_ratio(path, phys, mu, ratio, &r10lo, &r10hi);
-            /* The issue's band [0.75, 1.33] is not met everywhere (see the
-             * header); the guard below is the measured state, so that a
-             * regression fails: mu g/ZPA <= 0.5 within [LO_NOW, HI_NOW]. */
-            for (int k = 0; k < 3 && !broaden; k++)
-                CHECK(ratio[k] >= LO_NOW && ratio[k] <= HI_NOW,
-                      "floor %zu: sliding ratio %.3f at mu g/ZPA %.1f", fl, ratio[k],
-                      0.1 + 0.2 * k);
+            snprintf(what, sizeof what, "floor %zu%s (ZPA %.2f g)", fl,
+                     broaden ? " broadened" : "", zpa / SL_G);
+            CHECK(sl_pf_write_floor(path, "physical floor", fm, nrec, f, NF, broaden, &e) ==
+                      SL_OK,
+                  "%s", e.msg);
+            sl_floor *flf = sl_floor_load(path, &e);
+            CHECK(flf, "%s", e.msg);
+            for (int c = 0; c < 3 && flf; c++) { /* ZPA = mean component PGA */
+                double z = 0;
+                for (size_t r = 0; r < nrec; r++)
+                    z += sl_motion_pga(c == 0 ? fm[r].h1 : c == 1 ? fm[r].h2 : fm[r].v) /
+                         (double)nrec;
+                CHECK_CLOSE(flf->comp[c].zpa_ms2, z, 0, 1e-5);
+            }
+            sl_floor_free(flf);
+            double syn[NSYN * NMU], r10lo = NAN, r10hi = NAN;
+            floor_synth(path, mu, syn, &r10lo, &r10hi);
+            check_ratio(what, syn, NSYN, phys, nrec, broaden ? NULL : ref_floor[fl - 1],
+                        broaden ? NULL : in_band, ratio[broaden]);
             CHECK(r10lo >= 0.8 && r10hi <= 1.25,
                   "floor %zu: 10 %% table / own 10 %% spectra %.3f-%.3f", fl, r10lo, r10hi);
-            if (verbose()) {
-                fprintf(stderr, "  floor %zu%s (ZPA %.3f g): ratio", fl,
-                        broaden ? " broadened" : "", zpa / SL_G);
-                for (int k = 0; k < NMU; k++)
-                    fprintf(stderr, " %.2f", ratio[k]);
-                fprintf(stderr, "; phys mean slide (m)");
-                for (int k = 0; k < NMU; k++)
-                    fprintf(stderr, " %.4f", phys[k]);
-                fprintf(stderr, "; 10 %% table / own mean %.3f-%.3f\n", r10lo, r10hi);
-            }
+            if (verbose())
+                fprintf(stderr, "  %s: 10 %% table / own 10 %% spectra (set mean) %.3f-%.3f\n",
+                        what, r10lo, r10hi);
             remove(path);
         }
+        /* design conservatism: the broadened spectra make the sets slide more
+         * (same seed, so the two ratios share their synthesized noise) */
+        for (int k = 0; k < 3; k++)
+            CHECK(ratio[1][k] > ratio[0][k], "floor %zu: broadened %.3f <= plain %.3f at %.1f",
+                  fl, ratio[1][k], ratio[0][k], 0.1 + 0.2 * k);
         for (size_t r = 0; r < nrec; r++)
             sl_set_free_motions(&fm[r]);
     }
@@ -332,24 +313,21 @@ static void test_ground(void)
     const char *shared = harness_shared_dir();
     if (!shared)
         SKIP("../shared not found (set SEISLIDE_SHARED): ground not checked");
-    sl_set matched[NREC];
-    size_t nm = 0;
+    sl_set g[NREC], matched[NREC];
+    size_t nrec = (size_t)read_recs(shared, g), nm = 0;
     sl_synth_set ms[NREC];
-    for (size_t r = 0; r < NREC; r++) {
-        sl_set g;
-        if (read_rec(shared, recs[r], &g))
-            continue;
+    for (size_t r = 0; r < nrec; r++) {
         sl_error e;
-        sl_status st = sl_study_match_rg160(&g, 0.05, PGA_G * SL_G, &ms[nm], &e);
-        sl_set_free_motions(&g);
+        sl_status st = sl_study_match_rg160(&g[r], 0.05, PGA_G * SL_G, &ms[nm], &e);
+        sl_set_free_motions(&g[r]);
         if (st == SL_OK || st == SL_ENOCONV)
             matched[nm] = ms[nm].set, nm++;
     }
-    CHECK(nm >= 4, "only %zu records matched", nm);
-    double mu[NMU], real[NMU], syn[NMU];
+    CHECK(nm >= 12, "only %zu records matched", nm);
+    double mu[NMU], real[NREC * NMU], syn[NSYN * NMU], ratio[NMU];
     for (int k = 0; k < NMU; k++)
         mu[k] = (0.1 + 0.2 * k) * PGA_G;
-    mean_slide(matched, nm, mu, real);
+    slide_all(matched, nm, mu, real);
     sl_spectrum *sp[3];
     sl_synth_target tgt[3];
     sl_error e;
@@ -361,16 +339,11 @@ static void test_ground(void)
     sl_set sets[NSYN];
     for (int k = 0; k < NSYN; k++)
         sets[k] = out[k].set;
-    mean_slide(sets, NSYN, mu, syn);
-    if (verbose()) {
-        fprintf(stderr, "  ground RG 1.60 0.3 g: ratio synthesized/matched");
-        for (int k = 0; k < NMU; k++)
-            fprintf(stderr, " %.2f", syn[k] / real[k]);
-        fprintf(stderr, "\n");
-    }
-    for (int k = 0; k < 3; k++)
-        CHECK(syn[k] / real[k] >= LO_NOW && syn[k] / real[k] <= HI_NOW,
-              "ground: ratio %.3f at mu g/PGA %.1f", syn[k] / real[k], 0.1 + 0.2 * k);
+    slide_all(sets, NSYN, mu, syn);
+    /* the issue's band within 2 SE at mu g/PGA 0.1-0.3 (docs/synthesis.md 10) */
+    static const int in_band[NMU] = {1, 1, 0, 0, 0};
+    check_ratio("ground RG 1.60 0.3 g, synthesized / matched", syn, NSYN, real, nm, ref_ground,
+                in_band, ratio);
     for (int k = 0; k < NSYN; k++)
         sl_synth_set_clear(&out[k]);
     for (size_t r = 0; r < nm; r++)
@@ -380,8 +353,82 @@ static void test_ground(void)
     sl_synth_free(s);
 }
 
+/* (P1) against a hand calculation and against the scatter of the ratio
+ * over many independent samples (the delta method is first order: with 40
+ * values per sample its SE is within a few % of the true one). */
+static void test_ratio_se(void)
+{
+    const double a[3] = {1, 2, 3}, b[2] = {2, 4};
+    double se, r = sl_pf_ratio(a, 3, 1, b, 2, 1, &se);
+    /* R = 2/3, SE = R sqrt(1/(3 2^2) + 2/(2 3^2)) */
+    CHECK_CLOSE(r, 2.0 / 3.0, 1e-15, 0);
+    CHECK_CLOSE(se, 2.0 / 3.0 * sqrt(1.0 / 12 + 1.0 / 9), 1e-15, 0);
+    /* exponential samples (skewed, as peak sliding is), means 1 and 2 */
+    enum { NA = 40, NB = 40, REP = 4000 };
+    uint64_t x = 12345;
+    double sr = 0, sr2 = 0, sse = 0;
+    for (int q = 0; q < REP; q++) {
+        double va[NA], vb[NB];
+        for (int i = 0; i < NA + NB; i++) {
+            x = x * 6364136223846793005ULL + 1442695040888963407ULL; /* LCG (Knuth MMIX) */
+            double u = ((double)(x >> 11) + 0.5) / 9007199254740992.0;
+            if (i < NA)
+                va[i] = -log(u);
+            else
+                vb[i - NA] = -2 * log(u);
+        }
+        double s1, r1 = sl_pf_ratio(va, NA, 1, vb, NB, 1, &s1);
+        sr += r1 / REP;
+        sr2 += r1 * r1 / REP;
+        sse += s1 / REP;
+    }
+    double sd = sqrt(sr2 - sr * sr);
+    /* true SE: 0.5 sqrt(1/40 + 1/40) = 0.112 (delta method); empirical within 8 % */
+    CHECK_CLOSE(sse, sd, 0, 0.08);
+    CHECK_CLOSE(sd, 0.5 * sqrt(2.0 / 40), 0, 0.08);
+}
+
+/* The record rule: a record below the rule is refused with the value named;
+ * a used record is scaled to the requested larger horizontal PGA. */
+static void test_record_rule(void)
+{
+    const char *shared = harness_shared_dir();
+    if (!shared)
+        SKIP("../shared not found (set SEISLIDE_SHARED): record rule not checked");
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/records/%s", shared, recs[1]);
+    sl_pf_rule rule;
+    sl_pf_rule_default(&rule);
+    sl_set s;
+    sl_error e;
+    if (sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) != SL_OK) {
+        CHECK(0, "%s", e.msg);
+        return;
+    }
+    CHECK_CLOSE(sl_set_pga_h(&s), 0.3 * SL_G, 0, 1e-12);
+    CHECK(s.h1->dt_s <= 0.01 + 1e-12 && s.v && s.h2, "dt %g", s.h1->dt_s);
+    sl_set_free_motions(&s);
+    rule.min_pga_g = 5.0;
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) == SL_EINVAL &&
+              strstr(e.msg, "PGA") && strstr(e.msg, " 5 g"),
+          "rule PGA: %s", e.msg);
+    sl_pf_rule_default(&rule);
+    rule.min_duration_s = 1e4;
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) == SL_EINVAL &&
+              strstr(e.msg, "duration"),
+          "rule duration: %s", e.msg);
+    sl_pf_rule_default(&rule);
+    rule.max_dt_s = 1e-4;
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) == SL_EINVAL && strstr(e.msg, "dt"),
+          "rule dt: %s", e.msg);
+    snprintf(dir, sizeof dir, "%s/records/RSN15_KERN_TAF", shared); /* no vertical */
+    CHECK(sl_pf_read_record(dir, &rule, 0.3 * SL_G, &s, &e) != SL_OK, "Taft: no vertical");
+}
+
 int main(void)
 {
+    RUN(test_ratio_se);
+    RUN(test_record_rule);
     RUN(test_building_model);
     RUN(test_ground);
     RUN(test_floors);

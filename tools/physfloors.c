@@ -1,0 +1,446 @@
+/*
+ * physfloors.c - the full comparison of docs/synthesis.md 10: synthesized
+ * floor sets against physical floor motions made from many real records,
+ * with standard errors (study/physfloor.h, study/building.h).
+ *
+ *   make physfloors            (or build/tools/physfloors [options])
+ *   options: -r RECORDS_DIR (default $SEISLIDE_SHARED/records or
+ *            ../shared/records), -n MAX_RECORDS (0 = all), -s NSYN (24),
+ *            -S SEED (12), -x (swap experiments), -a PGA_SIGMA (synth.h
+ *            pga_sigma), -g (ground check only), -G (no ground),
+ *            -F FMAX (floor spectra end at FMAX Hz, 50)
+ * Prints markdown tables; exit 0, or 1 with a message on bad input.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/units.h"
+#include "io/floor.h"
+#include "io/setdir.h"
+#include "signal/spectrum.h"
+#include "slide/slide.h"
+#include "study/building.h"
+#include "study/physfloor.h"
+#include "study/study.h"
+#include "synth/synth.h"
+
+#define NMU 5
+#define NF 136
+#define PGA_G 0.3
+
+static sl_synth_params P;
+
+static void die(const sl_error *e)
+{
+    char buf[2200];
+    fprintf(stderr, "physfloors: %s\n", sl_error_format(e, buf, sizeof buf));
+    exit(1);
+}
+
+/* peaks[i * NMU + k] of sets at mu[] */
+static double *slide(const sl_set *sets, size_t n, const double *mu)
+{
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    sl_slide_result *res = calloc(n * NMU, sizeof *res);
+    double *pk = malloc(n * NMU * sizeof *pk);
+    sl_error e;
+    if (!res || !pk || sl_slide_batch(sets, n, mu, NMU, &so, res, &e))
+        die(&e);
+    for (size_t i = 0; i < n * NMU; i++)
+        pk[i] = res[i].peak_m;
+    free(res);
+    return pk;
+}
+
+static void describe(const char *what, const sl_set *sets, size_t n)
+{
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0;
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 2; c++) {
+            const sl_motion *m = c ? sets[i].h2 : sets[i].h1;
+            /* duration of the half-cycle holding the PGA (sign change to sign change) */
+            size_t ip = 0;
+            for (size_t j = 0; j < m->n; j++)
+                ip = fabs(m->acc_ms2[j]) > fabs(m->acc_ms2[ip]) ? j : ip;
+            size_t j0 = ip, j1 = ip;
+            while (j0 > 0 && (m->acc_ms2[j0 - 1] > 0) == (m->acc_ms2[ip] > 0))
+                j0--;
+            while (j1 + 1 < m->n && (m->acc_ms2[j1 + 1] > 0) == (m->acc_ms2[ip] > 0))
+                j1++;
+            hw += m->dt_s * (double)(j1 - j0 + 1) / (2.0 * (double)n);
+            double sa;
+            sl_error e;
+            if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, &f50, 1, 0.05, &sa, NULL, NULL,
+                                    &e) == SL_OK)
+                s50 += sa / sl_motion_pga(m) / (2.0 * (double)n);
+        }
+        th += sl_slide_mu_threshold(&sets[i], &so) / (double)n;
+        pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
+        pc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
+    }
+    printf("  %s (%zu sets): mean threshold mu %.3f, mean larger H PGA %.3f g, mean H component "
+           "PGA %.3f g, ratio %.3f, SA(50 Hz)/PGA %.3f, PGA half-cycle %.3f s\n",
+           what, n, th, pg, pc, pg / pc, s50, hw);
+}
+
+/* "| label | R ± SE ... |", '*' where |R - 1| > 2 SE */
+static void row(const char *label, const double *a, size_t na, const double *b, size_t nb)
+{
+    printf("| %s |", label);
+    for (int k = 0; k < NMU; k++) {
+        double se, r = sl_pf_ratio(a + k, na, NMU, b + k, nb, NMU, &se);
+        printf(" %.2f ± %.2f%s |", r, se, fabs(r - 1) > 2 * se ? "*" : "");
+    }
+    printf("\n");
+}
+
+static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t seed, sl_set *sets)
+{
+    sl_error e;
+    sl_synth *s = sl_synth_alloc(4001, 0.005, &P, &e);
+    sl_synth_set *out = calloc(nsyn, sizeof *out);
+    if (!s || !out)
+        die(&e);
+    sl_status st = sl_synth_make_sets(s, tgt, seed, 0, nsyn, out, NULL, NULL, &e);
+    if (st && st != SL_ENOCONV)
+        die(&e);
+    size_t nfail = 0;
+    double pz = 0, lo = 0, hi = 0, fhi = 0;
+    for (size_t k = 0; k < nsyn; k++) {
+        sets[k] = out[k].set;
+        nfail += !out[k].pass;
+        for (int c = 0; c < 2; c++) {
+            pz += out[k].check[c].pga_zpa / (2.0 * (double)nsyn);
+            lo += out[k].check[c].min_ratio / (2.0 * (double)nsyn);
+            hi += out[k].check[c].max_ratio / (2.0 * (double)nsyn);
+            fhi += (out[k].check[c].f_min_ratio_hz > 25) / (2.0 * (double)nsyn);
+        }
+    }
+    printf("  synthesized H components: mean PGA/ZPA %.3f, mean lowest S/T %.3f (above 25 Hz "
+           "in %.0f %%), highest %.3f\n",
+           pz, lo, 100 * fhi, hi);
+    if (nfail)
+        printf("  (%zu of %zu synthesized sets fail a check)\n", nfail, nsyn);
+    sl_synth_free(s);
+    return out;
+}
+
+/* a copy of m delayed by lag samples (zeros before; the last lag dropped) */
+static sl_motion *delayed(const sl_motion *m, size_t lag)
+{
+    double *a = calloc(m->n, sizeof *a);
+    for (size_t i = lag; i < m->n; i++)
+        a[i] = m->acc_ms2[i - lag];
+    sl_motion *o = sl_motion_from_array(a, m->n, m->dt_s, m->label);
+    free(a);
+    return o;
+}
+
+static sl_motion *scaled(const sl_motion *m, double s)
+{
+    sl_motion *o = sl_motion_from_array(m->acc_ms2, m->n, m->dt_s, m->label);
+    sl_motion_scale(o, s);
+    return o;
+}
+
+static void free_tmp(sl_set *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        sl_set_free_motions(&v[i]);
+}
+
+/* Swap experiments (docs/synthesis.md 10): sliding of modified sets
+ * relative to the unmodified ones. */
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
+                        const sl_synth_set *so, size_t nsyn, const double *mu,
+                        const double *phys, const double *sy)
+{
+    sl_set *t = calloc(nrec > nsyn ? nrec : nsyn, sizeof *t);
+    /* physical without V */
+    for (size_t i = 0; i < nrec; i++)
+        t[i] = (sl_set){fm[i].h1, fm[i].h2, NULL};
+    double *p_nov = slide(t, nrec, mu);
+    describe("physical, no V", t, nrec);
+    for (size_t i = 0; i < nsyn; i++)
+        t[i] = (sl_set){syn[i].h1, syn[i].h2, NULL};
+    double *s_nov = slide(t, nsyn, mu);
+    describe("synthesized, no V", t, nsyn);
+    row("synthesized / physical, both without V", s_nov, nsyn, p_nov, nrec);
+    row("physical without V / physical", p_nov, nrec, phys, nrec);
+    row("synthesized without V / synthesized", s_nov, nsyn, sy, nsyn);
+    /* physical with V delayed 1 s (peaks of V no longer with those of H) */
+    for (size_t i = 0; i < nrec; i++) {
+        size_t lag = (size_t)lround(1.0 / fm[i].h1->dt_s);
+        t[i] = (sl_set){scaled(fm[i].h1, 1), scaled(fm[i].h2, 1), delayed(fm[i].v, lag)};
+    }
+    double *p_vd = slide(t, nrec, mu);
+    describe("physical, V delayed 1 s", t, nrec);
+    row("physical V delayed 1 s / physical", p_vd, nrec, phys, nrec);
+    free_tmp(t, nrec);
+    /* physical with H2 delayed 1 s (H1 and H2 peaks apart) */
+    for (size_t i = 0; i < nrec; i++) {
+        size_t lag = (size_t)lround(1.0 / fm[i].h1->dt_s);
+        t[i] = (sl_set){scaled(fm[i].h1, 1), delayed(fm[i].h2, lag), scaled(fm[i].v, 1)};
+    }
+    double *p_hd = slide(t, nrec, mu);
+    describe("physical, H2 delayed 1 s", t, nrec);
+    row("physical H2 delayed 1 s / physical", p_hd, nrec, phys, nrec);
+    free_tmp(t, nrec);
+    /* physical with H1, H2 scaled to equal PGA (their mean): no strong direction */
+    for (size_t i = 0; i < nrec; i++) {
+        double p1 = sl_motion_pga(fm[i].h1), p2 = sl_motion_pga(fm[i].h2), pm = 0.5 * (p1 + p2);
+        t[i] = (sl_set){scaled(fm[i].h1, pm / p1), scaled(fm[i].h2, pm / p2), scaled(fm[i].v, 1)};
+    }
+    double *p_eq = slide(t, nrec, mu);
+    describe("physical, H1 and H2 at equal PGA", t, nrec);
+    row("physical H equal PGA / physical", p_eq, nrec, phys, nrec);
+    free_tmp(t, nrec);
+    /* synthesized with H scaled exp(+-0.15) (one direction stronger) */
+    for (size_t i = 0; i < nsyn; i++) {
+        double s = exp(i % 2 ? 0.15 : -0.15);
+        t[i] = (sl_set){scaled(syn[i].h1, s), scaled(syn[i].h2, 1 / s), scaled(syn[i].v, 1)};
+    }
+    double *s_sc = slide(t, nsyn, mu);
+    describe("synthesized, H1/H2 scaled exp(+-0.15)", t, nsyn);
+    row("synthesized H scaled exp(+-0.15) / synthesized", s_sc, nsyn, sy, nsyn);
+    free_tmp(t, nsyn);
+    /* synthesized with each H component scaled to PGA = ZPA (floor file's) */
+    double z1 = 0, z2 = 0;
+    for (size_t i = 0; i < nrec; i++) {
+        z1 += sl_motion_pga(fm[i].h1) / (double)nrec;
+        z2 += sl_motion_pga(fm[i].h2) / (double)nrec;
+    }
+    for (size_t i = 0; i < nsyn; i++)
+        t[i] = (sl_set){scaled(syn[i].h1, z1 / sl_motion_pga(syn[i].h1)),
+                        scaled(syn[i].h2, z2 / sl_motion_pga(syn[i].h2)), scaled(syn[i].v, 1)};
+    double *s_pz = slide(t, nsyn, mu);
+    describe("synthesized, H scaled to PGA = ZPA", t, nsyn);
+    row("synthesized H at PGA = ZPA / physical", s_pz, nsyn, phys, nrec);
+    free_tmp(t, nsyn);
+    free(s_pz);
+    /* as far as SRP 3.7.1 lets a per-motion aim go: H1 x exp(+0.15), H2 x
+     * exp(-0.15) (alternating), each clamped to [0.9/min S/T, 1.3/max S/T] */
+    double fmean = 0;
+    for (size_t i = 0; i < nsyn; i++) {
+        double f[2];
+        for (int c = 0; c < 2; c++) {
+            double want = exp((i % 2) == (size_t)c ? 0.15 : -0.15);
+            double lo = 0.9 / so[i].check[c].min_ratio, hi = 1.3 / so[i].check[c].max_ratio;
+            f[c] = want < lo ? lo : want > hi ? hi : want;
+            fmean += f[c] / (2.0 * (double)nsyn);
+        }
+        t[i] = (sl_set){scaled(syn[i].h1, f[0]), scaled(syn[i].h2, f[1]), scaled(syn[i].v, 1)};
+    }
+    double *s_cl = slide(t, nsyn, mu);
+    printf("  SRP-clamped direction scatter: mean factor %.3f (mean spectrum bias)\n", fmean);
+    describe("synthesized, SRP-clamped exp(+-0.15)", t, nsyn);
+    row("synthesized SRP-clamped scatter / synthesized", s_cl, nsyn, sy, nsyn);
+    free_tmp(t, nsyn);
+    free(s_cl);
+    /* record-to-record intensity: synthesized set k scaled by the physical
+     * sets' larger-H-PGA / ZPA at quantile (k + 0.5)/nsyn (stratified) */
+    double *q = malloc(nrec * sizeof *q), zp = 0;
+    for (size_t i = 0; i < nrec; i++)
+        zp += (q[i] = sl_set_pga_h(&fm[i])) / (double)nrec;
+    qsort(q, nrec, sizeof *q, cmp_d);
+    double cv = 0;
+    for (size_t i = 0; i < nrec; i++)
+        cv += (q[i] / zp - 1) * (q[i] / zp - 1) / (double)(nrec - 1);
+    for (size_t i = 0; i < nsyn; i++) {
+        size_t j = (size_t)(((double)i + 0.5) / (double)nsyn * (double)nrec);
+        double f = q[j < nrec ? j : nrec - 1] / zp;
+        t[i] = (sl_set){scaled(syn[i].h1, f), scaled(syn[i].h2, f), scaled(syn[i].v, f)};
+    }
+    double *s_rr = slide(t, nsyn, mu);
+    printf("  physical larger-H PGA / ZPA: coefficient of variation %.3f\n", sqrt(cv));
+    row("synthesized x physical PGA scatter / synthesized", s_rr, nsyn, sy, nsyn);
+    row("synthesized x physical PGA scatter / physical", s_rr, nsyn, phys, nrec);
+    free_tmp(t, nsyn);
+    free(s_rr);
+    free(q);
+    free(p_nov);
+    free(s_nov);
+    free(p_vd);
+    free(p_hd);
+    free(p_eq);
+    free(s_sc);
+    free(t);
+}
+
+static void header(const char *first)
+{
+    printf("\n| %s | μg/ZPA 0.1 | 0.3 | 0.5 | 0.7 | 0.9 |\n|---|---|---|---|---|---|\n", first);
+}
+
+int main(int argc, char **argv)
+{
+    const char *rdir = NULL;
+    size_t maxrec = 0, nsyn = 24;
+    uint64_t seed = 12;
+    int exps = 0, ground_only = 0, no_ground = 0, opt;
+    double f_end = 50.0;
+    sl_synth_params_default(&P);
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gGF:")) != -1) {
+        switch (opt) {
+        case 'r': rdir = optarg; break;
+        case 'n': maxrec = (size_t)atol(optarg); break;
+        case 's': nsyn = (size_t)atol(optarg); break;
+        case 'S': seed = (uint64_t)atoll(optarg); break;
+        case 'x': exps = 1; break;
+        case 'a': P.pga_sigma = atof(optarg); break;
+        case 'g': ground_only = 1; break;
+        case 'G': no_ground = 1; break;
+        case 'F': f_end = atof(optarg); break;
+        default:
+            fprintf(stderr, "usage: physfloors [-r dir] [-n max] [-s nsyn] [-S seed] [-x] "
+                            "[-a sigma] [-g|-G] [-F f_end]\n");
+            return 1;
+        }
+    }
+    if (!(f_end > 1 && f_end <= 50)) {
+        fprintf(stderr, "physfloors: -F %g: the floor spectrum ends in (1, 50] Hz\n", f_end);
+        return 1;
+    }
+    char buf[1024];
+    if (!rdir) {
+        const char *sh = getenv("SEISLIDE_SHARED");
+        snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
+        rdir = buf;
+    }
+    sl_error e;
+    if (sl_synth_params_check(&P, &e))
+        die(&e);
+    char **names;
+    size_t nd = sl_pf_list_dirs(rdir, &names, &e);
+    if (!nd)
+        die(&e);
+    sl_pf_rule rule;
+    sl_pf_rule_default(&rule);
+    sl_set *g = calloc(nd, sizeof *g);
+    size_t nrec = 0, nskip = 0;
+    for (size_t i = 0; i < nd && (!maxrec || nrec < maxrec); i++) {
+        char d[4096];
+        snprintf(d, sizeof d, "%s/%s", rdir, names[i]);
+        if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) == SL_OK)
+            nrec++;
+        else
+            nskip++;
+    }
+    printf("records: %zu used of %zu directories in %s (rule: three components, larger H PGA "
+           ">= %.2f g, duration >= %.0f s, dt <= %.2f s); scaled to %.1f g; %zu synthesized "
+           "sets per case, seed %llu, pga_sigma %.2f, floor spectra to %g Hz\n",
+           nrec, nd, rdir, rule.min_pga_g, rule.min_duration_s, rule.max_dt_s, PGA_G, nsyn,
+           (unsigned long long)seed, P.pga_sigma, f_end);
+    sl_set *syn = calloc(nsyn, sizeof *syn);
+    double mu[NMU];
+    if (!no_ground) {
+        /* Ground: records matched to RG 1.60 (the study's method) vs synthesized */
+        sl_synth_set *ms = calloc(nrec, sizeof *ms);
+        sl_set *mset = calloc(nrec, sizeof *mset);
+        size_t nm = 0;
+        for (size_t r = 0; r < nrec; r++) {
+            sl_status st = sl_study_match_rg160(&g[r], 0.05, PGA_G * SL_G, &ms[nm], &e);
+            if (st == SL_OK || st == SL_ENOCONV)
+                mset[nm] = ms[nm].set, nm++;
+        }
+        for (int k = 0; k < NMU; k++)
+            mu[k] = (0.1 + 0.2 * k) * PGA_G;
+        double *real = slide(mset, nm, mu);
+        describe("ground, records matched to RG 1.60", mset, nm);
+        sl_spectrum *sp[3];
+        sl_synth_target tgt[3];
+        if (sl_synth_targets_rg160(PGA_G * SL_G, 0.05, &P, sp, tgt, &e))
+            die(&e);
+        sl_synth_set *out = synth(tgt, nsyn, seed, syn);
+        double *sy = slide(syn, nsyn, mu);
+        describe("ground, synthesized RG 1.60", syn, nsyn);
+        header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
+        row("ratio ± SE", sy, nsyn, real, nm);
+        if (exps)
+            experiments(mset, nm, syn, out, nsyn, mu, real, sy);
+        free(real);
+        free(sy);
+        for (size_t k = 0; k < nsyn; k++)
+            sl_synth_set_clear(&out[k]);
+        free(out);
+        for (size_t r = 0; r < nm; r++)
+            sl_synth_set_clear(&ms[r]);
+        for (int c = 0; c < 3; c++)
+            sl_spectrum_free(sp[c]);
+        free(ms);
+        free(mset);
+    }
+    if (!ground_only) {
+        double f[NF];
+        const size_t nf = (size_t)lround(50.0 * log10(f_end / 0.1)) + 1;
+        for (size_t j = 0; j < nf; j++)
+            f[j] = 0.1 * pow(f_end / 0.1, (double)j / (double)(nf - 1));
+        const sl_building b = {3, {3.0, 4.2, 14.0}, 0.05};
+        char dir[] = "/tmp/seislide-pf-XXXXXX";
+        if (!mkdtemp(dir)) {
+            fprintf(stderr, "physfloors: cannot make a temporary directory\n");
+            return 1;
+        }
+        sl_set *fm = calloc(nrec, sizeof *fm);
+        for (size_t fl = 1; fl <= 3; fl++) {
+            for (size_t r = 0; r < nrec; r++)
+                if (sl_building_floor(&b, fl, &g[r], &fm[r], &e))
+                    die(&e);
+            double zpa = 0;
+            for (size_t r = 0; r < nrec; r++)
+                zpa += sl_set_pga_h(&fm[r]) / (double)nrec;
+            for (int k = 0; k < NMU; k++)
+                mu[k] = (0.1 + 0.2 * k) * zpa / SL_G;
+            double *phys = slide(fm, nrec, mu);
+            printf("\nfloor %zu: ZPA (mean larger H PGA) %.3f g\n", fl, zpa / SL_G);
+            describe("physical", fm, nrec);
+            for (int broaden = 0; broaden < 2; broaden++) {
+                char path[256];
+                snprintf(path, sizeof path, "%s/floor%zu%s.ini", dir, fl, broaden ? "b" : "");
+                if (sl_pf_write_floor(path, "physical floor", fm, nrec, f, nf, broaden, &e))
+                    die(&e);
+                sl_floor *flr = sl_floor_load(path, &e);
+                sl_synth_target tgt[3];
+                if (!flr || sl_synth_targets_floor(flr, 0, tgt, &e))
+                    die(&e);
+                sl_synth_set *out = synth(tgt, nsyn, seed, syn);
+                double *sy = slide(syn, nsyn, mu);
+                describe(broaden ? "synthesized, broadened" : "synthesized", syn, nsyn);
+                header(broaden ? "synthesized (broadened ±15 %) / physical"
+                               : "synthesized / physical");
+                snprintf(buf, sizeof buf, "floor %zu%s", fl, broaden ? " broadened" : "");
+                row(buf, sy, nsyn, phys, nrec);
+                if (exps && !broaden)
+                    experiments(fm, nrec, syn, out, nsyn, mu, phys, sy);
+                free(sy);
+                for (size_t k = 0; k < nsyn; k++)
+                    sl_synth_set_clear(&out[k]);
+                free(out);
+                sl_floor_free(flr);
+                remove(path);
+            }
+            free(phys);
+            free_tmp(fm, nrec);
+        }
+        rmdir(dir);
+        free(fm);
+    }
+    free_tmp(g, nrec);
+    free(g);
+    free(syn);
+    sl_pf_names_free(names, nd);
+    return 0;
+}
