@@ -31,8 +31,11 @@ void sl_analysis_opts_default(sl_analysis_opts *o)
     o->max_sets = SL_ANALYSIS_MAX_SETS;
     o->first_batch = SL_ANALYSIS_FIRST_BATCH;
     o->min_batch = SL_ANALYSIS_MIN_BATCH;
+    o->plan_margin = SL_ANALYSIS_PLAN_MARGIN;
+    o->plan_growth = SL_ANALYSIS_PLAN_GROWTH;
     o->boot_resamples = SL_STATS_BOOT_RESAMPLES;
     o->band_level = SL_STATS_BAND_LEVEL;
+    o->band_method = SL_STATS_BAND_STUDENT;
     o->seed = 1;
     o->substeps = SL_SLIDE_DEFAULT_SUBSTEPS;
     o->rtol = SL_SLIDE_DEFAULT_RTOL;
@@ -104,6 +107,7 @@ void sl_analysis_free(sl_analysis *a)
     free(a->conv);
     free(a->design_lo_m);
     free(a->design_hi_m);
+    free(a->design_se_m);
     free(a->err_est_m);
     if (a->sets)
         for (size_t s = 0; s < a->n_sets; s++)
@@ -159,17 +163,17 @@ static sl_spectrum *mean_spectrum(const sl_analysis *a, int c, sl_error *err)
 }
 
 /* The convergence statistics of the n sets so far (section "Convergence"
- * of analysis.h), into a->conv; returns the number of sets the worst mu
- * needs by n (SE / target)^2 (n when every mu is converged). */
+ * of analysis.h), into a->conv; *worst = the largest SE / target over mu
+ * (<= 1 when every mu is converged). */
 static sl_status conv_update(sl_analysis *a, const double *peak, size_t n,
-                             const sl_analysis_opts *o, size_t *n_needed, sl_error *err)
+                             const sl_analysis_opts *o, double *worst, sl_error *err)
 {
     sl_stats_mean sp;
     if (sl_stats_mean_compute(a->pgd_m, n, 1, &sp, err))
         return err ? err->code : SL_EINVAL;
     double cap = SL_DESIGN_CAP_FACTOR * sp.mean;
     double cap_se = SL_DESIGN_CAP_FACTOR * sp.se;
-    double need = (double)n;
+    double need = 0;
     a->n_unconverged = 0;
     a->worst_rel_se = 0;
     for (size_t k = 0; k < o->n_mu; k++) {
@@ -198,56 +202,35 @@ static sl_status conv_update(sl_analysis *a, const double *peak, size_t n,
                                                                        : c->design_m);
         if (isfinite(rel) && rel > a->worst_rel_se)
             a->worst_rel_se = rel;
-        if (c->target_se_m > 0) {
-            double r = c->design_se_m / c->target_se_m;
-            need = fmax(need, (double)n * r * r);
-        }
+        if (c->target_se_m > 0)
+            need = fmax(need, c->design_se_m / c->target_se_m);
     }
-    *n_needed = need > 1e9 ? (size_t)1e9 : (size_t)ceil(need);
+    *worst = need;
     return SL_OK;
 }
 
-/* Percentile bootstrap band of the design value at every mu: resample the
- * n sets (their peaks and PGD together), recompute min(FS mean, cap). */
+/* Bootstrap band of the design value at every mu (stats.h (3) by default):
+ * resample the n sets (their peaks and PGD together), recompute
+ * min(FS mean, cap) and its SE. */
 static sl_status conv_band(sl_analysis *a, const double *peak, size_t n, const sl_analysis_opts *o,
                            sl_error *err)
 {
-    size_t B = o->boot_resamples;
-    if (B == 0)
+    if (o->boot_resamples == 0)
         return SL_OK;
-    size_t *idx = malloc(n * sizeof *idx);
-    double *v = malloc(B * o->n_mu * sizeof *v);
-    double *sum = malloc(o->n_mu * sizeof *sum);
-    sl_stats_boot *b = sl_stats_boot_alloc(a->floor_seed ^ 0x626f6f7473747261ULL, err);
-    if (!idx || !v || !sum || !b) {
-        free(idx);
-        free(v);
-        free(sum);
-        sl_stats_boot_free(b);
+    double *lo = malloc(2 * o->n_mu * sizeof *lo);
+    if (!lo)
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "analysis: out of memory");
+    double *hi = lo + o->n_mu;
+    sl_status st = sl_stats_design_band(peak, n, o->n_mu, a->pgd_m, o->fs_nltha,
+                                        SL_DESIGN_CAP_FACTOR, o->boot_resamples, o->band_level,
+                                        a->floor_seed ^ 0x626f6f7473747261ULL, o->band_method,
+                                        lo, hi, err);
+    for (size_t k = 0; !st && k < o->n_mu; k++) {
+        a->conv[k].design_lo_m = lo[k];
+        a->conv[k].design_hi_m = hi[k];
     }
-    for (size_t r = 0; r < B; r++) {
-        sl_stats_boot_draw(b, n, idx);
-        double pgd = 0;
-        memset(sum, 0, o->n_mu * sizeof *sum);
-        for (size_t i = 0; i < n; i++) {
-            const double *row = peak + idx[i] * o->n_mu;
-            pgd += a->pgd_m[idx[i]];
-            for (size_t k = 0; k < o->n_mu; k++)
-                sum[k] += row[k];
-        }
-        double cap = SL_DESIGN_CAP_FACTOR * pgd / (double)n;
-        for (size_t k = 0; k < o->n_mu; k++)
-            v[k * B + r] = fmin(o->fs_nltha * sum[k] / (double)n, cap);
-    }
-    for (size_t k = 0; k < o->n_mu; k++)
-        sl_stats_band(v + k * B, B, o->band_level, &a->conv[k].design_lo_m,
-                      &a->conv[k].design_hi_m);
-    free(idx);
-    free(v);
-    free(sum);
-    sl_stats_boot_free(b);
-    return SL_OK;
+    free(lo);
+    return st;
 }
 
 static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err)
@@ -260,6 +243,9 @@ static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_er
             return sl_error_set(err, SL_EINVAL, path, 0, "analysis: target standard errors "
                                 "(relative %g, absolute %g m) must be >= 0, one > 0",
                                 o->rel_se, o->abs_se_m);
+        if (!(o->plan_margin >= 1) || !(o->plan_growth > 1))
+            return sl_error_set(err, SL_EINVAL, path, 0, "analysis: plan margin %g must be >= 1, "
+                                "growth %g > 1", o->plan_margin, o->plan_growth);
         if (o->max_sets < 2 || o->first_batch < 2 || o->min_batch < 1)
             return sl_error_set(err, SL_EINVAL, path, 0, "analysis: max_sets %zu and first "
                                 "batch %zu must be >= 2, min batch %zu >= 1", o->max_sets,
@@ -294,6 +280,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->conv = calloc(n_mu, sizeof *a->conv);
     a->design_lo_m = calloc(n_mu, sizeof *a->design_lo_m);
     a->design_hi_m = calloc(n_mu, sizeof *a->design_hi_m);
+    a->design_se_m = calloc(n_mu, sizeof *a->design_se_m);
     a->err_est_m = calloc(n_mu, sizeof *a->err_est_m);
     sets = calloc(cap_sets, sizeof *sets);
     res = calloc(cap_sets * n_mu, sizeof *res);
@@ -301,7 +288,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     n_skip = calloc(n_mu, sizeof *n_skip);
     noslide = calloc(n_mu, sizeof *noslide);
     best = calloc(n_mu, sizeof *best);
-    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->err_est_m || !sets ||
+    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->design_se_m ||
+        !a->err_est_m || !sets ||
         !res || !peak || !n_skip || !noslide || !best)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
@@ -362,8 +350,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         a->n_batches++;
 
         t0 = wall_s();
-        size_t needed = 0;
-        if (conv_update(a, peak, n, o, &needed, err))
+        double worst = 0;
+        if (conv_update(a, peak, n, o, &worst, err))
             goto fail;
         a->time_stats_s += wall_s() - t0;
         if (!adaptive) {
@@ -378,14 +366,9 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
             a->stop = SL_ANALYSIS_STOP_MAX_SETS;
             break;
         }
-        /* next batch: what the worst mu needs, >= min_batch more, <= doubling */
-        want = needed;
-        if (want < n + o->min_batch)
-            want = n + o->min_batch;
-        if (want > 2 * n)
-            want = 2 * n;
-        if (want > cap_sets)
-            want = cap_sets;
+        /* next batch: what the worst mu needs with the margin (stats.h (4)) */
+        want = sl_stats_plan_next(n, worst, o->plan_margin, o->min_batch, o->plan_growth,
+                                  cap_sets);
     }
     double t0 = wall_s();
     if (conv_band(a, peak, n, o, err))
@@ -394,6 +377,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     for (size_t k = 0; k < n_mu; k++) {
         a->design_lo_m[k] = a->conv[k].design_lo_m;
         a->design_hi_m[k] = a->conv[k].design_hi_m;
+        a->design_se_m[k] = a->conv[k].design_se_m;
         noslide[k] = n_skip[k] == n;
         a->n_mu_skipped += (size_t)noslide[k];
     }

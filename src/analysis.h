@@ -24,11 +24,12 @@
  * batch: stop when SE(D) <= max(rel_se D, abs_se_m) at every mu
  * (SL_ANALYSIS_STOP_CONVERGED), else when max_sets are done
  * (SL_ANALYSIS_STOP_MAX_SETS, the floor is flagged). The next batch aims at the
- * count the worst mu needs, n (SE / target)^2, at least min_batch more sets
- * and at most doubling. Set i is always the same motions (synth seeds per
+ * count the worst mu needs with a margin, n (SE / target)^2 margin^2, at
+ * least min_batch more sets and at most growth x n (stats.h (4)). Set i is always the same motions (synth seeds per
  * set index) and the statistics are sums in set order, so the result does
- * not depend on batch sizes or threads. The 90 % band of D is a percentile
- * bootstrap over sets (peaks and PGD resampled together).
+ * not depend on batch sizes or threads. The 90 % band of D is a
+ * bootstrap-t band over sets (stats.h (3); peaks and PGD resampled
+ * together).
  *
  * Seed. A floor's seed is splitmix64(base) XOR the run's seed, where base
  * is the floor file's `seed =` when given, else a 64-bit FNV-1a hash of the
@@ -57,6 +58,10 @@
 #define SL_ANALYSIS_MAX_SETS 200
 #define SL_ANALYSIS_FIRST_BATCH 10
 #define SL_ANALYSIS_MIN_BATCH 4
+/* The next batch aims at a SE of target / margin, and at most growth x the
+ * sets so far (stats.h (4); docs/run.md, "Stopping rule"). */
+#define SL_ANALYSIS_PLAN_MARGIN 1.1
+#define SL_ANALYSIS_PLAN_GROWTH 2.0
 
 /* Why a floor stopped adding sets. */
 typedef enum sl_analysis_stop {
@@ -76,8 +81,13 @@ typedef struct sl_analysis_opts {
     size_t max_sets;             /* adaptive: at most this many (SL_ANALYSIS_MAX_SETS) */
     size_t first_batch;          /* adaptive: sets of the first batch (SL_ANALYSIS_FIRST_BATCH) */
     size_t min_batch;            /* adaptive: smallest further batch (SL_ANALYSIS_MIN_BATCH) */
+    double plan_margin;          /* adaptive: next batch aims at SE = target / margin
+                                    (SL_ANALYSIS_PLAN_MARGIN, >= 1) */
+    double plan_growth;          /* adaptive: next count at most growth x n
+                                    (SL_ANALYSIS_PLAN_GROWTH, > 1) */
     size_t boot_resamples;       /* bootstrap resamples of the band (SL_STATS_BOOT_RESAMPLES) */
     double band_level;           /* level of the band (SL_STATS_BAND_LEVEL) */
+    sl_stats_band_method band_method; /* bootstrap-t (default) or percentile (stats.h) */
     uint64_t seed;
     const double *mu;            /* friction grid, increasing */
     size_t n_mu;
@@ -99,6 +109,8 @@ typedef struct sl_analysis {
     sl_design *design;
     sl_analysis_conv *conv;     /* one per mu, as design->rows */
     double *design_lo_m, *design_hi_m; /* the band of conv[], as plain arrays (report.h) */
+    double *design_se_m;        /* conv[].design_se_m as a plain array (report.h): the SE of
+                                   the design value actually used, the cap's where it governs */
     double *err_est_m;          /* per mu: the largest estimated integration error of any
                                    set's peak (sl_slide_result.err_est_m), m */
     sl_analysis_stop stop;      /* why the floor stopped adding sets */

@@ -129,6 +129,7 @@ static void test_batches_and_threads(void)
     o.n_mu = 3;
     o.first_batch = 2;
     o.min_batch = 2;
+    o.plan_growth = 2; /* 2, 4, 5 */
     o.max_sets = 5;
     o.rel_se = 1e-9; /* never converges: runs to max_sets */
     o.abs_se_m = 0;
@@ -254,6 +255,48 @@ static void test_stated_se(void)
     sl_floor_free(fl);
 }
 
+/* Where the cap governs (mu 0.005 on the roof: the block barely moves, the
+ * floor slides under it, 3 x mean > 1.5 x mean PGD), the design value is the
+ * cap and its standard error is the cap's, 1.5 sd(PGD) / sqrt(n), not 0;
+ * the plain array handed to the report (design_se_m) is the same. */
+static void test_cap_se(void)
+{
+    static const double mu2[] = {0.005, 0.05};
+    sl_floor *fl = load(ROOF);
+    if (!fl)
+        return;
+    sl_analysis_opts o;
+    sl_analysis_opts_default(&o);
+    o.mu = mu2;
+    o.n_mu = 2;
+    o.n_sets = 8;
+    o.boot_resamples = 200;
+    o.substeps = 2;
+    sl_error err;
+    sl_analysis *a = sl_analysis_run(fl, &o, &err);
+    CHECK(a != NULL, "run");
+    if (a) {
+        const sl_design_row *r = &a->design->rows[0];
+        const sl_analysis_conv *c = &a->conv[0];
+        double m = 0, v = 0;
+        for (size_t s = 0; s < a->n_sets; s++)
+            m += a->pgd_m[s] / (double)a->n_sets;
+        for (size_t s = 0; s < a->n_sets; s++)
+            v += (a->pgd_m[s] - m) * (a->pgd_m[s] - m) / (double)(a->n_sets - 1);
+        CHECK((r->flags & SL_DESIGN_NLTHA_CAPPED) && c->design_m == r->cap_m, "mu 0.005 capped: "
+              "design %g, cap %g", c->design_m, r->cap_m);
+        CHECK_CLOSE(c->design_se_m, SL_DESIGN_CAP_FACTOR * sqrt(v / (double)a->n_sets), 0, 1e-12);
+        CHECK(a->design_se_m[0] == c->design_se_m && a->design_se_m[1] == a->conv[1].design_se_m,
+              "design_se_m array");
+        CHECK(!(a->design->rows[1].flags & SL_DESIGN_NLTHA_CAPPED), "mu 0.05 capped");
+        CHECK(c->design_lo_m <= c->design_m && c->design_m <= c->design_hi_m &&
+                  c->design_hi_m > c->design_lo_m,
+              "band %g %g %g", c->design_lo_m, c->design_m, c->design_hi_m);
+    }
+    sl_analysis_free(a);
+    sl_floor_free(fl);
+}
+
 static void test_bad_options(void)
 {
     sl_floor *fl = load(ROOF);
@@ -279,6 +322,16 @@ static void test_bad_options(void)
               !strcmp(sl_analysis_stop_name(SL_ANALYSIS_STOP_MAX_SETS), "max_sets") &&
               !strcmp(sl_analysis_stop_name(SL_ANALYSIS_STOP_FIXED), "fixed"),
           "stop names");
+    /* the defaults are the documented ones (docs/run.md, "Convergence") */
+    sl_analysis_opts_default(&o);
+    CHECK(o.band_method == SL_STATS_BAND_STUDENT && o.plan_margin == 1.1 &&
+              o.plan_growth == 2.0 && o.first_batch == 10 && o.band_level == 0.90,
+          "defaults: band %d, margin %g, growth %g", (int)o.band_method, o.plan_margin,
+          o.plan_growth);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.plan_margin = 0.9;
+    CHECK(sl_analysis_run(fl, &o, &err) == NULL && err.code == SL_EINVAL, "margin 0.9");
     sl_floor_free(fl);
 }
 
@@ -289,5 +342,6 @@ int main(void)
     RUN(test_batches_and_threads);
     RUN(test_stopping_rule);
     RUN(test_stated_se);
+    RUN(test_cap_se);
     return HARNESS_END("analysis");
 }

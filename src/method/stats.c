@@ -6,6 +6,7 @@
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 sl_status sl_stats_mean_compute(const double *x, size_t n, size_t stride, sl_stats_mean *out,
                                 sl_error *err)
@@ -124,6 +125,139 @@ sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double le
     free(v);
     sl_stats_boot_free(b);
     return SL_OK;
+}
+
+/* Mean and SE of D = min(fs m, cap) from the sums of one sample (sums over
+ * n values: s1 = sum x, s2 = sum x^2 at one mu; p1, p2 the same of pgd, or
+ * has_cap 0), SE as sl_stats_design_value. */
+static void design_from_sums(double s1, double s2, double p1, double p2, int has_cap, size_t n,
+                             double fs, double cap_factor, double *d, double *se)
+{
+    double dn = (double)n, m = s1 / dn;
+    double v = n > 1 ? (s2 - dn * m * m) / (dn - 1) : 0.0;
+    double dd = fs * m, ss = fs * sqrt(v > 0 ? v / dn : 0.0);
+    if (has_cap) {
+        double mp = p1 / dn, vp = n > 1 ? (p2 - dn * mp * mp) / (dn - 1) : 0.0;
+        double cap = cap_factor * mp;
+        if (dd > cap) {
+            dd = cap;
+            ss = cap_factor * sqrt(vp > 0 ? vp / dn : 0.0);
+        }
+    }
+    *d = dd;
+    *se = ss;
+}
+
+void sl_stats_design_value(const double *peak, size_t n, size_t n_mu, const double *pgd,
+                           double fs, double cap_factor, double *d, double *se)
+{
+    double p1 = 0, p2 = 0;
+    for (size_t i = 0; pgd && i < n; i++) {
+        p1 += pgd[i];
+        p2 += pgd[i] * pgd[i];
+    }
+    for (size_t k = 0; k < n_mu; k++) {
+        double s1 = 0, s2 = 0, dk, sk;
+        for (size_t i = 0; i < n; i++) {
+            double x = peak[i * n_mu + k];
+            s1 += x;
+            s2 += x * x;
+        }
+        design_from_sums(s1, s2, p1, p2, pgd != NULL, n, fs, cap_factor, &dk, &sk);
+        if (d)
+            d[k] = dk;
+        if (se)
+            se[k] = sk;
+    }
+}
+
+sl_status sl_stats_design_band(const double *peak, size_t n, size_t n_mu, const double *pgd,
+                               double fs, double cap_factor, size_t B, double level,
+                               uint64_t seed, sl_stats_band_method method, double *lo,
+                               double *hi, sl_error *err)
+{
+    if (!peak || n == 0 || n_mu == 0 || B == 0 || !(level > 0 && level < 1) || !lo || !hi)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "stats: bootstrap needs n, B >= 1 and a "
+                            "level in (0, 1) (level %g)", level);
+    const int student = method == SL_STATS_BAND_STUDENT;
+    size_t *idx = malloc(n * sizeof *idx);
+    double *v = malloc(B * n_mu * sizeof *v);             /* D* per mu, B each */
+    double *t = student ? malloc(B * n_mu * sizeof *t) : NULL; /* t* per mu */
+    double *s = malloc(2 * n_mu * sizeof *s);             /* sums of x and x^2 */
+    double *d0 = malloc(2 * n_mu * sizeof *d0);           /* D and SE of the sample */
+    sl_stats_boot *b = sl_stats_boot_alloc(seed, err);
+    sl_status st = SL_OK;
+    if (!idx || !v || (student && !t) || !s || !d0 || !b) {
+        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "stats: out of memory");
+        goto done;
+    }
+    double *se0 = d0 + n_mu;
+    sl_stats_design_value(peak, n, n_mu, pgd, fs, cap_factor, d0, se0);
+    for (size_t r = 0; r < B; r++) {
+        sl_stats_boot_draw(b, n, idx);
+        double p1 = 0, p2 = 0;
+        memset(s, 0, 2 * n_mu * sizeof *s);
+        for (size_t i = 0; i < n; i++) {
+            const double *row = peak + idx[i] * n_mu;
+            if (pgd) {
+                p1 += pgd[idx[i]];
+                p2 += pgd[idx[i]] * pgd[idx[i]];
+            }
+            for (size_t k = 0; k < n_mu; k++) {
+                s[2 * k] += row[k];
+                s[2 * k + 1] += row[k] * row[k];
+            }
+        }
+        for (size_t k = 0; k < n_mu; k++) {
+            double dk, sk;
+            design_from_sums(s[2 * k], s[2 * k + 1], p1, p2, pgd != NULL, n, fs, cap_factor, &dk,
+                             &sk);
+            v[k * B + r] = dk;
+            if (student) /* (3); +-inf where SE* = 0 and D* differs: handled below */
+                t[k * B + r] = dk == d0[k] ? 0.0 : (dk - d0[k]) / sk;
+        }
+    }
+    for (size_t k = 0; k < n_mu; k++) {
+        sl_stats_band(v + k * B, B, level, &lo[k], &hi[k]);
+        if (!student)
+            continue;
+        if (!(se0[k] > 0)) {
+            lo[k] = hi[k] = d0[k];
+            continue;
+        }
+        double tlo, thi;
+        sl_stats_band(t + k * B, B, level, &tlo, &thi);
+        if (isfinite(thi))
+            lo[k] = d0[k] - thi * se0[k];
+        if (isfinite(tlo))
+            hi[k] = d0[k] - tlo * se0[k];
+        if (lo[k] < 0)
+            lo[k] = 0;
+    }
+done:
+    free(idx);
+    free(v);
+    free(t);
+    free(s);
+    free(d0);
+    sl_stats_boot_free(b);
+    return st;
+}
+
+size_t sl_stats_plan_next(size_t n, double r, double margin, size_t min_batch, double growth,
+                          size_t max_sets)
+{
+    if (!(r > 1) || n >= max_sets)
+        return n;
+    double w = (double)n * r * r * margin * margin; /* (4) */
+    if (w < (double)(n + min_batch))
+        w = (double)(n + min_batch);
+    if (w > growth * (double)n)
+        w = growth * (double)n;
+    if (w > (double)max_sets)
+        w = (double)max_sets;
+    size_t want = (size_t)ceil(w);
+    return want > n ? want : n + 1;
 }
 
 double sl_stats_step(double se, double min_step, double max_step)

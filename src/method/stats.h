@@ -27,7 +27,16 @@
  *  - Percentile bootstrap (Efron and Tibshirani 1993, ch. 13): resample the
  *    n indices with replacement B times, recompute the statistic, take its
  *    (1 - level)/2 and (1 + level)/2 quantiles. The resampler is GSL's
- *    mt19937 with a given seed, so the band is reproducible.
+ *    mt19937 with a given seed, so the band is reproducible. On skewed
+ *    samples it is too narrow and sits on the wrong side (the mean of a
+ *    right-skewed sample is low exactly when its SE is low).
+ *
+ *  - Bootstrap-t (studentized; Efron and Tibshirani 1993, ch. 12.5): per
+ *    resample t* = (D* - D) / SE*, with SE* computed from the resample as SE
+ *    is from the sample; with t_a the a-quantile of t*:
+ *        band = [D - t_(1+level)/2 SE,  D - t_(1-level)/2 SE]             (3)
+ *    Second-order accurate for a mean: it widens the side towards which
+ *    the sample is skewed and allows for the error of SE itself.
  *
  * Units: whatever the caller's values carry. No allocation except where a
  * function says so; no printing.
@@ -98,6 +107,46 @@ void sl_stats_band(double *v, size_t m, double level, double *lo, double *hi);
  * SL_EINVAL / SL_ENOMEM. */
 sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double level,
                                   uint64_t seed, double *lo, double *hi, sl_error *err);
+
+/* How sl_stats_design_band builds the band. */
+typedef enum sl_stats_band_method {
+    SL_STATS_BAND_PERCENTILE = 0, /* percentile bootstrap */
+    SL_STATS_BAND_STUDENT         /* bootstrap-t, (3) (the default of the run) */
+} sl_stats_band_method;
+
+/* The design value D_k = min(fs m_k, cap) at each of n_mu friction values
+ * and its SE (stats.h; analysis.h, "Convergence"): m_k the mean of
+ * peak[i n_mu + k] over the sets i < n, cap = cap_factor x the mean of
+ * pgd[0..n-1] (pgd NULL: no cap), SE = fs s_k / sqrt(n) below the cap and
+ * cap_factor s_pgd / sqrt(n) where the cap governs. Writes d[k] and se[k]
+ * (either may be NULL). */
+void sl_stats_design_value(const double *peak, size_t n, size_t n_mu, const double *pgd,
+                           double fs, double cap_factor, double *d, double *se);
+
+/* Bootstrap band at `level` of D_k (as sl_stats_design_value) at every k:
+ * B resamples of the n sets from `seed`, each set's peaks and pgd drawn
+ * together (so the cap moves with them). Percentile: the quantiles of D*.
+ * Student: (3); where SE is 0 (every set alike) the band is [D, D]; where a
+ * quantile of t* is not finite (resamples with SE* = 0, e.g. none of the
+ * few sliding sets drawn) that end falls back to the percentile end; the
+ * low end is at least 0. Writes lo[k] <= hi[k]. Allocates its own work
+ * space (B n_mu doubles). Returns SL_OK, SL_EINVAL or SL_ENOMEM. */
+sl_status sl_stats_design_band(const double *peak, size_t n, size_t n_mu, const double *pgd,
+                               double fs, double cap_factor, size_t B, double level,
+                               uint64_t seed, sl_stats_band_method method, double *lo,
+                               double *hi, sl_error *err);
+
+/* The next motion count of a sequential run (docs/run.md, "Stopping
+ * rule"): after n sets, with r the largest SE / target over the friction
+ * values, stop (return n) when r <= 1 or n >= max_sets; else aim at
+ *     n r^2 margin^2                                                     (4)
+ * sets (SE falls as 1/sqrt(n): (4) puts the expected SE at target/margin,
+ * so that the next look passes whatever the noise of this SE, instead of
+ * looking again and again at a SE hovering at the target and stopping on a
+ * low fluctuation), at least n + min_batch, at most growth x n, at most
+ * max_sets. */
+size_t sl_stats_plan_next(size_t n, double r, double margin, size_t min_batch, double growth,
+                          size_t max_sets);
 
 /* Showing a design value at the precision its uncertainty supports:
  * the display step is the power of ten at the place of the SE's leading

@@ -86,6 +86,7 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
                                   .n_mu_skipped = an[i]->n_mu_skipped,
                                   .design_lo_m = an[i]->design_lo_m,
                                   .design_hi_m = an[i]->design_hi_m,
+                                  .design_se_m = an[i]->design_se_m,
                                   .err_est_m = an[i]->err_est_m,
                                   .sets_stop = sl_analysis_stop_name(an[i]->stop)};
         st = file_crc(fl->path, &rf[i].crc32, &rf[i].size_bytes, err);

@@ -181,11 +181,15 @@ static char *crossover_text(const sl_design *d, char *buf, size_t n)
     return buf;
 }
 
-/* The standard error of the NLTHA design value at row k, m:
- * FS_N sd / sqrt(N) below the cap, 0 where the cap governs (the cap is the
- * mean of N peak floor displacements: its own spread is not included). */
-static double design_se_m(const sl_design *d, size_t k)
+/* The standard error of the NLTHA design value at row k, m: the one the
+ * convergence statistics give (sl_report_floor.design_se_m: FS SE(mean)
+ * below the cap, the cap's SE where the cap governs); without them FS
+ * sd / sqrt(N) below the cap and 0 where the cap governs. */
+static double design_se_m(const sl_report_floor *fl, size_t k)
 {
+    if (fl->design_se_m)
+        return fl->design_se_m[k];
+    const sl_design *d = fl->design;
     const sl_design_row *w = &d->rows[k];
     if ((w->flags & SL_DESIGN_NLTHA_CAPPED) || d->n_sets < 2)
         return 0.0;
@@ -201,10 +205,10 @@ static double design_se_m(const sl_design *d, size_t k)
  * of the NLTHA design value is 1 mm or more, else 1 (stats.h:
  * sl_stats_step). An ASCE clearance comes from the floor's spectra: 1. The
  * value itself is not rounded (the Lookup interpolates the exact values). */
-static int shown_decimals(const sl_design *d, size_t k)
+static int shown_decimals(const sl_report_floor *fl, size_t k)
 {
-    const sl_design_row *w = &d->rows[k];
-    double se_mm = w->clearance_m == w->nltha_design_m ? MM_PER_M * design_se_m(d, k) : 0.0;
+    const sl_design_row *w = &fl->design->rows[k];
+    double se_mm = w->clearance_m == w->nltha_design_m ? MM_PER_M * design_se_m(fl, k) : 0.0;
     return sl_stats_step_decimals(sl_stats_step(se_mm, SHOWN_MIN_STEP_MM, SHOWN_MAX_STEP_MM));
 }
 
@@ -328,7 +332,7 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
           "clearance_mm,flags,nltha_err_est_mm\r\n", f);
     for (size_t k = 0; k < d->n; k++) {
         const sl_design_row *w = &d->rows[k];
-        const double mm[] = {w->nltha_mean_m, w->nltha_sd_m, w->nltha_design_m, design_se_m(d, k),
+        const double mm[] = {w->nltha_mean_m, w->nltha_sd_m, w->nltha_design_m, design_se_m(fl, k),
                              fl->design_lo_m ? fl->design_lo_m[k] : NAN,
                              fl->design_hi_m ? fl->design_hi_m[k] : NAN,
                              w->asce_best_m, w->asce_design_m, w->cap_m, w->clearance_m};
@@ -380,7 +384,7 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
             double v = MM_PER_M * r->floors[i].design->rows[k].clearance_m;
             fputc(',', f);
             if (isfinite(v))
-                fprintf(f, "%.*f", shown_decimals(r->floors[i].design, k), v);
+                fprintf(f, "%.*f", shown_decimals(&r->floors[i], k), v);
         }
         fputs("\r\n", f);
     }
@@ -685,10 +689,10 @@ static void data_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, cons
         for (size_t i = 0; i < nf; i++) {
             const sl_design *d = r->floors[i].design;
             const sl_design_row *w = &d->rows[k];
-            worksheet_write_number(ws, row, data_col_se(nf, i), MM_PER_M * design_se_m(d, k), F->mm);
+            const sl_report_floor *fl = &r->floors[i];
+            worksheet_write_number(ws, row, data_col_se(nf, i), MM_PER_M * design_se_m(fl, k), F->mm);
             sl_report_flags(w->flags, flags, sizeof flags);
             worksheet_write_string(ws, row, data_col_flags(nf, i), flags[0] ? flags : "-", NULL);
-            const sl_report_floor *fl = &r->floors[i];
             const double v[DS_N] = {w->nltha_design_m, w->asce_design_m, w->nltha_mean_m, w->cap_m,
                                     w->clearance_m, fl->design_lo_m ? fl->design_lo_m[k] : NAN,
                                     fl->design_hi_m ? fl->design_hi_m[k] : NAN};
@@ -866,7 +870,7 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, siz
         worksheet_write_number(ws, row, 1, w->x, F->ratio);
         write_num_or_blank(ws, row, 2, MM_PER_M * w->nltha_mean_m, F->mm);
         write_num_or_blank(ws, row, 3, MM_PER_M * w->nltha_design_m, F->mm);
-        write_num_or_blank(ws, row, 4, MM_PER_M * design_se_m(d, k), F->mm);
+        write_num_or_blank(ws, row, 4, MM_PER_M * design_se_m(fl, k), F->mm);
         write_num_or_blank(ws, row, 5, MM_PER_M * w->asce_best_m, F->mm);
         write_num_or_blank(ws, row, 6, MM_PER_M * w->asce_design_m, F->mm);
         write_num_or_blank(ws, row, 7, MM_PER_M * w->cap_m, F->mm);
@@ -909,7 +913,7 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
         for (size_t i = 0; i < nf; i++) {
             write_num_or_blank(ws, row, (lxw_col_t)(i + 1),
                                MM_PER_M * r->floors[i].design->rows[k].clearance_m,
-                               shown_decimals(r->floors[i].design, k) ? F->mm : F->mm0);
+                               shown_decimals(&r->floors[i], k) ? F->mm : F->mm0);
         }
     }
     lxw_row_t b = (lxw_row_t)(SUM_HEAD + n + 2);
@@ -1101,7 +1105,8 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              DATA_HEAD + 1 + n);
     worksheet_write_string(ws, LK_SE, 0,
                            "Standard error of the NLTHA design value, mm (design factor x sd / "
-                           "sqrt(number of motion sets); 0 where the cap governs)", F->bold);
+                           "sqrt(number of motion sets); where the cap governs, the cap's: "
+                           "1.5 x sd of the floor displacements / sqrt(number of sets))", F->bold);
     snprintf(f, sizeof f,
              "=IF(B%d<>\"ok\",\"\",INDEX(%s,B%d,B%d)+IF(B%d=B%d,0,(B%d-B%d)*(INDEX(%s,MIN(B%d+1,%zu),"
              "B%d)-INDEX(%s,B%d,B%d))/(B%d-B%d)))",
@@ -1110,7 +1115,7 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              LK_MU1 + 1, LK_MU0 + 1);
     double se = 0;
     if (ok) {
-        double s0 = design_se_m(dsel, k0), s1 = design_se_m(dsel, k1);
+        double s0 = design_se_m(&r->floors[fi], k0), s1 = design_se_m(&r->floors[fi], k1);
         double m0 = dsel->rows[k0].mu, m1 = dsel->rows[k1].mu;
         se = MM_PER_M * (s0 + (m1 == m0 ? 0 : (mu0 - m0) * (s1 - s0) / (m1 - m0)));
     }
@@ -1252,8 +1257,9 @@ static void notes_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              "the larger. Between grid values of mu the clearance is interpolated linearly.",
              sl_clearance_policy_name(d->policy));
     snprintf(t[k++], sizeof t[0], "Uncertainty: the NLTHA mean of %zu sets has a standard error "
-             "of sd / sqrt(%zu); the design value's standard error (design factor x that) is shown "
-             "per row and on the Lookup. Another seed gives values within about two standard "
+             "of sd / sqrt(%zu); the design value's standard error (design factor x that; where the "
+             "cap governs, the cap's: 1.5 x the standard error of the mean floor displacement) is "
+             "shown per row and on the Lookup. Another seed gives values within about two standard "
              "errors. The factor 3.0 covers record-to-record variability, not modelling error.",
              d->n_sets, d->n_sets);
     snprintf(t[k++], sizeof t[0], "Limits: values at mu outside the table are not extrapolated. "

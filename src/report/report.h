@@ -50,6 +50,11 @@ typedef struct sl_report_floor {
      * of the design rows only): per row of the design, the 90 % band of the
      * NLTHA design value, m. */
     const double *design_lo_m, *design_hi_m;
+    /* Per row: the standard error of the NLTHA design value, m, as the
+     * convergence statistics give it: FS SE(mean) below the cap, the cap's
+     * own SE (1.5 SE of the mean PGD) where the cap governs. NULL: FS
+     * sd/sqrt(N) of the design rows below the cap, 0 where it governs. */
+    const double *design_se_m;
     /* Per row: the largest estimated integration error of any motion's peak
      * (the engine's err_est_m), m; NULL: not computed. */
     const double *err_est_m;

@@ -1,0 +1,193 @@
+/* converge-pool.c - the stopping rule and the band in the bootstrap world of
+ * a pool of real motion sets (docs/run.md, "Convergence"): cheaper than
+ * tests/converge-bruteforce.sh (the sets are synthesized and analysed once),
+ * for hundreds of simulated runs instead of 20. Not part of `make test`.
+ *
+ *   cc -std=c11 -O2 -fopenmp -D_XOPEN_SOURCE=700 -Isrc -o /tmp/converge-pool \
+ *      tests/converge-pool.c build/libseislide.a -lgsl -lgslcblas -lm -lfftw3 \
+ *      -lxlsxwriter -linih -lz
+ *   /tmp/converge-pool pool FLOOR.ini N SEED > pool.txt   (N sets, default mu grid:
+ *                                                          a line per set: PGD, 76 peaks, m)
+ *   /tmp/converge-pool sim pool.txt FIRST MARGIN GROWTH RUNS [B [FIXED]]
+ *
+ * `sim` treats the pool as the population (its design value is the truth):
+ * each run draws sets from it with replacement and applies the stopping rule
+ * (default targets 5 %, 1 mm; sl_stats_plan_next with MARGIN and GROWTH;
+ * FIXED > 0: that many sets instead), then prints the mean sets per run, the
+ * RMS stated SE over the scatter of the design value (range over mu and
+ * mean), how often the actual SE (the pool's, at the run's count) misses
+ * the target, and, with B > 0 resamples, how often the bootstrap-t and the
+ * percentile bands hold the truth. */
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis.h"
+#include "slide/slide.h"
+
+#define K 76
+#define NMAX 200
+#define PMAX 2000
+
+static int pool(const char *path, size_t N, uint64_t seed)
+{
+    sl_error err;
+    sl_floor *fl = sl_floor_load(path, &err);
+    if (!fl)
+        return 1;
+    double mu[K];
+    for (int k = 0; k < K; k++)
+        mu[k] = 0.05 + 0.01 * k;
+    sl_synth_params sp;
+    sl_synth_params_default(&sp);
+    sl_synth_target tgt[SL_SYNTH_NCOMP];
+    if (sl_synth_targets_floor(fl, 0.0, tgt, &err))
+        return 1;
+    size_t n_t = (size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1;
+    sl_synth *plan = sl_synth_alloc(n_t, SL_SYNTH_DT_S, &sp, &err);
+    sl_synth_set *ss = calloc(N, sizeof *ss);
+    sl_set *sets = calloc(N, sizeof *sets);
+    sl_slide_result *res = calloc(N * K, sizeof *res);
+    if (!plan || !ss || !sets || !res)
+        return 1;
+    sl_synth_make_sets(plan, tgt, sl_analysis_floor_seed(seed, fl), 0, N, ss, NULL, NULL, &err);
+    for (size_t s = 0; s < N; s++)
+        sets[s] = ss[s].set;
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    if (sl_slide_batch(sets, N, mu, K, &so, res, &err))
+        return 1;
+    for (size_t s = 0; s < N; s++) {
+        printf("%.9g", sl_set_pgd_100_40(&sets[s]));
+        for (int k = 0; k < K; k++)
+            printf(" %.9g", res[s * K + k].peak_m);
+        printf("\n");
+    }
+    return 0;
+}
+
+static double P[PMAX][K + 1];
+
+static int sim(int argc, char **argv)
+{
+    FILE *f = fopen(argv[2], "r");
+    size_t np = 0;
+    while (f && np < PMAX && fscanf(f, "%lf", &P[np][0]) == 1) {
+        for (int k = 1; k <= K; k++)
+            if (fscanf(f, "%lf", &P[np][k]) != 1)
+                return 1;
+        np++;
+    }
+    if (f)
+        fclose(f);
+    if (np < 2)
+        return 1;
+    size_t first = (size_t)atoi(argv[3]), R = (size_t)atoi(argv[6]);
+    double margin = atof(argv[4]), growth = atof(argv[5]);
+    size_t B = argc > 7 ? (size_t)atoi(argv[7]) : 0, fixed = argc > 8 ? (size_t)atoi(argv[8]) : 0;
+    static double pk[PMAX * K], pg[PMAX];
+    double truth[K];
+    for (size_t i = 0; i < np; i++) {
+        pg[i] = P[i][0];
+        for (int k = 0; k < K; k++)
+            pk[i * K + k] = P[i][k + 1];
+    }
+    double se_pop[K]; /* the SE of a run of n sets is se_pop sqrt(np / n) */
+    sl_stats_design_value(pk, np, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, truth, se_pop);
+    size_t miss_any = 0, miss_mu = 0;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 11);
+    double sd[K] = {0}, sdd[K] = {0}, sse2[K] = {0}, ns = 0;
+    size_t cov_t[K] = {0}, cov_p[K] = {0};
+    for (size_t r = 0; r < R; r++) {
+        size_t n = 0, want = fixed ? fixed : first;
+        double D[K], SE[K];
+        for (;;) {
+            for (; n < want; n++) {
+                size_t j = gsl_rng_uniform_int(rng, np);
+                pg[n] = P[j][0];
+                for (int k = 0; k < K; k++)
+                    pk[n * K + k] = P[j][k + 1];
+            }
+            sl_stats_design_value(pk, n, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, D, SE);
+            double worst = 0;
+            for (int k = 0; k < K; k++) {
+                double t = fmax(SL_ANALYSIS_REL_SE * D[k], SL_ANALYSIS_ABS_SE_M);
+                worst = fmax(worst, SE[k] / t);
+            }
+            size_t next = fixed ? n : sl_stats_plan_next(n, worst, margin, SL_ANALYSIS_MIN_BATCH,
+                                                         growth, NMAX);
+            if (next == n)
+                break;
+            want = next;
+        }
+        ns += (double)n;
+        /* does the actual SE (of the population, at n sets) meet the target of the truth? */
+        size_t miss = 0;
+        for (int k = 0; k < K; k++)
+            miss += se_pop[k] * sqrt((double)np / (double)n) >
+                    fmax(SL_ANALYSIS_REL_SE * truth[k], SL_ANALYSIS_ABS_SE_M);
+        miss_any += miss > 0;
+        miss_mu += miss;
+        if (B) {
+            double lo[K], hi[K], lp[K], hp[K];
+            sl_stats_design_band(pk, n, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, B, 0.9, 100 + r,
+                                 SL_STATS_BAND_STUDENT, lo, hi, NULL);
+            sl_stats_design_band(pk, n, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, B, 0.9, 100 + r,
+                                 SL_STATS_BAND_PERCENTILE, lp, hp, NULL);
+            for (int k = 0; k < K; k++) {
+                cov_t[k] += lo[k] <= truth[k] && truth[k] <= hi[k];
+                cov_p[k] += lp[k] <= truth[k] && truth[k] <= hp[k];
+            }
+        }
+        for (int k = 0; k < K; k++) {
+            sd[k] += D[k];
+            sdd[k] += D[k] * D[k];
+            sse2[k] += SE[k] * SE[k];
+        }
+    }
+    double rs = 0, rmin = 1e9, rmax = 0, ct = 0, cp = 0;
+    int nk = 0, nc = 0;
+    for (int k = 0; k < K; k++) {
+        double m = sd[k] / (double)R, v = (sdd[k] - (double)R * m * m) / (double)(R - 1);
+        if (!(v > 0))
+            continue;
+        double q = sqrt(sse2[k] / (double)R) / sqrt(v);
+        rs += q;
+        nk++;
+        rmin = fmin(rmin, q);
+        rmax = fmax(rmax, q);
+        if (truth[k] >= 1e-3) { /* as converge-bruteforce.sh: design >= 1 mm */
+            ct += (double)cov_t[k] / (double)R;
+            cp += (double)cov_p[k] / (double)R;
+            nc++;
+        }
+        if (getenv("VERBOSE"))
+            printf("mu %.2f: truth %.4f m, stated SE / scatter %.3f, bootstrap-t %.3f, "
+                   "percentile %.3f\n", 0.05 + 0.01 * k, truth[k], q,
+                   (double)cov_t[k] / (double)R, (double)cov_p[k] / (double)R);
+    }
+    printf("first %zu, margin %.2f, growth %.1f, fixed %zu, %zu runs from %zu sets: %.1f sets per "
+           "run; stated SE / scatter %.3f to %.3f, mean %.3f", first, margin, growth, fixed, R, np,
+           ns / (double)R, rmin, rmax, rs / nk);
+    printf("; actual SE above the target: in %.2f of the runs, at %.3f of the mu",
+           (double)miss_any / (double)R, (double)miss_mu / (double)(R * K));
+    if (B)
+        printf("; band holds the truth (mu with design >= 1 mm): bootstrap-t %.3f, percentile "
+               "%.3f", ct / nc, cp / nc);
+    printf("\n");
+    gsl_rng_free(rng);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 5 && !strcmp(argv[1], "pool"))
+        return pool(argv[2], (size_t)atoi(argv[3]), (uint64_t)atoll(argv[4]));
+    if (argc >= 7 && !strcmp(argv[1], "sim"))
+        return sim(argc, argv);
+    fprintf(stderr, "usage: see the comment at the top of tests/converge-pool.c\n");
+    return 2;
+}
