@@ -22,7 +22,8 @@
 #define SYNTH_COARSE_STRIDE 3
 #define SYNTH_COARSE_SPP 6.0
 /* Multirate ratio of the coarse phase's spectrum (spectrum.h eq. M1): each
- * oscillator at f runs at the lowest rate fs/2^l >= SYNTH_COARSE_RATIO f. */
+ * oscillator at f runs at the lowest rate fs/2^l >= SYNTH_COARSE_RATIO f.
+ * Synthetic motions only; records keep the single-rate coarse spectrum. */
 #define SYNTH_COARSE_RATIO 20.0
 /* Over-relaxation of the correction: X_k *= r^SYNTH_RELAX (1.6: 10 iterations
  * per component against 16 at 1.0, RG 1.60, 12 sets). */
@@ -499,6 +500,9 @@ struct sl_synth_motion {
     sl_spectrum_plan *plan_full, *plan_coarse;
     size_t plan_lo, plan_hi;
     double plan_zeta;
+    int plan_record;       /* records: coarse phase without multirate (its worst
+                            * error, 10 % at 0.1 Hz on records, steers a
+                            * dead-band match astray: docs/synthesis.md 3.2) */
     size_t *cidx;          /* ngrid: grid index of each coarse point */
     size_t ncoarse;
     double *cval;          /* ngrid: coarse spectrum values */
@@ -689,7 +693,7 @@ static sl_status make_plans(sl_synth_motion *m, sl_error *err)
 {
     const sl_synth *s = m->s;
     if (m->plan_full && m->plan_lo == m->j_lo && m->plan_hi == m->j_hi &&
-        m->plan_zeta == m->damping)
+        m->plan_zeta == m->damping && m->plan_record == m->record)
         return SL_OK;
     sl_spectrum_plan_free(m->plan_full);
     sl_spectrum_plan_free(m->plan_coarse);
@@ -711,7 +715,7 @@ static sl_status make_plans(sl_synth_motion *m, sl_error *err)
     o.free_vibration = 0; /* coarse: no free-vibration tail (about 10 % of the time) */
     if (m->plan_full)
         m->plan_coarse = sl_spectrum_plan_alloc(s->n, s->dt, m->cval, nc, m->damping, &o,
-                                                SYNTH_COARSE_RATIO, err);
+                                                m->record ? 0.0 : SYNTH_COARSE_RATIO, err);
     if (!m->plan_full || !m->plan_coarse) {
         sl_spectrum_plan_free(m->plan_full);
         m->plan_full = NULL;
@@ -720,6 +724,7 @@ static sl_status make_plans(sl_synth_motion *m, sl_error *err)
     m->plan_lo = m->j_lo;
     m->plan_hi = m->j_hi;
     m->plan_zeta = m->damping;
+    m->plan_record = m->record;
     return SL_OK;
 }
 
