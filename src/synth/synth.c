@@ -36,9 +36,8 @@
 /* Largest FFT length accepted (a guard against absurd options). */
 #define SYNTH_MAX_NFFT ((size_t)1 << 28)
 /* The FFT length's only prime factors (FFTW's fastest codelets). */
-/* The target's rigid range: its checked points from the last one where
- * T > SYNTH_RIGID_RATIO x ZPA up to its end (no upward correction there,
- * sl_synth_iterate eq. 2r). RG 1.60: 1.1 x PGA is reached near 30 Hz. */
+/* A target is rigid at its end when its SA at the last frequency is within
+ * this factor of its ZPA (set_target; compress_peaks eq. C2). */
 #define SYNTH_RIGID_RATIO 1.1
 
 static const unsigned synth_small_primes[] = {2, 3, 5, 7};
@@ -484,7 +483,6 @@ struct sl_synth_motion {
     double level;          /* compression level / ZPA (peak_level()) */
     int record;            /* started from a record: dead-band correction */
     size_t j_lo, j_hi;     /* checked grid points [j_lo, j_hi) */
-    size_t j_rigid;        /* first grid point of the target's rigid range */
     int rigid_end;         /* the target's end SA within SYNTH_RIGID_RATIO of its ZPA */
     unsigned iter;         /* iterations since set_* */
     unsigned attempt;
@@ -596,20 +594,13 @@ static sl_status set_target(sl_synth_motion *m, const sl_synth_target *t, sl_err
             m->tgt[j] = NAN;
         }
     }
-    /* The target's rigid range [j_rigid, j_hi): above the last checked
-     * point where T > SYNTH_RIGID_RATIO x ZPA (sl_synth_iterate, eq. 2r). */
-    m->j_rigid = m->j_hi;
-    /* Only a target whose end agrees with its ZPA (T at its last frequency
-     * within a factor SYNTH_RIGID_RATIO of the ZPA) has one; otherwise the
-     * ZPA and the spectrum disagree and the low PGA is reported
-     * (sl_synth_check.pga_zpa), not forced. */
+    /* Rigid at its end: T at the last frequency within a factor
+     * SYNTH_RIGID_RATIO of the ZPA (compress_peaks eq. C2 raises the PGA
+     * of such targets' motions). Otherwise the ZPA and the spectrum
+     * disagree, and the low PGA is reported (sl_synth_check.pga_zpa), not
+     * forced. */
     const double tend = t->spec->sa_ms2[t->spec->n - 1];
     m->rigid_end = tend <= SYNTH_RIGID_RATIO * m->zpa && tend * SYNTH_RIGID_RATIO >= m->zpa;
-    for (size_t j = m->j_hi; m->rigid_end && j-- > m->j_lo;) {
-        if (m->tgt[j] > SYNTH_RIGID_RATIO * m->zpa)
-            break;
-        m->j_rigid = j;
-    }
     if (m->j_lo >= m->j_hi)
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "synth: the target (%g-%g Hz) does not overlap the check grid "
@@ -790,11 +781,15 @@ static size_t compress_peaks(sl_synth_motion *m, double level, double knee)
     double pk = 0;
     for (size_t i = 0; i < n; i++)
         pk = fabs(a[i]) > pk ? fabs(a[i]) : pk;
-    /* Synthetic motions for a target rigid at its end (set_target) with
-     * P < L are expanded (eq. C2): K = knee x P and
-     * the same map y(x) = K + (x - K)(L - K)/(P - K) now takes [K, P] onto
-     * [K, L] with a gain > 1, so the strongest half-cycles' high-frequency
-     * part brings the PGA up to about L (records: compression only). */
+    /* Expansion (eq. C2; synthetic motions for a target rigid at its end,
+     * set_target): when P < L, K = knee x P and the same map
+     *     y(x) = K + (x - K)(L - K)/(P - K)
+     * takes [K, P] onto [K, L] with a gain > 1: the high-frequency part of
+     * the half-cycles above knee x P is raised so that the PGA comes to
+     * about L. Without it the correction lifts SA at the rigid end by
+     * resonant content near the end frequency instead of by the peak
+     * (SA(50 Hz)/PGA 1.10-1.22, PGA 0.86-0.93 ZPA on physical floor
+     * spectra; docs/synthesis.md 3.3, 10). Records: compression only. */
     double K = knee * level;
     if (!(pk > level) && (m->record || !m->rigid_end || !(pk > 0)))
         return 0;
@@ -1073,13 +1068,6 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
                                 s->grid[j]);
         }
         m->lnr[j] = x < lo ? lo : x > hi ? hi : x;
-        /* Synthetic motions, rigid range of the target: no upward
-         * correction, ln r_m <- min(ln r_m, 0) (eq. 2r). There SA -> PGA,
-         * and the PGA is raised in the time domain (compress_peaks): an
-         * upward boost would put resonant content near the end frequency
-         * that the physical floor motions lack (docs/synthesis.md 3.2, 10). */
-        if (!m->record && j >= m->j_rigid && m->lnr[j] > 0)
-            m->lnr[j] = 0;
         for (size_t q = jprev + 1; q < j; q++) /* coarse phase: linear between */
             m->lnr[q] = m->lnr[jprev] +
                         (m->lnr[j] - m->lnr[jprev]) * (double)(q - jprev) / (double)(j - jprev);
