@@ -33,6 +33,9 @@
  *           f_c (half the frequency of the target's largest SA) is scaled in
  *           each half-cycle whose peak x > K = knee L by y(x)/x,
  *           y = K + (x - K)(L - K)/(P - K)        (order-preserving, no flat tops)
+ *           and, for synthetic motions of a target whose SA at its last
+ *           frequency is within 1.1 of its ZPA, when P < L the same map with
+ *           K = knee P raises the peak to about L (expansion; docs 3.3 C2)
  *     a    -= (c0 + c1 t/T) (t/T)(1 - t/T)            baseline: v(T) = d(T) = 0
  *     S_m   = PSA of a at f_m, at the target's damping  (spectrum.h)
  * A coarse phase first evaluates S at every 3rd grid point on 6 sub-steps
