@@ -14,6 +14,9 @@
  *  3. the ASCE/SEI 43-05 method on the floor's 10 %-damped spectra (asce.h),
  *     or, when the file lacks them, on the mean 10 %-damped spectra of the
  *     synthesized motions (the documented fallback, stated in `note`);
+ *     every damping of the file other than the one matched (its 10 % table
+ *     among them) is checked against the motions' own spectra, the set mean
+ *     over all the floor's sets (dampings[]; reported, not a pass condition);
  *  4. design spectra, cap, crossover and clearance (design.h).
  *
  * Convergence (docs/run.md, "Convergence"). The NLTHA design value at mu is
