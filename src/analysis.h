@@ -14,6 +14,9 @@
  *  3. the ASCE/SEI 43-05 method on the floor's 10 %-damped spectra (asce.h),
  *     or, when the file lacks them, on the mean 10 %-damped spectra of the
  *     synthesized motions (the documented fallback, stated in `note`);
+ *     every damping of the file other than the one matched (its 10 % table
+ *     among them) is checked against the motions' own spectra, the set mean
+ *     over all the floor's sets (dampings[]; reported, not a pass condition);
  *  4. design spectra, cap, crossover and clearance (design.h).
  *
  * Convergence (docs/run.md, "Convergence"). The NLTHA design value at mu is
@@ -105,6 +108,20 @@ void sl_analysis_opts_default(sl_analysis_opts *o);
 /* The statistics of the NLTHA design value at one mu: stats.h. */
 typedef sl_stats_conv sl_analysis_conv;
 
+/* One other damping of a floor file checked on the motions' own spectra
+ * (sl_synth_check_dampings on all the floor's sets; docs/run.md, "Every
+ * damping of a floor file"): the mean over the sets of S/T, S the motions'
+ * spectrum at that damping, T the file's table, on the synthesis check grid
+ * inside the table's range. Reported, not a pass condition. */
+typedef struct sl_analysis_damping {
+    sl_synth_comp comp;          /* H1, H2 or V */
+    double damping;              /* the table's damping ratio */
+    double set_min, set_max;     /* lowest and highest set-mean S/T over the grid */
+    double f_min_hz, f_max_hz;   /* where */
+    int ok;                      /* within [lim_lo, lim_hi] */
+} sl_analysis_damping;
+#define SL_ANALYSIS_MAX_DAMPINGS (SL_SYNTH_NCOMP * SL_SYNTH_MAX_OTHER)
+
 typedef struct sl_analysis {
     sl_design *design;
     sl_analysis_conv *conv;     /* one per mu, as design->rows */
@@ -129,6 +146,12 @@ typedef struct sl_analysis {
     double time_synth_s, time_nltha_s, time_asce_s; /* wall time of each step, s */
     double time_stats_s;        /* wall time of the convergence statistics and band, s */
     char note[512];             /* what a reader must know ("" when nothing) */
+    /* every damping of the floor file other than the one matched, per
+     * component in file order (n_dampings = 0: the file gives one) */
+    size_t n_dampings;
+    sl_analysis_damping dampings[SL_ANALYSIS_MAX_DAMPINGS];
+    double damping_lim_lo, damping_lim_hi; /* the limits of the set mean (0.9, 1.3) */
+    int dampings_ok;            /* 1: every one within the limits (or none) */
 } sl_analysis;
 
 /* Run the study of one floor. Returns NULL and fills err on failure (bad
@@ -138,6 +161,11 @@ typedef struct sl_analysis {
 sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err);
 
 void sl_analysis_free(sl_analysis *a);
+
+/* The other-damping check of a as text into buf (size n): "none" when the
+ * file gives one damping, else "H1 10 %: 0.931-1.118 ok; H1 2 %: ... OUTSIDE;
+ * ..." (set-mean S/T lowest-highest, verdict). Returns buf. */
+const char *sl_analysis_dampings_text(const sl_analysis *a, char *buf, size_t n);
 
 /* The seed used for a floor (see "Seed" above). */
 uint64_t sl_analysis_floor_seed(uint64_t seed, const sl_floor *fl);

@@ -151,6 +151,49 @@ static void test_batches_and_threads(void)
         CHECK(fx->stop == SL_ANALYSIS_STOP_FIXED && fx->n_batches == 1, "fixed");
         CHECK(same_rows(ad, fx), "batches change the result");
         CHECK(same_rows(fx, one), "threads change the result");
+        /* every other damping of the file (2 %, 10 % per component), the set
+         * mean over all 5 sets whatever the batches (2, 4, 5): the adaptive
+         * run equals the fixed one; the mean of S/T lies between the sets'
+         * own lowest and highest; the verdict is the limits' */
+        CHECK(ad->n_dampings == 6 && fx->n_dampings == 6, "dampings %zu %zu", ad->n_dampings,
+              fx->n_dampings);
+        for (size_t q = 0; q < fx->n_dampings && q < ad->n_dampings; q++) {
+            const sl_analysis_damping *x = &ad->dampings[q], *y = &fx->dampings[q];
+            CHECK(x->set_min == y->set_min && x->set_max == y->set_max && x->ok == y->ok,
+                  "damping %zu: adaptive %g-%g, fixed %g-%g", q, x->set_min, x->set_max,
+                  y->set_min, y->set_max);
+            CHECK((int)y->comp == (int)(q / 2) && y->damping == (q % 2 ? 0.10 : 0.02),
+                  "damping %zu: comp %d, %g", q, (int)y->comp, y->damping);
+            double lo = INFINITY, hi = -INFINITY;
+            for (size_t k = 0; k < fx->n_sets; k++) {
+                const sl_synth_other *ot = &fx->sets[k].check[y->comp].other[q % 2];
+                lo = fmin(lo, ot->min_ratio);
+                hi = fmax(hi, ot->max_ratio);
+            }
+            CHECK(lo <= y->set_min && y->set_min <= y->set_max && y->set_max <= hi &&
+                      y->set_min > 0.5 && y->set_max < 2,
+                  "damping %zu: set mean %g-%g, motions %g-%g", q, y->set_min, y->set_max, lo, hi);
+            CHECK(y->ok == (y->set_min >= fx->damping_lim_lo && y->set_max <= fx->damping_lim_hi),
+                  "damping %zu: verdict", q);
+        }
+        CHECK(fx->damping_lim_lo == 0.9 && fx->damping_lim_hi == 1.3, "limits %g %g",
+              fx->damping_lim_lo, fx->damping_lim_hi);
+        /* the set mean is over every set: the same call on all 5 sets of the
+         * run (a plan as analysis.c makes it) gives the stored values */
+        sl_synth_params sp;
+        sl_synth_params_default(&sp);
+        sl_synth *plan = sl_synth_alloc((size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1,
+                                        SL_SYNTH_DT_S, &sp, &err);
+        CHECK(plan && !sl_synth_check_dampings(plan, fl, fx->sets, fx->n_sets, &err),
+              "check_dampings: %s", err.msg);
+        for (size_t q = 0; plan && q < fx->n_dampings; q++) {
+            const sl_analysis_damping *y = &fx->dampings[q];
+            const sl_synth_other *ot = &fx->sets[0].check[y->comp].other[q % 2];
+            CHECK(ot->set_min == y->set_min && ot->set_max == y->set_max,
+                  "damping %zu: stored %g-%g, all sets %g-%g", q, y->set_min, y->set_max,
+                  ot->set_min, ot->set_max);
+        }
+        sl_synth_free(plan);
         for (size_t k = 0; k < 3; k++) {
             const sl_analysis_conv *c = &fx->conv[k];
             const sl_design_row *r = &fx->design->rows[k];

@@ -31,6 +31,14 @@ void run_report_floor(size_t i, size_t n, const char *name, const sl_analysis *q
                 q->stop == SL_ANALYSIS_STOP_CONVERGED ? "converged"
                                                       : "NOT converged, --max-sets reached",
                 100 * q->worst_rel_se);
+    char dt[1024];
+    if (q->n_dampings == 0)
+        cli_msg("run: floor '%s': other dampings: none (the file gives one)", name);
+    else
+        cli_msg("run: floor '%s': other dampings against the motions' own spectra (set mean S/T "
+                "of %zu sets, limits %g-%g; reported, not a pass condition): %s", name,
+                q->n_sets, q->damping_lim_lo, q->damping_lim_hi,
+                sl_analysis_dampings_text(q, dt, sizeof dt));
     cli_msg("run: floor '%s': wall time: synthesis %.2f s, NLTHA %.2f s, statistics "
             "%.3f s, ASCE and design %.3f s (%.3f s per set)", name, q->time_synth_s,
             q->time_nltha_s, q->time_stats_s, q->time_asce_s,

@@ -70,8 +70,9 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
     sl_report_floor *rf = calloc(n, sizeof *rf);
     sl_report_quality *rq = calloc(nq ? nq : 1, sizeof *rq);
     char (*why)[160] = calloc(nq ? nq : 1, sizeof *why);
+    char (*damp)[1024] = calloc(n, sizeof *damp);
     sl_status st = SL_OK;
-    if (!rf || !rq || !why) {
+    if (!rf || !rq || !why || !damp) {
         st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
         goto done;
     }
@@ -88,7 +89,18 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
                                   .design_hi_m = an[i]->design_hi_m,
                                   .design_se_m = an[i]->design_se_m,
                                   .err_est_m = an[i]->err_est_m,
-                                  .sets_stop = sl_analysis_stop_name(an[i]->stop)};
+                                  .sets_stop = sl_analysis_stop_name(an[i]->stop),
+                                  .dampings = sl_analysis_dampings_text(an[i], damp[i],
+                                                                        sizeof damp[i]),
+                                  .dampings_min = NAN, .dampings_max = NAN,
+                                  .dampings_ok = an[i]->dampings_ok};
+        for (size_t k = 0; k < an[i]->n_dampings; k++) {
+            const sl_analysis_damping *dk = &an[i]->dampings[k];
+            rf[i].dampings_min = isnan(rf[i].dampings_min) ? dk->set_min
+                                                           : fmin(rf[i].dampings_min, dk->set_min);
+            rf[i].dampings_max = isnan(rf[i].dampings_max) ? dk->set_max
+                                                           : fmax(rf[i].dampings_max, dk->set_max);
+        }
         st = file_crc(fl->path, &rf[i].crc32, &rf[i].size_bytes, err);
         for (size_t s = 0; s < an[i]->n_sets; s++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++, q++) {
@@ -155,6 +167,7 @@ done:
     free(rf);
     free(rq);
     free(why);
+    free(damp);
     return st;
 }
 

@@ -271,6 +271,12 @@ static void csv_num(FILE *f, double v, const char *fmt)
     /* an empty field for a value that does not exist */
 }
 
+/* 1 when the floor's file gives dampings other than the one matched. */
+static int has_dampings(const sl_report_floor *fl)
+{
+    return fl->dampings && *fl->dampings && strcmp(fl->dampings, "none") != 0;
+}
+
 /* A comment line "# key: value" (line breaks in value become blanks). */
 static void csv_comment(FILE *f, const char *key, const char *value)
 {
@@ -397,8 +403,15 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     csv_head(f, r, "one row per floor; the ASCE-below-NLTHA ranges are in asce_below_nltha.csv");
     csv_comment(f, "crossover", "the mu where 2.0 x ASCE rises above 3.0 x NLTHA mean when ASCE is "
                 "below NLTHA at the lowest mu of the grid; 'none' otherwise (docs/run.md)");
+    csv_comment(f, "other_dampings", "every damping of the floor file other than the one "
+                "matched, its table against the motions' own spectra at that damping: lowest and "
+                "highest set-mean S/T over all of them, ok when each is within the synthesis "
+                "limits (0.9-1.3), 'none' when the file gives one damping; reported, not a pass "
+                "condition (docs/run.md)");
     fputs("floor_id,floor,file,elevation_m,zpa_h_g,crossover_mu,crossover_mu_g_over_zpa,"
-          "n_asce_below_nltha_ranges,clearance_policy,mu_without_nltha,n_sets,sets_stop,note\r\n",
+          "n_asce_below_nltha_ranges,clearance_policy,mu_without_nltha,n_sets,sets_stop,note,"
+          "other_dampings_min_ratio,other_dampings_max_ratio,other_dampings_check,"
+          "other_dampings\r\n",
           f);
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
@@ -417,6 +430,16 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         fprintf(f, ",%zu,%s,%zu,%zu,%s,", d->n_ranges, sl_clearance_policy_name(d->policy),
                 fl->n_mu_skipped, d->n_sets, fl->sets_stop ? fl->sets_stop : "");
         csv_field(f, fl->note && *fl->note ? fl->note : "");
+        if (has_dampings(fl)) {
+            fputc(',', f);
+            csv_num(f, fl->dampings_min, "%.4f");
+            fputc(',', f);
+            csv_num(f, fl->dampings_max, "%.4f");
+            fprintf(f, ",%s,", fl->dampings_ok ? "ok" : "outside");
+            csv_field(f, fl->dampings);
+        } else {
+            fputs(",none,none,none,none", f);
+        }
         fputs("\r\n", f);
     }
     if (sl_atomic_commit(a, err))
@@ -934,7 +957,15 @@ static void summary_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, c
         worksheet_write_number(ws, b + 4, c, fl->zpa_h_ms2 / SL_G, F->ratio);
         worksheet_write_string(ws, b + 5, c, crossover_text(fl->design, buf, sizeof buf), NULL);
         worksheet_write_string(ws, b + 6, c, sl_report_ranges_text(fl->design, buf, sizeof buf), NULL);
-        worksheet_write_string(ws, b + 7, c, or_dash(fl->note), NULL);
+        if (has_dampings(fl)) {
+            char nb[2048];
+            snprintf(nb, sizeof nb, "%s%sother dampings, set-mean S/T of the motions' own "
+                     "spectra to the file's table: %s", fl->note ? fl->note : "",
+                     fl->note && *fl->note ? "\n" : "", fl->dampings);
+            worksheet_write_string(ws, b + 7, c, nb, NULL);
+        } else {
+            worksheet_write_string(ws, b + 7, c, or_dash(fl->note), NULL);
+        }
         worksheet_write_number(ws, b + 8, c, (double)fl->design->n_sets, NULL);
         worksheet_write_string(ws, b + 9, c, or_dash(fl->sets_stop), NULL);
     }

@@ -60,6 +60,13 @@ typedef struct sl_report_floor {
     const double *err_est_m;
     const char *sets_stop;   /* why the floor stopped adding motion sets: "converged",
                                 "max_sets" or "fixed" (NULL: not given) */
+    /* Every other damping of the file against the motions' own spectra
+     * (sl_analysis_dampings_text; NULL or "none": the file gives one):
+     * the text, the lowest and highest set-mean S/T over all of them
+     * (NAN: none) and the verdict (1 all within the limits, 0 not). */
+    const char *dampings;
+    double dampings_min, dampings_max;
+    int dampings_ok;
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */

@@ -102,6 +102,50 @@ cmp -s "$D/out1/summary.csv" "$D/out3/summary.csv" && t_fail "seed 2 gave the sa
 t_run run "$D/floors" -o "$D/out4" --sets 5 --mu-range 0.1:0.3:0.1 --created 0
 t_expect_rc progress 0; t_expect_err progress-msg "floor 2/2 'Roof el. 36 m': synthesis"
 
+# every other damping of the floor files (2 %, 10 %) against the motions' own
+# spectra: floors.csv columns appended after note, finite set-mean S/T in
+# [0.5, 2], a verdict; the run summary line on stderr (docs/run.md)
+FC="$D/floors-table.csv"; grep -v "^#" "$D/out1/floors.csv" | tr -d '\r' > "$FC"
+head -1 "$FC" | grep -q ",sets_stop,note,other_dampings_min_ratio,other_dampings_max_ratio,other_dampings_check,other_dampings$" \
+  && t_pass || t_fail "floors.csv: other_dampings columns: $(head -1 "$FC")"
+# the last four fields (the note before them has no comma in these floors' rows)
+awk -F, 'NR > 1 { lo = $(NF-3); hi = $(NF-2); v = $(NF-1); d = $NF;
+  if (!(lo + 0 >= 0.5 && hi + 0 <= 2 && lo + 0 <= hi + 0 && lo ~ /^[0-9.]+$/ && hi ~ /^[0-9.]+$/)) bad++;
+  if (v != "ok" && v != "outside") bad++;
+  if (d !~ /H1 10 %: / || d !~ /H2 2 %: / || d !~ /V 10 %: /) bad++;
+  if ((v == "ok") != (d !~ /OUTSIDE/)) bad++; n++ } END { exit !(n == 2 && bad == 0) }' "$FC" \
+  && t_pass || t_fail "floors.csv: other dampings values: $(cat "$FC")"
+t_expect_err dampings-line "floor 'Roof el. 36 m': other dampings against the motions' own spectra \(set mean S/T of 5 sets, limits 0.9-1.3; reported, not a pass condition\): H1 2 %: [0-9.]+-[0-9.]+ (ok|OUTSIDE); H1 10 %"
+# a doctored 10 % table (x 1.5 in a copy; both copies pin the floor's seed,
+# so the motions are the same): the motions' own 10 % spectra are then 1/1.5
+# of it: OUTSIDE at every component, exit status unchanged; a file with the
+# 5 % table only: none
+mkdir -p "$D/doct" "$D/one" "$D/orig"
+sed 's/^\[floor\]$/[floor]\nseed = 11/' floors/04-roof36.ini > "$D/orig/04-roof36.ini"
+awk '/^sa_0\.1 =/ { t = 1 } /^[a-z]/ && !/^sa_0\.1 =/ { t = 0 }
+     t { s = $0; o = ""; if (s ~ /^sa_0\.1 =/) { o = "sa_0.1 ="; s = substr(s, 9) }; while (match(s, /[0-9]+\.[0-9]+/)) { o = o substr(s, 1, RSTART - 1) sprintf("%.4f", 1.5 * substr(s, RSTART, RLENGTH)); s = substr(s, RSTART + RLENGTH) } print o s; next } { print }' \
+  "$D/orig/04-roof36.ini" > "$D/doct/04-roof36.ini"
+awk '/^sa_0\.(02|1) =/ { t = 1; next } /^[a-z]/ { t = 0 } t && /^[ \t]/ { next } { print }' \
+  floors/04-roof36.ini > "$D/one/04-roof36.ini"
+grep -q "^sa_0.1 = 0.0282, 0.0633," "$D/doct/04-roof36.ini" && ! grep -q "^sa_0.1\|^sa_0.02" "$D/one/04-roof36.ini" \
+  && t_pass || t_fail "doctored floor files: $(grep -A1 '^sa_0.1' "$D/doct/04-roof36.ini" | head -2)"
+t_run run "$D/doct" -o "$D/outd" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc doctored 0
+for c in H1 H2 V; do
+  t_expect_err "doctored-$c" "$c 10 %: 0\.[0-9]+-[0-9.]+ OUTSIDE"
+done
+tr -d '\r' < "$D/outd/floors.csv" | grep -v "^#" | awk -F, 'NR == 2 { exit !($(NF-1) == "outside" && $(NF-3) + 0 < 0.9 && $(NF-3) + 0 > 0.5) }' \
+  && t_pass || t_fail "doctored 10 % table not reported outside: $(tail -1 "$D/outd/floors.csv")"
+# the 10 % set mean falls by the factor: doctored / original = 1 / 1.5 (same motions)
+r1=$(sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p" "$T_ERR")
+t_run run "$D/orig" -o "$D/outo" --sets 3 --mu-range 0.1:0.3:0.1 --created 0
+r0=$(grep "Roof el. 36" "$T_ERR" | sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p")
+awk -v a="$r1" -v b="$r0" 'BEGIN { split(a, x, " "); split(b, y, " "); for (i = 1; i <= 2; i++) { e = x[i] * 1.5 / y[i] - 1; if (e < 0) e = -e; if (!(e < 0.005)) exit 1 } }' \
+  && t_pass || t_fail "doctored 10 % set mean ($r1) is not original ($r0) / 1.5"
+t_run run "$D/one" -o "$D/out1d" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc one-damping 0
+t_expect_err one-damping-msg "floor 'Roof el. 36 m': other dampings: none"
+tr -d '\r' < "$D/out1d/floors.csv" | grep -v "^#" | tail -1 | grep -q ",none,none,none,none$" \
+  && t_pass || t_fail "one damping: floors.csv $(tail -1 "$D/out1d/floors.csv")"
+
 # a bad floor file: file and line named, exit 1, no output written
 mkdir -p "$D/badfloors"
 cp floors/01-ground.ini tests/data/floors/bad-nonincreasing.ini "$D/badfloors/"
