@@ -790,11 +790,10 @@ static size_t compress_peaks(sl_synth_motion *m, double level, double knee)
      * resonant content near the end frequency instead of by the peak
      * (SA(50 Hz)/PGA 1.10-1.22, PGA 0.86-0.93 ZPA on physical floor
      * spectra; docs/synthesis.md 3.3, 10). Records: compression only. */
-    double K = knee * level;
-    if (!(pk > level) && (m->record || !m->rigid_end || !(pk > 0)))
+    const int expand = !(pk > level);
+    if (expand && (m->record || !m->rigid_end || !(pk > 0)))
         return 0;
-    if (!(pk > level))
-        K = knee * pk;
+    const double K = knee * (expand ? pk : level);
     /* a_low into rwork (first n samples) */
     for (size_t j = 0; j < s->nfft; j++)
         m->rwork[j] = j < n ? a[j] : 0.0;
