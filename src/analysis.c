@@ -11,6 +11,7 @@
 #include "method/asce_input.h"
 #include "method/stats.h"
 #include "slide/slide.h"
+#include "synth/scatter.h"
 #include "signal/spectrum.h"
 #include "core/units.h"
 
@@ -39,6 +40,7 @@ void sl_analysis_opts_default(sl_analysis_opts *o)
     o->seed = 1;
     o->substeps = SL_SLIDE_DEFAULT_SUBSTEPS;
     o->rtol = SL_SLIDE_DEFAULT_RTOL;
+    o->scatter = SL_ANALYSIS_SCATTER;
     o->policy = SL_CLEARANCE_NLTHA;
     o->fs_nltha = SL_NLTHA_FS;
     o->fs_asce = SL_ASCE_FS;
@@ -302,6 +304,10 @@ static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_er
                                 "batch %zu must be >= 2, min batch %zu >= 1", o->max_sets,
                                 o->first_batch, o->min_batch);
     }
+    if (!(o->scatter >= 0 && o->scatter <= SL_SCATTER_SIGMA_MAX))
+        return sl_error_set(err, SL_EINVAL, path, 0,
+                            "analysis: intensity scatter %g outside [0, %g]", o->scatter,
+                            SL_SCATTER_SIGMA_MAX);
     if (o->boot_resamples > 0 && !(o->band_level > 0 && o->band_level < 1))
         return sl_error_set(err, SL_EINVAL, path, 0, "analysis: band level %g outside (0, 1)",
                             o->band_level);
@@ -324,8 +330,20 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     size_t *n_skip = NULL;
     sl_spectrum *fb[2] = {NULL, NULL};
     sl_asce *asce = NULL;
+    sl_scatter *scat = NULL;
+    double *u_q = NULL, *e_q = NULL, *e_k = NULL;
     if (!a)
         goto nomem;
+    /* the friction values of the NLTHA: the grid, or (R3)'s log grid */
+    const double *nl_mu = o->mu;
+    size_t n_nl = n_mu;
+    if (o->scatter > 0) {
+        if (!(scat = sl_scatter_alloc(o->scatter, o->mu, n_mu, err)))
+            goto fail;
+        nl_mu = sl_scatter_grid(scat, &n_nl);
+    }
+    a->scatter = o->scatter;
+    a->n_nltha_mu = n_nl;
     a->sets = calloc(cap_sets, sizeof *a->sets);
     a->pgd_m = calloc(cap_sets, sizeof *a->pgd_m);
     a->conv = calloc(n_mu, sizeof *a->conv);
@@ -334,14 +352,17 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->design_se_m = calloc(n_mu, sizeof *a->design_se_m);
     a->err_est_m = calloc(n_mu, sizeof *a->err_est_m);
     sets = calloc(cap_sets, sizeof *sets);
-    res = calloc(cap_sets * n_mu, sizeof *res);
+    res = calloc(cap_sets * n_nl, sizeof *res);
+    u_q = calloc(n_nl, sizeof *u_q);
+    e_q = calloc(n_nl, sizeof *e_q);
+    e_k = calloc(n_mu, sizeof *e_k);
     peak = calloc(cap_sets * n_mu, sizeof *peak);
     n_skip = calloc(n_mu, sizeof *n_skip);
     noslide = calloc(n_mu, sizeof *noslide);
     best = calloc(n_mu, sizeof *best);
     if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->design_se_m ||
         !a->err_est_m || !sets ||
-        !res || !peak || !n_skip || !noslide || !best)
+        !res || !peak || !n_skip || !noslide || !best || !u_q || !e_q || !e_k)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
     a->av_ms2 = fl->comp[SL_FLOOR_V].zpa_ms2;
@@ -385,17 +406,32 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         }
         if (o->progress)
             o->progress(o->progress_ctx, "nltha", n, want);
-        if (sl_slide_batch(sets + n, nb, o->mu, n_mu, &so, res + n * n_mu, err))
+        if (sl_slide_batch(sets + n, nb, nl_mu, n_nl, &so, res + n * n_nl, err))
             goto fail;
         if (o->progress)
             o->progress(o->progress_ctx, "nltha", want, want);
-        for (size_t s = n; s < want; s++)
-            for (size_t k = 0; k < n_mu; k++) {
-                const sl_slide_result *r = &res[s * n_mu + k];
-                peak[s * n_mu + k] = r->peak_m;
-                a->err_est_m[k] = fmax(a->err_est_m[k], r->err_est_m);
-                n_skip[k] += (r->flags & SL_SLIDE_SKIPPED) != 0;
+        for (size_t s = n; s < want; s++) {
+            const sl_slide_result *r = &res[s * n_nl];
+            double *pk = &peak[s * n_mu];
+            if (scat) { /* each set's expected peak over its intensity, (R3) */
+                for (size_t q = 0; q < n_nl; q++) {
+                    u_q[q] = r[q].peak_m;
+                    e_q[q] = r[q].err_est_m;
+                }
+                if (sl_scatter_mean(scat, u_q, pk, err) || sl_scatter_mean(scat, e_q, e_k, err))
+                    goto fail;
             }
+            for (size_t k = 0; k < n_mu; k++) {
+                if (!scat) {
+                    pk[k] = r[k].peak_m;
+                    e_k[k] = r[k].err_est_m;
+                }
+                a->err_est_m[k] = fmax(a->err_est_m[k], e_k[k]);
+                /* "need no NLTHA": skipped (mu above the set's threshold),
+                 * or with scatter zero at every intensity */
+                n_skip[k] += scat ? pk[k] == 0 : (r[k].flags & SL_SLIDE_SKIPPED) != 0;
+            }
+        }
         a->time_nltha_s += wall_s() - t0;
         n = want;
         a->n_batches++;
@@ -515,6 +551,10 @@ fail:
     sl_analysis_free(a);
     a = NULL;
 cleanup:
+    sl_scatter_free(scat);
+    free(u_q);
+    free(e_q);
+    free(e_k);
     free(sets);
     free(res);
     free(peak);

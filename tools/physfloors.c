@@ -8,7 +8,10 @@
  *            ../shared/records), -n MAX_RECORDS (0 = all), -s NSYN (24),
  *            -S SEED (12), -x (swap experiments), -a PGA_SIGMA (synth.h
  *            pga_sigma), -g (ground check only), -G (no ground),
- *            -F FMAX (floor spectra end at FMAX Hz, 50)
+ *            -F FMAX (floor spectra end at FMAX Hz, 50), -R SIGMA (record-to-
+ *            record intensity scatter of the synthesized floor sets as the run
+ *            applies it, synth/scatter.h (R3); default the run's, 0 = none;
+ *            the ground comparison has none: both sides are matched sets)
  * Prints markdown tables; exit 0, or 1 with a message on bad input.
  */
 #include <math.h>
@@ -17,6 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "analysis.h"
 #include "core/units.h"
 #include "io/floor.h"
 #include "io/setdir.h"
@@ -25,6 +29,7 @@
 #include "study/building.h"
 #include "study/physfloor.h"
 #include "study/study.h"
+#include "synth/scatter.h"
 #include "synth/synth.h"
 
 #define NMU 5
@@ -32,6 +37,9 @@
 #define PGA_G 0.3
 
 static sl_synth_params P;
+/* -R: intensity scatter of the synthesized floor sets, as `seislide run`
+ * applies it (synth/scatter.h (R3); default the run's) */
+static double Scatter = SL_ANALYSIS_SCATTER;
 
 static void die(const sl_error *e)
 {
@@ -53,6 +61,36 @@ static double *slide(const sl_set *sets, size_t n, const double *mu)
     for (size_t i = 0; i < n * NMU; i++)
         pk[i] = res[i].peak_m;
     free(res);
+    return pk;
+}
+
+/* As slide(), with the run's intensity scatter: each set's expected peak
+ * over its intensity factor (synth/scatter.h (R3)). */
+static double *slide_floor(const sl_set *sets, size_t n, const double *mu)
+{
+    if (!(Scatter > 0))
+        return slide(sets, n, mu);
+    sl_error e;
+    sl_scatter *sc = sl_scatter_alloc(Scatter, mu, NMU, &e);
+    if (!sc)
+        die(&e);
+    size_t nq;
+    const double *g = sl_scatter_grid(sc, &nq);
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    sl_slide_result *res = calloc(n * nq, sizeof *res);
+    double *u = malloc(nq * sizeof *u), *pk = malloc(n * NMU * sizeof *pk);
+    if (!res || !u || !pk || sl_slide_batch(sets, n, g, nq, &so, res, &e))
+        die(&e);
+    for (size_t i = 0; i < n; i++) {
+        for (size_t q = 0; q < nq; q++)
+            u[q] = res[i * nq + q].peak_m;
+        if (sl_scatter_mean(sc, u, pk + i * NMU, &e))
+            die(&e);
+    }
+    free(res);
+    free(u);
+    sl_scatter_free(sc);
     return pk;
 }
 
@@ -293,7 +331,7 @@ int main(int argc, char **argv)
     double f_end = 50.0;
     sl_synth_params_default(&P);
     setvbuf(stdout, NULL, _IOLBF, 0);
-    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gGF:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gGF:R:")) != -1) {
         switch (opt) {
         case 'r': rdir = optarg; break;
         case 'n': maxrec = (size_t)atol(optarg); break;
@@ -304,9 +342,10 @@ int main(int argc, char **argv)
         case 'g': ground_only = 1; break;
         case 'G': no_ground = 1; break;
         case 'F': f_end = atof(optarg); break;
+        case 'R': Scatter = atof(optarg); break;
         default:
             fprintf(stderr, "usage: physfloors [-r dir] [-n max] [-s nsyn] [-S seed] [-x] "
-                            "[-a sigma] [-g|-G] [-F f_end]\n");
+                            "[-a sigma] [-g|-G] [-F f_end] [-R scatter]\n");
             return 1;
         }
     }
@@ -341,9 +380,9 @@ int main(int argc, char **argv)
     }
     printf("records: %zu used of %zu directories in %s (rule: three components, larger H PGA "
            ">= %.2f g, duration >= %.0f s, dt <= %.2f s); scaled to %.1f g; %zu synthesized "
-           "sets per case, seed %llu, pga_sigma %.2f, floor spectra to %g Hz\n",
+           "sets per case, seed %llu, pga_sigma %.2f, floor spectra to %g Hz, scatter %.2f\n",
            nrec, nd, rdir, rule.min_pga_g, rule.min_duration_s, rule.max_dt_s, PGA_G, nsyn,
-           (unsigned long long)seed, P.pga_sigma, f_end);
+           (unsigned long long)seed, P.pga_sigma, f_end, Scatter);
     sl_set *syn = calloc(nsyn, sizeof *syn);
     double mu[NMU];
     if (!no_ground) {
@@ -417,7 +456,7 @@ int main(int argc, char **argv)
                 if (!flr || sl_synth_targets_floor(flr, 0, tgt, &e))
                     die(&e);
                 sl_synth_set *out = synth(tgt, nsyn, seed, syn);
-                double *sy = slide(syn, nsyn, mu);
+                double *sy = slide_floor(syn, nsyn, mu);
                 describe(broaden ? "synthesized, broadened" : "synthesized", syn, nsyn);
                 header(broaden ? "synthesized (broadened ±15 %) / physical"
                                : "synthesized / physical");

@@ -10,6 +10,7 @@
 
 #include "core/standards.h"
 #include "slide/model.h"
+#include "synth/scatter.h"
 
 static const char run_head[] =
     "usage: seislide run [FLOOR.ini ... | DIR] [options]\n\nThe main job: for every floor "
@@ -25,7 +26,7 @@ static const char run_tail[] =
 #define A(f) .off = offsetof(run_args, f)
 enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
        O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
-       O_REL_SE, O_ABS_SE, O_MAX_SETS };
+       O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER };
 static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
      "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
@@ -40,6 +41,10 @@ static const cli_opt opts[] = {
      {1e3 * SL_ANALYSIS_ABS_SE_M}, .kind = CLI_NONNEG, A(abs_se_mm)},
     {"max-sets", O_MAX_SETS, "N", "stop there when not converged; the floor is flagged (default %g)",
      {SL_ANALYSIS_MAX_SETS}, .kind = CLI_COUNT1, A(max_sets)},
+    {"scatter", O_SCATTER, "S", "record-to-record intensity scatter of the floor motions behind a\n"
+     "spectrum, log standard deviation (default %g, at most %g; 0: the sets as\n"
+     "synthesized, each SRP 3.7.1-compatible; docs/run.md, Intensity scatter)",
+     {SL_ANALYSIS_SCATTER, SL_SCATTER_SIGMA_MAX}, .kind = CLI_NONNEG, A(ao.scatter)},
     {"seed", O_SEED, "S", "random seed (default 1); a floor's seed also depends on its\n"
      "spectra's numbers (or its 'seed ='), never on its name or the other floors",
      .kind = CLI_CALL},
@@ -95,6 +100,8 @@ static int check(void *dst)
         !isfinite(a->abs_se_mm) || a->max_sets < 2 || a->max_sets > 10000)
         return cli_usage("run", "--rel-se must be below 1, --rel-se and --abs-se not both 0, "
                          "--max-sets from 2 to 10000");
+    if (!(a->ao.scatter <= SL_SCATTER_SIGMA_MAX))
+        return cli_usage("run", "--scatter must be from 0 to %g", SL_SCATTER_SIGMA_MAX);
     if (!a->mu.v && cli_parse_range(SL_MU_GRID_TEXT, &a->mu.v, &a->mu.n)) {
         cli_msg("out of memory");
         return CLI_EXIT_ERROR;

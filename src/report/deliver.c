@@ -123,7 +123,7 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
     if (st)
         goto done;
     const sl_design *d0 = an[0]->design;
-    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160];
+    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160], s_scat[200];
     /* per floor: the sets it needed and why it stopped */
     size_t used = 0;
     for (size_t i = 0; i < n && used < sizeof s_sets; i++) {
@@ -141,9 +141,16 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
              d0->fs_nltha, d0->fs_asce, d0->cap_factor);
     snprintf(s_synth, sizeof s_synth, "%g s at %g s, matched at %g %% damping (SRP 3.7.1 checks)",
              SL_SYNTH_DURATION_S, SL_SYNTH_DT_S, 100 * SL_SYNTH_DAMPING);
+    if (an[0]->scatter > 0)
+        snprintf(s_scat, sizeof s_scat, "log standard deviation %g of the horizontal intensity, "
+                 "mean 1, averaged exactly over each set (NLTHA at %zu friction values)",
+                 an[0]->scatter, an[0]->n_nltha_mu);
+    else
+        snprintf(s_scat, sizeof s_scat, "none: the sets as synthesized");
     const sl_report_setting settings[] = {
         {"motion sets per floor", s_sets}, {"seed", s_seed}, {"friction grid", s_mu},
         {"2-D sub-steps", s_sub}, {"factors", s_fs}, {"synthetic motions", s_synth},
+        {"record-to-record intensity scatter", s_scat},
         {"clearance policy", sl_clearance_policy_name(d0->policy)},
         {"units", "displacements in mm; accelerations in g; SI inside"}};
     sl_report rep;

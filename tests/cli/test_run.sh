@@ -10,7 +10,10 @@ cp floors/01-ground.ini floors/04-roof36.ini "$D/floors/"
 OPTS="--sets 5 --mu-range 0.05:0.80:0.05 --created 1700000000 -q"
 
 t_run run --help; t_expect_rc help 0; t_expect_out help "usage: seislide run"
-t_run run "$D/floors" -o "$D/out1" $OPTS --motions; t_expect_rc run 0
+# out1 without intensity scatter (--scatter 0), so that its NLTHA means can be
+# checked against `seislide slide` on the written motions below; the scatter
+# quadrature is checked against the engine in tests/test_scatter.c
+t_run run "$D/floors" -o "$D/out1" $OPTS --motions --scatter 0; t_expect_rc run 0
 [ ! -s "$T_ERR" ] && t_pass || t_fail "-q must silence stderr: $(head -c 300 "$T_ERR")"
 for f in seislide-clearance.xlsx summary.csv floors.csv motion_quality.csv \
          floor_01-ground.csv floor_04-roof36.csv asce_below_nltha.csv; do
@@ -91,12 +94,25 @@ fi
 # the same command again (same seed, date and output folder; the workbook
 # records the command line): byte-identical outputs; another seed: different
 mkdir -p "$D/keep" && cp "$D/out1"/*.csv "$D/out1"/*.xlsx "$D/keep/"
-t_run run "$D/floors" -o "$D/out1" $OPTS --motions; t_expect_rc rerun 0
+t_run run "$D/floors" -o "$D/out1" $OPTS --motions --scatter 0; t_expect_rc rerun 0
 for f in seislide-clearance.xlsx summary.csv floors.csv motion_quality.csv floor_04-roof36.csv asce_below_nltha.csv; do
   cmp -s "$D/keep/$f" "$D/out1/$f" && t_pass || t_fail "$f differs between identical runs"
 done
 t_run run "$D/floors" -o "$D/out3" $OPTS --seed 2; t_expect_rc seed2 0
 cmp -s "$D/out1/summary.csv" "$D/out3/summary.csv" && t_fail "seed 2 gave the same table" || t_pass
+
+# the default intensity scatter (docs/run.md): the same motions, each set's
+# peak averaged over a mean-1 intensity factor. The peak is eps u(mu/eps), the
+# perspective of u(mu), convex where u is, so by Jensen's inequality the mean
+# cannot fall below the unscattered one (2 % slack for the interpolation), and
+# far above the roof's ZPA (mu g/ZPA ~ 1.2) only the scatter makes it slide.
+t_run run "$D/floors" -o "$D/out5" $OPTS; t_expect_rc scatter 0
+grep -v "^#" "$D/out5/floor_04-roof36.csv" | tr -d '\r' > "$D/roof-scat.csv"
+awk -F, 'NR == FNR { if (FNR > 1) m0[$1] = $3; next }
+         FNR > 1 { n++; if ($3 < 0.98 * m0[$1]) bad = bad " " $1; last = $1; lm = $3 }
+         END { if (bad != "" || n < 10 || !(lm > 0) || !(m0[last] < lm)) { print bad, n, lm, m0[last]; exit 1 } }' \
+  "$D/roof-table.csv" "$D/roof-scat.csv" > "$D/scat.txt" \
+  && t_pass || t_fail "scatter: mean below the unscattered or no tail: $(cat "$D/scat.txt")"
 
 # progress on stderr without -q
 t_run run "$D/floors" -o "$D/out4" --sets 5 --mu-range 0.1:0.3:0.1 --created 0

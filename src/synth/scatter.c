@@ -1,0 +1,181 @@
+#include "synth/scatter.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_interp.h>
+#include <gsl/gsl_rng.h>
+
+#include "core/units.h"
+#include "io/setdir.h"
+#include "synth/synth.h"
+
+#define SCATTER_STREAM 0x7363617474657221ULL /* "scatter!" */
+
+double sl_scatter_factor(uint64_t seed, size_t set, double sigma_ln)
+{
+    if (!(sigma_ln > 0))
+        return 1.0;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!rng)
+        return NAN;
+    gsl_rng_set(rng, sl_synth_stream_seed(seed ^ SCATTER_STREAM, set, SL_SYNTH_H1, 0));
+    double z = gsl_cdf_ugaussian_Pinv(gsl_rng_uniform_pos(rng));
+    gsl_rng_free(rng);
+    return exp(sigma_ln * z - 0.5 * sigma_ln * sigma_ln); /* (R1) */
+}
+
+sl_status sl_set_scaled_h_copy(const sl_set *in, double f, sl_set *out, sl_error *err)
+{
+    memset(out, 0, sizeof *out);
+    int bad = 0;
+    const sl_motion *src[3] = {in->h1, in->h2, in->v};
+    sl_motion **dst[3] = {&out->h1, &out->h2, &out->v};
+    for (int c = 0; c < 3; c++) {
+        if (!src[c])
+            continue;
+        if (!(*dst[c] = sl_motion_copy(src[c])))
+            bad = 1;
+        else if (c < 2)
+            sl_motion_scale(*dst[c], f);
+    }
+    if (bad) {
+        sl_set_free_motions(out);
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory");
+    }
+    return SL_OK;
+}
+
+/* One term of (R3): node weight w eps and x = ln(mu / eps); mu = 0 marked
+ * by zero = 1 (grid point 0 exactly). */
+typedef struct term {
+    double weps, x;
+    int zero;
+} term;
+
+struct sl_scatter {
+    size_t n_mu, nz, nq, off; /* off = 1 when grid[0] = 0 */
+    double *grid;             /* nq friction values */
+    double *lng;              /* ln grid[off..nq) */
+    term *terms;              /* n_mu x nz */
+};
+
+void sl_scatter_free(sl_scatter *s)
+{
+    if (!s)
+        return;
+    free(s->grid);
+    free(s->lng);
+    free(s->terms);
+    free(s);
+}
+
+sl_scatter *sl_scatter_alloc(double sigma_ln, const double *mu, size_t n_mu, sl_error *err)
+{
+    if (!(sigma_ln > 0 && sigma_ln <= SL_SCATTER_SIGMA_MAX)) {
+        sl_error_set(err, SL_EINVAL, NULL, 0,
+                     "scatter: log standard deviation %g outside (0, %g]", sigma_ln,
+                     SL_SCATTER_SIGMA_MAX);
+        return NULL;
+    }
+    double lo = INFINITY, hi = 0;
+    int has_zero = 0;
+    for (size_t k = 0; k < n_mu; k++) {
+        if (!(mu[k] >= 0 && isfinite(mu[k]))) {
+            sl_error_set(err, SL_EINVAL, NULL, 0, "scatter: friction coefficient %g", mu[k]);
+            return NULL;
+        }
+        if (mu[k] == 0)
+            has_zero = 1;
+        else
+            lo = fmin(lo, mu[k]), hi = fmax(hi, mu[k]);
+    }
+    const size_t nz = (size_t)lround(2 * SL_SCATTER_ZMAX / SL_SCATTER_DZ) + 1;
+    sl_scatter *s = calloc(1, sizeof *s);
+    double *eps = malloc(nz * sizeof *eps), *w = malloc(nz * sizeof *w);
+    if (!s || !eps || !w)
+        goto nomem;
+    s->n_mu = n_mu;
+    s->nz = nz;
+    double wsum = 0; /* sum w eps: E[eps] = 1 exactly */
+    for (size_t j = 0; j < nz; j++) {
+        double z = -SL_SCATTER_ZMAX + SL_SCATTER_DZ * (double)j;
+        eps[j] = exp(sigma_ln * z - 0.5 * sigma_ln * sigma_ln); /* (R1) */
+        w[j] = exp(-0.5 * z * z) * (j == 0 || j + 1 == nz ? 0.5 : 1.0);
+        wsum += w[j] * eps[j];
+    }
+    /* log grid from lo / eps_max to hi / eps_min, whole steps of a decade / N */
+    size_t nlog = 0;
+    const double step = 1.0 / SL_SCATTER_PER_DECADE;
+    double l0 = 0;
+    if (hi > 0) {
+        l0 = floor(log10(lo / eps[nz - 1]) / step) * step;
+        double l1 = ceil(log10(hi / eps[0]) / step) * step;
+        nlog = (size_t)lround((l1 - l0) / step) + 1;
+    }
+    s->off = (size_t)has_zero;
+    s->nq = nlog + s->off;
+    s->grid = malloc((s->nq ? s->nq : 1) * sizeof *s->grid);
+    s->lng = malloc((nlog ? nlog : 1) * sizeof *s->lng);
+    s->terms = malloc((n_mu > 0 ? n_mu * nz : 1) * sizeof *s->terms);
+    if (!s->grid || !s->lng || !s->terms)
+        goto nomem;
+    if (has_zero)
+        s->grid[0] = 0;
+    for (size_t q = 0; q < nlog; q++) {
+        s->grid[s->off + q] = pow(10.0, l0 + step * (double)q);
+        s->lng[q] = log(s->grid[s->off + q]);
+    }
+    for (size_t k = 0; k < n_mu; k++)
+        for (size_t j = 0; j < nz; j++) {
+            term *tm = &s->terms[k * nz + j];
+            tm->weps = w[j] / wsum * eps[j];
+            tm->zero = mu[k] == 0; /* (R2) at mu = 0: u(eps a) = eps u(0) */
+            tm->x = tm->zero ? 0 : fmin(fmax(log(mu[k] / eps[j]), s->lng[0]), s->lng[nlog - 1]);
+        }
+    free(eps);
+    free(w);
+    return s;
+nomem:
+    free(eps);
+    free(w);
+    sl_scatter_free(s);
+    sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory");
+    return NULL;
+}
+
+const double *sl_scatter_grid(const sl_scatter *s, size_t *n)
+{
+    *n = s->nq;
+    return s->grid;
+}
+
+sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_error *err)
+{
+    const size_t nlog = s->nq - s->off;
+    gsl_interp *ip = NULL;
+    gsl_interp_accel *acc = NULL;
+    if (nlog > 0) { /* u between grid points: Steffen's monotone cubic in ln mu */
+        ip = gsl_interp_alloc(gsl_interp_steffen, nlog);
+        acc = gsl_interp_accel_alloc();
+        if (!ip || !acc || gsl_interp_init(ip, s->lng, u + s->off, nlog)) {
+            gsl_interp_free(ip);
+            gsl_interp_accel_free(acc);
+            return sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: interpolation failed");
+        }
+    }
+    for (size_t k = 0; k < s->n_mu; k++) {
+        double sum = 0;
+        for (size_t j = 0; j < s->nz; j++) {
+            const term *tm = &s->terms[k * s->nz + j];
+            double uk = tm->zero ? u[0] : gsl_interp_eval(ip, s->lng, u + s->off, tm->x, acc);
+            sum += tm->weps * fmax(uk, 0.0); /* (R3) */
+        }
+        y[k] = sum;
+    }
+    gsl_interp_free(ip);
+    gsl_interp_accel_free(acc);
+    return SL_OK;
+}
