@@ -26,6 +26,7 @@
 
 #include "analysis.h"
 #include "slide/slide.h"
+#include "synth/scatter.h"
 
 #define K 76
 #define NMAX 200
@@ -57,14 +58,31 @@ static int pool(const char *path, size_t N, uint64_t seed)
         sets[s] = ss[s].set;
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    if (sl_slide_batch(sets, N, mu, K, &so, res, &err))
+    /* the run's intensity scatter (synth/scatter.h (R3)); SCATTER=0: none */
+    const char *sv = getenv("SCATTER");
+    double sigma = sv ? atof(sv) : SL_ANALYSIS_SCATTER;
+    sl_scatter *sc = sigma > 0 ? sl_scatter_alloc(sigma, mu, K, &err) : NULL;
+    size_t nq = K;
+    const double *g = sc ? sl_scatter_grid(sc, &nq) : mu;
+    sl_slide_result *rq = calloc(N * nq, sizeof *rq);
+    double *u = calloc(nq, sizeof *u), y[K];
+    if (!rq || !u || sl_slide_batch(sets, N, g, nq, &so, rq, &err))
         return 1;
     for (size_t s = 0; s < N; s++) {
+        for (size_t q = 0; q < nq; q++)
+            u[q] = rq[s * nq + q].peak_m;
+        if (sc)
+            sl_scatter_mean(sc, u, y, &err);
+        else
+            memcpy(y, u, sizeof y);
         printf("%.9g", sl_set_pgd_100_40(&sets[s]));
         for (int k = 0; k < K; k++)
-            printf(" %.9g", res[s * K + k].peak_m);
+            printf(" %.9g", y[k]);
         printf("\n");
     }
+    free(rq);
+    free(u);
+    sl_scatter_free(sc);
     return 0;
 }
 
@@ -148,10 +166,17 @@ static int sim(int argc, char **argv)
             sse2[k] += SE[k] * SE[k];
         }
     }
-    double rs = 0, rmin = 1e9, rmax = 0, ct = 0, cp = 0;
-    int nk = 0, nc = 0;
+    double rs = 0, rmin = 1e9, rmax = 0, ct = 0, cp = 0, bsum = 0, bmin = 1e9, bmax = -1e9;
+    int nk = 0, nc = 0, nb = 0;
     for (int k = 0; k < K; k++) {
         double m = sd[k] / (double)R, v = (sdd[k] - (double)R * m * m) / (double)(R - 1);
+        if (truth[k] >= 1e-3) { /* bias of the design value: mean over runs / truth - 1 */
+            double b = m / truth[k] - 1;
+            bsum += b;
+            bmin = fmin(bmin, b);
+            bmax = fmax(bmax, b);
+            nb++;
+        }
         if (!(v > 0))
             continue;
         double q = sqrt(sse2[k] / (double)R) / sqrt(v);
@@ -172,6 +197,7 @@ static int sim(int argc, char **argv)
     printf("first %zu, margin %.2f, growth %.1f, fixed %zu, %zu runs from %zu sets: %.1f sets per "
            "run; stated SE / scatter %.3f to %.3f, mean %.3f", first, margin, growth, fixed, R, np,
            ns / (double)R, rmin, rmax, rs / nk);
+    printf("; bias (design >= 1 mm) %+.4f to %+.4f, mean %+.4f", bmin, bmax, bsum / nb);
     printf("; actual SE above the target: in %.2f of the runs, at %.3f of the mu",
            (double)miss_any / (double)R, (double)miss_mu / (double)(R * K));
     if (B)
