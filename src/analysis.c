@@ -11,7 +11,7 @@
 #include "method/asce_input.h"
 #include "method/stats.h"
 #include "slide/slide.h"
-#include "synth/scatter.h"
+#include "method/scatter.h"
 #include "signal/spectrum.h"
 #include "core/units.h"
 
@@ -331,19 +331,18 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     sl_spectrum *fb[2] = {NULL, NULL};
     sl_asce *asce = NULL;
     sl_scatter *scat = NULL;
-    double *u_q = NULL, *e_q = NULL, *e_k = NULL;
+    double *err_k = NULL;
     if (!a)
         goto nomem;
-    /* the friction values of the NLTHA: the grid, or (R3)'s log grid */
-    const double *nl_mu = o->mu;
-    size_t n_nl = n_mu;
+    /* with scatter, each set's expected peak over its intensity (R3),
+     * from the NLTHA on the scatter's log grid */
+    a->scatter = o->scatter;
+    a->n_nltha_mu = n_mu;
     if (o->scatter > 0) {
         if (!(scat = sl_scatter_alloc(o->scatter, o->mu, n_mu, err)))
             goto fail;
-        nl_mu = sl_scatter_grid(scat, &n_nl);
+        sl_scatter_grid(scat, &a->n_nltha_mu);
     }
-    a->scatter = o->scatter;
-    a->n_nltha_mu = n_nl;
     a->sets = calloc(cap_sets, sizeof *a->sets);
     a->pgd_m = calloc(cap_sets, sizeof *a->pgd_m);
     a->conv = calloc(n_mu, sizeof *a->conv);
@@ -352,17 +351,15 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->design_se_m = calloc(n_mu, sizeof *a->design_se_m);
     a->err_est_m = calloc(n_mu, sizeof *a->err_est_m);
     sets = calloc(cap_sets, sizeof *sets);
-    res = calloc(cap_sets * n_nl, sizeof *res);
-    u_q = calloc(n_nl, sizeof *u_q);
-    e_q = calloc(n_nl, sizeof *e_q);
-    e_k = calloc(n_mu, sizeof *e_k);
+    res = calloc(cap_sets * n_mu, sizeof *res);
+    err_k = calloc(cap_sets * n_mu, sizeof *err_k);
     peak = calloc(cap_sets * n_mu, sizeof *peak);
     n_skip = calloc(n_mu, sizeof *n_skip);
     noslide = calloc(n_mu, sizeof *noslide);
     best = calloc(n_mu, sizeof *best);
     if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->design_se_m ||
         !a->err_est_m || !sets ||
-        !res || !peak || !n_skip || !noslide || !best || !u_q || !e_q || !e_k)
+        !res || !peak || !n_skip || !noslide || !best || !err_k)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
     a->av_ms2 = fl->comp[SL_FLOOR_V].zpa_ms2;
@@ -406,31 +403,23 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         }
         if (o->progress)
             o->progress(o->progress_ctx, "nltha", n, want);
-        if (sl_slide_batch(sets + n, nb, nl_mu, n_nl, &so, res + n * n_nl, err))
+        if (scat ? sl_scatter_slide_batch(scat, sets + n, nb, &so, peak + n * n_mu,
+                                          err_k + n * n_mu, err)
+                 : sl_slide_batch(sets + n, nb, o->mu, n_mu, &so, res + n * n_mu, err))
             goto fail;
         if (o->progress)
             o->progress(o->progress_ctx, "nltha", want, want);
-        for (size_t s = n; s < want; s++) {
-            const sl_slide_result *r = &res[s * n_nl];
-            double *pk = &peak[s * n_mu];
-            if (scat) { /* each set's expected peak over its intensity, (R3) */
-                for (size_t q = 0; q < n_nl; q++) {
-                    u_q[q] = r[q].peak_m;
-                    e_q[q] = r[q].err_est_m;
-                }
-                if (sl_scatter_mean(scat, u_q, pk, err) || sl_scatter_mean(scat, e_q, e_k, err))
-                    goto fail;
+        for (size_t i = n * n_mu; i < want * n_mu; i++) {
+            const sl_slide_result *r = &res[i];
+            if (!scat) {
+                peak[i] = r->peak_m;
+                err_k[i] = r->err_est_m;
             }
-            for (size_t k = 0; k < n_mu; k++) {
-                if (!scat) {
-                    pk[k] = r[k].peak_m;
-                    e_k[k] = r[k].err_est_m;
-                }
-                a->err_est_m[k] = fmax(a->err_est_m[k], e_k[k]);
-                /* "need no NLTHA": skipped (mu above the set's threshold),
-                 * or with scatter zero at every intensity */
-                n_skip[k] += scat ? pk[k] == 0 : (r[k].flags & SL_SLIDE_SKIPPED) != 0;
-            }
+            size_t k = i % n_mu;
+            a->err_est_m[k] = fmax(a->err_est_m[k], err_k[i]);
+            /* "need no NLTHA": skipped (mu above the set's threshold), or
+             * with scatter zero at every intensity */
+            n_skip[k] += scat ? peak[i] == 0 : (r->flags & SL_SLIDE_SKIPPED) != 0;
         }
         a->time_nltha_s += wall_s() - t0;
         n = want;
@@ -552,9 +541,7 @@ fail:
     a = NULL;
 cleanup:
     sl_scatter_free(scat);
-    free(u_q);
-    free(e_q);
-    free(e_k);
+    free(err_k);
     free(sets);
     free(res);
     free(peak);

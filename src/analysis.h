@@ -9,7 +9,7 @@
  *     with the vertical (slide.h); friction values whose mu g is at or above
  *     what a set can ever demand are not integrated (exactly zero); with
  *     opts.scatter > 0 (the default) a set's peak at mu is its expected peak
- *     over a log-normal intensity factor of its horizontals (synth/scatter.h
+ *     over a log-normal intensity factor of its horizontals (method/scatter.h
  *     (R3)), from one NLTHA on a log friction grid;
  *     steps 1-2 run in batches of sets until the NLTHA design value is
  *     converged at every mu (below), or a fixed number of sets when
@@ -70,7 +70,7 @@
 #define SL_ANALYSIS_PLAN_GROWTH 2.0
 /* Record-to-record intensity scatter of the floor motions behind a floor
  * spectrum: log standard deviation of the sets' horizontal intensity,
- * averaged exactly over each set (synth/scatter.h (R1)-(R3); docs/run.md,
+ * averaged exactly over each set (method/scatter.h (R1)-(R3); docs/run.md,
  * "Intensity scatter"). 0.30 is the PGA scatter of physical floor motions
  * (83 real records through a 3-storey building: coefficient of variation
  * 0.24-0.31, sigma_ln = sqrt(ln(1 + CoV^2)) 0.24-0.30; docs/synthesis.md 11). */

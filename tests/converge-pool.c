@@ -26,7 +26,7 @@
 
 #include "analysis.h"
 #include "slide/slide.h"
-#include "synth/scatter.h"
+#include "method/scatter.h"
 
 #define K 76
 #define NMAX 200
@@ -58,30 +58,21 @@ static int pool(const char *path, size_t N, uint64_t seed)
         sets[s] = ss[s].set;
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    /* the run's intensity scatter (synth/scatter.h (R3)); SCATTER=0: none */
+    /* the run's intensity scatter (method/scatter.h (R3)); SCATTER=0: none */
     const char *sv = getenv("SCATTER");
     double sigma = sv ? atof(sv) : SL_ANALYSIS_SCATTER;
     sl_scatter *sc = sigma > 0 ? sl_scatter_alloc(sigma, mu, K, &err) : NULL;
-    size_t nq = K;
-    const double *g = sc ? sl_scatter_grid(sc, &nq) : mu;
-    sl_slide_result *rq = calloc(N * nq, sizeof *rq);
-    double *u = calloc(nq, sizeof *u), y[K];
-    if (!rq || !u || sl_slide_batch(sets, N, g, nq, &so, rq, &err))
+    double *y = malloc(N * K * sizeof *y);
+    if (!y || (sc ? sl_scatter_slide_batch(sc, sets, N, &so, y, NULL, &err)
+                  : sl_slide_batch(sets, N, mu, K, &so, res, &err)))
         return 1;
     for (size_t s = 0; s < N; s++) {
-        for (size_t q = 0; q < nq; q++)
-            u[q] = rq[s * nq + q].peak_m;
-        if (sc)
-            sl_scatter_mean(sc, u, y, &err);
-        else
-            memcpy(y, u, sizeof y);
         printf("%.9g", sl_set_pgd_100_40(&sets[s]));
         for (int k = 0; k < K; k++)
-            printf(" %.9g", y[k]);
+            printf(" %.9g", sc ? y[s * K + k] : res[s * K + k].peak_m);
         printf("\n");
     }
-    free(rq);
-    free(u);
+    free(y);
     sl_scatter_free(sc);
     return 0;
 }

@@ -37,7 +37,7 @@
 #include "study/building.h"
 #include "study/physfloor.h"
 #include "study/study.h"
-#include "synth/scatter.h"
+#include "method/scatter.h"
 #include "synth/synth.h"
 
 static int verbose(void) { return getenv("SEISLIDE_TEST_VERBOSE") != NULL; }
@@ -118,28 +118,14 @@ static void slide_all(const sl_set *sets, size_t n, const double *mu, double *pk
 
 /* As slide_all, the way `seislide run` slides a floor's synthesized sets:
  * with its default intensity scatter, each set's expected peak over the
- * intensity factor (synth/scatter.h (R3)). */
+ * intensity factor (method/scatter.h (R3)). */
 static void slide_run_way(const sl_set *sets, size_t n, const double *mu, double *pk)
 {
     sl_error e;
-    sl_scatter *sc = sl_scatter_alloc(SL_ANALYSIS_SCATTER, mu, NMU, &e);
-    CHECK(sc != NULL, "%s", e.msg);
-    if (!sc)
-        return;
-    size_t nq;
-    const double *g = sl_scatter_grid(sc, &nq);
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    sl_slide_result *res = calloc(n * nq, sizeof *res);
-    double *u = malloc(nq * sizeof *u);
-    CHECK(sl_slide_batch(sets, n, g, nq, &so, res, &e) == SL_OK, "%s", e.msg);
-    for (size_t i = 0; i < n; i++) {
-        for (size_t q = 0; q < nq; q++)
-            u[q] = res[i * nq + q].peak_m;
-        CHECK(sl_scatter_mean(sc, u, pk + i * NMU, &e) == SL_OK, "%s", e.msg);
-    }
-    free(u);
-    free(res);
+    sl_scatter *sc = sl_scatter_alloc(SL_ANALYSIS_SCATTER, mu, NMU, &e);
+    CHECK(sc && sl_scatter_slide_batch(sc, sets, n, &so, pk, NULL, &e) == SL_OK, "%s", e.msg);
     sl_scatter_free(sc);
 }
 

@@ -1,4 +1,4 @@
-/* test_scatter.c - record-to-record intensity scatter (synth/scatter.h):
+/* test_scatter.c - record-to-record intensity scatter (method/scatter.h):
  * the factor's moments, the quadrature (R3) against closed forms and an
  * independent numerical integral, the exact scaling law (R2) of the block
  * (an invariance of its equation of motion, checked on the engine), (R3)
@@ -13,7 +13,7 @@
 #include "io/floor.h"
 #include "io/setdir.h"
 #include "slide/slide.h"
-#include "synth/scatter.h"
+#include "method/scatter.h"
 #include "synth/synth.h"
 
 static const double SIG = 0.30;
@@ -255,24 +255,13 @@ static void test_analysis_wiring(void)
         CHECK(a->scatter == SL_ANALYSIS_SCATTER && a->n_nltha_mu > 2, "scatter %g, %zu mu",
               a->scatter, a->n_nltha_mu);
         sl_scatter *s = sl_scatter_alloc(o.scatter, mu, 2, &err);
-        size_t nq;
-        const double *g = sl_scatter_grid(s, &nq);
         sl_slide_opts so;
         sl_slide_opts_default(&so);
-        sl_slide_result *r = calloc(nq, sizeof *r);
-        double *u = calloc(nq, sizeof *u), y[2], m[2] = {0, 0};
-        for (size_t i = 0; i < 3; i++) {
-            CHECK(sl_slide_run(&a->sets[i].set, g, nq, &so, r, &err) == SL_OK, "run");
-            for (size_t q = 0; q < nq; q++)
-                u[q] = r[q].peak_m;
-            sl_scatter_mean(s, u, y, NULL);
-            m[0] += y[0] / 3;
-            m[1] += y[1] / 3;
-        }
+        sl_set sets[3] = {a->sets[0].set, a->sets[1].set, a->sets[2].set};
+        double y[6];
+        CHECK(sl_scatter_slide_batch(s, sets, 3, &so, y, NULL, &err) == SL_OK, "%s", err.msg);
         for (int k = 0; k < 2; k++)
-            CHECK_CLOSE(a->conv[k].mean_m, m[k], 0, 1e-12);
-        free(u);
-        free(r);
+            CHECK_CLOSE(a->conv[k].mean_m, (y[k] + y[2 + k] + y[4 + k]) / 3, 0, 1e-12);
         sl_scatter_free(s);
         sl_analysis_free(a);
     }

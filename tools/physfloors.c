@@ -10,7 +10,7 @@
  *            pga_sigma), -g (ground check only), -G (no ground),
  *            -F FMAX (floor spectra end at FMAX Hz, 50), -R SIGMA (record-to-
  *            record intensity scatter of the synthesized floor sets as the run
- *            applies it, synth/scatter.h (R3); default the run's, 0 = none;
+ *            applies it, method/scatter.h (R3); default the run's, 0 = none;
  *            the ground comparison has none: both sides are matched sets)
  * Prints markdown tables; exit 0, or 1 with a message on bad input.
  */
@@ -29,7 +29,7 @@
 #include "study/building.h"
 #include "study/physfloor.h"
 #include "study/study.h"
-#include "synth/scatter.h"
+#include "method/scatter.h"
 #include "synth/synth.h"
 
 #define NMU 5
@@ -38,7 +38,7 @@
 
 static sl_synth_params P;
 /* -R: intensity scatter of the synthesized floor sets, as `seislide run`
- * applies it (synth/scatter.h (R3); default the run's) */
+ * applies it (method/scatter.h (R3); default the run's) */
 static double Scatter = SL_ANALYSIS_SCATTER;
 
 static void die(const sl_error *e)
@@ -65,31 +65,18 @@ static double *slide(const sl_set *sets, size_t n, const double *mu)
 }
 
 /* As slide(), with the run's intensity scatter: each set's expected peak
- * over its intensity factor (synth/scatter.h (R3)). */
+ * over its intensity factor (method/scatter.h (R3)). */
 static double *slide_floor(const sl_set *sets, size_t n, const double *mu)
 {
     if (!(Scatter > 0))
         return slide(sets, n, mu);
     sl_error e;
-    sl_scatter *sc = sl_scatter_alloc(Scatter, mu, NMU, &e);
-    if (!sc)
-        die(&e);
-    size_t nq;
-    const double *g = sl_scatter_grid(sc, &nq);
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    sl_slide_result *res = calloc(n * nq, sizeof *res);
-    double *u = malloc(nq * sizeof *u), *pk = malloc(n * NMU * sizeof *pk);
-    if (!res || !u || !pk || sl_slide_batch(sets, n, g, nq, &so, res, &e))
+    sl_scatter *sc = sl_scatter_alloc(Scatter, mu, NMU, &e);
+    double *pk = malloc(n * NMU * sizeof *pk);
+    if (!sc || !pk || sl_scatter_slide_batch(sc, sets, n, &so, pk, NULL, &e))
         die(&e);
-    for (size_t i = 0; i < n; i++) {
-        for (size_t q = 0; q < nq; q++)
-            u[q] = res[i * nq + q].peak_m;
-        if (sl_scatter_mean(sc, u, pk + i * NMU, &e))
-            die(&e);
-    }
-    free(res);
-    free(u);
     sl_scatter_free(sc);
     return pk;
 }

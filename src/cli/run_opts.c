@@ -10,7 +10,7 @@
 
 #include "core/standards.h"
 #include "slide/model.h"
-#include "synth/scatter.h"
+#include "method/scatter.h"
 
 static const char run_head[] =
     "usage: seislide run [FLOOR.ini ... | DIR] [options]\n\nThe main job: for every floor "

@@ -1,4 +1,4 @@
-#include "synth/scatter.h"
+#include "method/scatter.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -10,6 +10,7 @@
 
 #include "core/units.h"
 #include "io/setdir.h"
+#include "slide/slide.h"
 #include "synth/synth.h"
 
 #define SCATTER_STREAM 0x7363617474657221ULL /* "scatter!" */
@@ -178,4 +179,30 @@ sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_er
     gsl_interp_free(ip);
     gsl_interp_accel_free(acc);
     return SL_OK;
+}
+
+sl_status sl_scatter_slide_batch(const sl_scatter *s, const sl_set *sets, size_t n,
+                                 const sl_slide_opts *so, double *y, double *err_est,
+                                 sl_error *err)
+{
+    if (n == 0)
+        return SL_OK;
+    sl_slide_result *res = calloc(n * s->nq, sizeof *res);
+    double *u = malloc(2 * s->nq * sizeof *u);
+    sl_status st = !res || !u ? sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory")
+                              : sl_slide_batch(sets, n, s->grid, s->nq, so, res, err);
+    for (size_t i = 0; i < n && !st; i++) {
+        const sl_slide_result *r = res + i * s->nq;
+        double *e = u + s->nq;
+        for (size_t q = 0; q < s->nq; q++) {
+            u[q] = r[q].peak_m;
+            e[q] = r[q].err_est_m;
+        }
+        st = sl_scatter_mean(s, u, y + i * s->n_mu, err);
+        if (!st && err_est)
+            st = sl_scatter_mean(s, e, err_est + i * s->n_mu, err);
+    }
+    free(res);
+    free(u);
+    return st;
 }

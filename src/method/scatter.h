@@ -6,6 +6,7 @@
 
 #include "core/status.h"
 #include "io/motion.h"
+#include "slide/model.h"
 
 /* Record-to-record intensity scatter of synthesized sets
  * (docs/synthesis.md 11, docs/run.md "Intensity scatter").
@@ -72,5 +73,13 @@ const double *sl_scatter_grid(const sl_scatter *s, size_t *n);
 /* y[k] = Y(mu[k]) of (R3) from u[q] >= 0, the peaks at
  * sl_scatter_grid()[q]. SL_OK or SL_ENOMEM. */
 sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_error *err);
+
+/* NLTHA of sets[0..n) on the grid (sl_slide_batch, in parallel) and (R3)
+ * per set: y[i * n_mu + k] = Y_i(mu[k]); err_est (NULL: not wanted) gets
+ * the same quadrature of the engine's error estimates err_est_m. SL_OK, or
+ * the engine's error, or SL_ENOMEM. */
+sl_status sl_scatter_slide_batch(const sl_scatter *s, const sl_set *sets, size_t n,
+                                 const sl_slide_opts *so, double *y, double *err_est,
+                                 sl_error *err);
 
 #endif
