@@ -90,6 +90,7 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
                                   .design_se_m = an[i]->design_se_m,
                                   .err_est_m = an[i]->err_est_m,
                                   .sets_stop = sl_analysis_stop_name(an[i]->stop),
+                                  .scatter = an[i]->scatter,
                                   .dampings = sl_analysis_dampings_text(an[i], damp[i],
                                                                         sizeof damp[i]),
                                   .dampings_min = NAN, .dampings_max = NAN,

@@ -324,6 +324,12 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
              "estimate, cap); cap = %g x mean peak floor displacement (100-40); %zu motion sets",
              d->fs_nltha, d->fs_asce, d->cap_factor, d->n_sets);
     csv_comment(f, "factors", buf);
+    if (fl->scatter > 0)
+        snprintf(buf, sizeof buf, "%g (log standard deviation of the sets' horizontal intensity, "
+                 "mean 1; each set's NLTHA peak averaged over it, docs/run.md)", fl->scatter);
+    else
+        snprintf(buf, sizeof buf, "%s", fl->scatter == 0 ? "0 (the sets as synthesized)" : "-");
+    csv_comment(f, "nltha_intensity_scatter", buf);
     csv_comment(f, "clearance_policy", sl_clearance_policy_name(d->policy));
     csv_comment(f, "crossover", crossover_text(d, buf, sizeof buf));
     csv_comment(f, "asce_below_nltha_mu", sl_report_ranges_text(d, buf, sizeof buf));

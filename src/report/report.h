@@ -60,6 +60,8 @@ typedef struct sl_report_floor {
     const double *err_est_m;
     const char *sets_stop;   /* why the floor stopped adding motion sets: "converged",
                                 "max_sets" or "fixed" (NULL: not given) */
+    double scatter;          /* the NLTHA's intensity scatter sigma_ln (analysis.h;
+                                0: none, NAN: not given) */
     /* Every other damping of the file against the motions' own spectra
      * (sl_analysis_dampings_text; NULL or "none": the file gives one):
      * the text, the lowest and highest set-mean S/T over all of them

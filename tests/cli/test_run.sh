@@ -113,6 +113,9 @@ awk -F, 'NR == FNR { if (FNR > 1) m0[$1] = $3; next }
          END { if (bad != "" || n < 10 || !(lm > 0) || !(m0[last] < lm)) { print bad, n, lm, m0[last]; exit 1 } }' \
   "$D/roof-table.csv" "$D/roof-scat.csv" > "$D/scat.txt" \
   && t_pass || t_fail "scatter: mean below the unscattered or no tail: $(cat "$D/scat.txt")"
+grep -q "^# nltha_intensity_scatter: 0.3 (" "$D/out5/floor_04-roof36.csv" && \
+  grep -q "^# nltha_intensity_scatter: 0 (the sets as synthesized)" "$D/out1/floor_04-roof36.csv" \
+  && t_pass || t_fail "floor CSV does not state the intensity scatter"
 
 # progress on stderr without -q
 t_run run "$D/floors" -o "$D/out4" --sets 5 --mu-range 0.1:0.3:0.1 --created 0
