@@ -47,7 +47,7 @@
 
 #define SL_SCATTER_ZMAX 5.0
 #define SL_SCATTER_DZ 0.1
-#define SL_SCATTER_PER_DECADE 48
+#define SL_SCATTER_PER_DECADE 32
 #define SL_SCATTER_SIGMA_MAX 1.0 /* log standard deviation, largest accepted */
 
 /* eps of (R1) for set `set`, z = Phi^-1(u), u from GSL's mt19937 seeded with
