@@ -1268,9 +1268,16 @@ static void notes_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              "floor, synthesized from the floor response spectra and checked as in US NRC SRP "
              "3.7.1 (sheet Motion quality; 'longest run of points below target' = the most "
              "consecutive frequency points below the target spectrum, limit 9).", d->n_sets);
+    char scat[400] = "";
+    if (r->floors[0].scatter > 0)
+        snprintf(scat, sizeof scat, " Each set's peak is its mean over a record-to-record "
+                 "intensity factor of its horizontals (log-normal, mean 1, log standard deviation "
+                 "%g): the floor motions behind a spectrum differ in intensity, and sliding near mu "
+                 "g = ZPA grows faster than the intensity (docs/run.md, Intensity scatter).",
+                 r->floors[0].scatter);
     snprintf(t[k++], sizeof t[0], "NLTHA design value = %g x the mean over the sets of the peak "
              "vector sliding displacement (ASCE/SEI 43-05 A.1 asks for 3.0 x the mean of at least "
-             "5 analyses).", d->fs_nltha);
+             "5 analyses).%s", d->fs_nltha, scat);
     snprintf(t[k++], sizeof t[0], "ASCE design value = %g x the ASCE/SEI 43-05 best estimate "
              "delta = c_s / (2 pi f_es)^2 with c_s = 2 mu_e g and f_es the lowest frequency where "
              "the 10 %%-damped spectrum SA_vH reaches c_s: delta is the spectral displacement "
