@@ -11,7 +11,9 @@
  *            -F FMAX (floor spectra end at FMAX Hz, 50), -R SIGMA (record-to-
  *            record intensity scatter of the synthesized floor sets as the run
  *            applies it, method/scatter.h (R3); default the run's, 0 = none;
- *            the ground comparison has none: both sides are matched sets)
+ *            the ground comparison has none: both sides are matched sets);
+ *            -x also moves H2 peaks (coincident, records' lags) and reports
+ *            the vector peak and the H1-H2 peak lag of every ensemble
  * Prints markdown tables; exit 0, or 1 with a message on bad input.
  */
 #include <math.h>
@@ -81,12 +83,20 @@ static double *slide_floor(const sl_set *sets, size_t n, const double *mu)
     return pk;
 }
 
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
 static void describe(const char *what, const sl_set *sets, size_t n)
 {
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0;
+    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0, vr = 0;
+    double *lag = malloc(n * sizeof *lag);
     for (size_t i = 0; i < n; i++) {
+        size_t ipk[2] = {0, 0};
         for (int c = 0; c < 2; c++) {
             const sl_motion *m = c ? sets[i].h2 : sets[i].h1;
             /* duration of the half-cycle holding the PGA (sign change to sign change) */
@@ -99,6 +109,7 @@ static void describe(const char *what, const sl_set *sets, size_t n)
             while (j1 + 1 < m->n && (m->acc_ms2[j1 + 1] > 0) == (m->acc_ms2[ip] > 0))
                 j1++;
             hw += m->dt_s * (double)(j1 - j0 + 1) / (2.0 * (double)n);
+            ipk[c] = ip;
             double sa;
             sl_error e;
             if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, &f50, 1, 0.05, &sa, NULL, NULL,
@@ -106,12 +117,25 @@ static void describe(const char *what, const sl_set *sets, size_t n)
                 s50 += sa / sl_motion_pga(m) / (2.0 * (double)n);
         }
         th += sl_slide_mu_threshold(&sets[i], &so) / (double)n;
+        lag[i] = fabs((double)ipk[0] - (double)ipk[1]) * sets[i].h1->dt_s;
+        double vp = 0; /* vector peak of the horizontals */
+        for (size_t j = 0; j < sets[i].h1->n && j < sets[i].h2->n; j++)
+            vp = fmax(vp, hypot(sets[i].h1->acc_ms2[j], sets[i].h2->acc_ms2[j]));
+        vr += vp / sl_set_pga_h(&sets[i]) / (double)n;
         pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
         pc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
     }
     printf("  %s (%zu sets): mean threshold mu %.3f, mean larger H PGA %.3f g, mean H component "
            "PGA %.3f g, ratio %.3f, SA(50 Hz)/PGA %.3f, PGA half-cycle %.3f s\n",
            what, n, th, pg, pc, pg / pc, s50, hw);
+    qsort(lag, n, sizeof *lag, cmp_d);
+    size_t w01 = 0, w05 = 0;
+    for (size_t i = 0; i < n; i++)
+        w01 += lag[i] <= 0.1, w05 += lag[i] <= 0.5;
+    printf("    H vector peak / larger H PGA %.3f; |time between the H1 and H2 peaks|: median %.2f s, "
+           "<= 0.1 s in %.0f %%, <= 0.5 s in %.0f %%\n", vr, lag[n / 2],
+           100.0 * (double)w01 / (double)n, 100.0 * (double)w05 / (double)n);
+    free(lag);
 }
 
 /* "| label | R ± SE ... |", '*' where |R - 1| > 2 SE */
@@ -167,6 +191,43 @@ static sl_motion *delayed(const sl_motion *m, size_t lag)
     return o;
 }
 
+static size_t peak_index(const sl_motion *m)
+{
+    size_t ip = 0;
+    for (size_t i = 0; i < m->n; i++)
+        ip = fabs(m->acc_ms2[i]) > fabs(m->acc_ms2[ip]) ? i : ip;
+    return ip;
+}
+
+/* a copy of m shifted circularly so that its largest |a| falls lag samples
+ * after ref's (lag may be negative) */
+static sl_motion *lagged(const sl_motion *m, const sl_motion *ref, long lag)
+{
+    long n = (long)m->n, sh = (long)peak_index(ref) + lag - (long)peak_index(m);
+    double *a = malloc(m->n * sizeof *a);
+    for (long i = 0; i < n; i++)
+        a[((i + sh) % n + n) % n] = m->acc_ms2[i];
+    sl_motion *o = sl_motion_from_array(a, m->n, m->dt_s, m->label);
+    free(a);
+    return o;
+}
+
+/* a copy of m shifted circularly so that its largest |a| falls on ref's */
+static sl_motion *aligned(const sl_motion *m, const sl_motion *ref)
+{
+    size_t im = 0, ir = 0;
+    for (size_t i = 0; i < m->n; i++)
+        im = fabs(m->acc_ms2[i]) > fabs(m->acc_ms2[im]) ? i : im;
+    for (size_t i = 0; i < ref->n; i++)
+        ir = fabs(ref->acc_ms2[i]) > fabs(ref->acc_ms2[ir]) ? i : ir;
+    double *a = malloc(m->n * sizeof *a);
+    for (size_t i = 0; i < m->n; i++)
+        a[(i + m->n + ir - im) % m->n] = m->acc_ms2[i];
+    sl_motion *o = sl_motion_from_array(a, m->n, m->dt_s, m->label);
+    free(a);
+    return o;
+}
+
 static sl_motion *scaled(const sl_motion *m, double s)
 {
     sl_motion *o = sl_motion_from_array(m->acc_ms2, m->n, m->dt_s, m->label);
@@ -182,11 +243,6 @@ static void free_tmp(sl_set *v, size_t n)
 
 /* Swap experiments (docs/synthesis.md 10): sliding of modified sets
  * relative to the unmodified ones. */
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
                         const sl_synth_set *so, size_t nsyn, const double *mu,
@@ -205,6 +261,37 @@ static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
     row("synthesized / physical, both without V", s_nov, nsyn, p_nov, nrec);
     row("physical without V / physical", p_nov, nrec, phys, nrec);
     row("synthesized without V / synthesized", s_nov, nsyn, sy, nsyn);
+    /* synthesized with H2's peak moved onto H1's (coincident horizontal peaks) */
+    for (size_t i = 0; i < nsyn; i++)
+        t[i] = (sl_set){scaled(syn[i].h1, 1), aligned(syn[i].h2, syn[i].h1), scaled(syn[i].v, 1)};
+    double *s_al = slide(t, nsyn, mu);
+    describe("synthesized, H2 peak on H1 peak", t, nsyn);
+    row("synthesized, H peaks coincident / synthesized", s_al, nsyn, sy, nsyn);
+    row("synthesized, H peaks coincident / physical", s_al, nsyn, phys, nrec);
+    free_tmp(t, nsyn);
+    free(s_al);
+    /* synthesized with the H1-H2 peak lag of the physical sets (stratified
+     * quantiles of their |lag|, alternating sign) */
+    {
+        double *lg = malloc(nrec * sizeof *lg);
+        for (size_t i = 0; i < nrec; i++)
+            lg[i] = fabs((double)peak_index(fm[i].h1) - (double)peak_index(fm[i].h2)) *
+                    fm[i].h1->dt_s;
+        qsort(lg, nrec, sizeof *lg, cmp_d);
+        for (size_t i = 0; i < nsyn; i++) {
+            size_t j = (size_t)(((double)i + 0.5) / (double)nsyn * (double)nrec);
+            long l = lround(lg[j < nrec ? j : nrec - 1] / syn[i].h1->dt_s) * (i % 2 ? 1 : -1);
+            t[i] = (sl_set){scaled(syn[i].h1, 1), lagged(syn[i].h2, syn[i].h1, l),
+                            scaled(syn[i].v, 1)};
+        }
+        free(lg);
+        double *s_lg = slide(t, nsyn, mu);
+        describe("synthesized, H2 peak at the physical sets' lag", t, nsyn);
+        row("synthesized, physical peak lags / synthesized", s_lg, nsyn, sy, nsyn);
+        row("synthesized, physical peak lags / physical", s_lg, nsyn, phys, nrec);
+        free_tmp(t, nsyn);
+        free(s_lg);
+    }
     /* physical with V delayed 1 s (peaks of V no longer with those of H) */
     for (size_t i = 0; i < nrec; i++) {
         size_t lag = (size_t)lround(1.0 / fm[i].h1->dt_s);
