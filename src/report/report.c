@@ -1343,9 +1343,10 @@ static void inputs_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
     strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tmv);
     worksheet_write_string(ws, row, 0, "created (UTC)", F->bold);
     worksheet_write_string(ws, row++, 1, buf, NULL);
-    for (size_t s = 0; s < r->n_settings; s++) {
+    for (size_t s = 0; s < r->n_settings; s++) { /* wrapped values: heights as above */
         worksheet_write_string(ws, row, 0, r->settings[s].name, F->bold);
-        worksheet_write_string(ws, row++, 1, r->settings[s].value, NULL);
+        worksheet_write_string(ws, row, 1, r->settings[s].value, NULL);
+        worksheet_set_row(ws, row++, 15.0 * (double)(1 + strlen(r->settings[s].value) / 75), NULL);
     }
     row++;
     static const char *const head[] = {"floor", "file", "id", "units", "bytes", "CRC-32"};
