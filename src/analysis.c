@@ -351,7 +351,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->design_se_m = calloc(n_mu, sizeof *a->design_se_m);
     a->err_est_m = calloc(n_mu, sizeof *a->err_est_m);
     sets = calloc(cap_sets, sizeof *sets);
-    res = calloc(cap_sets * n_mu, sizeof *res);
+    res = calloc(scat ? 1 : cap_sets * n_mu, sizeof *res); /* (R3) keeps its own */
     err_k = calloc(cap_sets * n_mu, sizeof *err_k);
     peak = calloc(cap_sets * n_mu, sizeof *peak);
     n_skip = calloc(n_mu, sizeof *n_skip);
@@ -410,16 +410,17 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         if (o->progress)
             o->progress(o->progress_ctx, "nltha", want, want);
         for (size_t i = n * n_mu; i < want * n_mu; i++) {
-            const sl_slide_result *r = &res[i];
-            if (!scat) {
-                peak[i] = r->peak_m;
-                err_k[i] = r->err_est_m;
-            }
             size_t k = i % n_mu;
-            a->err_est_m[k] = fmax(a->err_est_m[k], err_k[i]);
             /* "need no NLTHA": skipped (mu above the set's threshold), or
              * with scatter zero at every intensity */
-            n_skip[k] += scat ? peak[i] == 0 : (r->flags & SL_SLIDE_SKIPPED) != 0;
+            if (scat) {
+                n_skip[k] += peak[i] == 0;
+            } else {
+                peak[i] = res[i].peak_m;
+                err_k[i] = res[i].err_est_m;
+                n_skip[k] += (res[i].flags & SL_SLIDE_SKIPPED) != 0;
+            }
+            a->err_est_m[k] = fmax(a->err_est_m[k], err_k[i]);
         }
         a->time_nltha_s += wall_s() - t0;
         n = want;

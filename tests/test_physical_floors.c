@@ -1,6 +1,6 @@
 /*
  * test_physical_floors.c - synthesized floor motions slide like the physical
- * floor motions behind their spectrum (issue 12; docs/synthesis.md 10).
+ * floor motions behind their spectrum (issue 12; docs/synthesis.md 10-11).
  *
  * Physical floor motions: real three-component records of ../shared/records
  * (study/physfloor.h: rule, scaled to a larger horizontal PGA of 0.3 g)
@@ -63,7 +63,8 @@ static const char *const recs[] = {
 #define HI 1.33
 
 /* The full comparison (tools/physfloors.c: 83 records, 48 synthesized sets
- * per case for the floors (24 for the ground), seed 12; docs/synthesis.md 10): ratio synthesized / physical at
+ * per case for the floors (24 for the ground), seed 12; docs/synthesis.md 11
+ * for the floors, 10 for the ground): ratio synthesized / physical at
  * mu g/ZPA = 0.1 ... 0.9 per floor, and ground (synthesized RG 1.60 /
  * records matched to RG 1.60). This test's subset must agree with it within
  * 3 standard errors of its own ratio (P1 of study/physfloor.h) plus 0.02. */

@@ -77,20 +77,26 @@ static void test_quadrature(void)
      * Y = mu^-2 E[eps^3] = mu^-2 exp(3 sigma^2) */
     for (size_t q = 0; q < nq; q++)
         u[q] = g[q] > 0 ? 1 / (g[q] * g[q]) : 1.0;
-    sl_scatter_mean(s, u, y, NULL);
+    CHECK(sl_scatter_mean(s, u, y, &err) == SL_OK, "%s", err.msg);
     CHECK_CLOSE(y[0], 1.0, 0, 1e-6); /* (R2) at mu = 0: E[eps] u(0) */
     for (size_t k = 1; k < nm; k++)
         CHECK_CLOSE(y[k], exp(3 * SIG * SIG) / (mu[k] * mu[k]), 0, 2e-4);
     /* constant u: Y = E[eps] = 1 */
     for (size_t q = 0; q < nq; q++)
         u[q] = 2.5;
-    sl_scatter_mean(s, u, y, NULL);
+    CHECK(sl_scatter_mean(s, u, y, &err) == SL_OK, "%s", err.msg);
     for (size_t k = 0; k < nm; k++)
         CHECK_CLOSE(y[k], 2.5, 0, 1e-6);
     /* a threshold law with a kink at m0 = 0.35 (sliding stops at mu = m0) */
     for (size_t q = 0; q < nq; q++)
         u[q] = thr_u(g[q], 0.35);
-    sl_scatter_mean(s, u, y, NULL);
+    CHECK(sl_scatter_mean(s, u, y, &err) == SL_OK, "%s", err.msg);
+    /* a NaN peak is not read as "no sliding" */
+    double keep = u[nq / 2];
+    u[nq / 2] = NAN;
+    double yn[8];
+    CHECK(sl_scatter_mean(s, u, yn, &err) == SL_OK && isnan(yn[4]), "NaN peak hidden: %g", yn[4]);
+    u[nq / 2] = keep;
     gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
     for (size_t k = 0; k < nm; k++) {
         thr t = {mu[k], 0.35};
@@ -117,6 +123,22 @@ static void test_quadrature(void)
     CHECK(sl_scatter_alloc(1.5, mu, nm, &err) == NULL, "sigma too large");
     double bad[] = {0.1, -0.1};
     CHECK(sl_scatter_alloc(SIG, bad, 2, &err) == NULL, "negative mu");
+    /* a small sigma and one mu: the grid still has the points Steffen needs
+     * (fewer made GSL abort), and Y -> u(mu) as sigma -> 0 */
+    const double one = 0.11;
+    sl_scatter *s1 = sl_scatter_alloc(0.001, &one, 1, &err);
+    CHECK(s1 != NULL, "small sigma: %s", err.msg);
+    if (s1) {
+        size_t n1;
+        const double *g1 = sl_scatter_grid(s1, &n1);
+        double u1[16], y1;
+        CHECK(n1 >= 3 && n1 <= 16, "small sigma: %zu grid points", n1);
+        for (size_t q = 0; q < n1 && q < 16; q++)
+            u1[q] = thr_u(g1[q], 0.35);
+        CHECK(sl_scatter_mean(s1, u1, &y1, &err) == SL_OK, "%s", err.msg);
+        CHECK_CLOSE(y1, thr_u(one, 0.35), 0, 1e-4);
+        sl_scatter_free(s1);
+    }
 }
 
 /* a synthesized RG 1.60 set at 0.3 g (three components) */
@@ -175,7 +197,23 @@ static void test_against_direct(const sl_set *set, const sl_slide_opts *so)
     CHECK(sl_slide_run(set, g, nq, so, r, &err) == SL_OK, "grid: %s", err.msg);
     for (size_t q = 0; q < nq; q++)
         u[q] = r[q].peak_m;
-    sl_scatter_mean(s, u, y, NULL);
+    CHECK(sl_scatter_mean(s, u, y, &err) == SL_OK, "%s", err.msg);
+    /* the batch form gives the same peaks and the same quadrature of the
+     * engine's error estimates */
+    {
+        double yb[4], eb[4], ey[4];
+        CHECK(sl_scatter_slide_batch(s, set, 1, so, yb, eb, &err) == SL_OK, "%s", err.msg);
+        for (size_t q = 0; q < nq; q++)
+            u[q] = r[q].err_est_m;
+        CHECK(sl_scatter_mean(s, u, ey, &err) == SL_OK, "%s", err.msg);
+        for (size_t k = 0; k < nm; k++) {
+            CHECK(yb[k] == y[k], "batch peak at mu %g: %g vs %g", mu[k], yb[k], y[k]);
+            CHECK(eb[k] == ey[k] && eb[k] > 0, "batch error estimate at mu %g: %g vs %g", mu[k],
+                  eb[k], ey[k]);
+        }
+        for (size_t q = 0; q < nq; q++)
+            u[q] = r[q].peak_m;
+    }
     /* at the nodes, directly */
     const size_t nz = (size_t)lround(2 * SL_SCATTER_ZMAX / SL_SCATTER_DZ) + 1;
     double *mn = malloc(nz * sizeof *mn), wsum = 0;

@@ -19,10 +19,10 @@ void run_progress_cb(void *ctx, const char *step, size_t done, size_t total)
 void run_report_floor(size_t i, size_t n, const char *name, const sl_analysis *q, size_t n_mu)
 {
     char r[512];
-    cli_msg("run: floor %zu/%zu '%s': ZPA %.3f g; %zu of %zu friction values need no "
-            "NLTHA; ASCE below NLTHA for mu in %s%s%s", i, n, name, q->zpa_h_ms2 / SL_G,
-            q->n_mu_skipped, n_mu, sl_report_ranges_text(q->design, r, sizeof r),
-            q->note[0] ? "; note: " : "", q->note);
+    cli_msg("run: floor %zu/%zu '%s': ZPA %.3f g; %zu of %zu friction values %s; ASCE below "
+            "NLTHA for mu in %s%s%s", i, n, name, q->zpa_h_ms2 / SL_G, q->n_mu_skipped, n_mu,
+            q->scatter > 0 ? "slide at no intensity of the scatter" : "need no NLTHA",
+            sl_report_ranges_text(q->design, r, sizeof r), q->note[0] ? "; note: " : "", q->note);
     if (q->stop == SL_ANALYSIS_STOP_FIXED)
         cli_msg("run: floor '%s': %zu motion sets (fixed by --sets)", name, q->n_sets);
     else

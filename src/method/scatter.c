@@ -114,7 +114,13 @@ sl_scatter *sl_scatter_alloc(double sigma_ln, const double *mu, size_t n_mu, sl_
     if (hi > 0) {
         l0 = floor(log10(lo / eps[nz - 1]) / step) * step;
         double l1 = ceil(log10(hi / eps[0]) / step) * step;
-        nlog = (size_t)lround((l1 - l0) / step) + 1;
+        /* Steffen's interpolation needs a few points (a small sigma and one
+         * mu give fewer): widen by a step on both sides until it has them */
+        while ((nlog = (size_t)lround((l1 - l0) / step) + 1) <
+               gsl_interp_type_min_size(gsl_interp_steffen)) {
+            l0 -= step;
+            l1 += step;
+        }
     }
     s->off = (size_t)has_zero;
     s->nq = nlog + s->off;
@@ -161,10 +167,16 @@ sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_er
     if (nlog > 0) { /* u between grid points: Steffen's monotone cubic in ln mu */
         ip = gsl_interp_alloc(gsl_interp_steffen, nlog);
         acc = gsl_interp_accel_alloc();
-        if (!ip || !acc || gsl_interp_init(ip, s->lng, u + s->off, nlog)) {
+        if (!ip || !acc) {
             gsl_interp_free(ip);
             gsl_interp_accel_free(acc);
-            return sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: interpolation failed");
+            return sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory");
+        }
+        if (gsl_interp_init(ip, s->lng, u + s->off, nlog)) {
+            gsl_interp_free(ip);
+            gsl_interp_accel_free(acc);
+            return sl_error_set(err, SL_EINVAL, NULL, 0,
+                                "scatter: peaks cannot be interpolated on the friction grid");
         }
     }
     for (size_t k = 0; k < s->n_mu; k++) {
@@ -172,7 +184,7 @@ sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_er
         for (size_t j = 0; j < s->nz; j++) {
             const term *tm = &s->terms[k * s->nz + j];
             double uk = tm->zero ? u[0] : gsl_interp_eval(ip, s->lng, u + s->off, tm->x, acc);
-            sum += tm->weps * fmax(uk, 0.0); /* (R3) */
+            sum += tm->weps * (uk < 0 ? 0.0 : uk); /* (R3); a NaN peak stays NaN */
         }
         y[k] = sum;
     }

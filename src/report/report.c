@@ -326,7 +326,8 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
     csv_comment(f, "factors", buf);
     if (fl->scatter > 0)
         snprintf(buf, sizeof buf, "%g (log standard deviation of the sets' horizontal intensity, "
-                 "mean 1; each set's NLTHA peak averaged over it, docs/run.md)", fl->scatter);
+                 "mean 1; each set's NLTHA peak averaged over it, docs/run.md; motions written by "
+                 "--motions carry no factor; --scatter 0: the sets as synthesized)", fl->scatter);
     else
         snprintf(buf, sizeof buf, "%s", fl->scatter == 0 ? "0 (the sets as synthesized)" : "-");
     csv_comment(f, "nltha_intensity_scatter", buf);
@@ -863,10 +864,12 @@ static void floor_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r, siz
     info[ni].label = "ASCE best estimate";
     asce_shape_text(d, info[ni++].value, sizeof info[0].value);
     info[ni].label = "note";
-    snprintf(info[ni++].value, sizeof info[0].value, "%s%s%zu friction values needed no NLTHA "
-             "(mu g at or above every motion's demand)",
+    snprintf(info[ni++].value, sizeof info[0].value, "%s%s%zu friction values %s",
              fl->note && *fl->note ? fl->note : "", fl->note && *fl->note ? "; " : "",
-             fl->n_mu_skipped);
+             fl->n_mu_skipped,
+             fl->scatter > 0 ? "with no sliding at any intensity of the scatter (mu g at or above "
+                               "every motion's demand even at the strongest intensity)"
+                             : "needed no NLTHA (mu g at or above every motion's demand)");
     for (size_t k = 0; k < ni; k++) {
         worksheet_merge_range(ws, (lxw_row_t)(k + 1), 0, (lxw_row_t)(k + 1), 2, info[k].label,
                               F->label);
@@ -1255,7 +1258,7 @@ static void notes_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
 {
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Notes");
     const sl_design *d = r->floors[0].design;
-    char t[12][700];
+    char t[12][1100];
     size_t k = 0;
     snprintf(t[k++], sizeof t[0], "Model: a rigid block standing on a level floor, free to slide "
              "in both horizontal directions at once; the floor moves in three components (two "
@@ -1268,13 +1271,16 @@ static void notes_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              "floor, synthesized from the floor response spectra and checked as in US NRC SRP "
              "3.7.1 (sheet Motion quality; 'longest run of points below target' = the most "
              "consecutive frequency points below the target spectrum, limit 9).", d->n_sets);
-    char scat[400] = "";
+    char scat[700] = "";
     if (r->floors[0].scatter > 0)
         snprintf(scat, sizeof scat, " Each set's peak is its mean over a record-to-record "
                  "intensity factor of its horizontals (log-normal, mean 1, log standard deviation "
                  "%g): the floor motions behind a spectrum differ in intensity, and sliding near mu "
-                 "g = ZPA grows faster than the intensity (docs/run.md, Intensity scatter).",
-                 r->floors[0].scatter);
+                 "g = ZPA grows faster than the intensity (docs/run.md, Intensity scatter). This "
+                 "goes beyond A.1's mean of spectrum-compatible analyses: --scatter 0 gives that "
+                 "procedure. The motions written with --motions carry no factor. Above the ZPA the "
+                 "NLTHA value comes from the strongest intensities alone, which is why ASCE (zero "
+                 "there) can be listed below NLTHA at high mu.", r->floors[0].scatter);
     snprintf(t[k++], sizeof t[0], "NLTHA design value = %g x the mean over the sets of the peak "
              "vector sliding displacement (ASCE/SEI 43-05 A.1 asks for 3.0 x the mean of at least "
              "5 analyses).%s", d->fs_nltha, scat);
@@ -1310,11 +1316,13 @@ static void notes_sheet(lxw_workbook *wb, const fmts *F, const sl_report *r)
              "Results apply to the floor spectra given (sheet Inputs: files and CRC-32) and to "
              "components whose base does not rock; anchor components for which this is not "
              "true.");
-    worksheet_set_column(ws, 0, 0, 100, F->wrap);
+    worksheet_set_column(ws, 0, 0, 72, F->wrap); /* fits a portrait A4 page at 100 % */
     worksheet_write_string(ws, 0, 0, "Assumptions and limits", F->title);
     for (size_t i = 0; i < k; i++) {
         worksheet_write_string(ws, (lxw_row_t)(i + 2), 0, t[i], F->wrap);
-        worksheet_set_row(ws, (lxw_row_t)(i + 2), 62, NULL);
+        /* LibreOffice does not grow a wrapped row: about 80 characters a line of the
+         * 72-wide column, 15 points a line, and a blank line between paragraphs */
+        worksheet_set_row(ws, (lxw_row_t)(i + 2), 15.0 * (double)(2 + strlen(t[i]) / 80), NULL);
     }
     page_setup(ws, r, 0);
     worksheet_fit_to_pages(ws, 1, 0);
