@@ -212,22 +212,6 @@ static sl_motion *lagged(const sl_motion *m, const sl_motion *ref, long lag)
     return o;
 }
 
-/* a copy of m shifted circularly so that its largest |a| falls on ref's */
-static sl_motion *aligned(const sl_motion *m, const sl_motion *ref)
-{
-    size_t im = 0, ir = 0;
-    for (size_t i = 0; i < m->n; i++)
-        im = fabs(m->acc_ms2[i]) > fabs(m->acc_ms2[im]) ? i : im;
-    for (size_t i = 0; i < ref->n; i++)
-        ir = fabs(ref->acc_ms2[i]) > fabs(ref->acc_ms2[ir]) ? i : ir;
-    double *a = malloc(m->n * sizeof *a);
-    for (size_t i = 0; i < m->n; i++)
-        a[(i + m->n + ir - im) % m->n] = m->acc_ms2[i];
-    sl_motion *o = sl_motion_from_array(a, m->n, m->dt_s, m->label);
-    free(a);
-    return o;
-}
-
 static sl_motion *scaled(const sl_motion *m, double s)
 {
     sl_motion *o = sl_motion_from_array(m->acc_ms2, m->n, m->dt_s, m->label);
@@ -263,7 +247,7 @@ static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
     row("synthesized without V / synthesized", s_nov, nsyn, sy, nsyn);
     /* synthesized with H2's peak moved onto H1's (coincident horizontal peaks) */
     for (size_t i = 0; i < nsyn; i++)
-        t[i] = (sl_set){scaled(syn[i].h1, 1), aligned(syn[i].h2, syn[i].h1), scaled(syn[i].v, 1)};
+        t[i] = (sl_set){scaled(syn[i].h1, 1), lagged(syn[i].h2, syn[i].h1, 0), scaled(syn[i].v, 1)};
     double *s_al = slide(t, nsyn, mu);
     describe("synthesized, H2 peak on H1 peak", t, nsyn);
     row("synthesized, H peaks coincident / synthesized", s_al, nsyn, sy, nsyn);
