@@ -49,18 +49,12 @@ sl_status sl_set_scaled_h_copy(const sl_set *in, double f, sl_set *out, sl_error
     return SL_OK;
 }
 
-/* One term of (R3): node weight w eps and x = ln(mu / eps); mu = 0 marked
- * by zero = 1 (grid point 0 exactly). */
-typedef struct term {
-    double weps, x;
-    int zero;
-} term;
-
 struct sl_scatter {
     size_t n_mu, nz, nq, off; /* off = 1 when grid[0] = 0 */
     double *grid;             /* nq friction values */
     double *lng;              /* ln grid[off..nq) */
-    term *terms;              /* n_mu x nz */
+    double *weps;             /* nz node weights of (R3), w_j eps_j */
+    double *x;                /* n_mu x nz: ln(mu_k / eps_j) on the grid; NAN for mu_k = 0 */
 };
 
 void sl_scatter_free(sl_scatter *s)
@@ -69,7 +63,8 @@ void sl_scatter_free(sl_scatter *s)
         return;
     free(s->grid);
     free(s->lng);
-    free(s->terms);
+    free(s->weps);
+    free(s->x);
     free(s);
 }
 
@@ -126,8 +121,9 @@ sl_scatter *sl_scatter_alloc(double sigma_ln, const double *mu, size_t n_mu, sl_
     s->nq = nlog + s->off;
     s->grid = malloc((s->nq ? s->nq : 1) * sizeof *s->grid);
     s->lng = malloc((nlog ? nlog : 1) * sizeof *s->lng);
-    s->terms = malloc((n_mu > 0 ? n_mu * nz : 1) * sizeof *s->terms);
-    if (!s->grid || !s->lng || !s->terms)
+    s->weps = malloc(nz * sizeof *s->weps);
+    s->x = malloc((n_mu > 0 ? n_mu * nz : 1) * sizeof *s->x);
+    if (!s->grid || !s->lng || !s->weps || !s->x)
         goto nomem;
     if (has_zero)
         s->grid[0] = 0;
@@ -135,13 +131,13 @@ sl_scatter *sl_scatter_alloc(double sigma_ln, const double *mu, size_t n_mu, sl_
         s->grid[s->off + q] = pow(10.0, l0 + step * (double)q);
         s->lng[q] = log(s->grid[s->off + q]);
     }
-    for (size_t k = 0; k < n_mu; k++)
-        for (size_t j = 0; j < nz; j++) {
-            term *tm = &s->terms[k * nz + j];
-            tm->weps = w[j] / wsum * eps[j];
-            tm->zero = mu[k] == 0; /* (R2) at mu = 0: u(eps a) = eps u(0) */
-            tm->x = tm->zero ? 0 : fmin(fmax(log(mu[k] / eps[j]), s->lng[0]), s->lng[nlog - 1]);
-        }
+    for (size_t j = 0; j < nz; j++)
+        s->weps[j] = w[j] / wsum * eps[j];
+    for (size_t k = 0; k < n_mu; k++) /* mu = 0: (R2) gives u(eps a) = eps u(0) */
+        for (size_t j = 0; j < nz; j++)
+            s->x[k * nz + j] = mu[k] == 0 ? NAN
+                                          : fmin(fmax(log(mu[k] / eps[j]), s->lng[0]),
+                                                 s->lng[nlog - 1]);
     free(eps);
     free(w);
     return s;
@@ -180,11 +176,11 @@ sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_er
         }
     }
     for (size_t k = 0; k < s->n_mu; k++) {
+        const double *xk = s->x + k * s->nz;
         double sum = 0;
         for (size_t j = 0; j < s->nz; j++) {
-            const term *tm = &s->terms[k * s->nz + j];
-            double uk = tm->zero ? u[0] : gsl_interp_eval(ip, s->lng, u + s->off, tm->x, acc);
-            sum += tm->weps * (uk < 0 ? 0.0 : uk); /* (R3); a NaN peak stays NaN */
+            double uk = isnan(xk[j]) ? u[0] : gsl_interp_eval(ip, s->lng, u + s->off, xk[j], acc);
+            sum += s->weps[j] * (uk < 0 ? 0.0 : uk); /* (R3); a NaN peak stays NaN */
         }
         y[k] = sum;
     }
