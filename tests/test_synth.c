@@ -543,10 +543,12 @@ static void test_impossible(void)
     }
     /* Without peak pinning the spectrum is met, and the disagreement shows
      * as the reported PGA/ZPA: the motion's PGA is far below the claimed
-     * ZPA (the target is not rigid at its end, so it is reported only). */
+     * ZPA (the target is not rigid at its end, so it is reported only).
+     * SA at 50 Hz (the Nyquist frequency here) is the PGA of the motion up
+     * to a few %: PGA/ZPA about 2/2.5 = 0.8, at most 5 % above it. */
     st = sl_synth_make_set(s, tgt, 1, 0, &set, &e);
     CHECK(st == SL_OK || st == SL_ENOCONV, "status %d", st);
-    CHECK(set.check[SL_SYNTH_V].pga_zpa < 1 - SL_SYNTH_PGA_TOL_BELOW,
+    CHECK(set.check[SL_SYNTH_V].pga_zpa < 1.05 * 2.0 / 2.5,
           "implausible V target: PGA/ZPA %g", set.check[SL_SYNTH_V].pga_zpa);
     sl_synth_set_clear(&set);
     sl_synth_free(s);

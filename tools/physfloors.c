@@ -12,8 +12,15 @@
  *            record intensity scatter of the synthesized floor sets as the run
  *            applies it, method/scatter.h (R3); default the run's, 0 = none;
  *            the ground comparison has none: both sides are matched sets);
- *            -x also moves H2 peaks (coincident, records' lags) and reports
- *            the vector peak and the H1-H2 peak lag of every ensemble
+ *            -x also moves H2 peaks (coincident, records' lags) and describes
+ *            the records as recorded with each H scaled to 0.3 g; -0 adds
+ *            "floor 0": the records themselves (scaled to 0.3 g) as the
+ *            physical motions behind a floor spectrum; -c CYCLES and -H HOLD
+ *            (synth.h wavelet_cycles, hold_frac). Every ensemble is described:
+ *            vector peak / larger H PGA (also with the axes turned 45 deg: a
+ *            population of real motions does not depend on the axes), H1-H2
+ *            peak lag, sliding threshold / larger PGA (10/50/90 %), time the
+ *            H vector spends above 0.9 x the larger PGA, D5-75, V/A
  * Prints markdown tables; exit 0, or 1 with a message on bad input.
  */
 #include <math.h>
@@ -21,6 +28,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include <gsl/gsl_cdf.h>
 
 #include "analysis.h"
 #include "core/units.h"
@@ -93,8 +102,8 @@ static void describe(const char *what, const sl_set *sets, size_t n)
 {
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0, vr = 0;
-    double *lag = malloc(n * sizeof *lag);
+    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0, vr = 0, ct = 0, d575 = 0, vr45 = 0, va1 = 0, va2 = 0;
+    double *lag = malloc(n * sizeof *lag), *thr = malloc(n * sizeof *thr), *exc = malloc(n * sizeof *exc);
     for (size_t i = 0; i < n; i++) {
         size_t ipk[2] = {0, 0};
         for (int c = 0; c < 2; c++) {
@@ -116,12 +125,36 @@ static void describe(const char *what, const sl_set *sets, size_t n)
                                     &e) == SL_OK)
                 s50 += sa / sl_motion_pga(m) / (2.0 * (double)n);
         }
-        th += sl_slide_mu_threshold(&sets[i], &so) / (double)n;
+        double th_i = sl_slide_mu_threshold(&sets[i], &so);
+        th += th_i / (double)n;
+        thr[i] = th_i * SL_G / sl_set_pga_h(&sets[i]);
         lag[i] = fabs((double)ipk[0] - (double)ipk[1]) * sets[i].h1->dt_s;
-        double vp = 0; /* vector peak of the horizontals */
-        for (size_t j = 0; j < sets[i].h1->n && j < sets[i].h2->n; j++)
-            vp = fmax(vp, hypot(sets[i].h1->acc_ms2[j], sets[i].h2->acc_ms2[j]));
+        double vp = 0, p45a = 0, p45b = 0; /* vector peak; PGAs of the axes turned 45 deg */
+        for (size_t j = 0; j < sets[i].h1->n && j < sets[i].h2->n; j++) {
+            double x = sets[i].h1->acc_ms2[j], y = sets[i].h2->acc_ms2[j];
+            vp = fmax(vp, hypot(x, y));
+            p45a = fmax(p45a, fabs(x + y) / sqrt(2.0));
+            p45b = fmax(p45b, fabs(y - x) / sqrt(2.0));
+        }
+        vr45 += vp / fmax(p45a, p45b) / (double)n;
         vr += vp / sl_set_pga_h(&sets[i]) / (double)n;
+        d575 += 0.5 * (sl_motion_d5_75(sets[i].h1) + sl_motion_d5_75(sets[i].h2)) / (double)n;
+        for (int c = 0; c < 2; c++) { /* V/A of each H component, m/s per g */
+            const sl_motion *mc = c ? sets[i].h2 : sets[i].h1;
+            double va = sl_motion_pgv(mc) / sl_motion_pga(mc) * SL_G;
+            va1 += va / (2.0 * (double)n);
+            va2 += va * va / (2.0 * (double)n);
+        }
+        for (int c = 0; c < 2; c++) { /* each H component's time above 0.9 x its PGA */
+            const sl_motion *mc = c ? sets[i].h2 : sets[i].h1;
+            double pm = sl_motion_pga(mc);
+            for (size_t j = 0; j < mc->n; j++)
+                ct += mc->dt_s * (fabs(mc->acc_ms2[j]) > 0.9 * pm) / (2.0 * (double)n);
+        }
+        exc[i] = 0; /* time the H vector spends above 0.9 x the larger H PGA */
+        for (size_t j = 0; j < sets[i].h1->n && j < sets[i].h2->n; j++)
+            exc[i] += sets[i].h1->dt_s *
+                      (hypot(sets[i].h1->acc_ms2[j], sets[i].h2->acc_ms2[j]) > 0.9 * sl_set_pga_h(&sets[i]));
         pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
         pc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
     }
@@ -132,10 +165,17 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     size_t w01 = 0, w05 = 0;
     for (size_t i = 0; i < n; i++)
         w01 += lag[i] <= 0.1, w05 += lag[i] <= 0.5;
-    printf("    H vector peak / larger H PGA %.3f; |time between the H1 and H2 peaks|: median %.2f s, "
-           "<= 0.1 s in %.0f %%, <= 0.5 s in %.0f %%\n", vr, lag[n / 2],
+    printf("    H vector peak / larger H PGA %.3f (axes turned 45 deg: %.3f); |time between the H1 and H2 peaks|: median %.2f s, "
+           "<= 0.1 s in %.0f %%, <= 0.5 s in %.0f %%\n", vr, vr45, lag[n / 2],
            100.0 * (double)w01 / (double)n, 100.0 * (double)w05 / (double)n);
+    qsort(thr, n, sizeof *thr, cmp_d);
+    qsort(exc, n, sizeof *exc, cmp_d);
+    printf("    threshold mu g / larger H PGA: 10/50/90 %% %.3f %.3f %.3f; H vector time above 0.9 "
+           "larger PGA: 10/50/90 %% %.3f %.3f %.3f s; H component above 0.9 PGA: mean %.3f s, D5-75 %.1f s; H V/A mean %.2f m/s per g, CoV %.2f\n", thr[n / 10], thr[n / 2], thr[9 * n / 10],
+           exc[n / 10], exc[n / 2], exc[9 * n / 10], ct, d575, va1, sqrt(fmax(va2 - va1 * va1, 0)) / va1);
     free(lag);
+    free(thr);
+    free(exc);
 }
 
 /* "| label | R ± SE ... |", '*' where |R - 1| > 2 SE */
@@ -156,9 +196,34 @@ static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t see
     sl_synth_set *out = calloc(nsyn, sizeof *out);
     if (!s || !out)
         die(&e);
-    sl_status st = sl_synth_make_sets(s, tgt, seed, 0, nsyn, out, NULL, NULL, &e);
-    if (st && st != SL_ENOCONV)
-        die(&e);
+    const double shape = getenv("SHAPE") ? atof(getenv("SHAPE")) : 0;
+    if (shape > 0) {
+        for (size_t k = 0; k < nsyn; k++) {
+            double z = gsl_cdf_ugaussian_Pinv(((double)k + 0.5) / (double)nsyn);
+            sl_synth_target tk[3] = {tgt[0], tgt[1], tgt[2]};
+            sl_spectrum *sp[2];
+            for (int c = 0; c < 2; c++) {
+                const sl_spectrum *t0 = tgt[c].spec;
+                sp[c] = sl_spectrum_alloc(t0->n, t0->damping);
+                for (size_t j = 0; j < t0->n; j++) {
+                    double w = log10(5.0 / t0->f_hz[j]);
+                    w = w < 0 ? 0 : w > 1 ? 1 : w;
+                    sp[c]->f_hz[j] = t0->f_hz[j];
+                    sp[c]->sa_ms2[j] = t0->sa_ms2[j] * exp(shape * w * z - 0.5 * shape * shape * w * w);
+                }
+                tk[c].spec = sp[c];
+            }
+            sl_status st = sl_synth_make_sets(s, tk, seed, k, 1, &out[k], NULL, NULL, &e);
+            if (st && st != SL_ENOCONV)
+                die(&e);
+            sl_spectrum_free(sp[0]);
+            sl_spectrum_free(sp[1]);
+        }
+    } else {
+        sl_status st = sl_synth_make_sets(s, tgt, seed, 0, nsyn, out, NULL, NULL, &e);
+        if (st && st != SL_ENOCONV)
+            die(&e);
+    }
     size_t nfail = 0;
     double pz = 0, lo = 0, hi = 0, fhi = 0;
     for (size_t k = 0; k < nsyn; k++) {
@@ -385,11 +450,11 @@ int main(int argc, char **argv)
     const char *rdir = NULL;
     size_t maxrec = 0, nsyn = 24;
     uint64_t seed = 12;
-    int exps = 0, ground_only = 0, no_ground = 0, opt;
+    int exps = 0, ground_only = 0, no_ground = 0, floor0 = 0, opt;
     double f_end = 50.0;
     sl_synth_params_default(&P);
     setvbuf(stdout, NULL, _IOLBF, 0);
-    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gGF:R:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0F:R:H:c:")) != -1) {
         switch (opt) {
         case 'r': rdir = optarg; break;
         case 'n': maxrec = (size_t)atol(optarg); break;
@@ -397,7 +462,10 @@ int main(int argc, char **argv)
         case 'S': seed = (uint64_t)atoll(optarg); break;
         case 'x': exps = 1; break;
         case 'a': P.pga_sigma = atof(optarg); break;
+        case 'H': P.hold_frac = atof(optarg); break;
+        case 'c': P.wavelet_cycles = atof(optarg); break;
         case 'g': ground_only = 1; break;
+        case '0': floor0 = 1; break;
         case 'G': no_ground = 1; break;
         case 'F': f_end = atof(optarg); break;
         case 'R': Scatter = atof(optarg); break;
@@ -438,9 +506,9 @@ int main(int argc, char **argv)
     }
     printf("records: %zu used of %zu directories in %s (rule: three components, larger H PGA "
            ">= %.2f g, duration >= %.0f s, dt <= %.2f s); scaled to %.1f g; %zu synthesized "
-           "sets per case, seed %llu, pga_sigma %.2f, floor spectra to %g Hz, scatter %.2f\n",
+           "sets per case, seed %llu, pga_sigma %.2f, wavelet cycles %.1f, envelope hold %.2f, floor spectra to %g Hz, scatter %.2f\n",
            nrec, nd, rdir, rule.min_pga_g, rule.min_duration_s, rule.max_dt_s, PGA_G, nsyn,
-           (unsigned long long)seed, P.pga_sigma, f_end, Scatter);
+           (unsigned long long)seed, P.pga_sigma, P.wavelet_cycles, P.hold_frac, f_end, Scatter);
     sl_set *syn = calloc(nsyn, sizeof *syn);
     double mu[NMU];
     if (!no_ground) {
@@ -456,6 +524,17 @@ int main(int argc, char **argv)
         for (int k = 0; k < NMU; k++)
             mu[k] = (0.1 + 0.2 * k) * PGA_G;
         double *real = slide(mset, nm, mu);
+        describe("ground, records as recorded (scaled)", g, nrec);
+        if (exps) { /* per-component PGA equalized (what component-wise matching does to the pair) */
+            sl_set *eq = calloc(nrec, sizeof *eq);
+            for (size_t r = 0; r < nrec; r++)
+                eq[r] = (sl_set){scaled(g[r].h1, PGA_G * SL_G / sl_motion_pga(g[r].h1)),
+                                 scaled(g[r].h2, PGA_G * SL_G / sl_motion_pga(g[r].h2)),
+                                 scaled(g[r].v, 1)};
+            describe("ground, records as recorded, each H scaled to 0.3 g", eq, nrec);
+            free_tmp(eq, nrec);
+            free(eq);
+        }
         describe("ground, records matched to RG 1.60", mset, nm);
         sl_spectrum *sp[3];
         sl_synth_target tgt[3];
@@ -492,9 +571,11 @@ int main(int argc, char **argv)
             return 1;
         }
         sl_set *fm = calloc(nrec, sizeof *fm);
-        for (size_t fl = 1; fl <= 3; fl++) {
+        for (size_t fl = floor0 ? 0 : 1; fl <= 3; fl++) {
             for (size_t r = 0; r < nrec; r++)
-                if (sl_building_floor(&b, fl, &g[r], &fm[r], &e))
+                if (fl == 0) /* the ground: the records themselves, as recorded */
+                    fm[r] = (sl_set){scaled(g[r].h1, 1), scaled(g[r].h2, 1), scaled(g[r].v, 1)};
+                else if (sl_building_floor(&b, fl, &g[r], &fm[r], &e))
                     die(&e);
             double zpa = 0;
             for (size_t r = 0; r < nrec; r++)

@@ -134,12 +134,18 @@
  * old default, mean 10-17 % above the target). docs/synthesis.md 3.2. */
 #define SL_SYNTH_AIM 1.03
 /* Start of a synthetic motion: a sum of Gabor wavelets (docs/synthesis.md
- * 3.2), this many per second of strong motion per octave, each of this
- * many cycles; wavelet_rate = 0 gives the stationary random-phase start
- * (SIMQKE). Coherent wave packets let a 5 %-damped oscillator reach
- * SA/PGA = 3 (RG 1.60) without peak limiting. */
+ * 3.1), this many per second of strong motion per octave, each of this
+ * many cycles within +-1 standard deviation of its Gaussian window;
+ * wavelet_rate = 0 gives the stationary random-phase start (SIMQKE).
+ * Coherent wave packets let a 5 %-damped oscillator reach SA/PGA = 3
+ * (RG 1.60) without peak limiting. 2 cycles: the width of the tapered
+ * cosine wavelet of Al Atik and Abrahamson (2010), gamma = 1.178 f^-0.93 s,
+ * is 1.4-2.2 cycles on this measure over 0.1-50 Hz; against 4 cycles the
+ * packets' PGA half-cycles and sliding thresholds come closer to those of
+ * physical floor motions and the synthesized floor sets' sliding with them
+ * (docs/synthesis.md 12). */
 #define SL_SYNTH_WAVELET_RATE 0.5
-#define SL_SYNTH_WAVELET_CYCLES 4.0
+#define SL_SYNTH_WAVELET_CYCLES 2.0
 /* Log standard deviation of the peak level of synthetic motions (synth.c
  * peak_level): each motion's compression level drawn around aim x ZPA.
  * Default 0 (level aim x ZPA): 0.10-0.25 did not move the sliding of
