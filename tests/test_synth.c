@@ -179,6 +179,14 @@ static void test_defaults(void)
     CHECK(p.fmin_hz == 0.1 && p.fmax_hz == 50.0 && p.per_decade == 100.0, "grid");
     CHECK(SL_SYNTH_MAX_DT_S == 0.01, "dt");
     CHECK(sl_synth_params_check(&p, NULL) == SL_OK, "defaults valid");
+    /* Start packets: as wide as the tapered cosine wavelet of Al Atik and
+     * Abrahamson (2010), exp(-(t/gamma)^2) with gamma = 1.178 f^-0.93 s: a
+     * standard deviation gamma/sqrt(2), i.e. 2 f gamma/sqrt(2) cycles within
+     * +-1 standard deviation (our wavelet_cycles), over the checked range. */
+    double c_lo = 2 * p.fmin_hz * 1.178 * pow(p.fmin_hz, -0.93) / sqrt(2.0);
+    double c_hi = 2 * p.fmax_hz * 1.178 * pow(p.fmax_hz, -0.93) / sqrt(2.0);
+    CHECK(p.wavelet_cycles >= c_lo && p.wavelet_cycles <= c_hi,
+          "wavelet_cycles %g outside Al Atik-Abrahamson's %.2f-%.2f", p.wavelet_cycles, c_lo, c_hi);
     sl_error e;
     sl_synth_params q = p;
     q.tol_below = 1.0;

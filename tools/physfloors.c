@@ -16,7 +16,8 @@
  *            the records as recorded with each H scaled to 0.3 g; -0 adds
  *            "floor 0": the records themselves (scaled to 0.3 g) as the
  *            physical motions behind a floor spectrum; -c CYCLES and -H HOLD
- *            (synth.h wavelet_cycles, hold_frac). Every ensemble is described:
+ *            (synth.h wavelet_cycles, hold_frac), -Y SIGMA (spectral-shape
+ *            scatter experiment, see Shape). Every ensemble is described:
  *            vector peak / larger H PGA (also with the axes turned 45 deg: a
  *            population of real motions does not depend on the axes), H1-H2
  *            peak lag, sliding threshold / larger PGA (10/50/90 %), time the
@@ -51,6 +52,11 @@ static sl_synth_params P;
 /* -R: intensity scatter of the synthesized floor sets, as `seislide run`
  * applies it (method/scatter.h (R3); default the run's) */
 static double Scatter = SL_ANALYSIS_SCATTER;
+/* -Y: log standard deviation of a long-period spectral-shape scatter of the
+ * synthesized H targets (set k: T exp(Y w z_k - Y^2 w^2/2), w = 0 above 5 Hz
+ * rising to 1 at 0.5 Hz in log f, z_k stratified normal quantiles); an
+ * experiment only (docs/synthesis.md 12), 0 = none */
+static double Shape = 0;
 
 static void die(const sl_error *e)
 {
@@ -196,8 +202,7 @@ static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t see
     sl_synth_set *out = calloc(nsyn, sizeof *out);
     if (!s || !out)
         die(&e);
-    const double shape = getenv("SHAPE") ? atof(getenv("SHAPE")) : 0;
-    if (shape > 0) {
+    if (Shape > 0) { /* -Y: spectral-shape scatter experiment (docs/synthesis.md 12) */
         for (size_t k = 0; k < nsyn; k++) {
             double z = gsl_cdf_ugaussian_Pinv(((double)k + 0.5) / (double)nsyn);
             sl_synth_target tk[3] = {tgt[0], tgt[1], tgt[2]};
@@ -209,7 +214,7 @@ static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t see
                     double w = log10(5.0 / t0->f_hz[j]);
                     w = w < 0 ? 0 : w > 1 ? 1 : w;
                     sp[c]->f_hz[j] = t0->f_hz[j];
-                    sp[c]->sa_ms2[j] = t0->sa_ms2[j] * exp(shape * w * z - 0.5 * shape * shape * w * w);
+                    sp[c]->sa_ms2[j] = t0->sa_ms2[j] * exp(Shape * w * z - 0.5 * Shape * Shape * w * w);
                 }
                 tk[c].spec = sp[c];
             }
@@ -454,7 +459,7 @@ int main(int argc, char **argv)
     double f_end = 50.0;
     sl_synth_params_default(&P);
     setvbuf(stdout, NULL, _IOLBF, 0);
-    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0F:R:H:c:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0F:R:H:c:Y:")) != -1) {
         switch (opt) {
         case 'r': rdir = optarg; break;
         case 'n': maxrec = (size_t)atol(optarg); break;
@@ -464,6 +469,7 @@ int main(int argc, char **argv)
         case 'a': P.pga_sigma = atof(optarg); break;
         case 'H': P.hold_frac = atof(optarg); break;
         case 'c': P.wavelet_cycles = atof(optarg); break;
+        case 'Y': Shape = atof(optarg); break;
         case 'g': ground_only = 1; break;
         case '0': floor0 = 1; break;
         case 'G': no_ground = 1; break;
