@@ -1,6 +1,6 @@
 /*
  * test_physical_floors.c - synthesized floor motions slide like the physical
- * floor motions behind their spectrum (issue 12; docs/synthesis.md 10-11).
+ * floor motions behind their spectrum (issue 12; docs/synthesis.md 10-12).
  *
  * Physical floor motions: real three-component records of ../shared/records
  * (study/physfloor.h: rule, scaled to a larger horizontal PGA of 0.3 g)
@@ -11,10 +11,10 @@
  * (sl_slide_batch) slides a block on the physical and on the synthesized
  * sets. The issue asks for the ratio of the mean peak sliding, synthesized /
  * physical, in [0.75, 1.33] at mu g/ZPA = 0.1 ... 0.9 on every floor.
- * MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 11): 0.76-0.87
- * at mu g/ZPA 0.1-0.5, 0.71-0.86 at 0.7, 0.66-1.04 at 0.9 (SE 0.06-0.16), within
- * 2 SE of the band everywhere; without the scatter 0.5 x at 0.7 and 0.07-0.14 at
- * 0.9. Setting the scatter to 0.10 fails this test.
+ * MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 12): 0.79-0.97
+ * at mu g/ZPA 0.1-0.5, 0.78-0.88 at 0.7, 0.75-1.07 at 0.9 (SE 0.07-0.17), inside
+ * the band everywhere; without the intensity scatter 0.5 x at 0.7 and 0.07-0.14
+ * at 0.9. Setting the scatter to 0.10 fails this test.
  * This test, on 16 of those records, asserts: agreement with the full
  * comparison within 3 SE of its own ratio (+ 0.02), the issue's band within
  * 2 SE where the full comparison meets it, broadened (+-15 %) spectra sliding
