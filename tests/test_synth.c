@@ -552,11 +552,12 @@ static void test_impossible(void)
     /* Without peak pinning the spectrum is met, and the disagreement shows
      * as the reported PGA/ZPA: the motion's PGA is far below the claimed
      * ZPA (the target is not rigid at its end, so it is reported only).
-     * SA at 50 Hz (the Nyquist frequency here) is the PGA of the motion up
-     * to a few %: PGA/ZPA about 2/2.5 = 0.8, at most 5 % above it. */
+     * Measured: 0.76 with seed 1, 0.45-0.69 with seeds 2-12. Bound: below
+     * 1 - tol_below = 0.9, i.e. the PGA disagrees with the claimed ZPA by
+     * more than the spectral tolerance (a pinned peak gives 1). */
     st = sl_synth_make_set(s, tgt, 1, 0, &set, &e);
     CHECK(st == SL_OK || st == SL_ENOCONV, "status %d", st);
-    CHECK(set.check[SL_SYNTH_V].pga_zpa < 1.05 * 2.0 / 2.5,
+    CHECK(set.check[SL_SYNTH_V].pga_zpa < 1 - p.tol_below,
           "implausible V target: PGA/ZPA %g", set.check[SL_SYNTH_V].pga_zpa);
     sl_synth_set_clear(&set);
     sl_synth_free(s);

@@ -106,8 +106,13 @@ static int cmp_d(const void *a, const void *b)
 
 static void describe(const char *what, const sl_set *sets, size_t n)
 {
+    if (n == 0) {
+        fprintf(stderr, "physfloors: %s: no sets to describe\n", what);
+        exit(1);
+    }
     sl_slide_opts so;
     sl_slide_opts_default(&so);
+    size_t nth = 0;
     double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0, vr = 0, ct = 0, d575 = 0, vr45 = 0, va1 = 0, va2 = 0;
     double *lag = malloc(n * sizeof *lag), *thr = malloc(n * sizeof *thr), *exc = malloc(n * sizeof *exc);
     for (size_t i = 0; i < n; i++) {
@@ -132,7 +137,8 @@ static void describe(const char *what, const sl_set *sets, size_t n)
                 s50 += sa / sl_motion_pga(m) / (2.0 * (double)n);
         }
         double th_i = sl_slide_mu_threshold(&sets[i], &so);
-        th += th_i / (double)n;
+        if (isfinite(th_i)) /* infinite when the vertical lifts the block */
+            th += th_i, nth++;
         thr[i] = th_i * SL_G / sl_set_pga_h(&sets[i]);
         lag[i] = fabs((double)ipk[0] - (double)ipk[1]) * sets[i].h1->dt_s;
         double vp = 0, p45a = 0, p45b = 0; /* vector peak; PGAs of the axes turned 45 deg */
@@ -145,12 +151,16 @@ static void describe(const char *what, const sl_set *sets, size_t n)
         vr45 += vp / fmax(p45a, p45b) / (double)n;
         vr += vp / sl_set_pga_h(&sets[i]) / (double)n;
         d575 += 0.5 * (sl_motion_d5_75(sets[i].h1) + sl_motion_d5_75(sets[i].h2)) / (double)n;
-        for (int c = 0; c < 2; c++) { /* V/A of each H component, m/s per g */
+        /* V/A of a set: the mean of its two H components, m/s per g; its
+         * scatter over the sets (one value per set: the two H of a record
+         * are not independent) */
+        double va = 0;
+        for (int c = 0; c < 2; c++) {
             const sl_motion *mc = c ? sets[i].h2 : sets[i].h1;
-            double va = sl_motion_pgv(mc) / sl_motion_pga(mc) * SL_G;
-            va1 += va / (2.0 * (double)n);
-            va2 += va * va / (2.0 * (double)n);
+            va += 0.5 * sl_motion_pgv(mc) / sl_motion_pga(mc) * SL_G;
         }
+        va1 += va / (double)n;
+        va2 += va * va;
         for (int c = 0; c < 2; c++) { /* each H component's time above 0.9 x its PGA */
             const sl_motion *mc = c ? sets[i].h2 : sets[i].h1;
             double pm = sl_motion_pga(mc);
@@ -158,27 +168,32 @@ static void describe(const char *what, const sl_set *sets, size_t n)
                 ct += mc->dt_s * (fabs(mc->acc_ms2[j]) > 0.9 * pm) / (2.0 * (double)n);
         }
         exc[i] = 0; /* time the H vector spends above 0.9 x the larger H PGA */
+        const double lvl = 0.9 * sl_set_pga_h(&sets[i]);
         for (size_t j = 0; j < sets[i].h1->n && j < sets[i].h2->n; j++)
             exc[i] += sets[i].h1->dt_s *
-                      (hypot(sets[i].h1->acc_ms2[j], sets[i].h2->acc_ms2[j]) > 0.9 * sl_set_pga_h(&sets[i]));
+                      (hypot(sets[i].h1->acc_ms2[j], sets[i].h2->acc_ms2[j]) > lvl);
         pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
         pc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
     }
-    printf("  %s (%zu sets): mean threshold mu %.3f, mean larger H PGA %.3f g, mean H component "
+    th /= (double)(nth ? nth : 1);
+    /* sample standard deviation of the per-set V/A (n - 1) */
+    double va_sd = n > 1 ? sqrt(fmax(va2 - (double)n * va1 * va1, 0) / (double)(n - 1)) : 0;
+    printf("  %s (%zu sets): mean threshold mu %.3f (of the %zu finite), mean larger H PGA %.3f g, mean H component "
            "PGA %.3f g, ratio %.3f, SA(50 Hz)/PGA %.3f, PGA half-cycle %.3f s\n",
-           what, n, th, pg, pc, pg / pc, s50, hw);
+           what, n, th, nth, pg, pc, pg / pc, s50, hw);
     qsort(lag, n, sizeof *lag, cmp_d);
     size_t w01 = 0, w05 = 0;
     for (size_t i = 0; i < n; i++)
         w01 += lag[i] <= 0.1, w05 += lag[i] <= 0.5;
+    double lag_med = n % 2 ? lag[n / 2] : 0.5 * (lag[n / 2 - 1] + lag[n / 2]);
     printf("    H vector peak / larger H PGA %.3f (axes turned 45 deg: %.3f); |time between the H1 and H2 peaks|: median %.2f s, "
-           "<= 0.1 s in %.0f %%, <= 0.5 s in %.0f %%\n", vr, vr45, lag[n / 2],
+           "<= 0.1 s in %.0f %%, <= 0.5 s in %.0f %%\n", vr, vr45, lag_med,
            100.0 * (double)w01 / (double)n, 100.0 * (double)w05 / (double)n);
     qsort(thr, n, sizeof *thr, cmp_d);
     qsort(exc, n, sizeof *exc, cmp_d);
     printf("    threshold mu g / larger H PGA: 10/50/90 %% %.3f %.3f %.3f; H vector time above 0.9 "
            "larger PGA: 10/50/90 %% %.3f %.3f %.3f s; H component above 0.9 PGA: mean %.3f s, D5-75 %.1f s; H V/A mean %.2f m/s per g, CoV %.2f\n", thr[n / 10], thr[n / 2], thr[9 * n / 10],
-           exc[n / 10], exc[n / 2], exc[9 * n / 10], ct, d575, va1, sqrt(fmax(va2 - va1 * va1, 0)) / va1);
+           exc[n / 10], exc[n / 2], exc[9 * n / 10], ct, d575, va1, va_sd / va1);
     free(lag);
     free(thr);
     free(exc);
@@ -195,14 +210,16 @@ static void row(const char *label, const double *a, size_t na, const double *b, 
     printf("\n");
 }
 
-static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t seed, sl_set *sets)
+/* nsyn sets for tgt; shape > 0: the -Y experiment (floors only) */
+static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t seed, double shape,
+                           sl_set *sets)
 {
     sl_error e;
     sl_synth *s = sl_synth_alloc(4001, 0.005, &P, &e);
     sl_synth_set *out = calloc(nsyn, sizeof *out);
     if (!s || !out)
         die(&e);
-    if (Shape > 0) { /* -Y: spectral-shape scatter experiment (docs/synthesis.md 12) */
+    if (shape > 0) { /* -Y: spectral-shape scatter experiment (docs/synthesis.md 12) */
         for (size_t k = 0; k < nsyn; k++) {
             double z = gsl_cdf_ugaussian_Pinv(((double)k + 0.5) / (double)nsyn);
             sl_synth_target tk[3] = {tgt[0], tgt[1], tgt[2]};
@@ -214,7 +231,7 @@ static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t see
                     double w = log10(5.0 / t0->f_hz[j]);
                     w = w < 0 ? 0 : w > 1 ? 1 : w;
                     sp[c]->f_hz[j] = t0->f_hz[j];
-                    sp[c]->sa_ms2[j] = t0->sa_ms2[j] * exp(Shape * w * z - 0.5 * Shape * Shape * w * w);
+                    sp[c]->sa_ms2[j] = t0->sa_ms2[j] * exp(shape * w * z - 0.5 * shape * shape * w * w);
                 }
                 tk[c].spec = sp[c];
             }
@@ -477,9 +494,15 @@ int main(int argc, char **argv)
         case 'R': Scatter = atof(optarg); break;
         default:
             fprintf(stderr, "usage: physfloors [-r dir] [-n max] [-s nsyn] [-S seed] [-x] "
-                            "[-a sigma] [-g|-G] [-F f_end] [-R scatter]\n");
+                            "[-a sigma] [-g|-G] [-0] [-F f_end] [-R scatter] [-c cycles] "
+                            "[-H hold_frac] [-Y shape_sigma]\n");
             return 1;
         }
+    }
+    if (!(Shape >= 0 && Shape <= 1)) {
+        fprintf(stderr, "physfloors: -Y %g: the shape scatter is a log standard deviation in [0, 1]\n",
+                Shape);
+        return 1;
     }
     if (!(f_end > 1 && f_end <= 50)) {
         fprintf(stderr, "physfloors: -F %g: the floor spectrum ends in (1, 50] Hz\n", f_end);
@@ -512,9 +535,15 @@ int main(int argc, char **argv)
     }
     printf("records: %zu used of %zu directories in %s (rule: three components, larger H PGA "
            ">= %.2f g, duration >= %.0f s, dt <= %.2f s); scaled to %.1f g; %zu synthesized "
-           "sets per case, seed %llu, pga_sigma %.2f, wavelet cycles %.1f, envelope hold %.2f, floor spectra to %g Hz, scatter %.2f\n",
+           "sets per case, seed %llu, pga_sigma %.2f, wavelet cycles %.1f, envelope hold %.2f, floor spectra to %g Hz, scatter %.2f, "
+           "floor-spectrum shape scatter %.2f%s\n",
            nrec, nd, rdir, rule.min_pga_g, rule.min_duration_s, rule.max_dt_s, PGA_G, nsyn,
-           (unsigned long long)seed, P.pga_sigma, P.wavelet_cycles, P.hold_frac, f_end, Scatter);
+           (unsigned long long)seed, P.pga_sigma, P.wavelet_cycles, P.hold_frac, f_end, Scatter,
+           Shape, floor0 ? ", floor 0 (the records themselves) included" : "");
+    if (nrec == 0) {
+        fprintf(stderr, "physfloors: no record of %s passes the rule\n", rdir);
+        return 1;
+    }
     sl_set *syn = calloc(nsyn, sizeof *syn);
     double mu[NMU];
     if (!no_ground) {
@@ -546,7 +575,7 @@ int main(int argc, char **argv)
         sl_synth_target tgt[3];
         if (sl_synth_targets_rg160(PGA_G * SL_G, 0.05, &P, sp, tgt, &e))
             die(&e);
-        sl_synth_set *out = synth(tgt, nsyn, seed, syn);
+        sl_synth_set *out = synth(tgt, nsyn, seed, 0.0, syn); /* -Y: floors only */
         double *sy = slide(syn, nsyn, mu);
         describe("ground, synthesized RG 1.60", syn, nsyn);
         header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
@@ -600,7 +629,7 @@ int main(int argc, char **argv)
                 sl_synth_target tgt[3];
                 if (!flr || sl_synth_targets_floor(flr, 0, tgt, &e))
                     die(&e);
-                sl_synth_set *out = synth(tgt, nsyn, seed, syn);
+                sl_synth_set *out = synth(tgt, nsyn, seed, Shape, syn);
                 double *sy = slide_floor(syn, nsyn, mu);
                 describe(broaden ? "synthesized, broadened" : "synthesized", syn, nsyn);
                 header(broaden ? "synthesized (broadened ±15 %) / physical"

@@ -57,7 +57,8 @@ static const param_opt param_opts[] = {
      "SRP App. B minimum PSD fraction (0: reported only)"},
     {"wavelet-rate", P_OFF(wavelet_rate), K_NONNEG, NULL,
      "wave packets per s per octave (0: random phases)"},
-    {"wavelet-cycles", P_OFF(wavelet_cycles), K_POSITIVE, NULL, "cycles per wave packet"},
+    {"wavelet-cycles", P_OFF(wavelet_cycles), K_POSITIVE, NULL, "cycles per wave packet within +-1 standard\n"
+     "deviation of its window"},
     {"rise-frac", P_OFF(rise_frac), K_POSITIVE, NULL, "envelope rise, fraction of the duration"},
     {"hold-frac", P_OFF(hold_frac), K_POSITIVE, NULL, "envelope end of hold, fraction"},
     {"end-amp", P_OFF(end_amp), K_POSITIVE, NULL, "envelope amplitude at the end"},

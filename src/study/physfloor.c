@@ -162,7 +162,8 @@ static void write_list(FILE *f, const char *key, const double *v, size_t n)
 sl_status sl_pf_write_floor(const char *path, const char *name, const sl_set *sets, size_t n,
                             const double *f_hz, size_t nf, int broaden, sl_error *err)
 {
-    static const double damp[2] = {0.05, 0.10};
+    static const double damp[3] = {0.02, 0.05, 0.10};
+    static const char *const key[3] = {"sa_0.02", "sa_0.05", "sa_0.1"};
     double *sa = calloc(2 * nf, sizeof *sa), *psa = malloc(nf * sizeof *psa);
     if (!sa || !psa || !n) {
         free(sa);
@@ -180,7 +181,7 @@ sl_status sl_pf_write_floor(const char *path, const char *name, const sl_set *se
         double *b = sa + nf;
         fprintf(out, "[%s]\n", c == 0 ? "h1" : c == 1 ? "h2" : "v");
         write_list(out, "f_hz", f_hz, nf);
-        for (int d = 0; d < 2 && !st; d++) {
+        for (int d = 0; d < 3 && !st; d++) {
             memset(sa, 0, nf * sizeof *sa);
             for (size_t r = 0; r < n && !st; r++) {
                 const sl_motion *m = comp_of(&sets[r], c);
@@ -197,7 +198,7 @@ sl_status sl_pf_write_floor(const char *path, const char *name, const sl_set *se
                     if (f_hz[q] >= f_hz[j] / 1.15 && f_hz[q] <= f_hz[j] * 1.15 && sa[q] > b[j])
                         b[j] = sa[q];
             }
-            write_list(out, d == 0 ? "sa_0.05" : "sa_0.1", b, nf);
+            write_list(out, key[d], b, nf);
         }
         fprintf(out, "zpa = %.6g\n", zpa);
     }

@@ -63,7 +63,7 @@ void sl_pf_mean_sd(const double *x, size_t n, size_t stride, double *mean, doubl
 double sl_pf_ratio(const double *a, size_t n_a, size_t sa, const double *b, size_t n_b,
                    size_t sb, double *se);
 
-/* Mean 5 % and 10 % pseudo-spectra of components (H1, H2, V) of n sets on
+/* Mean 2 %, 5 % and 10 % pseudo-spectra of components (H1, H2, V) of n sets on
  * f_hz[nf], optionally broadened (SA_b(f) = max SA over [f/1.15, 1.15 f]),
  * and the mean component PGA as ZPA, written as a floor file (io/floor.h
  * format: "units = m/s2", values m/s^2) at path. Returns SL_OK or SL_EIO /

@@ -927,11 +927,11 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
     if (s->p.wavelet_rate > 0) {
         /* A sum of K Gabor wavelets (Gaussian-windowed cosines of
          * wavelet_cycles cycles within +-1 standard deviation... see
-         * docs/synthesis.md 3.2):
+         * docs/synthesis.md 3.1):
          *   a(t) = sum_q A_q exp(-(t - t_q)^2/(2 s_q^2)) cos(2 pi f_q (t - t_q) + phi_q),
-         *   s_q = cycles/(2 f_q), f_q log-uniform on [f0/2, f1], t_q drawn
+         *   s_q = cycles/(2 f_q), f_q log-uniform on [f0, f1], t_q drawn
          *   with density E(t)^2, phi_q uniform, A_q = T(f_q) sqrt(f_q),
-         * K = rate x log2(2 f1/f0) x 0.4 T (0.4 T: the energy width of E^2). */
+         * K = rate x log2(f1/f0) x 0.4 T (0.4 T: the energy width of E^2). */
         const double f0 = SL_SYNTH_WAVELET_FLO_FRAC * t->spec->f_hz[0];
         const double f1 = t->spec->f_hz[t->spec->n - 1];
         const double T = s->dt * (double)(s->n - 1), nc = s->p.wavelet_cycles;

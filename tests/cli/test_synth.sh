@@ -116,10 +116,11 @@ t_expect_rc impossible 1; t_expect_err impossible-msg "3 of 3 motions failed a c
 all_rows "$D/imp/report.csv" pass 0 && t_pass || t_fail "impossible limits passed"
 all_rows "$D/imp/report.csv" lim_min_ratio 0.999 && t_pass || t_fail "limit not in the report"
 # good-small's V (peak only 1.2 x ZPA): its spectrum is met only by a
-# motion whose PGA is far below the claimed ZPA, and the report says so
-# (SA at 50 Hz = 2 m/s2 is the motion's PGA within a few %: 2/2.5 = 0.8, + 5 %)
+# motion whose PGA is far below the claimed ZPA, and the report says so:
+# below 1 - tol-below = 0.9, a disagreement larger than the spectral
+# tolerance (measured 0.76 with seed 1, 0.45-0.69 with seeds 2-12)
 t_run synth --floor tests/data/floors/good-small.ini --count 1 --seed 1 --dt 0.01 --max-attempts 2 -q -o "$D/small"
-col_in_range "$D/small/report.csv" pga_zpa 0 0.84 v && t_pass || t_fail "implausible V: PGA/ZPA not reported low"
+col_in_range "$D/small/report.csv" pga_zpa 0 0.9 v && t_pass || t_fail "implausible V: PGA/ZPA not reported low"
 
 # an output folder that cannot be made
 t_run synth --rg160 0.3 --count 1 --seed 1 -o /proc/seislide-no/x; t_expect_rc unwritable 1; t_expect_err unwritable-msg "cannot create"
