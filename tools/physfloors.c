@@ -13,7 +13,8 @@
  *            applies it, method/scatter.h (R3); default the run's, 0 = none;
  *            the ground comparison has none: both sides are matched sets);
  *            -x also moves H2 peaks (coincident, records' lags) and describes
- *            the records as recorded with each H scaled to 0.3 g; -0 adds
+ *            the records as recorded with each H scaled to 0.3 g and prints how
+ *            their 5 % spectra scatter about their mean; -0 adds
  *            "floor 0": the records themselves (scaled to 0.3 g) as the
  *            physical motions behind a floor spectrum; -c CYCLES and -H HOLD
  *            (synth.h wavelet_cycles, hold_frac), -Y SIGMA (spectral-shape
@@ -197,6 +198,47 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     free(lag);
     free(thr);
     free(exc);
+}
+
+/* How the 5 % spectra of the H components of sets[0..n-1] scatter about
+ * their mean (docs/synthesis.md 12): sigma of ln(SA / mean SA) at a few
+ * frequencies, and the correlation of the residuals with those at 0.5 Hz. */
+static void shape_scatter(const sl_set *sets, size_t n)
+{
+    enum { NS = 9, REF = 2 };
+    static const double f[NS] = {0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50};
+    const size_t m = 2 * n;
+    double *ls = malloc(m * NS * sizeof *ls), mean[NS] = {0}, lr[NS] = {0};
+    if (!ls || m < 3) {
+        free(ls);
+        return;
+    }
+    for (size_t q = 0; q < m; q++) {
+        const sl_motion *mo = q % 2 ? sets[q / 2].h2 : sets[q / 2].h1;
+        sl_error e;
+        if (sl_spectrum_compute(mo->acc_ms2, mo->n, mo->dt_s, f, NS, 0.05, ls + q * NS, NULL,
+                                NULL, &e))
+            die(&e);
+        for (int j = 0; j < NS; j++)
+            mean[j] += ls[q * NS + j] / (double)m;
+    }
+    for (size_t q = 0; q < m; q++)
+        for (int j = 0; j < NS; j++) {
+            ls[q * NS + j] = log(ls[q * NS + j] / mean[j]);
+            lr[j] += ls[q * NS + j] / (double)m;
+        }
+    printf("    5 %% spectra of the %zu H components about their mean: f Hz / sigma of ln(SA/mean) / "
+           "correlation with 0.5 Hz:", m);
+    for (int j = 0; j < NS; j++) {
+        double sjj = 0, srr = 0, sjr = 0;
+        for (size_t q = 0; q < m; q++) {
+            double a = ls[q * NS + j] - lr[j], b = ls[q * NS + REF] - lr[REF];
+            sjj += a * a, srr += b * b, sjr += a * b;
+        }
+        printf(" %g/%.2f/%.2f", f[j], sqrt(sjj / (double)(m - 1)), sjr / sqrt(sjj * srr));
+    }
+    printf("\n");
+    free(ls);
 }
 
 /* "| label | R ± SE ... |", '*' where |R - 1| > 2 SE */
@@ -560,6 +602,8 @@ int main(int argc, char **argv)
             mu[k] = (0.1 + 0.2 * k) * PGA_G;
         double *real = slide(mset, nm, mu);
         describe("ground, records as recorded (scaled)", g, nrec);
+        if (exps)
+            shape_scatter(g, nrec);
         if (exps) { /* per-component PGA equalized (what component-wise matching does to the pair) */
             sl_set *eq = calloc(nrec, sizeof *eq);
             for (size_t r = 0; r < nrec; r++)
