@@ -37,6 +37,7 @@
 #include "core/units.h"
 #include "io/floor.h"
 #include "io/setdir.h"
+#include "signal/realism.h"
 #include "signal/spectrum.h"
 #include "slide/slide.h"
 #include "study/building.h"
@@ -113,8 +114,8 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     }
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    size_t nth = 0;
-    double th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0, vr = 0, ct = 0, d575 = 0, vr45 = 0, va1 = 0, va2 = 0;
+    size_t nth = 0, npk_max = 0;
+    double npk = 0, th = 0, pg = 0, pc = 0, s50 = 0, f50 = 50.0, hw = 0, vr = 0, ct = 0, d575 = 0, vr45 = 0, va1 = 0, va2 = 0;
     double *lag = malloc(n * sizeof *lag), *thr = malloc(n * sizeof *thr), *exc = malloc(n * sizeof *exc);
     for (size_t i = 0; i < n; i++) {
         size_t ipk[2] = {0, 0};
@@ -162,6 +163,12 @@ static void describe(const char *what, const sl_set *sets, size_t n)
         }
         va1 += va / (double)n;
         va2 += va * va;
+        for (int c = 0; c < 2; c++) { /* peaks of |a| above 0.9 PGA per H component */
+            const sl_motion *mc = c ? sets[i].h2 : sets[i].h1;
+            size_t np = sl_realism_peaks_above(mc->acc_ms2, mc->n, 0.9);
+            npk += (double)np / (2.0 * (double)n);
+            npk_max = np > npk_max ? np : npk_max;
+        }
         for (int c = 0; c < 2; c++) { /* each H component's time above 0.9 x its PGA */
             const sl_motion *mc = c ? sets[i].h2 : sets[i].h1;
             double pm = sl_motion_pga(mc);
@@ -193,8 +200,8 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     qsort(thr, n, sizeof *thr, cmp_d);
     qsort(exc, n, sizeof *exc, cmp_d);
     printf("    threshold mu g / larger H PGA: 10/50/90 %% %.3f %.3f %.3f; H vector time above 0.9 "
-           "larger PGA: 10/50/90 %% %.3f %.3f %.3f s; H component above 0.9 PGA: mean %.3f s, D5-75 %.1f s; H V/A mean %.2f m/s per g, CoV %.2f\n", thr[n / 10], thr[n / 2], thr[9 * n / 10],
-           exc[n / 10], exc[n / 2], exc[9 * n / 10], ct, d575, va1, va_sd / va1);
+           "larger PGA: 10/50/90 %% %.3f %.3f %.3f s; H component above 0.9 PGA: mean %.3f s, peaks above 0.9 PGA mean %.1f (max %zu), D5-75 %.1f s; H V/A mean %.2f m/s per g, CoV %.2f\n", thr[n / 10], thr[n / 2], thr[9 * n / 10],
+           exc[n / 10], exc[n / 2], exc[9 * n / 10], ct, npk, npk_max, d575, va1, va_sd / va1);
     free(lag);
     free(thr);
     free(exc);
