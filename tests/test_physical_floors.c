@@ -24,8 +24,9 @@
  * SE (P1 of physfloor.h) and the record rule. Ground: synthesized RG 1.60
  * sets against the same records matched to RG 1.60 (sl_study_match_rg160),
  * both without intensity scatter (as in the full comparison), same checks.
- * Power: with 16 records and 8 sets the SE is 0.11-0.17 at mu g/ZPA 0.1-0.5,
- * so only a change that moves the sliding by about 0.4 or more there fails
+ * Power: with 16 records and 8 sets the SE is 0.13-0.17 on the floors at mu
+ * g/ZPA 0.1-0.5 (0.08-0.11 on the ground),
+ * so only a change that moves the sliding by about 0.4-0.5 there fails
  * the agreement check; smaller changes (4-cycle packets: 0.05-0.14 in the
  * full comparison) need tools/physfloors.
  * SEISLIDE_TEST_VERBOSE prints every ratio with its SE.
@@ -106,14 +107,18 @@ static void slide_all(const sl_set *sets, size_t n, const double *mu, double *pk
     sl_slide_result *res = calloc(n * NMU, sizeof *res);
     if (verbose()) {
         double th = 0, pg = 0, pgc = 0;
+        size_t nth = 0; /* the threshold is infinite where the vertical lifts the block */
         for (size_t i = 0; i < n; i++) {
-            th += sl_slide_mu_threshold(&sets[i], &so) / (double)n;
+            double t = sl_slide_mu_threshold(&sets[i], &so);
+            if (isfinite(t))
+                th += t, nth++;
             pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
             pgc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
         }
         fprintf(stderr,
-                "    %zu sets: mean mu threshold %.3f, mean PGA_h %.3f g, mean comp PGA %.3f g\n",
-                n, th, pg, pgc);
+                "    %zu sets: mean mu threshold %.3f (%zu finite), mean PGA_h %.3f g, mean comp "
+                "PGA %.3f g\n",
+                n, nth ? th / (double)nth : NAN, nth, pg, pgc);
     }
     sl_error e;
     CHECK(sl_slide_batch(sets, n, mu, NMU, &so, res, &e) == SL_OK, "%s", e.msg);
@@ -286,9 +291,18 @@ static void test_floors(void)
             check_ratio(what, syn, NSYN, phys, nrec, broaden ? NULL : ref_floor[fl - 1],
                         broaden ? NULL : in_band, ratio[broaden]);
             CHECK(rlo[1] >= 0.8 && rhi[1] <= 1.25,
-                  "floor %zu: 10 %% table / own 10 %% spectra %.3f-%.3f", fl, rlo[1], rhi[1]);
+                  "floor %zu: own 10 %% spectra / 10 %% table %.3f-%.3f", fl, rlo[1], rhi[1]);
             /* 2 %: the lightly damped oscillator sees how many cycles the
-             * motions hold at the floor mode (docs/synthesis.md 12) */
+             * motions hold at the floor mode (docs/synthesis.md 12). Band:
+             * the synthesis limits [0.9, 1.3] widened by 0.05, since the
+             * motions are matched at 5 % only and their 2 % spectrum is a
+             * consequence, not a target (measured 0.875-1.303; 4-cycle
+             * packets 0.907-1.333): it fails when the motions' 2 % response
+             * departs from the physical floor motions' by more than that.
+             * Not for broadened files: the max over +-15 % lifts the sharp
+             * 2 % peak's flanks more than the 5 % ones, so a broadened 2 %
+             * table is not the 2 % spectrum of motions matched to the
+             * broadened 5 % one (0.824 measured). */
             CHECK(broaden || (rlo[0] >= 0.85 && rhi[0] <= 1.35),
                   "floor %zu: own 2 %% spectra / 2 %% table %.3f-%.3f", fl, rlo[0], rhi[0]);
             if (verbose())

@@ -18,11 +18,16 @@
  *            "floor 0": the records themselves (scaled to 0.3 g) as the
  *            physical motions behind a floor spectrum; -c CYCLES and -H HOLD
  *            (synth.h wavelet_cycles, hold_frac), -Y SIGMA (spectral-shape
- *            scatter experiment, see Shape). Every ensemble is described:
+ *            scatter experiment, see Shape); -P (ground) also matches each
+ *            record's two horizontals with one common correction (their
+ *            geometric-mean spectrum to RG 1.60; -Q: the larger of the two
+ *            spectra at each frequency), keeping its polarization, and
+ *            compares. Every ensemble is described:
  *            vector peak / larger H PGA (also with the axes turned 45 deg: a
  *            population of real motions does not depend on the axes), H1-H2
  *            peak lag, sliding threshold / larger PGA (10/50/90 %), time the
- *            H vector spends above 0.9 x the larger PGA, D5-75, V/A
+ *            H vector spends above 0.9 x the larger PGA, peaks of |a| above
+ *            0.9 PGA per H component (mean, max), D5-75, V/A (mean, CoV over sets)
  * Prints markdown tables; exit 0, or 1 with a message on bad input.
  */
 #include <math.h>
@@ -31,6 +36,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <fftw3.h>
 #include <gsl/gsl_cdf.h>
 
 #include "analysis.h"
@@ -183,7 +189,7 @@ static void describe(const char *what, const sl_set *sets, size_t n)
         pg += sl_set_pga_h(&sets[i]) / SL_G / (double)n;
         pc += 0.5 * (sl_motion_pga(sets[i].h1) + sl_motion_pga(sets[i].h2)) / SL_G / (double)n;
     }
-    th /= (double)(nth ? nth : 1);
+    th = nth ? th / (double)nth : NAN;
     /* sample standard deviation of the per-set V/A (n - 1) */
     double va_sd = n > 1 ? sqrt(fmax(va2 - (double)n * va1 * va1, 0) / (double)(n - 1)) : 0;
     printf("  %s (%zu sets): mean threshold mu %.3f (of the %zu finite), mean larger H PGA %.3f g, mean H component "
@@ -246,6 +252,92 @@ static void shape_scatter(const sl_set *sets, size_t n)
     }
     printf("\n");
     free(ls);
+}
+
+/* -P: a pair of horizontals matched to the target T (5 %) with ONE
+ * correction for both (docs/synthesis.md 12): each iteration multiplies
+ * the DFT of both components by r(f) = T(f) / sqrt(S1(f) S2(f)) (the
+ * geometric mean of their spectra; -Q: T / max(S1, S2); log-linear in log f between 60 grid
+ * points over 0.1-50 Hz, fading to 1 one octave outside; the first
+ * iteration also applies the zero-phase Butterworth high-pass of the
+ * synthesis), so the record's polarization (the ratio and the phase of the
+ * two components at each frequency) is kept. Returns the largest
+ * |ln(S / T)| left; *o1, *o2 the matched motions. */
+static int Pair_max = 0; /* -Q: match the larger of the two spectra instead of their geometric mean */
+
+static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spectrum *T,
+                         sl_motion **o1, sl_motion **o2)
+{
+    enum { NG = 60, ITER = 20 };
+    double dt = sl_synth_match_dt(h1->dt_s);
+    sl_motion *m1 = sl_synth_resample_motion(h1, dt), *m2 = sl_synth_resample_motion(h2, dt);
+    if (!m1 || !m2) {
+        fprintf(stderr, "physfloors: cannot resample %s\n", h1->label);
+        exit(1);
+    }
+    size_t n = m1->n < m2->n ? m1->n : m2->n, nfft = 1;
+    while (nfft < n + (size_t)ceil(1.0 / (0.1 * dt)))
+        nfft *= 2;
+    size_t nb = nfft / 2 + 1;
+    double *a[2] = {m1->acc_ms2, m2->acc_ms2}, *buf = fftw_malloc(nfft * sizeof *buf);
+    fftw_complex *X = fftw_malloc(nb * sizeof *X);
+    fftw_plan fw = fftw_plan_dft_r2c_1d((int)nfft, buf, X, FFTW_ESTIMATE);
+    fftw_plan bw = fftw_plan_dft_c2r_1d((int)nfft, X, buf, FFTW_ESTIMATE);
+    double f[NG], t[NG], lnr[NG], s1[NG], s2[NG], worst = INFINITY;
+    for (int j = 0; j < NG; j++) {
+        f[j] = 0.1 * pow(500.0, (double)j / (NG - 1));
+        t[j] = sl_spectrum_interp(T, f[j]);
+    }
+    const double fc = P.hp_frac * 0.1;
+    for (int it = 0; it <= ITER; it++) {
+        sl_error e;
+        if (sl_spectrum_compute(a[0], n, dt, f, NG, 0.05, s1, NULL, NULL, &e) ||
+            sl_spectrum_compute(a[1], n, dt, f, NG, 0.05, s2, NULL, NULL, &e))
+            die(&e);
+        worst = 0;
+        for (int j = 0; j < NG; j++) {
+            lnr[j] = log(t[j] / (Pair_max ? fmax(s1[j], s2[j]) : sqrt(s1[j] * s2[j])));
+            worst = fmax(worst, fabs(lnr[j]));
+        }
+        if (it == ITER || worst < 0.02)
+            break;
+        for (int c = 0; c < 2; c++) {
+            for (size_t k = 0; k < nfft; k++)
+                buf[k] = k < n ? a[c][k] : 0.0;
+            fftw_execute(fw);
+            X[0][0] = X[0][1] = 0;
+            for (size_t k = 1; k < nb; k++) {
+                double fk = (double)k / ((double)nfft * dt), x;
+                if (fk <= f[0])
+                    x = lnr[0] * fmax(0.0, 1.0 - log2(f[0] / fk));
+                else if (fk >= f[NG - 1])
+                    x = lnr[NG - 1] * fmax(0.0, 1.0 - log2(fk / f[NG - 1]));
+                else {
+                    double u = log(fk / f[0]) / log(f[NG - 1] / f[0]) * (NG - 1);
+                    int j = (int)u;
+                    j = j > NG - 2 ? NG - 2 : j;
+                    x = lnr[j] + (u - j) * (lnr[j + 1] - lnr[j]);
+                }
+                double g = exp(x);
+                if (it == 0 && fc > 0)
+                    g /= sqrt(1 + pow(fc / fk, 2 * P.hp_order));
+                X[k][0] *= g;
+                X[k][1] *= g;
+            }
+            fftw_execute(bw);
+            for (size_t k = 0; k < n; k++)
+                a[c][k] = buf[k] / (double)nfft;
+        }
+    }
+    *o1 = sl_motion_from_array(a[0], n, dt, h1->label);
+    *o2 = sl_motion_from_array(a[1], n, dt, h2->label);
+    fftw_destroy_plan(fw);
+    fftw_destroy_plan(bw);
+    fftw_free(buf);
+    fftw_free(X);
+    sl_motion_free(m1);
+    sl_motion_free(m2);
+    return worst;
 }
 
 /* "| label | R ± SE ... |", '*' where |R - 1| > 2 SE */
@@ -521,11 +613,11 @@ int main(int argc, char **argv)
     const char *rdir = NULL;
     size_t maxrec = 0, nsyn = 24;
     uint64_t seed = 12;
-    int exps = 0, ground_only = 0, no_ground = 0, floor0 = 0, opt;
+    int exps = 0, ground_only = 0, no_ground = 0, floor0 = 0, pairm = 0, opt;
     double f_end = 50.0;
     sl_synth_params_default(&P);
     setvbuf(stdout, NULL, _IOLBF, 0);
-    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0F:R:H:c:Y:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0PQF:R:H:c:Y:")) != -1) {
         switch (opt) {
         case 'r': rdir = optarg; break;
         case 'n': maxrec = (size_t)atol(optarg); break;
@@ -538,16 +630,25 @@ int main(int argc, char **argv)
         case 'Y': Shape = atof(optarg); break;
         case 'g': ground_only = 1; break;
         case '0': floor0 = 1; break;
+        case 'P': pairm = 1; break;
+        case 'Q': pairm = 1, Pair_max = 1; break;
         case 'G': no_ground = 1; break;
         case 'F': f_end = atof(optarg); break;
         case 'R': Scatter = atof(optarg); break;
         default:
             fprintf(stderr, "usage: physfloors [-r dir] [-n max] [-s nsyn] [-S seed] [-x] "
-                            "[-a sigma] [-g|-G] [-0] [-F f_end] [-R scatter] [-c cycles] "
+                            "[-a sigma] [-g|-G] [-0] [-P|-Q] [-F f_end] [-R scatter] [-c cycles] "
                             "[-H hold_frac] [-Y shape_sigma]\n");
             return 1;
         }
     }
+    if (nsyn < 2) {
+        fprintf(stderr, "physfloors: -s %zu: at least 2 synthesized sets (a standard error needs two)\n",
+                nsyn);
+        return 1;
+    }
+    if (Shape > 0 && ground_only)
+        fprintf(stderr, "physfloors: -Y applies to floors only; ignored with -g\n");
     if (!(Shape >= 0 && Shape <= 1)) {
         fprintf(stderr, "physfloors: -Y %g: the shape scatter is a log standard deviation in [0, 1]\n",
                 Shape);
@@ -599,11 +700,11 @@ int main(int argc, char **argv)
         /* Ground: records matched to RG 1.60 (the study's method) vs synthesized */
         sl_synth_set *ms = calloc(nrec, sizeof *ms);
         sl_set *mset = calloc(nrec, sizeof *mset);
-        size_t nm = 0;
+        size_t nm = 0, *src = calloc(nrec, sizeof *src);
         for (size_t r = 0; r < nrec; r++) {
             sl_status st = sl_study_match_rg160(&g[r], 0.05, PGA_G * SL_G, &ms[nm], &e);
             if (st == SL_OK || st == SL_ENOCONV)
-                mset[nm] = ms[nm].set, nm++;
+                mset[nm] = ms[nm].set, src[nm] = r, nm++;
         }
         for (int k = 0; k < NMU; k++)
             mu[k] = (0.1 + 0.2 * k) * PGA_G;
@@ -631,6 +732,36 @@ int main(int argc, char **argv)
         describe("ground, synthesized RG 1.60", syn, nsyn);
         header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
         row("ratio ± SE", sy, nsyn, real, nm);
+        if (pairm) { /* -P: the pair matched with one correction, V as matched */
+            sl_set *pset = calloc(nm, sizeof *pset);
+            double wmax = 0;
+            for (size_t i = 0; i < nm; i++) {
+                sl_motion *p1, *p2;
+                wmax = fmax(wmax, pair_match(g[src[i]].h1, g[src[i]].h2, sp[0], &p1, &p2));
+                /* the V of the component-wise match, on the pair's samples */
+                sl_motion *vr = sl_synth_resample_motion(mset[i].v, p1->dt_s);
+                double *va = calloc(p1->n, sizeof *va);
+                for (size_t j = 0; vr && va && j < p1->n && j < vr->n; j++)
+                    va[j] = vr->acc_ms2[j];
+                pset[i] = (sl_set){p1, p2, sl_motion_from_array(va, p1->n, p1->dt_s, "v")};
+                free(va);
+                sl_motion_free(vr);
+            }
+            printf("  pair matching: largest |ln(%s / target)| left %.3f\n",
+                   Pair_max ? "larger H spectrum" : "geometric mean", wmax);
+            describe(Pair_max ? "ground, records pair-matched to RG 1.60 (one correction, the larger H spectrum)"
+                              : "ground, records pair-matched to RG 1.60 (one correction, the geometric mean)",
+                     pset, nm);
+            double *pr = slide(pset, nm, mu);
+            header("ground RG 1.60 0.3 g: synthesized / pair-matched records (μg/PGA)");
+            row("ratio ± SE", sy, nsyn, pr, nm);
+            header("ground: pair-matched / component-matched records (μg/PGA)");
+            row("ratio ± SE", pr, nm, real, nm);
+            free(pr);
+            free_tmp(pset, nm);
+            free(pset);
+        }
+        free(src);
         if (exps)
             experiments(mset, nm, syn, out, nsyn, mu, real, sy);
         free(real);
