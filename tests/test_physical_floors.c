@@ -23,7 +23,9 @@
  * the synthesized motions' own 2 % and 10 % spectra (set mean), the ratio's
  * SE (P1 of physfloor.h) and the record rule. Ground: synthesized RG 1.60
  * sets against the same records matched to RG 1.60 (sl_study_match_rg160),
- * both without intensity scatter (as in the full comparison), same checks.
+ * both without intensity scatter (as in the full comparison), same checks;
+ * and the synthesized ground sets slid the run's way (with the scatter)
+ * never below the band.
  * Power: with 16 records and 8 sets the SE is 0.13-0.17 on the floors at mu
  * g/ZPA 0.1-0.5 (0.08-0.11 on the ground),
  * so only a change that moves the sliding by about 0.4-0.5 there fails
@@ -414,6 +416,25 @@ static void test_ground(void)
     static const int in_band[NMU] = {1, 1, 0, 0, 0};
     check_ratio("ground RG 1.60 0.3 g, synthesized / matched", syn, NSYN, real, nm, ref_ground,
                 in_band, ratio);
+    /* What `seislide run` reports for a ground floor carries the intensity
+     * scatter: never below the band (within 2 SE) at any mu, i.e. the
+     * designer's NLTHA mean is not unconservative against the study's
+     * reference (full comparison 0.87-0.90 at 0.1 ... 1.80-1.93 at 0.9,
+     * seeds 12-14; docs/synthesis.md 12). Weak with 8 sets (scatter 0.05
+     * still passes: 0.61 ± 0.15 at 0.9); the floors' band catches 0.10. */
+    double synr[NSYN * NMU];
+    slide_run_way(sets, NSYN, mu, synr);
+    if (verbose())
+        fprintf(stderr, "  ground, slid the run's way (intensity scatter) / matched:");
+    for (int k = 0; k < NMU; k++) {
+        double se, r = sl_pf_ratio(synr + k, NSYN, NMU, real + k, nm, NMU, &se);
+        if (verbose())
+            fprintf(stderr, " %.2f±%.2f", r, se);
+        CHECK(r + 2 * se >= LO, "ground the run's way: ratio %.3f ± %.3f at mu g/PGA %.1f below %.2f",
+              r, se, 0.1 + 0.2 * k, LO);
+    }
+    if (verbose())
+        fprintf(stderr, "\n");
     for (int k = 0; k < NSYN; k++)
         sl_synth_set_clear(&out[k]);
     for (size_t r = 0; r < nm; r++)

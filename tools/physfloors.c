@@ -732,6 +732,12 @@ int main(int argc, char **argv)
         describe("ground, synthesized RG 1.60", syn, nsyn);
         header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
         row("ratio ± SE", sy, nsyn, real, nm);
+        if (Scatter > 0) { /* what `seislide run` reports for a ground floor: with its scatter */
+            double *syr = slide_floor(syn, nsyn, mu);
+            header("ground: synthesized slid the run's way (intensity scatter) / matched");
+            row("ratio ± SE", syr, nsyn, real, nm);
+            free(syr);
+        }
         if (pairm) { /* -P: the pair matched with one correction, V as matched */
             sl_set *pset = calloc(nm, sizeof *pset);
             double wmax = 0;
