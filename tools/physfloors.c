@@ -254,6 +254,8 @@ static void shape_scatter(const sl_set *sets, size_t n)
     free(ls);
 }
 
+static int Pair_max = 0; /* -Q: match the larger of the two spectra instead of their geometric mean */
+
 /* -P: a pair of horizontals matched to the target T (5 %) with ONE
  * correction for both (docs/synthesis.md 12): each iteration multiplies
  * the DFT of both components by r(f) = T(f) / sqrt(S1(f) S2(f)) (the
@@ -263,8 +265,6 @@ static void shape_scatter(const sl_set *sets, size_t n)
  * synthesis), so the record's polarization (the ratio and the phase of the
  * two components at each frequency) is kept. Returns the largest
  * |ln(S / T)| left; *o1, *o2 the matched motions. */
-static int Pair_max = 0; /* -Q: match the larger of the two spectra instead of their geometric mean */
-
 static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spectrum *T,
                          sl_motion **o1, sl_motion **o2)
 {
@@ -281,9 +281,16 @@ static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spec
     size_t nb = nfft / 2 + 1;
     double *a[2] = {m1->acc_ms2, m2->acc_ms2}, *buf = fftw_malloc(nfft * sizeof *buf);
     fftw_complex *X = fftw_malloc(nb * sizeof *X);
+    /* r on the grid, as a spectrum so that sl_spectrum_interp gives its
+     * log-log interpolation at each bin */
+    sl_spectrum *r = sl_spectrum_alloc(NG, 0.05);
+    if (!buf || !X || !r) {
+        fprintf(stderr, "physfloors: out of memory\n");
+        exit(1);
+    }
     fftw_plan fw = fftw_plan_dft_r2c_1d((int)nfft, buf, X, FFTW_ESTIMATE);
     fftw_plan bw = fftw_plan_dft_c2r_1d((int)nfft, X, buf, FFTW_ESTIMATE);
-    double f[NG], t[NG], lnr[NG], s1[NG], s2[NG], worst = INFINITY;
+    double *f = r->f_hz, t[NG], s1[NG], s2[NG], worst = INFINITY;
     for (int j = 0; j < NG; j++) {
         f[j] = 0.1 * pow(500.0, (double)j / (NG - 1));
         t[j] = sl_spectrum_interp(T, f[j]);
@@ -296,8 +303,8 @@ static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spec
             die(&e);
         worst = 0;
         for (int j = 0; j < NG; j++) {
-            lnr[j] = log(t[j] / (Pair_max ? fmax(s1[j], s2[j]) : sqrt(s1[j] * s2[j])));
-            worst = fmax(worst, fabs(lnr[j]));
+            r->sa_ms2[j] = t[j] / (Pair_max ? fmax(s1[j], s2[j]) : sqrt(s1[j] * s2[j]));
+            worst = fmax(worst, fabs(log(r->sa_ms2[j])));
         }
         if (it == ITER || worst < 0.02)
             break;
@@ -307,18 +314,13 @@ static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spec
             fftw_execute(fw);
             X[0][0] = X[0][1] = 0;
             for (size_t k = 1; k < nb; k++) {
-                double fk = (double)k / ((double)nfft * dt), x;
-                if (fk <= f[0])
-                    x = lnr[0] * fmax(0.0, 1.0 - log2(f[0] / fk));
+                double fk = (double)k / ((double)nfft * dt), g;
+                if (fk <= f[0]) /* fading to 1 over one octave outside */
+                    g = pow(r->sa_ms2[0], fmax(0.0, 1.0 - log2(f[0] / fk)));
                 else if (fk >= f[NG - 1])
-                    x = lnr[NG - 1] * fmax(0.0, 1.0 - log2(fk / f[NG - 1]));
-                else {
-                    double u = log(fk / f[0]) / log(f[NG - 1] / f[0]) * (NG - 1);
-                    int j = (int)u;
-                    j = j > NG - 2 ? NG - 2 : j;
-                    x = lnr[j] + (u - j) * (lnr[j + 1] - lnr[j]);
-                }
-                double g = exp(x);
+                    g = pow(r->sa_ms2[NG - 1], fmax(0.0, 1.0 - log2(fk / f[NG - 1])));
+                else
+                    g = sl_spectrum_interp(r, fk);
                 if (it == 0 && fc > 0)
                     g /= sqrt(1 + pow(fc / fk, 2 * P.hp_order));
                 X[k][0] *= g;
@@ -335,6 +337,7 @@ static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spec
     fftw_destroy_plan(bw);
     fftw_free(buf);
     fftw_free(X);
+    sl_spectrum_free(r);
     sl_motion_free(m1);
     sl_motion_free(m2);
     return worst;
@@ -710,9 +713,9 @@ int main(int argc, char **argv)
             mu[k] = (0.1 + 0.2 * k) * PGA_G;
         double *real = slide(mset, nm, mu);
         describe("ground, records as recorded (scaled)", g, nrec);
-        if (exps)
+        if (exps) { /* the records' spectral scatter; per-component PGA equalized (what
+                     * component-wise matching does to the pair) */
             shape_scatter(g, nrec);
-        if (exps) { /* per-component PGA equalized (what component-wise matching does to the pair) */
             sl_set *eq = calloc(nrec, sizeof *eq);
             for (size_t r = 0; r < nrec; r++)
                 eq[r] = (sl_set){scaled(g[r].h1, PGA_G * SL_G / sl_motion_pga(g[r].h1)),
@@ -747,7 +750,12 @@ int main(int argc, char **argv)
                 /* the V of the component-wise match, on the pair's samples */
                 sl_motion *vr = sl_synth_resample_motion(mset[i].v, p1->dt_s);
                 double *va = calloc(p1->n, sizeof *va);
-                for (size_t j = 0; vr && va && j < p1->n && j < vr->n; j++)
+                if (!vr || !va) {
+                    fprintf(stderr, "physfloors: cannot resample the vertical of %s\n",
+                            mset[i].v->label);
+                    exit(1);
+                }
+                for (size_t j = 0; j < p1->n && j < vr->n; j++)
                     va[j] = vr->acc_ms2[j];
                 pset[i] = (sl_set){p1, p2, sl_motion_from_array(va, p1->n, p1->dt_s, "v")};
                 free(va);
