@@ -42,8 +42,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <stdio.h>
-long dbg_cnt[8];
 
 /* The vector pass (doubling_pass and what it inlines) computes every value
  * on every path and only selects; with GCC it is compiled without
@@ -452,7 +450,6 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
         for (size_t k = 0; k < m; k++)
             if (!(B[k].vx == 0.0 && B[k].vy == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
                 live[na++] = k;
-        dbg_cnt[7] += (long)na;
         if (!adaptive) {
             for (size_t li = 0; li < na; li++) {
                 const size_t k = live[li];
@@ -513,7 +510,6 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
             }
             for (size_t r = 0; r < nr; r++) { /* the rest alone, halving until it agrees */
                 const size_t j = redo[r], k = live[j];
-                dbg_cnt[0]++; if (B[k].vx == 0.0 && B[k].vy == 0.0) dbg_cnt[1]++; else if (pns[j] != 0.0) dbg_cnt[2]++; else if (pbad[j] != 0.0) dbg_cnt[3]++; else dbg_cnt[4]++;
                 const double tol = ptol[j];
                 /* from rest: held until the exact onset instant, then slide */
                 const double x0 = (B[k].vx == 0.0 && B[k].vy == 0.0) ? onset(&s, mu[k], 0.0) : 0.0;
@@ -533,7 +529,7 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                     n *= 2;
                     C = run_level(B[k], &s, mu[k], n, x0);
                 }
-                refined[k] += (n > 2); dbg_cnt[5] += n; dbg_cnt[6] += (n > 2 * n0);
+                refined[k] += (n > 2);
                 const int raised = C.peak2 > B[k].peak2;
                 const blk B0 = B[k];
                 B[k] = C;
@@ -566,8 +562,6 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
             sl_history_push(hist, t1, b->ux, b->uy, b->vx, b->vy, fx, fy);
         }
     }
-    if (getenv("DBG")) fprintf(stderr, "m %zu redo %ld rest %ld nearstop %ld bad %ld tol %ld fsteps(final) %ld deeper %ld live-total %ld\n", m, dbg_cnt[0], dbg_cnt[1], dbg_cnt[2], dbg_cnt[3], dbg_cnt[4], dbg_cnt[5], dbg_cnt[6], dbg_cnt[7]);
-    memset(dbg_cnt, 0, sizeof dbg_cnt);
     for (size_t k = 0; k < m; k++) {
         const blk *b = &B[k];
         sl_k2_out *r = &out[k];
