@@ -98,3 +98,4 @@ install: $(PROG) $(BUILD)/seislide.pc
 
 clean:
 	rm -rf build build-asan $(PROG)
+include tests/fuzz/fuzz.mk
