@@ -40,6 +40,7 @@
 #include <gsl/gsl_cdf.h>
 
 #include "analysis.h"
+#include "core/compare.h"
 #include "core/units.h"
 #include "io/floor.h"
 #include "io/setdir.h"
@@ -104,12 +105,6 @@ static double *slide_floor(const sl_set *sets, size_t n, const double *mu)
         die(&e);
     sl_scatter_free(sc);
     return pk;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
 }
 
 static void describe(const char *what, const sl_set *sets, size_t n)
@@ -195,7 +190,7 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     printf("  %s (%zu sets): mean threshold mu %.3f (of the %zu finite), mean larger H PGA %.3f g, mean H component "
            "PGA %.3f g, ratio %.3f, SA(50 Hz)/PGA %.3f, PGA half-cycle %.3f s\n",
            what, n, th, nth, pg, pc, pg / pc, s50, hw);
-    qsort(lag, n, sizeof *lag, cmp_d);
+    qsort(lag, n, sizeof *lag, sl_cmp_double);
     size_t w01 = 0, w05 = 0;
     for (size_t i = 0; i < n; i++)
         w01 += lag[i] <= 0.1, w05 += lag[i] <= 0.5;
@@ -203,8 +198,8 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     printf("    H vector peak / larger H PGA %.3f (axes turned 45 deg: %.3f); |time between the H1 and H2 peaks|: median %.2f s, "
            "<= 0.1 s in %.0f %%, <= 0.5 s in %.0f %%\n", vr, vr45, lag_med,
            100.0 * (double)w01 / (double)n, 100.0 * (double)w05 / (double)n);
-    qsort(thr, n, sizeof *thr, cmp_d);
-    qsort(exc, n, sizeof *exc, cmp_d);
+    qsort(thr, n, sizeof *thr, sl_cmp_double);
+    qsort(exc, n, sizeof *exc, sl_cmp_double);
     printf("    threshold mu g / larger H PGA: 10/50/90 %% %.3f %.3f %.3f; H vector time above 0.9 "
            "larger PGA: 10/50/90 %% %.3f %.3f %.3f s; H component above 0.9 PGA: mean %.3f s, peaks above 0.9 PGA mean %.1f (max %zu), D5-75 %.1f s; H V/A mean %.2f m/s per g, CoV %.2f\n", thr[n / 10], thr[n / 2], thr[9 * n / 10],
            exc[n / 10], exc[n / 2], exc[9 * n / 10], ct, npk, npk_max, d575, va1, va_sd / va1);
@@ -492,7 +487,7 @@ static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
         for (size_t i = 0; i < nrec; i++)
             lg[i] = fabs((double)peak_index(fm[i].h1) - (double)peak_index(fm[i].h2)) *
                     fm[i].h1->dt_s;
-        qsort(lg, nrec, sizeof *lg, cmp_d);
+        qsort(lg, nrec, sizeof *lg, sl_cmp_double);
         for (size_t i = 0; i < nsyn; i++) {
             size_t j = (size_t)(((double)i + 0.5) / (double)nsyn * (double)nrec);
             long l = lround(lg[j < nrec ? j : nrec - 1] / syn[i].h1->dt_s) * (i % 2 ? 1 : -1);
@@ -581,7 +576,7 @@ static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
     double *q = malloc(nrec * sizeof *q), zp = 0;
     for (size_t i = 0; i < nrec; i++)
         zp += (q[i] = sl_set_pga_h(&fm[i])) / (double)nrec;
-    qsort(q, nrec, sizeof *q, cmp_d);
+    qsort(q, nrec, sizeof *q, sl_cmp_double);
     double cv = 0;
     for (size_t i = 0; i < nrec; i++)
         cv += (q[i] / zp - 1) * (q[i] / zp - 1) / (double)(nrec - 1);
