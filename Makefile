@@ -17,34 +17,68 @@ ALL_CFLAGS  = $(WARN) $(WERROR) -fopenmp -D_XOPEN_SOURCE=700 -Isrc $(PKG_CFLAGS)
 ALL_LDFLAGS = -fopenmp $(LDFLAGS)
 LIBS_ALL    = $(PKG_LIBS) -lm
 
-LIB_SRC  := $(filter-out src/cli/%,$(wildcard src/*.c src/*/*.c))
-CLI_SRC  := $(wildcard src/cli/*.c)
-TEST_SRC := $(wildcard tests/test_*.c)
-LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
-CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
-TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
-LIB      := $(BUILD)/libseislide.a
-PROG     ?= seislide
-VERSION  := $(shell sed -n 's/^\#define SEISLIDE_VERSION "\(.*\)"/\1/p' src/cli/cli.h)
-# The public headers: seislide.h and what it includes (not io/atomic.h, cli.h, engine.h ...).
-PUBLIC_H := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
+# libseislide is the numerical core (every src/ module but the command line
+# and the study); src/study (the source study, the bench, physical floors)
+# is research code in its own archive, linked by the program and the tools.
+LIB_SRC   := $(filter-out src/cli/% src/study/%,$(wildcard src/*.c src/*/*.c))
+STUDY_SRC := $(wildcard src/study/*.c)
+CLI_SRC   := $(wildcard src/cli/*.c)
+TEST_SRC  := $(wildcard tests/test_*.c)
+LIB_OBJ   := $(LIB_SRC:%.c=$(BUILD)/%.o)
+STUDY_OBJ := $(STUDY_SRC:%.c=$(BUILD)/%.o)
+CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o)
+TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+LIB       := $(BUILD)/libseislide.a
+STUDY_LIB := $(BUILD)/libseislide-study.a
+PROG      ?= seislide
+VERSION   := $(shell sed -n 's/^\#define SEISLIDE_VERSION "\(.*\)"/\1/p' src/cli/cli.h)
+# The shared library: libseislide.so.VERSION, soname libseislide.so.SO_MAJOR
+# (raised when the interface changes incompatibly). Its objects are the static
+# library's, compiled position-independent (PIC; docs/dependencies.md has the
+# measured cost).
+SO_MAJOR  := 0
+SONAME    := libseislide.so.$(SO_MAJOR)
+SHLIB     := $(BUILD)/libseislide.so.$(VERSION)
+PIC       ?= -fPIC
+# Tests whose source includes a study header also link the study archive.
+STUDY_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(shell grep -l '^\#include "study/' $(TEST_SRC)))
+# The public headers: seislide.h and what it includes (not io/atomic.h, cli.h, engine.h ...),
+# found by the compiler, so a header added to or moved under seislide.h follows.
+PUBLIC_H  := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
 .PHONY: all test bench study install clean asan check-tools mutate physfloors
-all: $(PROG) $(TEST_BIN)
+all: $(PROG) $(SHLIB) $(TEST_BIN)
 
+# (the library's objects are rebuilt when the Makefile changes: a tree
+# built before they were PIC would not link the shared library)
+$(LIB_OBJ): OBJ_CFLAGS := $(PIC)
+$(LIB_OBJ): Makefile
 $(BUILD)/%.o: %.c $(wildcard src/*.h src/*/*.h tests/*.h)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(OBJ_CFLAGS) -c $< -o $@
 
 $(LIB): $(LIB_OBJ)
+	rm -f $@
 	$(AR) rcs $@ $^
 
-$(PROG): $(CLI_OBJ) $(LIB)
-	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LIBS_ALL)
+$(STUDY_LIB): $(STUDY_OBJ)
+	rm -f $@
+	$(AR) rcs $@ $^
 
-$(BUILD)/tests/%: tests/%.c $(LIB) tests/harness.h tests/oracle.h tests/tsv.h
+# exports only sl_* and SL_* (the version script); every dependency is linked
+# in (--no-undefined), so a program needs -lseislide alone
+$(SHLIB): $(LIB_OBJ)
+	@printf '{ global: sl_*; SL_*; local: *; };\n' > $(BUILD)/libseislide.map
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--no-undefined \
+	  -Wl,--version-script=$(BUILD)/libseislide.map $(ALL_LDFLAGS) -o $@ $^ $(LIBS_ALL)
+
+$(PROG): $(CLI_OBJ) $(STUDY_LIB) $(LIB)
+	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(STUDY_LIB) $(LIB) $(LIBS_ALL)
+
+$(STUDY_TESTS): TEST_LIBS := $(STUDY_LIB)
+$(BUILD)/tests/%: tests/%.c $(STUDY_LIB) $(LIB) tests/harness.h tests/oracle.h tests/tsv.h
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LIB) $(LIBS_ALL)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_LIBS) $(LIB) $(LIBS_ALL)
 
 # Every layer, one verdict: "N passed, N failed, N skipped".
 test: all
@@ -64,9 +98,9 @@ study: $(PROG)
 physfloors: $(BUILD)/tools/physfloors
 	nice $(BUILD)/tools/physfloors -x
 
-$(BUILD)/tools/%: tools/%.c $(LIB)
+$(BUILD)/tools/%: tools/%.c $(STUDY_LIB) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LIB) $(LIBS_ALL)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(STUDY_LIB) $(LIB) $(LIBS_ALL)
 
 # ASan + UBSan build in its own directory, running the same tests.
 asan:
@@ -79,20 +113,30 @@ $(BUILD)/seislide.pc: seislide.pc.in Makefile src/cli/cli.h
 	@mkdir -p $(dir $@)
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' $< > $@
 
-# The program, the static library, seislide.h with the public headers it
-# includes (under include/seislide/), seislide.pc and the manual page.
 # Mutation testing (minutes; not part of test): tests/mutations.txt, one line each,
 # applied to a scratch copy; ends with "N mutations, M survived".
 mutate:
 	sh tools/mutate.sh
 
-install: $(PROG) $(BUILD)/seislide.pc
+# The program; the static and the shared library (with the soname and the
+# development links); seislide.h and the public headers it includes under
+# include/seislide/, their quoted includes ("core/status.h") rewritten to
+# <seislide/core/status.h> so that Cflags -I$${includedir} finds them and no
+# generic name (analysis.h, core/status.h) lands on a user's include path;
+# seislide.pc and the manual page.
+install: $(PROG) $(LIB) $(SHLIB) $(BUILD)/seislide.pc
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
-	  $(DESTDIR)$(PREFIX)/share/man/man1
+	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/include/seislide
 	install -m 755 $(PROG) $(DESTDIR)$(PREFIX)/bin/seislide
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libseislide.a
+	install -m 755 $(SHLIB) $(DESTDIR)$(PREFIX)/lib/$(notdir $(SHLIB))
+	ln -sf $(notdir $(SHLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libseislide.so
 	for h in $(PUBLIC_H:src/%=%); do \
-	  install -D -m 644 src/$$h $(DESTDIR)$(PREFIX)/include/seislide/$$h || exit 1; done
+	  install -d $(DESTDIR)$(PREFIX)/include/seislide/$$(dirname $$h) && \
+	  sed 's|^\([[:space:]]*#[[:space:]]*include[[:space:]]*\)"\([^"]*\)"|\1<seislide/\2>|' \
+	    src/$$h > $(DESTDIR)$(PREFIX)/include/seislide/$$h && \
+	  chmod 644 $(DESTDIR)$(PREFIX)/include/seislide/$$h || exit 1; done
 	install -m 644 $(BUILD)/seislide.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/seislide.pc
 	install -m 644 docs/seislide.1 $(DESTDIR)$(PREFIX)/share/man/man1/seislide.1
 

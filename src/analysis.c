@@ -1,5 +1,6 @@
 /* analysis.c - the per-floor study; see analysis.h. */
 #include "analysis.h"
+#include "core/clock.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -15,13 +16,6 @@
 #include "signal/spectrum.h"
 #include "core/units.h"
 
-
-static double wall_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 void sl_analysis_opts_default(sl_analysis_opts *o)
 {
@@ -385,7 +379,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
                                   : o->n_sets;
     for (;;) {
         size_t nb = want - n;
-        double t0 = wall_s();
+        double t0 = sl_clock_s();
         sl_status st = sl_synth_make_sets(plan, tgt, a->floor_seed, n, nb, a->sets + n,
                                           synth_progress, &pc, err);
         if (st != SL_OK && st != SL_ENOCONV)
@@ -394,9 +388,9 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         for (size_t s = n; s < want; s++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++)
                 a->n_failed_motions += !a->sets[s].check[c].pass;
-        a->time_synth_s += wall_s() - t0;
+        a->time_synth_s += sl_clock_s() - t0;
 
-        t0 = wall_s();
+        t0 = sl_clock_s();
         for (size_t s = n; s < want; s++) {
             sets[s] = a->sets[s].set;
             a->pgd_m[s] = sl_set_pgd_100_40(&sets[s]);
@@ -422,15 +416,15 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
             }
             a->err_est_m[k] = fmax(a->err_est_m[k], err_k[i]);
         }
-        a->time_nltha_s += wall_s() - t0;
+        a->time_nltha_s += sl_clock_s() - t0;
         n = want;
         a->n_batches++;
 
-        t0 = wall_s();
+        t0 = sl_clock_s();
         double worst = 0;
         if (conv_update(a, peak, n, o, &worst, err))
             goto fail;
-        a->time_stats_s += wall_s() - t0;
+        a->time_stats_s += sl_clock_s() - t0;
         if (!adaptive) {
             a->stop = SL_ANALYSIS_STOP_FIXED;
             break;
@@ -449,15 +443,15 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     }
     /* every other damping of the file on the motions' own spectra, once on
      * all n sets (the set mean is over every set of the floor) */
-    double t0 = wall_s();
+    double t0 = sl_clock_s();
     if (store_dampings(a, plan, fl, &sp, err))
         goto fail;
-    a->time_synth_s += wall_s() - t0;
+    a->time_synth_s += sl_clock_s() - t0;
 
-    t0 = wall_s();
+    t0 = sl_clock_s();
     if (conv_band(a, peak, n, o, err))
         goto fail;
-    a->time_stats_s += wall_s() - t0;
+    a->time_stats_s += sl_clock_s() - t0;
     for (size_t k = 0; k < n_mu; k++) {
         a->design_lo_m[k] = a->conv[k].design_lo_m;
         a->design_hi_m[k] = a->conv[k].design_hi_m;
@@ -466,7 +460,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         a->n_mu_skipped += (size_t)noslide[k];
     }
 
-    t0 = wall_s();
+    t0 = sl_clock_s();
     /* 3. ASCE on the 10 % spectra (or the documented fallback) */
     const sl_spectrum *s10[2] = {sl_floor_sa10(fl, SL_FLOOR_H1), sl_floor_sa10(fl, SL_FLOOR_H2)};
     if (!s10[0] || !s10[1]) {
@@ -509,7 +503,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     if (!a->design)
         goto fail;
 
-    a->time_asce_s = wall_s() - t0;
+    a->time_asce_s = sl_clock_s() - t0;
     size_t used = 0;
     a->note[0] = '\0';
 #define NOTE(...)                                                                          \

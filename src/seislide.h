@@ -2,9 +2,22 @@
  * seislide.h - the public interface of libseislide: peak sliding
  * displacement of unanchored rigid components on a floor in an earthquake,
  * by nonlinear time-history analysis (NLTHA) and the ASCE/SEI 43-05
- * approximate method. Include this header only; build with
+ * approximate method. `make install` puts this header and the ones it
+ * includes under PREFIX/include/seislide/; include this one only, as
+ *
+ *     #include <seislide/seislide.h>
+ *
+ * and build against the shared library (libseislide.so) with
  *
  *     cc prog.c $(pkg-config --cflags --libs seislide)
+ *
+ * or against the archive (libseislide.a) with
+ *
+ *     cc prog.c $(pkg-config --cflags seislide) \
+ *        $(pkg-config --static --libs seislide | sed 's/-lseislide /-l:libseislide.a /')
+ *
+ * (a PREFIX outside the system's paths: PKG_CONFIG_PATH=PREFIX/lib/pkgconfig
+ * to build, LD_LIBRARY_PATH=PREFIX/lib to run; README.md, "Build").
  *
  * The pipeline, in the order the headers are listed:
  *   floor response spectra (io/floor.h) and ground motions (io/motion.h,
@@ -16,7 +29,9 @@
  *
  * Conventions (every header): SI units inside (m, s, m/s^2), named units at
  * the boundary; one status enum with file:line messages (core/status.h);
- * the library never prints or exits; *_alloc/*_free and *_read/*_free pairs.
+ * the library never prints or exits, and leaves GSL's error handler as the
+ * caller set it; *_alloc/*_free and *_read/*_free pairs; every exported
+ * name starts with sl_ or SL_.
  */
 #ifndef SEISLIDE_H
 #define SEISLIDE_H

@@ -14,6 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
+
 #include "harness.h"
 #include "slide/refmodel.h"
 #include "slide/slide.h"
@@ -601,8 +603,63 @@ static void test_matches_engine(void)
     rec_free(&r);
 }
 
+/* The caller's GSL error handler is left as it was set: the library turns
+ * GSL's off only while its GSL calls run (core/gslerr.h), also when sets
+ * run on several threads (sl_slide_batch), and when a run fails. */
+static int caller_handler_calls;
+static void caller_handler(const char *reason, const char *file, int line, int gsl_errno)
+{
+    (void)reason, (void)file, (void)line, (void)gsl_errno;
+    caller_handler_calls++;
+}
+
+static void test_gsl_handler_kept(void)
+{
+    enum { NSET = 4, NMU = 3 };
+    rec r[NSET];
+    sl_set sets[NSET];
+    for (int i = 0; i < NSET; i++) {
+        rec_init(&r[i], 201, 0.01, 1, 1);
+        for (size_t j = 0; j < 201; j++) {
+            double t = 0.01 * (double)j;
+            r[i].x[j] = (0.3 + 0.05 * i) * G * sin(2.0 * M_PI * 1.5 * t);
+            r[i].y[j] = 0.2 * G * cos(2.0 * M_PI * 2.0 * t);
+            r[i].z[j] = 0.1 * G * sin(2.0 * M_PI * 3.0 * t);
+        }
+        sets[i] = r[i].set;
+    }
+    gsl_error_handler_t *before = gsl_set_error_handler(caller_handler);
+    caller_handler_calls = 0;
+    sl_slide_opts o;
+    opts_for(&o, SL_MODEL_SMOOTH, 1e-4, 5);
+    sl_slide_result res[NSET * NMU];
+    const double mu[NMU] = {0.1, 0.2, 0.3};
+    sl_error err;
+    sl_error_clear(&err);
+    CHECK(sl_refmodel_run(&sets[0], 0.2, &o, &res[0], NULL, &err) == SL_OK, "%s", err.msg);
+    gsl_error_handler_t *now = gsl_set_error_handler(caller_handler);
+    CHECK(now == caller_handler, "after sl_refmodel_run the handler is not the caller's");
+    sl_slide_opts ob;
+    sl_slide_opts_default(&ob);
+    ob.model = SL_MODEL_SMOOTH;
+    CHECK(sl_slide_batch(sets, NSET, mu, NMU, &ob, res, &err) == SL_OK, "%s", err.msg);
+    now = gsl_set_error_handler(caller_handler);
+    CHECK(now == caller_handler, "after sl_slide_batch (smooth) the handler is not the caller's");
+    /* a failing run: an explicit solver on a stiff case (too many steps) */
+    opts_for(&o, SL_MODEL_SMOOTH, 1e-9, 20);
+    o.smooth_solver = 3; /* rkf45 */
+    CHECK(sl_refmodel_run(&sets[0], 0.2, &o, &res[0], NULL, &err) == SL_ESOLVER, "stiff rkf45");
+    now = gsl_set_error_handler(before);
+    CHECK(now == caller_handler, "after a failed run the handler is not the caller's");
+    CHECK(caller_handler_calls == 0, "the caller's handler was called %d times inside the library",
+          caller_handler_calls);
+    for (int i = 0; i < NSET; i++)
+        rec_free(&r[i]);
+}
+
 int main(void)
 {
+    RUN(test_gsl_handler_kept);
     RUN(test_bad_options);
     RUN(test_hard_case);
     RUN(test_pulse);

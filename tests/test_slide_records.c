@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "harness.h"
+#include "core/compare.h"
 #include "slide/slide.h"
 #include "io/setdir.h"
 
@@ -39,11 +40,6 @@ typedef struct tally {
     double est_sum_log; /* mean log10(est / err) over rows with err > 0 */
     size_t est_n;
 } tally;
-
-static int cmp_names(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
 
 /* The default run against the reference on one set; adds to t. */
 static void check_set(const char *name, const sl_set *set, tally *t, int verbose)
@@ -133,7 +129,7 @@ static void test_all_records(void)
         if (e->d_name[0] != '.')
             names[nn++] = strdup(e->d_name);
     closedir(d);
-    qsort(names, nn, sizeof *names, cmp_names);
+    qsort(names, nn, sizeof *names, sl_cmp_str);
     const int verbose = getenv("SEISLIDE_TEST_VERBOSE") != NULL;
     tally t;
     memset(&t, 0, sizeof t);

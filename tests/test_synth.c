@@ -10,9 +10,9 @@
  */
 #include <omp.h>
 #include <stdint.h>
-#include <time.h>
 
 #include "harness.h"
+#include "core/clock.h"
 #include "io/floor.h"
 #include "io/motion.h"
 #include "signal/rg160.h"
@@ -26,13 +26,6 @@
 #define T_REL 1e-9
 
 static int verbose(void) { return getenv("SEISLIDE_TEST_VERBOSE") != NULL; }
-
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Local Pearson correlation (not the library's). */
 static double pearson(const double *a, const double *b, size_t n)
@@ -868,9 +861,9 @@ static void test_bench_one_set(void)
     double worst = 0, total = 0;
     for (size_t k = 0; k < NSETS; k++) {
         sl_synth_set set;
-        double t0 = now_s();
+        double t0 = sl_clock_s();
         sl_status st = sl_synth_make_set(s, tgt, 77, k, &set, &e);
-        double t = now_s() - t0;
+        double t = sl_clock_s() - t0;
         CHECK(st == SL_OK, "set %zu: status %d", k, st);
         total += t;
         worst = t > worst ? t : worst;

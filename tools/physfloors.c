@@ -40,6 +40,7 @@
 #include <gsl/gsl_cdf.h>
 
 #include "analysis.h"
+#include "core/compare.h"
 #include "core/units.h"
 #include "io/floor.h"
 #include "io/setdir.h"
@@ -56,15 +57,29 @@
 #define NF 136
 #define PGA_G 0.3
 
-static sl_synth_params P;
-/* -R: intensity scatter of the synthesized floor sets, as `seislide run`
- * applies it (method/scatter.h (R3); default the run's) */
-static double Scatter = SL_ANALYSIS_SCATTER;
-/* -Y: log standard deviation of a long-period spectral-shape scatter of the
- * synthesized H targets (set k: T exp(Y w z_k - Y^2 w^2/2), w = 0 above 5 Hz
- * rising to 1 at 0.5 Hz in log f, z_k stratified normal quantiles); an
- * experiment only (docs/synthesis.md 12), 0 = none */
-static double Shape = 0;
+/* What the options ask for (parse_options), passed down to every part. */
+typedef struct pf_opts {
+    const char *records;   /* -r: the records directory */
+    size_t max_records;    /* -n: at most this many records used, 0 = all */
+    size_t nsyn;           /* -s: synthesized sets per case */
+    uint64_t seed;         /* -S */
+    int experiments;       /* -x: the swap experiments */
+    int ground_only;       /* -g */
+    int no_ground;         /* -G */
+    int floor0;            /* -0: "floor 0", the records themselves */
+    int pair_match;        /* -P or -Q: each record's pair matched with one correction */
+    int pair_max;          /* -Q: the larger of the two spectra instead of their geometric mean */
+    double f_end_hz;       /* -F: the floor spectra end here */
+    /* -R: intensity scatter of the synthesized floor sets, as `seislide run`
+     * applies it (method/scatter.h (R3); default the run's) */
+    double scatter;
+    /* -Y: log standard deviation of a long-period spectral-shape scatter of
+     * the synthesized H targets (set k: T exp(Y w z_k - Y^2 w^2/2), w = 0
+     * above 5 Hz rising to 1 at 0.5 Hz in log f, z_k stratified normal
+     * quantiles); an experiment only (docs/synthesis.md 12), 0 = none */
+    double shape;
+    sl_synth_params synth; /* -a, -H, -c: the synthesis */
+} pf_opts;
 
 static void die(const sl_error *e)
 {
@@ -91,25 +106,19 @@ static double *slide(const sl_set *sets, size_t n, const double *mu)
 
 /* As slide(), with the run's intensity scatter: each set's expected peak
  * over its intensity factor (method/scatter.h (R3)). */
-static double *slide_floor(const sl_set *sets, size_t n, const double *mu)
+static double *slide_floor(const pf_opts *o, const sl_set *sets, size_t n, const double *mu)
 {
-    if (!(Scatter > 0))
+    if (!(o->scatter > 0))
         return slide(sets, n, mu);
     sl_error e;
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    sl_scatter *sc = sl_scatter_alloc(Scatter, mu, NMU, &e);
+    sl_scatter *sc = sl_scatter_alloc(o->scatter, mu, NMU, &e);
     double *pk = malloc(n * NMU * sizeof *pk);
     if (!sc || !pk || sl_scatter_slide_batch(sc, sets, n, &so, pk, NULL, &e))
         die(&e);
     sl_scatter_free(sc);
     return pk;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
 }
 
 static void describe(const char *what, const sl_set *sets, size_t n)
@@ -195,7 +204,7 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     printf("  %s (%zu sets): mean threshold mu %.3f (of the %zu finite), mean larger H PGA %.3f g, mean H component "
            "PGA %.3f g, ratio %.3f, SA(50 Hz)/PGA %.3f, PGA half-cycle %.3f s\n",
            what, n, th, nth, pg, pc, pg / pc, s50, hw);
-    qsort(lag, n, sizeof *lag, cmp_d);
+    qsort(lag, n, sizeof *lag, sl_cmp_double);
     size_t w01 = 0, w05 = 0;
     for (size_t i = 0; i < n; i++)
         w01 += lag[i] <= 0.1, w05 += lag[i] <= 0.5;
@@ -203,8 +212,8 @@ static void describe(const char *what, const sl_set *sets, size_t n)
     printf("    H vector peak / larger H PGA %.3f (axes turned 45 deg: %.3f); |time between the H1 and H2 peaks|: median %.2f s, "
            "<= 0.1 s in %.0f %%, <= 0.5 s in %.0f %%\n", vr, vr45, lag_med,
            100.0 * (double)w01 / (double)n, 100.0 * (double)w05 / (double)n);
-    qsort(thr, n, sizeof *thr, cmp_d);
-    qsort(exc, n, sizeof *exc, cmp_d);
+    qsort(thr, n, sizeof *thr, sl_cmp_double);
+    qsort(exc, n, sizeof *exc, sl_cmp_double);
     printf("    threshold mu g / larger H PGA: 10/50/90 %% %.3f %.3f %.3f; H vector time above 0.9 "
            "larger PGA: 10/50/90 %% %.3f %.3f %.3f s; H component above 0.9 PGA: mean %.3f s, peaks above 0.9 PGA mean %.1f (max %zu), D5-75 %.1f s; H V/A mean %.2f m/s per g, CoV %.2f\n", thr[n / 10], thr[n / 2], thr[9 * n / 10],
            exc[n / 10], exc[n / 2], exc[9 * n / 10], ct, npk, npk_max, d575, va1, va_sd / va1);
@@ -254,8 +263,6 @@ static void shape_scatter(const sl_set *sets, size_t n)
     free(ls);
 }
 
-static int Pair_max = 0; /* -Q: match the larger of the two spectra instead of their geometric mean */
-
 /* -P: a pair of horizontals matched to the target T (5 %) with ONE
  * correction for both (docs/synthesis.md 12): each iteration multiplies
  * the DFT of both components by r(f) = T(f) / sqrt(S1(f) S2(f)) (the
@@ -265,8 +272,8 @@ static int Pair_max = 0; /* -Q: match the larger of the two spectra instead of t
  * synthesis), so the record's polarization (the ratio and the phase of the
  * two components at each frequency) is kept. Returns the largest
  * |ln(S / T)| left; *o1, *o2 the matched motions. */
-static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spectrum *T,
-                         sl_motion **o1, sl_motion **o2)
+static double pair_match(const pf_opts *o, const sl_motion *h1, const sl_motion *h2,
+                         const sl_spectrum *T, sl_motion **o1, sl_motion **o2)
 {
     enum { NG = 60, ITER = 20 };
     double dt = sl_synth_match_dt(h1->dt_s);
@@ -295,7 +302,7 @@ static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spec
         f[j] = 0.1 * pow(500.0, (double)j / (NG - 1));
         t[j] = sl_spectrum_interp(T, f[j]);
     }
-    const double fc = P.hp_frac * 0.1;
+    const double fc = o->synth.hp_frac * 0.1;
     for (int it = 0; it <= ITER; it++) {
         sl_error e;
         if (sl_spectrum_compute(a[0], n, dt, f, NG, 0.05, s1, NULL, NULL, &e) ||
@@ -303,7 +310,7 @@ static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spec
             die(&e);
         worst = 0;
         for (int j = 0; j < NG; j++) {
-            r->sa_ms2[j] = t[j] / (Pair_max ? fmax(s1[j], s2[j]) : sqrt(s1[j] * s2[j]));
+            r->sa_ms2[j] = t[j] / (o->pair_max ? fmax(s1[j], s2[j]) : sqrt(s1[j] * s2[j]));
             worst = fmax(worst, fabs(log(r->sa_ms2[j])));
         }
         if (it == ITER || worst < 0.02)
@@ -322,7 +329,7 @@ static double pair_match(const sl_motion *h1, const sl_motion *h2, const sl_spec
                 else
                     g = sl_spectrum_interp(r, fk);
                 if (it == 0 && fc > 0)
-                    g /= sqrt(1 + pow(fc / fk, 2 * P.hp_order));
+                    g /= sqrt(1 + pow(fc / fk, 2 * o->synth.hp_order));
                 X[k][0] *= g;
                 X[k][1] *= g;
             }
@@ -354,12 +361,14 @@ static void row(const char *label, const double *a, size_t na, const double *b, 
     printf("\n");
 }
 
-/* nsyn sets for tgt; shape > 0: the -Y experiment (floors only) */
-static sl_synth_set *synth(const sl_synth_target *tgt, size_t nsyn, uint64_t seed, double shape,
+/* o->nsyn sets for tgt; shape > 0: the -Y experiment (floors only) */
+static sl_synth_set *synth(const pf_opts *o, const sl_synth_target *tgt, double shape,
                            sl_set *sets)
 {
+    const size_t nsyn = o->nsyn;
+    const uint64_t seed = o->seed;
     sl_error e;
-    sl_synth *s = sl_synth_alloc(4001, 0.005, &P, &e);
+    sl_synth *s = sl_synth_alloc(4001, 0.005, &o->synth, &e);
     sl_synth_set *out = calloc(nsyn, sizeof *out);
     if (!s || !out)
         die(&e);
@@ -492,7 +501,7 @@ static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
         for (size_t i = 0; i < nrec; i++)
             lg[i] = fabs((double)peak_index(fm[i].h1) - (double)peak_index(fm[i].h2)) *
                     fm[i].h1->dt_s;
-        qsort(lg, nrec, sizeof *lg, cmp_d);
+        qsort(lg, nrec, sizeof *lg, sl_cmp_double);
         for (size_t i = 0; i < nsyn; i++) {
             size_t j = (size_t)(((double)i + 0.5) / (double)nsyn * (double)nrec);
             long l = lround(lg[j < nrec ? j : nrec - 1] / syn[i].h1->dt_s) * (i % 2 ? 1 : -1);
@@ -581,7 +590,7 @@ static void experiments(const sl_set *fm, size_t nrec, const sl_set *syn,
     double *q = malloc(nrec * sizeof *q), zp = 0;
     for (size_t i = 0; i < nrec; i++)
         zp += (q[i] = sl_set_pga_h(&fm[i])) / (double)nrec;
-    qsort(q, nrec, sizeof *q, cmp_d);
+    qsort(q, nrec, sizeof *q, sl_cmp_double);
     double cv = 0;
     for (size_t i = 0; i < nrec; i++)
         cv += (q[i] / zp - 1) * (q[i] / zp - 1) / (double)(nrec - 1);
@@ -611,64 +620,244 @@ static void header(const char *first)
     printf("\n| %s | μg/ZPA 0.1 | 0.3 | 0.5 | 0.7 | 0.9 |\n|---|---|---|---|---|---|\n", first);
 }
 
-int main(int argc, char **argv)
+static void usage(void)
 {
-    const char *rdir = NULL;
-    size_t maxrec = 0, nsyn = 24;
-    uint64_t seed = 12;
-    int exps = 0, ground_only = 0, no_ground = 0, floor0 = 0, pairm = 0, opt;
-    double f_end = 50.0;
-    sl_synth_params_default(&P);
-    setvbuf(stdout, NULL, _IOLBF, 0);
+    fprintf(stderr, "usage: physfloors [-r dir] [-n max] [-s nsyn] [-S seed] [-x] "
+                    "[-a sigma] [-g|-G] [-0] [-P|-Q] [-F f_end] [-R scatter] [-c cycles] "
+                    "[-H hold_frac] [-Y shape_sigma]\n");
+}
+
+/* The options into *o (defaults first); 0, or 1 with a message. */
+static int parse_options(int argc, char **argv, pf_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->nsyn = 24;
+    o->seed = 12;
+    o->f_end_hz = 50.0;
+    o->scatter = SL_ANALYSIS_SCATTER;
+    sl_synth_params_default(&o->synth);
+    int opt;
     while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0PQF:R:H:c:Y:")) != -1) {
         switch (opt) {
-        case 'r': rdir = optarg; break;
-        case 'n': maxrec = (size_t)atol(optarg); break;
-        case 's': nsyn = (size_t)atol(optarg); break;
-        case 'S': seed = (uint64_t)atoll(optarg); break;
-        case 'x': exps = 1; break;
-        case 'a': P.pga_sigma = atof(optarg); break;
-        case 'H': P.hold_frac = atof(optarg); break;
-        case 'c': P.wavelet_cycles = atof(optarg); break;
-        case 'Y': Shape = atof(optarg); break;
-        case 'g': ground_only = 1; break;
-        case '0': floor0 = 1; break;
-        case 'P': pairm = 1; break;
-        case 'Q': pairm = 1, Pair_max = 1; break;
-        case 'G': no_ground = 1; break;
-        case 'F': f_end = atof(optarg); break;
-        case 'R': Scatter = atof(optarg); break;
+        case 'r': o->records = optarg; break;
+        case 'n': o->max_records = (size_t)atol(optarg); break;
+        case 's': o->nsyn = (size_t)atol(optarg); break;
+        case 'S': o->seed = (uint64_t)atoll(optarg); break;
+        case 'x': o->experiments = 1; break;
+        case 'a': o->synth.pga_sigma = atof(optarg); break;
+        case 'H': o->synth.hold_frac = atof(optarg); break;
+        case 'c': o->synth.wavelet_cycles = atof(optarg); break;
+        case 'Y': o->shape = atof(optarg); break;
+        case 'g': o->ground_only = 1; break;
+        case '0': o->floor0 = 1; break;
+        case 'P': o->pair_match = 1; break;
+        case 'Q': o->pair_match = 1, o->pair_max = 1; break;
+        case 'G': o->no_ground = 1; break;
+        case 'F': o->f_end_hz = atof(optarg); break;
+        case 'R': o->scatter = atof(optarg); break;
         default:
-            fprintf(stderr, "usage: physfloors [-r dir] [-n max] [-s nsyn] [-S seed] [-x] "
-                            "[-a sigma] [-g|-G] [-0] [-P|-Q] [-F f_end] [-R scatter] [-c cycles] "
-                            "[-H hold_frac] [-Y shape_sigma]\n");
+            usage();
             return 1;
         }
     }
-    if (nsyn < 2) {
+    if (o->nsyn < 2) {
         fprintf(stderr, "physfloors: -s %zu: at least 2 synthesized sets (a standard error needs two)\n",
-                nsyn);
+                o->nsyn);
         return 1;
     }
-    if (Shape > 0 && ground_only)
+    if (o->shape > 0 && o->ground_only)
         fprintf(stderr, "physfloors: -Y applies to floors only; ignored with -g\n");
-    if (!(Shape >= 0 && Shape <= 1)) {
+    if (!(o->shape >= 0 && o->shape <= 1)) {
         fprintf(stderr, "physfloors: -Y %g: the shape scatter is a log standard deviation in [0, 1]\n",
-                Shape);
+                o->shape);
         return 1;
     }
-    if (!(f_end > 1 && f_end <= 50)) {
-        fprintf(stderr, "physfloors: -F %g: the floor spectrum ends in (1, 50] Hz\n", f_end);
+    if (!(o->f_end_hz > 1 && o->f_end_hz <= 50)) {
+        fprintf(stderr, "physfloors: -F %g: the floor spectrum ends in (1, 50] Hz\n", o->f_end_hz);
         return 1;
     }
+    return 0;
+}
+
+/* Ground: the nrec records g matched to RG 1.60 (the study's method) against
+ * synthesized sets (syn: room for o->nsyn). */
+static void ground(const pf_opts *o, const sl_set *g, size_t nrec, sl_set *syn)
+{
+    const size_t nsyn = o->nsyn;
+    sl_error e;
+    double mu[NMU];
+    sl_synth_set *ms = calloc(nrec, sizeof *ms);
+    sl_set *mset = calloc(nrec, sizeof *mset);
+    size_t nm = 0, *src = calloc(nrec, sizeof *src);
+    for (size_t r = 0; r < nrec; r++) {
+        sl_status st = sl_study_match_rg160(&g[r], 0.05, PGA_G * SL_G, &ms[nm], &e);
+        if (st == SL_OK || st == SL_ENOCONV)
+            mset[nm] = ms[nm].set, src[nm] = r, nm++;
+    }
+    for (int k = 0; k < NMU; k++)
+        mu[k] = (0.1 + 0.2 * k) * PGA_G;
+    double *real = slide(mset, nm, mu);
+    describe("ground, records as recorded (scaled)", g, nrec);
+    if (o->experiments) { /* the records' spectral scatter; per-component PGA equalized (what
+                           * component-wise matching does to the pair) */
+        shape_scatter(g, nrec);
+        sl_set *eq = calloc(nrec, sizeof *eq);
+        for (size_t r = 0; r < nrec; r++)
+            eq[r] = (sl_set){scaled(g[r].h1, PGA_G * SL_G / sl_motion_pga(g[r].h1)),
+                             scaled(g[r].h2, PGA_G * SL_G / sl_motion_pga(g[r].h2)),
+                             scaled(g[r].v, 1)};
+        describe("ground, records as recorded, each H scaled to 0.3 g", eq, nrec);
+        free_tmp(eq, nrec);
+        free(eq);
+    }
+    describe("ground, records matched to RG 1.60", mset, nm);
+    sl_spectrum *sp[3];
+    sl_synth_target tgt[3];
+    if (sl_synth_targets_rg160(PGA_G * SL_G, 0.05, &o->synth, sp, tgt, &e))
+        die(&e);
+    sl_synth_set *out = synth(o, tgt, 0.0, syn); /* -Y: floors only */
+    double *sy = slide(syn, nsyn, mu);
+    describe("ground, synthesized RG 1.60", syn, nsyn);
+    header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
+    row("ratio ± SE", sy, nsyn, real, nm);
+    if (o->scatter > 0) { /* what `seislide run` reports for a ground floor: with its scatter */
+        double *syr = slide_floor(o, syn, nsyn, mu);
+        header("ground: synthesized slid the run's way (intensity scatter) / matched");
+        row("ratio ± SE", syr, nsyn, real, nm);
+        free(syr);
+    }
+    if (o->pair_match) { /* -P: the pair matched with one correction, V as matched */
+        sl_set *pset = calloc(nm, sizeof *pset);
+        double wmax = 0;
+        for (size_t i = 0; i < nm; i++) {
+            sl_motion *p1, *p2;
+            wmax = fmax(wmax, pair_match(o, g[src[i]].h1, g[src[i]].h2, sp[0], &p1, &p2));
+            /* the V of the component-wise match, on the pair's samples */
+            sl_motion *vr = sl_synth_resample_motion(mset[i].v, p1->dt_s);
+            double *va = calloc(p1->n, sizeof *va);
+            if (!vr || !va) {
+                fprintf(stderr, "physfloors: cannot resample the vertical of %s\n",
+                        mset[i].v->label);
+                exit(1);
+            }
+            for (size_t j = 0; j < p1->n && j < vr->n; j++)
+                va[j] = vr->acc_ms2[j];
+            pset[i] = (sl_set){p1, p2, sl_motion_from_array(va, p1->n, p1->dt_s, "v")};
+            free(va);
+            sl_motion_free(vr);
+        }
+        printf("  pair matching: largest |ln(%s / target)| left %.3f\n",
+               o->pair_max ? "larger H spectrum" : "geometric mean", wmax);
+        describe(o->pair_max ? "ground, records pair-matched to RG 1.60 (one correction, the larger H spectrum)"
+                             : "ground, records pair-matched to RG 1.60 (one correction, the geometric mean)",
+                 pset, nm);
+        double *pr = slide(pset, nm, mu);
+        header("ground RG 1.60 0.3 g: synthesized / pair-matched records (μg/PGA)");
+        row("ratio ± SE", sy, nsyn, pr, nm);
+        header("ground: pair-matched / component-matched records (μg/PGA)");
+        row("ratio ± SE", pr, nm, real, nm);
+        free(pr);
+        free_tmp(pset, nm);
+        free(pset);
+    }
+    free(src);
+    if (o->experiments)
+        experiments(mset, nm, syn, out, nsyn, mu, real, sy);
+    free(real);
+    free(sy);
+    for (size_t k = 0; k < nsyn; k++)
+        sl_synth_set_clear(&out[k]);
+    free(out);
+    for (size_t r = 0; r < nm; r++)
+        sl_synth_set_clear(&ms[r]);
+    for (int c = 0; c < 3; c++)
+        sl_spectrum_free(sp[c]);
+    free(ms);
+    free(mset);
+}
+
+/* Floors 1-3 (and floor 0 with -0) of the building over the nrec records
+ * g: physical floor motions against sets synthesized to their spectra
+ * (syn: room for o->nsyn). Returns 0, or 1 with a message. */
+static int floors(const pf_opts *o, const sl_set *g, size_t nrec, sl_set *syn)
+{
+    const size_t nsyn = o->nsyn;
+    const double f_end = o->f_end_hz;
+    sl_error e;
+    double mu[NMU];
+    double f[NF];
+    const size_t nf = (size_t)lround(50.0 * log10(f_end / 0.1)) + 1;
+    for (size_t j = 0; j < nf; j++)
+        f[j] = 0.1 * pow(f_end / 0.1, (double)j / (double)(nf - 1));
+    const sl_building b = {3, {3.0, 4.2, 14.0}, 0.05};
+    char dir[] = "/tmp/seislide-pf-XXXXXX";
+    if (!mkdtemp(dir)) {
+        fprintf(stderr, "physfloors: cannot make a temporary directory\n");
+        return 1;
+    }
+    sl_set *fm = calloc(nrec, sizeof *fm);
+    for (size_t fl = o->floor0 ? 0 : 1; fl <= 3; fl++) {
+        for (size_t r = 0; r < nrec; r++)
+            if (fl == 0) /* the ground: the records themselves, as recorded */
+                fm[r] = (sl_set){scaled(g[r].h1, 1), scaled(g[r].h2, 1), scaled(g[r].v, 1)};
+            else if (sl_building_floor(&b, fl, &g[r], &fm[r], &e))
+                die(&e);
+        double zpa = 0;
+        for (size_t r = 0; r < nrec; r++)
+            zpa += sl_set_pga_h(&fm[r]) / (double)nrec;
+        for (int k = 0; k < NMU; k++)
+            mu[k] = (0.1 + 0.2 * k) * zpa / SL_G;
+        double *phys = slide(fm, nrec, mu);
+        printf("\nfloor %zu: ZPA (mean larger H PGA) %.3f g\n", fl, zpa / SL_G);
+        describe("physical", fm, nrec);
+        for (int broaden = 0; broaden < 2; broaden++) {
+            char path[256], label[64];
+            snprintf(path, sizeof path, "%s/floor%zu%s.ini", dir, fl, broaden ? "b" : "");
+            if (sl_pf_write_floor(path, "physical floor", fm, nrec, f, nf, broaden, &e))
+                die(&e);
+            sl_floor *flr = sl_floor_load(path, &e);
+            sl_synth_target tgt[3];
+            if (!flr || sl_synth_targets_floor(flr, 0, tgt, &e))
+                die(&e);
+            sl_synth_set *out = synth(o, tgt, o->shape, syn);
+            double *sy = slide_floor(o, syn, nsyn, mu);
+            describe(broaden ? "synthesized, broadened" : "synthesized", syn, nsyn);
+            header(broaden ? "synthesized (broadened ±15 %) / physical"
+                           : "synthesized / physical");
+            snprintf(label, sizeof label, "floor %zu%s", fl, broaden ? " broadened" : "");
+            row(label, sy, nsyn, phys, nrec);
+            if (o->experiments && !broaden)
+                experiments(fm, nrec, syn, out, nsyn, mu, phys, sy);
+            free(sy);
+            for (size_t k = 0; k < nsyn; k++)
+                sl_synth_set_clear(&out[k]);
+            free(out);
+            sl_floor_free(flr);
+            remove(path);
+        }
+        free(phys);
+        free_tmp(fm, nrec);
+    }
+    rmdir(dir);
+    free(fm);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    pf_opts o;
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    if (parse_options(argc, argv, &o))
+        return 1;
     char buf[1024];
+    const char *rdir = o.records;
     if (!rdir) {
         const char *sh = getenv("SEISLIDE_SHARED");
         snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
         rdir = buf;
     }
     sl_error e;
-    if (sl_synth_params_check(&P, &e))
+    if (sl_synth_params_check(&o.synth, &e))
         die(&e);
     char **names;
     size_t nd = sl_pf_list_dirs(rdir, &names, &e);
@@ -677,179 +866,34 @@ int main(int argc, char **argv)
     sl_pf_rule rule;
     sl_pf_rule_default(&rule);
     sl_set *g = calloc(nd, sizeof *g);
-    size_t nrec = 0, nskip = 0;
-    for (size_t i = 0; i < nd && (!maxrec || nrec < maxrec); i++) {
+    size_t nrec = 0;
+    for (size_t i = 0; i < nd && (!o.max_records || nrec < o.max_records); i++) {
         char d[4096];
         snprintf(d, sizeof d, "%s/%s", rdir, names[i]);
         if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) == SL_OK)
             nrec++;
-        else
-            nskip++;
     }
     printf("records: %zu used of %zu directories in %s (rule: three components, larger H PGA "
            ">= %.2f g, duration >= %.0f s, dt <= %.2f s); scaled to %.1f g; %zu synthesized "
            "sets per case, seed %llu, pga_sigma %.2f, wavelet cycles %.1f, envelope hold %.2f, floor spectra to %g Hz, scatter %.2f, "
            "floor-spectrum shape scatter %.2f%s\n",
-           nrec, nd, rdir, rule.min_pga_g, rule.min_duration_s, rule.max_dt_s, PGA_G, nsyn,
-           (unsigned long long)seed, P.pga_sigma, P.wavelet_cycles, P.hold_frac, f_end, Scatter,
-           Shape, floor0 ? ", floor 0 (the records themselves) included" : "");
+           nrec, nd, rdir, rule.min_pga_g, rule.min_duration_s, rule.max_dt_s, PGA_G, o.nsyn,
+           (unsigned long long)o.seed, o.synth.pga_sigma, o.synth.wavelet_cycles,
+           o.synth.hold_frac, o.f_end_hz, o.scatter, o.shape,
+           o.floor0 ? ", floor 0 (the records themselves) included" : "");
     if (nrec == 0) {
         fprintf(stderr, "physfloors: no record of %s passes the rule\n", rdir);
         return 1;
     }
-    sl_set *syn = calloc(nsyn, sizeof *syn);
-    double mu[NMU];
-    if (!no_ground) {
-        /* Ground: records matched to RG 1.60 (the study's method) vs synthesized */
-        sl_synth_set *ms = calloc(nrec, sizeof *ms);
-        sl_set *mset = calloc(nrec, sizeof *mset);
-        size_t nm = 0, *src = calloc(nrec, sizeof *src);
-        for (size_t r = 0; r < nrec; r++) {
-            sl_status st = sl_study_match_rg160(&g[r], 0.05, PGA_G * SL_G, &ms[nm], &e);
-            if (st == SL_OK || st == SL_ENOCONV)
-                mset[nm] = ms[nm].set, src[nm] = r, nm++;
-        }
-        for (int k = 0; k < NMU; k++)
-            mu[k] = (0.1 + 0.2 * k) * PGA_G;
-        double *real = slide(mset, nm, mu);
-        describe("ground, records as recorded (scaled)", g, nrec);
-        if (exps) { /* the records' spectral scatter; per-component PGA equalized (what
-                     * component-wise matching does to the pair) */
-            shape_scatter(g, nrec);
-            sl_set *eq = calloc(nrec, sizeof *eq);
-            for (size_t r = 0; r < nrec; r++)
-                eq[r] = (sl_set){scaled(g[r].h1, PGA_G * SL_G / sl_motion_pga(g[r].h1)),
-                                 scaled(g[r].h2, PGA_G * SL_G / sl_motion_pga(g[r].h2)),
-                                 scaled(g[r].v, 1)};
-            describe("ground, records as recorded, each H scaled to 0.3 g", eq, nrec);
-            free_tmp(eq, nrec);
-            free(eq);
-        }
-        describe("ground, records matched to RG 1.60", mset, nm);
-        sl_spectrum *sp[3];
-        sl_synth_target tgt[3];
-        if (sl_synth_targets_rg160(PGA_G * SL_G, 0.05, &P, sp, tgt, &e))
-            die(&e);
-        sl_synth_set *out = synth(tgt, nsyn, seed, 0.0, syn); /* -Y: floors only */
-        double *sy = slide(syn, nsyn, mu);
-        describe("ground, synthesized RG 1.60", syn, nsyn);
-        header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
-        row("ratio ± SE", sy, nsyn, real, nm);
-        if (Scatter > 0) { /* what `seislide run` reports for a ground floor: with its scatter */
-            double *syr = slide_floor(syn, nsyn, mu);
-            header("ground: synthesized slid the run's way (intensity scatter) / matched");
-            row("ratio ± SE", syr, nsyn, real, nm);
-            free(syr);
-        }
-        if (pairm) { /* -P: the pair matched with one correction, V as matched */
-            sl_set *pset = calloc(nm, sizeof *pset);
-            double wmax = 0;
-            for (size_t i = 0; i < nm; i++) {
-                sl_motion *p1, *p2;
-                wmax = fmax(wmax, pair_match(g[src[i]].h1, g[src[i]].h2, sp[0], &p1, &p2));
-                /* the V of the component-wise match, on the pair's samples */
-                sl_motion *vr = sl_synth_resample_motion(mset[i].v, p1->dt_s);
-                double *va = calloc(p1->n, sizeof *va);
-                if (!vr || !va) {
-                    fprintf(stderr, "physfloors: cannot resample the vertical of %s\n",
-                            mset[i].v->label);
-                    exit(1);
-                }
-                for (size_t j = 0; j < p1->n && j < vr->n; j++)
-                    va[j] = vr->acc_ms2[j];
-                pset[i] = (sl_set){p1, p2, sl_motion_from_array(va, p1->n, p1->dt_s, "v")};
-                free(va);
-                sl_motion_free(vr);
-            }
-            printf("  pair matching: largest |ln(%s / target)| left %.3f\n",
-                   Pair_max ? "larger H spectrum" : "geometric mean", wmax);
-            describe(Pair_max ? "ground, records pair-matched to RG 1.60 (one correction, the larger H spectrum)"
-                              : "ground, records pair-matched to RG 1.60 (one correction, the geometric mean)",
-                     pset, nm);
-            double *pr = slide(pset, nm, mu);
-            header("ground RG 1.60 0.3 g: synthesized / pair-matched records (μg/PGA)");
-            row("ratio ± SE", sy, nsyn, pr, nm);
-            header("ground: pair-matched / component-matched records (μg/PGA)");
-            row("ratio ± SE", pr, nm, real, nm);
-            free(pr);
-            free_tmp(pset, nm);
-            free(pset);
-        }
-        free(src);
-        if (exps)
-            experiments(mset, nm, syn, out, nsyn, mu, real, sy);
-        free(real);
-        free(sy);
-        for (size_t k = 0; k < nsyn; k++)
-            sl_synth_set_clear(&out[k]);
-        free(out);
-        for (size_t r = 0; r < nm; r++)
-            sl_synth_set_clear(&ms[r]);
-        for (int c = 0; c < 3; c++)
-            sl_spectrum_free(sp[c]);
-        free(ms);
-        free(mset);
-    }
-    if (!ground_only) {
-        double f[NF];
-        const size_t nf = (size_t)lround(50.0 * log10(f_end / 0.1)) + 1;
-        for (size_t j = 0; j < nf; j++)
-            f[j] = 0.1 * pow(f_end / 0.1, (double)j / (double)(nf - 1));
-        const sl_building b = {3, {3.0, 4.2, 14.0}, 0.05};
-        char dir[] = "/tmp/seislide-pf-XXXXXX";
-        if (!mkdtemp(dir)) {
-            fprintf(stderr, "physfloors: cannot make a temporary directory\n");
-            return 1;
-        }
-        sl_set *fm = calloc(nrec, sizeof *fm);
-        for (size_t fl = floor0 ? 0 : 1; fl <= 3; fl++) {
-            for (size_t r = 0; r < nrec; r++)
-                if (fl == 0) /* the ground: the records themselves, as recorded */
-                    fm[r] = (sl_set){scaled(g[r].h1, 1), scaled(g[r].h2, 1), scaled(g[r].v, 1)};
-                else if (sl_building_floor(&b, fl, &g[r], &fm[r], &e))
-                    die(&e);
-            double zpa = 0;
-            for (size_t r = 0; r < nrec; r++)
-                zpa += sl_set_pga_h(&fm[r]) / (double)nrec;
-            for (int k = 0; k < NMU; k++)
-                mu[k] = (0.1 + 0.2 * k) * zpa / SL_G;
-            double *phys = slide(fm, nrec, mu);
-            printf("\nfloor %zu: ZPA (mean larger H PGA) %.3f g\n", fl, zpa / SL_G);
-            describe("physical", fm, nrec);
-            for (int broaden = 0; broaden < 2; broaden++) {
-                char path[256];
-                snprintf(path, sizeof path, "%s/floor%zu%s.ini", dir, fl, broaden ? "b" : "");
-                if (sl_pf_write_floor(path, "physical floor", fm, nrec, f, nf, broaden, &e))
-                    die(&e);
-                sl_floor *flr = sl_floor_load(path, &e);
-                sl_synth_target tgt[3];
-                if (!flr || sl_synth_targets_floor(flr, 0, tgt, &e))
-                    die(&e);
-                sl_synth_set *out = synth(tgt, nsyn, seed, Shape, syn);
-                double *sy = slide_floor(syn, nsyn, mu);
-                describe(broaden ? "synthesized, broadened" : "synthesized", syn, nsyn);
-                header(broaden ? "synthesized (broadened ±15 %) / physical"
-                               : "synthesized / physical");
-                snprintf(buf, sizeof buf, "floor %zu%s", fl, broaden ? " broadened" : "");
-                row(buf, sy, nsyn, phys, nrec);
-                if (exps && !broaden)
-                    experiments(fm, nrec, syn, out, nsyn, mu, phys, sy);
-                free(sy);
-                for (size_t k = 0; k < nsyn; k++)
-                    sl_synth_set_clear(&out[k]);
-                free(out);
-                sl_floor_free(flr);
-                remove(path);
-            }
-            free(phys);
-            free_tmp(fm, nrec);
-        }
-        rmdir(dir);
-        free(fm);
-    }
+    sl_set *syn = calloc(o.nsyn, sizeof *syn);
+    int rc = 0;
+    if (!o.no_ground)
+        ground(&o, g, nrec, syn);
+    if (!o.ground_only)
+        rc = floors(&o, g, nrec, syn);
     free_tmp(g, nrec);
     free(g);
     free(syn);
     sl_pf_names_free(names, nd);
-    return 0;
+    return rc;
 }

@@ -236,13 +236,6 @@ int cli_stdout_done(void)
     return CLI_EXIT_OK;
 }
 
-double cli_now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 void cli_parser_init(cli_parser *p, const char *cmd, const cli_opt *opts, size_t n)
 {
     memset(p, 0, sizeof *p);

@@ -185,9 +185,6 @@ void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], si
  * "error writing the output" when stdout failed (a full disk, a closed pipe). */
 int cli_stdout_done(void);
 
-/* Monotonic wall-clock time, s (for the timings commands report). */
-double cli_now_s(void);
-
 /* Strict parse of a finite double (whole string). Returns 0 on success. */
 int cli_parse_double(const char *s, double *out);
 /* Parse option `opt` of command `cmd` as a finite number > 0 (in `unit`,

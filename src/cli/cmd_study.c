@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "core/clock.h"
 #include "method/asce.h"
 #include "method/design.h"
 #include "study_out.h"
@@ -121,13 +122,13 @@ int cmd_study(int argc, char **argv)
         return CLI_EXIT_ERROR;
     }
     study_report_preamble(&o);
-    double t0 = cli_now_s();
+    double t0 = sl_clock_s();
     rc = study_report_run(&o, a.records, a.parts, a.quiet);
     if (!rc && !o.plots)
         fprintf(o.md, "Figures were not drawn in this run (--no-plots).\n\n");
     if (!rc)
         fprintf(o.md, "---\nseislide %s; `seislide study` took %.0f s on this machine.\n",
-                SEISLIDE_VERSION, cli_now_s() - t0);
+                SEISLIDE_VERSION, sl_clock_s() - t0);
     if (fclose(o.md) && !rc) {
         cli_msg("out of memory");
         rc = -1;

@@ -1,5 +1,6 @@
 /* rg160.c - Regulatory Guide 1.60 design spectra (see rg160.h). */
 #include "signal/rg160.h"
+#include "core/compare.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -141,12 +142,6 @@ sl_status sl_rg160_psa(sl_rg160_dir dir, double zeta, double pga_ms2, const doub
     return SL_OK;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 double *sl_rg160_grid(sl_rg160_dir dir, double fmin_hz, double fmax_hz, double per_decade,
                       size_t *n)
 {
@@ -168,7 +163,7 @@ double *sl_rg160_grid(sl_rg160_dir dir, double fmin_hz, double fmax_hz, double p
         if (fc > fmin_hz && fc < fmax_hz)
             out[k++] = fc;
     }
-    qsort(out, k, sizeof *out, cmp_double);
+    qsort(out, k, sizeof *out, sl_cmp_double);
     size_t w = 0;
     for (size_t i = 0; i < k; i++) {
         if (w > 0 && out[i] - out[w - 1] <= RG160_GRID_MERGE_REL * out[i]) {

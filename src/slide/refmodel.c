@@ -70,11 +70,11 @@
  *    (mu g) after the record (flag SL_SLIDE_NEVER_STOPS when reached).
  */
 #include "slide/refmodel.h"
+#include "core/gslerr.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -121,17 +121,6 @@
 /* Extension after the record (keep_going): this long plus the time to stop
  * from the end speed at mu g, s. */
 #define SL_REF_EXTEND_S 60.0
-
-/* ---- GSL error handler (process-wide, set once) ---------------------- */
-
-static pthread_once_t gsl_handler_once = PTHREAD_ONCE_INIT;
-
-static void gsl_handler_off(void)
-{
-    /* Process-wide: GSL would otherwise abort() on errors. Done once, under
-     * pthread_once, so concurrent runs (sl_slide_batch) do not race. */
-    gsl_set_error_handler_off();
-}
 
 /* ---- input ------------------------------------------------------------ */
 
@@ -654,15 +643,14 @@ static sl_status check_inputs(const sl_set *set, double mu, const sl_slide_opts 
     return SL_OK;
 }
 
-sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opts,
-                          sl_slide_result *res, sl_history **hist, sl_error *err)
+static sl_status refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opts,
+                              sl_slide_result *res, sl_history **hist, sl_error *err)
 {
     if (hist)
         *hist = NULL;
     sl_status st = check_inputs(set, mu, opts, res, err);
     if (st)
         return st;
-    pthread_once(&gsl_handler_once, gsl_handler_off);
 
     feed f = {set->h1->n, set->h1->dt_s, opts->g_ms2, opts->invert ? -1.0 : 1.0,
               set->h1->acc_ms2, set->h2 ? set->h2->acc_ms2 : NULL,
@@ -756,4 +744,15 @@ sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opt
     if (hist)
         *hist = H;
     return SL_OK;
+}
+
+/* GSL's error handler is off while the model runs (every GSL return code is
+ * checked here) and the caller's is back on return (core/gslerr.h). */
+sl_status sl_refmodel_run(const sl_set *set, double mu, const sl_slide_opts *opts,
+                          sl_slide_result *res, sl_history **hist, sl_error *err)
+{
+    sl_gsl_quiet_begin();
+    sl_status st = refmodel_run(set, mu, opts, res, hist, err);
+    sl_gsl_quiet_end();
+    return st;
 }

@@ -8,11 +8,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "analysis.h"
 #include "io/floor.h"
 #include "io/setdir.h"
+#include "core/clock.h"
 #include "signal/spectrum.h"
 #include "synth/synth.h"
 
@@ -24,13 +24,6 @@ const char *const sl_bench_floors[SL_BENCH_NFLOORS] = {
 
 static const char *const bench_dirs[SL_BENCH_MAX_SETS] = {
     "RSN1063_NORTHR_RRS", "RSN6_IMPVALL.I_I-ELC", "RSN77_SFERN_PUL"};
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Deterministic broadband stand-in (sum of sines under an envelope). */
 static sl_motion *standin(size_t n, double dt, double amp, unsigned seed)
@@ -100,11 +93,11 @@ static sl_status timed_run(const sl_set *set, const double *mu, size_t n, const 
 {
     *best_s = INFINITY;
     for (unsigned long r = 0; r < repeat; r++) {
-        double t0 = now_s();
+        double t0 = sl_clock_s();
         sl_status st = sl_slide_run(set, mu, n, so, res, err);
         if (st != SL_OK)
             return st;
-        *best_s = fmin(*best_s, now_s() - t0);
+        *best_s = fmin(*best_s, sl_clock_s() - t0);
     }
     return SL_OK;
 }
@@ -263,10 +256,10 @@ static sl_status bench_spectra(sl_bench *b, unsigned long repeat, sl_error *err)
             so.steps_per_period = sl_bench_spp[q];
             double best = INFINITY;
             for (unsigned long r = 0; r < repeat && st == SL_OK; r++) {
-                double t0 = now_s();
+                double t0 = sl_clock_s();
                 st = sl_spectrum_compute_opts(m->acc_ms2, m->n, m->dt_s, f, nf,
                                               SL_BENCH_SPEC_DAMPING, &so, p, NULL, NULL, err);
-                best = fmin(best, now_s() - t0);
+                best = fmin(best, sl_clock_s() - t0);
             }
             double e = 0;
             for (size_t j = 0; j < nf; j++)
@@ -303,9 +296,9 @@ static void bench_synth(sl_bench *b)
         b->synth_lo = INFINITY;
         for (int q = 0; q < SL_BENCH_SYNTH_SEEDS; q++) {
             sl_synth_set set;
-            double t0 = now_s();
+            double t0 = sl_clock_s();
             sl_status sst = sl_synth_make_set(sy, tgt, 1000u + (uint64_t)q, 0, &set, NULL);
-            double t = now_s() - t0;
+            double t = sl_clock_s() - t0;
             b->synth_mean_s += t / SL_BENCH_SYNTH_SEEDS;
             b->synth_max_s = fmax(b->synth_max_s, t);
             b->synth_passed += (sst == SL_OK && set.pass);
@@ -387,7 +380,7 @@ static double limit_time_per_update(void)
     const double *restrict rmu = mu;
     double best = INFINITY;
     for (int rep = 0; rep < 5; rep++) {
-        double t0 = now_s();
+        double t0 = sl_clock_s();
         for (int it = 0; it < ITERS; it++) {
             const double hax = 1e-4 * (it & 7), hay = -1e-4 * (it & 3);
             for (int k = 0; k < M; k++) {
@@ -408,7 +401,7 @@ static double limit_time_per_update(void)
                 rvy[k] = ny;
             }
         }
-        best = fmin(best, (now_s() - t0) / ((double)M * ITERS));
+        best = fmin(best, (sl_clock_s() - t0) / ((double)M * ITERS));
     }
     double sink = 0;
     for (int k = 0; k < M; k++)

@@ -10,9 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #include "io/setdir.h"
+#include "core/clock.h"
+#include "core/compare.h"
 #include "slide/slide.h"
 
 #if defined(__GNUC__) && !defined(__clang__)
@@ -31,24 +32,6 @@ static const unsigned wp_sub[] = {1, 4, 16, 64};
  * a near-field pulse), else the first sets read. */
 static const char *const floor_sets[SL_BENCH_WP_NFLOOR] = {"RSN1063_NORTHR_RRS",
                                                           "RSN6_IMPVALL.I_I-ELC", "RSN77_SFERN_PUL"};
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_str(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-static int cmp_dbl(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* The arithmetic floor: per sample one branch-free first-order projection
  * update of every block (the mean forcing of the sample, as the engine
@@ -118,7 +101,7 @@ static char **list_dirs(const char *root, size_t *n)
     }
     closedir(d);
     if (v)
-        qsort(v, *n, sizeof *v, cmp_str);
+        qsort(v, *n, sizeof *v, sl_cmp_str);
     return v;
 }
 
@@ -174,14 +157,14 @@ sl_bench_wp *sl_bench_wp_run(const char *shared, unsigned long repeat, sl_error 
     sl_slide_opts_default(&o);
     o.rtol = SL_BENCH_WP_REF_RTOL;
     o.atol_m = SL_BENCH_WP_REF_ATOL_M;
-    double t0 = now_s();
+    double t0 = sl_clock_s();
     for (size_t s = 0; s < b->n_sets; s++) {
         if (sl_slide_run(&sets[s], sl_bench_wp_mu, nmu, &o, rr, err))
             goto fail;
         for (size_t k = 0; k < nmu; k++)
             ref[s * nmu + k] = rr[k].peak_m;
     }
-    b->ref_time_s = now_s() - t0;
+    b->ref_time_s = sl_clock_s() - t0;
     for (size_t q = 0; q < nset; q++) {
         sl_bench_wp_setting *x = &b->set[q];
         const size_t nr = sizeof wp_rtol / sizeof wp_rtol[0];
@@ -192,7 +175,7 @@ sl_bench_wp *sl_bench_wp_run(const char *shared, unsigned long repeat, sl_error 
             o.substeps = x->substeps = wp_sub[q - nr];
         x->time_s = INFINITY;
         for (unsigned long r = 0; r < repeat; r++) {
-            t0 = now_s();
+            t0 = sl_clock_s();
             for (size_t s = 0; s < b->n_sets; s++) {
                 if (sl_slide_run(&sets[s], sl_bench_wp_mu, nmu, &o, rr, err))
                     goto fail;
@@ -201,7 +184,7 @@ sl_bench_wp *sl_bench_wp_run(const char *shared, unsigned long repeat, sl_error 
                     est[s * nmu + k] = rr[k].err_est_m;
                 }
             }
-            x->time_s = fmin(x->time_s, now_s() - t0);
+            x->time_s = fmin(x->time_s, sl_clock_s() - t0);
         }
         size_t nrel = 0, nb = 0, nw = 0;
         x->worst_rel = 0.0;
@@ -214,7 +197,7 @@ sl_bench_wp *sl_bench_wp_run(const char *shared, unsigned long repeat, sl_error 
                 x->worst_rel = fmax(x->worst_rel, e / ref[j]);
             }
         }
-        qsort(rel, nrel, sizeof *rel, cmp_dbl);
+        qsort(rel, nrel, sizeof *rel, sl_cmp_double);
         x->median_rel = nrel ? rel[nrel / 2] : NAN;
         x->bounded = x->substeps ? NAN : (double)nb / (double)rows;
         x->within = x->substeps ? NAN : (double)nw / (double)rows;
@@ -243,17 +226,17 @@ sl_bench_wp *sl_bench_wp_run(const char *shared, unsigned long repeat, sl_error 
         sl_slide_opts_default(&o);
         x->engine_s = x->floor_s = INFINITY;
         for (unsigned long r = 0; r < repeat; r++) {
-            t0 = now_s();
+            t0 = sl_clock_s();
             if (sl_slide_run(&sets[s], grid, SL_BENCH_WP_GRID_N, &o, rg, err)) {
                 free(rg);
                 goto fail;
             }
-            x->engine_s = fmin(x->engine_s, now_s() - t0);
-            t0 = now_s();
+            x->engine_s = fmin(x->engine_s, sl_clock_s() - t0);
+            t0 = sl_clock_s();
             x->sliding = floor_run(&sets[s], grid, SL_BENCH_WP_GRID_N, fl, fl + SL_BENCH_WP_GRID_N,
                                    fl + 2 * SL_BENCH_WP_GRID_N, fl + 3 * SL_BENCH_WP_GRID_N,
                                    fl + 4 * SL_BENCH_WP_GRID_N);
-            x->floor_s = fmin(x->floor_s, now_s() - t0);
+            x->floor_s = fmin(x->floor_s, sl_clock_s() - t0);
         }
         x->ratio = x->engine_s / x->floor_s;
     }

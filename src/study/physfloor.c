@@ -1,6 +1,7 @@
 /* physfloor.c - records for physical floor motions, ratio statistics and
  * floor files from sets (see physfloor.h, equation P1). */
 #include "study/physfloor.h"
+#include "core/compare.h"
 
 #include <dirent.h>
 #include <math.h>
@@ -20,11 +21,6 @@ void sl_pf_rule_default(sl_pf_rule *r)
     r->min_pga_g = SL_PF_MIN_PGA_G;
     r->min_duration_s = SL_PF_MIN_DURATION_S;
     r->max_dt_s = SL_PF_MAX_DT_S;
-}
-
-static int cmp_str(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
 void sl_pf_names_free(char **names, size_t n)
@@ -67,7 +63,7 @@ size_t sl_pf_list_dirs(const char *dir, char ***names, sl_error *err)
     }
     closedir(d);
     if (n)
-        qsort(v, n, sizeof *v, cmp_str);
+        qsort(v, n, sizeof *v, sl_cmp_str);
     *names = v;
     return n;
 }

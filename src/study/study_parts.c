@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "io/setdir.h"
+#include "core/clock.h"
 
 const double sl_study_levels_g[SL_STUDY_NLEVELS] = {0.2, 0.4, 0.6, 0.8};
 const sl_model sl_study_p1_models[SL_STUDY_P1_NMODELS] = {SL_MODEL_EXACT, SL_MODEL_SMOOTH,
@@ -25,13 +25,6 @@ const char *const sl_study_p1_model_tags[SL_STUDY_P1_NMODELS] = {"engine", "smoo
 double sl_study_pct(double to, double from)
 {
     return from > 0 ? 100.0 * (to - from) / from : NAN;
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* Read the set in records/sub. */
@@ -70,9 +63,9 @@ sl_status sl_study_part1_run(const char *records, sl_study_part1 *p, sl_error *e
             so.smooth_uy_m = SL_STUDY_SMOOTH_UY_M;
             so.plastic_uy_m = SL_STUDY_SMOOTH_UY_M;
             sl_study_p1_run *x = &p->run[two][m];
-            double t0 = now_s();
+            double t0 = sl_clock_s();
             st = sl_slide_history(&set, SL_STUDY_P1_MU, &so, &x->r, &x->h, err);
-            x->run_ms = 1e3 * (now_s() - t0);
+            x->run_ms = 1e3 * (sl_clock_s() - t0);
             if (st != SL_OK)
                 break;
             if (m == 0)

@@ -1,35 +1,85 @@
 #!/bin/sh
-# `make install` into a scratch DESTDIR installs seislide.h with the public
-# headers it needs (and no internal one), libseislide.a and seislide.pc; a
-# tiny program built with pkg-config against the installed tree computes
-# an ASCE/SEI 43-05 estimate on RG 1.60 that it checks by hand.
+# `make install` into a scratch DESTDIR with a non-standard PREFIX installs
+# seislide.h with the public headers it needs (and no internal one) under
+# include/seislide/, libseislide.a, libseislide.so (soname libseislide.so.0)
+# and seislide.pc. A tiny program with #include <seislide/seislide.h>,
+# built with the README's lines (the plain pkg-config line against the
+# shared library; the --static line; the archive), computes an ASCE/SEI
+# 43-05 estimate on RG 1.60 that it checks by hand. Then the library's
+# hygiene: every exported symbol is sl_/SL_, no research code (src/study) in
+# it, src/signal includes nothing from src/io, no src/**/*.c over 1,000 lines.
 . "$(dirname "$0")/lib.sh"
 t_suite cli_install
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 D=$T_TMP/dest
-P=/usr/local
+P=/opt/seislide
+# The install rebuilds nothing in an up-to-date tree; LDFLAGS as the build's
+# (make asan), should it link the shared library.
 # shellcheck disable=SC2086
-make -s install DESTDIR="$D" PREFIX=$P $SEISLIDE_MAKEVARS >"$T_TMP/make.out" 2>&1
+make -s -C "$ROOT" install DESTDIR="$D" PREFIX=$P $SEISLIDE_MAKEVARS LDFLAGS="$SEISLIDE_LDFLAGS" \
+  >"$T_TMP/make.out" 2>&1
 [ $? -eq 0 ] && t_pass || t_fail "make install failed: $(head -c 400 "$T_TMP/make.out")"
 I=$D$P/include/seislide
-for h in seislide.h io/motion.h slide/slide.h method/asce_input.h report/report.h; do
+L=$D$P/lib
+for h in seislide.h core/status.h slide/slide.h method/asce_input.h report/report.h; do
   [ -f "$I/$h" ] && t_pass || t_fail "$h not installed"
 done
 for h in io/atomic.h cli/cli.h cli.h slide/engine.h study/study.h; do
   [ -e "$I/$h" ] && t_fail "internal header $h installed" || t_pass
 done
-[ -f "$D$P/lib/libseislide.a" ] && t_pass || t_fail "libseislide.a not installed"
-[ -f "$D$P/lib/pkgconfig/seislide.pc" ] && t_pass || t_fail "seislide.pc not installed"
-if ! command -v pkg-config >/dev/null 2>&1; then
-  t_skip "pkg-config not found: the compile test is not run"; t_end; exit $?
+# Nothing outside include/seislide/ (generic names such as analysis.h never
+# land beside the user's own headers).
+n=$(find "$D$P/include" -mindepth 1 -maxdepth 1 | wc -l)
+[ "$n" -eq 1 ] && t_pass || t_fail "include/ holds $n entries, expected seislide/ only"
+# Every installed header includes its siblings as <seislide/...>, each of them
+# installed; no quoted include is left.
+q=$(grep -rl '^[[:space:]]*#[[:space:]]*include[[:space:]]*"' "$I")
+[ -z "$q" ] && t_pass || t_fail "quoted #include left in installed headers: $q"
+miss=
+for inc in $(grep -rhoE '#[[:space:]]*include[[:space:]]*<seislide/[^>]*>' "$I" |
+             sed -E 's/.*<seislide\/([^>]*)>.*/\1/' | sort -u); do
+  [ -f "$I/$inc" ] || miss="$miss $inc"
+done
+[ -z "$miss" ] && t_pass || t_fail "included but not installed:$miss"
+[ -f "$L/libseislide.a" ] && t_pass || t_fail "libseislide.a not installed"
+[ -L "$L/libseislide.so" ] && [ -L "$L/libseislide.so.0" ] && [ -f "$L/libseislide.so" ] &&
+  t_pass || t_fail "libseislide.so -> libseislide.so.0 -> the library: links missing"
+if command -v readelf >/dev/null 2>&1; then
+  readelf -d "$L/libseislide.so" | grep -q 'SONAME.*\[libseislide\.so\.0\]' && t_pass ||
+    t_fail "libseislide.so: soname is not libseislide.so.0"
 fi
-export PKG_CONFIG_PATH="$D$P/lib/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$D"
-grep -q "^Requires.private: gsl fftw3 xlsxwriter inih" "$D$P/lib/pkgconfig/seislide.pc" && t_pass ||
-  t_fail "seislide.pc: Requires.private"
-cat >"$T_TMP/prog.c" <<'PROG'
+[ -f "$L/pkgconfig/seislide.pc" ] && t_pass || t_fail "seislide.pc not installed"
+
+# ---- the link lines of the README ("Build"), against the installed tree --
+if ! command -v pkg-config >/dev/null 2>&1; then
+  t_skip "pkg-config not found: the compile tests are not run"
+else
+  # As a user of a non-standard prefix: PKG_CONFIG_PATH to find seislide.pc,
+  # LD_LIBRARY_PATH to run against libseislide.so; the sysroot stands for
+  # DESTDIR (pkg-config prefixes the -I and -L it prints with it).
+  export PKG_CONFIG_PATH="$L/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$D"
+  grep -q "^Requires.private: gsl fftw3 xlsxwriter inih" "$L/pkgconfig/seislide.pc" && t_pass ||
+    t_fail "seislide.pc: Requires.private"
+  cf=$(pkg-config --cflags seislide)
+  case " $cf " in
+  *" -I$D$P/include "*) t_pass ;;
+  *) t_fail "pkg-config --cflags seislide: '$cf' lacks -I$D$P/include" ;;
+  esac
+  case "$cf" in
+  *include/seislide*) t_fail "pkg-config --cflags seislide puts include/seislide itself on the path: '$cf'" ;;
+  *) t_pass ;;
+  esac
+  CC=${CC:-cc}
+  # A generic name must not resolve with seislide's flags.
+  printf '#include <analysis.h>\nint main(void) { return 0; }\n' >"$T_TMP/generic.c"
+  # shellcheck disable=SC2046
+  $CC -fsyntax-only $(pkg-config --cflags seislide) "$T_TMP/generic.c" >/dev/null 2>&1 &&
+    t_fail "#include <analysis.h> resolves with pkg-config --cflags seislide" || t_pass
+  cat >"$T_TMP/prog.c" <<'PROG'
 /* mu = 0.1 on RG 1.60 at 0.3 g: mu_e = mu (1 - 0.4 x 0.3) = 0.088,
  * c_s = 2 mu_e g = 0.176 g; 2 x the best estimate exceeds the cap
  * 1.5 x 1.4 x 36 in x 0.3 = 0.576072 m: flag capped (1), design = cap. */
-#include <seislide.h>
+#include <seislide/seislide.h>
 #include <stdio.h>
 int main(void)
 {
@@ -50,13 +100,74 @@ int main(void)
     return bad;
 }
 PROG
-CC=${CC:-cc}
-# shellcheck disable=SC2046,SC2086
-$CC $(pkg-config --cflags seislide) -o "$T_TMP/prog" "$T_TMP/prog.c" \
-  $(pkg-config --static --libs seislide) $SEISLIDE_LDFLAGS >"$T_TMP/cc.out" 2>&1
-[ $? -eq 0 ] && t_pass || t_fail "compile against the installed tree: $(head -c 600 "$T_TMP/cc.out")"
-if [ -x "$T_TMP/prog" ]; then
-  out=$("$T_TMP/prog")
-  [ "$out" = "0.088000 0.176000 1 0.576072" ] && t_pass || t_fail "program printed '$out'"
+  want="0.088000 0.176000 1 0.576072"
+  cd "$T_TMP" || exit 2
+  # 1. the plain line: the shared library
+  # shellcheck disable=SC2046,SC2086
+  $CC prog.c $(pkg-config --cflags --libs seislide) $SEISLIDE_LDFLAGS -o prog >cc.out 2>&1
+  [ $? -eq 0 ] && t_pass || t_fail "plain pkg-config line: $(head -c 600 cc.out)"
+  if [ -x prog ]; then
+    out=$(LD_LIBRARY_PATH="$L${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" ./prog)
+    [ "$out" = "$want" ] && t_pass || t_fail "plain line: program printed '$out'"
+    if command -v readelf >/dev/null 2>&1; then
+      readelf -d prog | grep -q 'NEEDED.*\[libseislide\.so\.0\]' && t_pass ||
+        t_fail "plain line: the program does not use libseislide.so.0"
+    fi
+  fi
+  # 2. the --static line (-lseislide takes the shared library where both are
+  #    installed; the private dependencies are listed as well)
+  # shellcheck disable=SC2046,SC2086
+  $CC prog.c $(pkg-config --cflags seislide) $(pkg-config --static --libs seislide) \
+    $SEISLIDE_LDFLAGS -o prog_s >cc.out 2>&1
+  [ $? -eq 0 ] && t_pass || t_fail "--static pkg-config line: $(head -c 600 cc.out)"
+  if [ -x prog_s ]; then
+    out=$(LD_LIBRARY_PATH="$L${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" ./prog_s)
+    [ "$out" = "$want" ] && t_pass || t_fail "--static line: program printed '$out'"
+  fi
+  # 3. the archive: -l:libseislide.a in place of -lseislide, with the
+  #    --static dependencies; the program runs without libseislide.so
+  # shellcheck disable=SC2046,SC2086
+  $CC prog.c $(pkg-config --cflags seislide) \
+    $(pkg-config --static --libs seislide | sed 's/-lseislide /-l:libseislide.a /') \
+    $SEISLIDE_LDFLAGS -o prog_a >cc.out 2>&1
+  [ $? -eq 0 ] && t_pass || t_fail "archive line: $(head -c 600 cc.out)"
+  if [ -x prog_a ]; then
+    out=$(env -u LD_LIBRARY_PATH ./prog_a)
+    [ "$out" = "$want" ] && t_pass || t_fail "archive line: program printed '$out'"
+    if command -v readelf >/dev/null 2>&1; then
+      readelf -d prog_a | grep -q 'NEEDED.*libseislide' &&
+        t_fail "archive line: the program still needs libseislide.so" || t_pass
+    fi
+  fi
+  cd "$ROOT" || exit 2
 fi
+
+# ---- the library's hygiene ------------------------------------------------
+if command -v nm >/dev/null 2>&1; then
+  # Every global symbol defined by the library starts with sl_ or SL_ (an
+  # OpenMP named critical section, `omp critical(sl_x)`, is the compiler's
+  # common symbol .gomp_critical_user_sl_x: our name behind its prefix).
+  bad=$(nm -g --defined-only "$L/libseislide.a" 2>/dev/null |
+        awk 'NF == 3 && $3 !~ /^(sl_|SL_|\.gomp_critical_user_sl_)/ { print $3 }' | sort -u)
+  [ -z "$bad" ] && t_pass || t_fail "libseislide.a exports names without sl_/SL_: $(echo $bad | head -c 400)"
+  bad=$(nm -D --defined-only "$L/libseislide.so" 2>/dev/null |
+        awk 'NF == 3 && $3 !~ /^(sl_|SL_)/ { print $3 }' | sort -u)
+  [ -z "$bad" ] && t_pass || t_fail "libseislide.so exports names without sl_/SL_: $(echo $bad | head -c 400)"
+  n=$(nm -D --defined-only "$L/libseislide.so" 2>/dev/null | grep -c ' T sl_')
+  [ "$n" -gt 50 ] && t_pass || t_fail "libseislide.so exports only $n sl_ functions"
+  # The research code (src/study: the study, the bench, physical floors) is
+  # not in the public library.
+  bad=$(nm -g --defined-only "$L/libseislide.a" "$L/libseislide.so" 2>/dev/null |
+        awk 'NF == 3 && $3 ~ /^sl_(study|bench|pf|building)_/ { print $3 }' | sort -u)
+  [ -z "$bad" ] && t_pass || t_fail "research code in the library: $(echo $bad | head -c 400)"
+else
+  t_skip "nm not found: exported symbols not checked"
+fi
+# The layers: src/signal includes nothing from src/io.
+bad=$(grep -lE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"io/' "$ROOT"/src/signal/*.[ch])
+[ -z "$bad" ] && t_pass || t_fail "src/signal includes from src/io: $(echo $bad | sed "s|$ROOT/||g")"
+# One concern per file: no src/**/*.c over 1,000 lines (each one named).
+big=$(find "$ROOT/src" -name '*.c' -exec wc -l {} + |
+      awk '$2 != "total" && $1 > 1000 { sub(".*/src/", "src/", $2); printf " %s (%d lines)", $2, $1 }')
+[ -z "$big" ] && t_pass || t_fail "over 1,000 lines:$big"
 t_end
