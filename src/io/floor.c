@@ -9,6 +9,8 @@
  * buffer instead of letting them be split. */
 #include "io/floor.h"
 
+#include "io/text.h"
+
 #include <errno.h>
 #include <glob.h>
 #include <ini.h>
@@ -81,9 +83,7 @@ typedef struct raw_comp {
 /* Parsing state shared by the reader and the handler. */
 typedef struct ctx {
     const char *path;
-    FILE *f;
-    char *buf;          /* getline buffer */
-    size_t bufcap;
+    sl_text text;       /* the file in memory (io/text.h) */
     long lineno;        /* line just read */
     int indented;       /* the line just read began with a blank */
     int have_prev_key;  /* inih's prev_name is set (a key since the last header) */
@@ -177,31 +177,31 @@ static void see_section(ctx *c, const char *line)
     *sl = c->lineno;
 }
 
-/* fgets-style reader for ini_parse_stream: whole lines or an error. */
+/* fgets-style reader for ini_parse_stream over the file in memory: whole
+ * lines (at most num - 1 bytes with their line end) or an error. */
 static char *reader(char *str, int num, void *stream)
 {
     ctx *c = stream;
     if (c->failed)
         return NULL;
-    errno = 0;
-    ssize_t len = getline(&c->buf, &c->bufcap, c->f);
-    if (len < 0) {
-        if (ferror(c->f))
-            fail(c, SL_EIO, c->lineno + 1, "read error: %s", strerror(errno));
+    const char *s;
+    size_t len;
+    size_t before = c->text.pos;
+    if (!sl_text_next(&c->text, &s, &len))
         return NULL;
-    }
-    c->lineno++;
-    if (num < 2 || len > (ssize_t)num - 1) {
+    c->lineno = c->text.lineno;
+    size_t raw = c->text.pos - before; /* with the line end, as fgets sees it */
+    if (raw < len + 1)
+        raw = len + 1;
+    if (num < 2 || raw > (size_t)num - 1) {
         fail(c, SL_EPARSE, c->lineno,
              "line longer than %d characters; continue long lists on indented lines",
              num - 3);
         return NULL;
     }
-    if (memchr(c->buf, '\0', (size_t)len)) {
-        fail(c, SL_EPARSE, c->lineno, "NUL byte in a text file");
-        return NULL;
-    }
-    memcpy(str, c->buf, (size_t)len + 1);
+    memcpy(str, s, len);
+    str[len] = '\n';
+    str[len + 1] = '\0';
     c->indented = is_blank(str[0]);
     see_section(c, str);
     if (c->failed)
@@ -451,7 +451,7 @@ static int handler(void *user, const char *section, const char *name, const char
 
 static void ctx_free(ctx *c)
 {
-    free(c->buf);
+    sl_text_free(&c->text);
     free(c->name);
     free(c->description);
     for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
@@ -579,21 +579,10 @@ sl_floor *sl_floor_load(const char *path, sl_error *err)
     c.path = path;
     c.err = err;
     c.elevation_m = NAN;
-    c.f = fopen(path, "rb");
-    if (!c.f) {
-        sl_error_set(err, SL_EIO, path, 0, "cannot open: %s", strerror(errno));
+    const sl_text_opts to = {SL_FLOOR_MAX_BYTES, "a floor file", "SL_FLOOR_MAX_BYTES", 1};
+    if (sl_text_load(path, &to, &c.text, err) != SL_OK)
         return NULL;
-    }
-    struct stat st;
-    if (fstat(fileno(c.f), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > SL_FLOOR_MAX_BYTES) {
-        sl_error_set(err, SL_EINVAL, path, 0, "file of %lld bytes is larger than the %d bytes "
-                     "a floor file may have (SL_FLOOR_MAX_BYTES); not read",
-                     (long long)st.st_size, SL_FLOOR_MAX_BYTES);
-        fclose(c.f);
-        return NULL;
-    }
     int rc = ini_parse_stream(reader, &c, handler, &c);
-    fclose(c.f);
     if (!c.failed && rc == -2) {
         fail(&c, SL_ENOMEM, 0, "out of memory");
     } else if (rc > 0 && (!c.failed || rc < c.fail_line)) {
