@@ -1,8 +1,12 @@
-/* test_floor.c - floor response spectrum files: the template and the good
- * fixture load with the right values; every bad fixture fails with its
- * file, line and a message that says what is wrong. Run from the
+/* test_floor.c - floor response spectrum files, INI and CSV: the templates
+ * and the good fixtures load with the right values, the CSV template is the
+ * INI template bit for bit; every bad fixture fails with its file, line
+ * (and CSV column) and a message that says what is wrong. Run from the
  * repository root (make test does). */
 #include <dirent.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
 
 #include "io/floor.h"
 #include "harness.h"
@@ -67,44 +71,83 @@ static void test_good_small(void)
     sl_floor_free(NULL);
 }
 
-/* Each bad fixture: the error's file, line and a phrase of its message. */
+/* Each bad fixture: the error's file, line, a phrase of its message and
+ * the column (CSV; 0 = none). */
 static const struct {
     const char *file;
     long line;
     const char *phrase;
+    long col;
 } bad[] = {
-    {"bad-count.ini", 10, "has 5 values but f_hz (line 8) has 6"},
-    {"bad-damping-high.ini", 10, "damping 1.5 outside (0, 1)"},
-    {"bad-damping-zero.ini", 10, "damping 0 outside (0, 1)"},
-    {"bad-duplicate-damping.ini", 10, "given twice"},
-    {"bad-duplicate-key.ini", 10, "'f_hz' repeated"},
-    {"bad-empty-name.ini", 3, "name is empty"},
-    {"bad-freq-nonpositive.ini", 8, "must be positive"},
-    {"bad-freq-range.ini", 8, "frequency 1e-300 Hz outside 0.001-10000 Hz"},
-    {"bad-h2-both.ini", 5, "give one"},
-    {"bad-h2-value.ini", 5, "same_as_h1"},
-    {"bad-indented-key.ini", 9, "continuation"},
-    {"bad-long-line.ini", 9, "line longer than"},
-    {"bad-missing-floor.ini", 15, "missing section [floor]"},
-    {"bad-missing-v.ini", 15, "missing section [v]"},
-    {"bad-no-h2.ini", 2, "H2 not given"},
-    {"bad-no-spectrum.ini", 12, "[v] has no spectrum"},
-    {"bad-no-units.ini", 2, "no 'units'"},
-    {"bad-nonincreasing.ini", 9, "increase strictly"},
-    {"bad-number.ini", 8, "'5x' is not a finite number"},
-    {"bad-one-point.ini", 13, "at least 2"},
-    {"bad-repeated-section.ini", 12, "section [h1] repeated"},
-    {"bad-seed.ini", 6, "seed: '-3' is not an integer"},
-    {"bad-syntax.ini", 7, "syntax error"},
-    {"bad-units.ini", 4, "unknown units 'furlongs/fortnight2'"},
-    {"bad-unknown-floor-key.ini", 3, "unknown key 'nmae'"},
-    {"bad-unknown-key.ini", 9, "unknown key 'damping' in [h1]"},
-    {"bad-unknown-section.ini", 12, "unknown section [h3]"},
-    {"bad-value-nan.ini", 10, "'nan' is not a finite number"},
-    {"bad-value-nonpositive.ini", 9, "value -4 must be positive"},
-    {"bad-value-overflow.ini", 9, "sa_0.1: value 1e+308 g is above 1000 g"},
-    {"bad-zpa.ini", 15, "zpa: value -1 must be positive"},
-    {"bad-zpa-huge.ini", 15, "zpa: value 2000 g is above 1000 g"},
+    {"bad-count.ini", 10, "has 5 values but f_hz (line 8) has 6", 0},
+    {"bad-damping-high.ini", 10, "damping 1.5 outside (0, 1)", 0},
+    {"bad-damping-zero.ini", 10, "damping 0 outside (0, 1)", 0},
+    {"bad-duplicate-damping.ini", 10, "given twice", 0},
+    {"bad-duplicate-key.ini", 10, "'f_hz' repeated", 0},
+    {"bad-empty-name.ini", 3, "name is empty", 0},
+    {"bad-freq-nonpositive.ini", 8, "must be positive", 0},
+    {"bad-freq-range.ini", 8, "frequency 1e-300 Hz outside 0.001-10000 Hz", 0},
+    {"bad-h2-both.ini", 5, "give one", 0},
+    {"bad-h2-value.ini", 5, "same_as_h1", 0},
+    {"bad-indented-key.ini", 9, "continuation", 0},
+    {"bad-long-line.ini", 9, "line longer than", 0},
+    {"bad-missing-floor.ini", 15, "missing section [floor]", 0},
+    {"bad-missing-v.ini", 15, "missing section [v]", 0},
+    {"bad-no-h2.ini", 2, "H2 not given", 0},
+    {"bad-no-spectrum.ini", 12, "[v] has no spectrum", 0},
+    {"bad-no-units.ini", 2, "no 'units'", 0},
+    {"bad-nonincreasing.ini", 9, "increase strictly", 0},
+    {"bad-number.ini", 8, "'5x' is not a finite number", 0},
+    {"bad-one-point.ini", 13, "at least 2", 0},
+    {"bad-repeated-section.ini", 12, "section [h1] repeated", 0},
+    {"bad-seed.ini", 6, "seed: '-3' is not an integer", 0},
+    {"bad-syntax.ini", 7, "syntax error", 0},
+    {"bad-units.ini", 4, "unknown units 'furlongs/fortnight2'", 0},
+    {"bad-unknown-floor-key.ini", 3, "unknown key 'nmae'", 0},
+    {"bad-unknown-key.ini", 9, "unknown key 'damping' in [h1]", 0},
+    {"bad-unknown-section.ini", 12, "unknown section [h3]", 0},
+    {"bad-value-nan.ini", 10, "'nan' is not a finite number", 0},
+    {"bad-value-nonpositive.ini", 9, "value -4 must be positive", 0},
+    {"bad-value-overflow.ini", 9, "sa_0.1: value 1e+308 g is above 1000 g", 0},
+    {"bad-zpa.ini", 15, "zpa: value -1 must be positive", 0},
+    {"bad-zpa-huge.ini", 15, "zpa: value 2000 g is above 1000 g", 0},
+    {"bad-zpa-end.ini", 15, "zpa: 1e-300 m/s2 is 5e-301 x the 10 % spectrum's value at its "
+                            "highest frequency (2 m/s2 at 50 Hz)", 0},
+    {"bad-binary.ini", 4, "not a text file: NUL byte at line 4", 0},
+    /* CSV */
+    {"bad-csv-after-quote.csv", 4, "text after the closing quote", 2},
+    {"bad-csv-binary.csv", 3, "not a text file: NUL byte at line 3", 0},
+    {"bad-csv-bom-middle.csv", 6, "byte-order mark inside the file", 0},
+    {"bad-csv-comment-after.csv", 6, "comment line after the header row", 0},
+    {"bad-csv-control.csv", 6, "not a text file: control byte 0x07", 0},
+    {"bad-csv-damping-100.csv", 4, "h1_100: damping 100 % outside (0, 100) %", 3},
+    {"bad-csv-damping-name.csv", 4, "column 'h1_x': the damping after '_' must be a number", 3},
+    {"bad-csv-damping-zero.csv", 4, "h1_0: damping 0 % outside (0, 100) %", 2},
+    {"bad-csv-duplicate-column.csv", 4, "damping 5 % given twice (first at line 4, column 2)", 3},
+    {"bad-csv-empty-cell.csv", 6, "h1_10: empty cell", 3},
+    {"bad-csv-empty-name.csv", 1, "name is empty", 0},
+    {"bad-csv-empty.csv", 1, "no header row", 0},
+    {"bad-csv-f-range.csv", 7, "frequency 33000 Hz outside 0.001-10000 Hz", 1},
+    {"bad-csv-h2-both.csv", 3, "'# h2: same_as_h1' and h2_ columns (line 4): give one", 0},
+    {"bad-csv-h4.csv", 4, "unknown column 'h4_5'", 3},
+    {"bad-csv-header-only.csv", 4, "f_hz: 0 frequency row(s); at least 2", 1},
+    {"bad-csv-inf.csv", 6, "v_5: 'inf' is not a finite number", 4},
+    {"bad-csv-nan.csv", 6, "h1_10: 'NaN' is not a finite number", 3},
+    {"bad-csv-negative.csv", 6, "h1_5: value -1.2 must be positive", 2},
+    {"bad-csv-no-f.csv", 4, "first column 'h1_5': it must be 'f_hz'", 1},
+    {"bad-csv-no-h2.csv", 3, "H2 not given", 0},
+    {"bad-csv-no-units.csv", 3, "no '# units: ...' line", 0},
+    {"bad-csv-no-v.csv", 4, "no v_<damping> column", 0},
+    {"bad-csv-nonmonotone.csv", 7, "frequencies must increase strictly: 5 after 10", 1},
+    {"bad-csv-not-utf8.csv", 6, "not UTF-8 text: byte 0xe9", 0},
+    {"bad-csv-one-row.csv", 4, "f_hz: 1 frequency row(s); at least 2", 1},
+    {"bad-csv-quote.csv", 6, "quote not closed", 2},
+    {"bad-csv-ragged.csv", 6, "ragged row: 3 cells, the header row has 4", 4},
+    {"bad-csv-repeated-key.csv", 4, "key 'units' repeated (first at line 2)", 0},
+    {"bad-csv-units.csv", 2, "unknown units 'furlongs'", 0},
+    {"bad-csv-unknown-key.csv", 4, "unknown comment key 'floor_name'", 0},
+    {"bad-csv-zpa-h2-same.csv", 4, "zpa_h2 given but H2 is declared the same as H1", 0},
+    {"bad-csv-zpa.csv", 4, "zpa_h1: 1e-300 g is 2.5e-300 x the 5 % spectrum's value", 0},
 };
 #define N_BAD (sizeof bad / sizeof bad[0])
 
@@ -124,7 +167,124 @@ static void test_bad_files(void)
               bad[i].line, e.msg);
         CHECK(strstr(e.msg, bad[i].phrase) != NULL, "%s: message '%s' lacks '%s'",
               bad[i].file, e.msg, bad[i].phrase);
+        CHECK(e.col == bad[i].col, "%s: column %ld, expected %ld (%s)", bad[i].file, e.col,
+              bad[i].col, e.msg);
     }
+}
+
+/* The CSV template holds the INI template's spectra: the same floor, bit
+ * for bit (values, dampings, ZPA, name), so the same seed and results. */
+static void test_csv_template_equals_ini(void)
+{
+    sl_error e;
+    char buf[2200];
+    sl_floor *a = sl_floor_load("templates/floor.ini", &e);
+    sl_floor *b = sl_floor_load("templates/floor.csv", &e);
+    CHECK(a && b, "%s", sl_error_format(&e, buf, sizeof buf));
+    if (!a || !b) {
+        sl_floor_free(a);
+        sl_floor_free(b);
+        return;
+    }
+    CHECK(a->format == SL_FLOOR_INI && b->format == SL_FLOOR_CSV, "formats");
+    CHECK(!strcmp(a->name, b->name) && !strcmp(a->description, b->description) &&
+          a->elevation_m == b->elevation_m && a->units == b->units &&
+          a->h2_same_as_h1 == b->h2_same_as_h1 && a->has_seed == b->has_seed,
+          "header fields");
+    for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
+        const sl_floor_component *x = &a->comp[k], *y = &b->comp[k];
+        CHECK(x->nspec == y->nspec && x->zpa_ms2 == y->zpa_ms2 && x->zpa_given == y->zpa_given,
+              "%s: nspec/zpa", sl_floor_comp_name((sl_floor_comp)k));
+        for (size_t s = 0; s < x->nspec && s < y->nspec; s++) {
+            CHECK(x->spec[s].n == y->spec[s].n && x->spec[s].damping == y->spec[s].damping,
+                  "%s spectrum %zu", sl_floor_comp_name((sl_floor_comp)k), s);
+            for (size_t j = 0; j < x->spec[s].n && j < y->spec[s].n; j++)
+                CHECK(x->spec[s].f_hz[j] == y->spec[s].f_hz[j] &&
+                          x->spec[s].sa_ms2[j] == y->spec[s].sa_ms2[j],
+                      "%s spectrum %zu point %zu", sl_floor_comp_name((sl_floor_comp)k), s, j);
+        }
+    }
+    sl_floor_free(a);
+    sl_floor_free(b);
+}
+
+/* BOM, CRLF, quoted header and cells, blanks, free comments, the optional
+ * keys, a damping of 2.5 %. */
+static void test_good_small_csv(void)
+{
+    sl_error e;
+    char buf[2200];
+    sl_floor *fl = sl_floor_load(FLOORS "good-small.csv", &e);
+    CHECK(fl != NULL, "%s", sl_error_format(&e, buf, sizeof buf));
+    if (!fl)
+        return;
+    CHECK(!strcmp(fl->name, "Test floor, \"CSV\" form"), "name '%s'", fl->name);
+    CHECK(!strcmp(fl->building, "Aux") && fl->elevation_m == 12.5 && fl->units == SL_UNIT_MS2,
+          "keys");
+    CHECK(fl->has_seed && fl->seed == 42 && !fl->h2_same_as_h1, "seed, h2");
+    const sl_floor_component *h1 = &fl->comp[SL_FLOOR_H1];
+    CHECK(h1->nspec == 2 && h1->spec[0].damping == 0.05 && h1->spec[1].damping == 0.10, "h1");
+    CHECK(h1->spec[0].n == 4 && h1->spec[0].f_hz[2] == 10 && h1->spec[0].sa_ms2[1] == 2.5,
+          "h1 values");
+    CHECK(h1->zpa_given && h1->zpa_ms2 == 3.2, "zpa_h1");
+    const sl_spectrum *v = sl_floor_spectrum(fl, SL_FLOOR_V, 0.025);
+    CHECK(v && v->damping == 0.025 && v->sa_ms2[2] == 2.0, "v_2.5 (quoted cell)");
+    CHECK(!fl->comp[SL_FLOOR_V].zpa_given && fl->comp[SL_FLOOR_V].zpa_ms2 == 1.5, "v zpa");
+    CHECK(fl->comp[SL_FLOOR_H2].nspec == 1 && fl->comp[SL_FLOOR_H2].spec[0].sa_ms2[3] == 2.7,
+          "h2");
+    sl_floor_free(fl);
+}
+
+/* A file larger than SL_FLOOR_MAX_BYTES is refused before it is read; a
+ * CSV line longer than any buffer is read. */
+static void test_sizes(void)
+{
+    char dir[] = "/tmp/sl-floor-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    char path[64];
+    snprintf(path, sizeof path, "%s/huge.csv", dir);
+    int fd = open(path, O_CREAT | O_WRONLY | O_TRUNC, 0600);
+    CHECK(fd >= 0, "open");
+    if (fd < 0)
+        return;
+    CHECK(ftruncate(fd, (off_t)SL_FLOOR_MAX_BYTES + 1) == 0, "ftruncate");
+    close(fd);
+    sl_error e;
+    sl_error_clear(&e);
+    CHECK(sl_floor_load(path, &e) == NULL && e.code == SL_EINVAL &&
+              strstr(e.msg, "larger than the 16777216 bytes a floor file may have"),
+          "huge: %s", e.msg);
+    /* one long header and row: 3000 columns of H1 dampings would exceed
+     * SL_FLOOR_MAX_DAMPINGS, so the long line is a long name instead */
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL, "fopen");
+    if (!f)
+        return;
+    fputs("# name: ", f);
+    for (int i = 0; i < 5000; i++)
+        fputc('a' + i % 26, f);
+    fputs("\n# units: g\n# h2: same_as_h1\nf_hz,h1_5,v_5\n1,0.5,0.3\n33,0.4,0.3\n", f);
+    fclose(f);
+    sl_floor *fl = sl_floor_load(path, &e);
+    CHECK(fl && strlen(fl->name) == 5000, "long line: %s", fl ? "" : e.msg);
+    sl_floor_free(fl);
+    remove(path);
+    rmdir(dir);
+}
+
+/* units = gal on values in g: loaded, then refused by the plausibility
+ * check in the unit the file wrote. */
+static void test_plausible_units_text(void)
+{
+    sl_error e;
+    sl_floor *fl = sl_floor_load(FLOORS "implausible-gal.ini", &e);
+    CHECK(fl != NULL, "load");
+    if (!fl)
+        return;
+    CHECK(sl_floor_check_plausible(fl, &e) == SL_EINVAL && e.line == 4 &&
+              strstr(e.msg, "units = gal gives a horizontal ZPA of 0.0003161 g"),
+          "message '%s'", e.msg);
+    sl_floor_free(fl);
 }
 
 /* Every bad-*.ini fixture is in the table above. */
@@ -162,6 +322,10 @@ int main(void)
     RUN(test_template);
     RUN(test_good_small);
     RUN(test_bad_files);
+    RUN(test_csv_template_equals_ini);
+    RUN(test_good_small_csv);
+    RUN(test_sizes);
+    RUN(test_plausible_units_text);
     RUN(test_every_fixture_listed);
     RUN(test_missing_file);
     return HARNESS_END("floor");

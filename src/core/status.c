@@ -29,6 +29,7 @@ void sl_error_clear(sl_error *err)
         return;
     err->code = SL_OK;
     err->line = 0;
+    err->col = 0;
     err->file[0] = '\0';
     err->msg[0] = '\0';
 }
@@ -40,6 +41,23 @@ sl_status sl_error_set(sl_error *err, sl_status code, const char *file,
         return code;
     err->code = code;
     err->line = line;
+    err->col = 0;
+    snprintf(err->file, sizeof err->file, "%s", file ? file : "");
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+sl_status sl_error_set_at(sl_error *err, sl_status code, const char *file, long line,
+                          long col, const char *fmt, ...)
+{
+    if (!err)
+        return code;
+    err->code = code;
+    err->line = line;
+    err->col = line > 0 ? col : 0;
     snprintf(err->file, sizeof err->file, "%s", file ? file : "");
     va_list ap;
     va_start(ap, fmt);
@@ -57,7 +75,9 @@ char *sl_error_format(const sl_error *err, char *buf, size_t n)
         return buf;
     }
     const char *msg = err->msg[0] ? err->msg : sl_status_message(err->code);
-    if (err->file[0] && err->line > 0)
+    if (err->file[0] && err->line > 0 && err->col > 0)
+        snprintf(buf, n, "%s:%ld:%ld: %s", err->file, err->line, err->col, msg);
+    else if (err->file[0] && err->line > 0)
         snprintf(buf, n, "%s:%ld: %s", err->file, err->line, msg);
     else if (err->file[0])
         snprintf(buf, n, "%s: %s", err->file, msg);

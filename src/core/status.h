@@ -1,10 +1,10 @@
 /*
  * status.h - one status enum, one message table, and an error record that
- * carries context (file, line) from the library to the command line.
+ * carries context (file, line, column) from the library to the command line.
  *
  * The library never prints: functions that can fail take an `sl_error *`
  * (which may be NULL) and fill it; the CLI prints it once as
- *   seislide: FILE:LINE: message
+ *   seislide: FILE:LINE: message    or    seislide: FILE:LINE:COLUMN: message
  */
 #ifndef SL_STATUS_H
 #define SL_STATUS_H
@@ -24,11 +24,13 @@ typedef enum sl_status {
     SL_STATUS_COUNT
 } sl_status;
 
-/* Error record filled by the library. `line` is 0 when not applicable;
- * `file` is empty when the error is not about a file. */
+/* Error record filled by the library. `line` and `col` are 0 when not
+ * applicable (col is the 1-based field of a CSV row); `file` is empty when
+ * the error is not about a file. */
 typedef struct sl_error {
     sl_status code;
     long line;
+    long col;
     char file[1024];
     char msg[1024];
 } sl_error;
@@ -48,7 +50,16 @@ sl_status sl_error_set(sl_error *err, sl_status code, const char *file,
 #endif
     ;
 
-/* Format the record as "FILE:LINE: message" (or "FILE: message", or
+/* As sl_error_set() with a column (0 = none). Returns `code`. */
+sl_status sl_error_set_at(sl_error *err, sl_status code, const char *file, long line,
+                          long col, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 6, 7)))
+#endif
+    ;
+
+/* Format the record as "FILE:LINE:COL: message" (when col > 0),
+ * "FILE:LINE: message" (or "FILE: message", or
  * "message") into buf of size n. Returns buf. */
 char *sl_error_format(const sl_error *err, char *buf, size_t n);
 

@@ -1,12 +1,16 @@
 /*
- * floor.h - floor response spectrum files: one INI file per floor, read with
- * inih (Debian libinih). Layout (docs/formats-floor.md, templates/floor.ini):
+ * floor.h - floor response spectrum files, one file per floor, in either of
+ * two formats (docs/formats-floor.md; templates/floor.ini, floor.csv),
+ * chosen by the extension: .csv (any case) is CSV, anything else INI:
+ *
+ * INI, read with inih (Debian libinih):
  *
  *     [floor]
  *     name        = Reactor building, el. 30.0 m   ; required, free text
  *     elevation_m = 30.0                           ; optional, m
  *     units       = g                              ; required: g, m/s2, cm/s2, gal, mm/s2
  *     h2          = same_as_h1                     ; only when there is no [h2]
+ *     building    = Reactor building               ; optional, free text
  *     description = ...                            ; optional, free text
  *     seed        = 12345                          ; optional, integer >= 0: the
  *                                                  ; floor's own seed (else its
@@ -18,28 +22,42 @@
  *     sa_0.10 = ...           ; one key per damping ratio, in (0, 1)
  *     zpa     = 0.30          ; optional; else the high-frequency end
  *
- * Lists are separated by commas and/or blanks and may continue on indented
- * lines (inih multi-line values); a line holds at most 197 characters
- * (inih's 200-byte line buffer; a longer line is an error, never split).
- * Comments start with ';' or '#' at the start of a line, or ' ;' after a
- * value.
+ *   Lists are separated by commas and/or blanks and may continue on
+ *   indented lines (inih multi-line values); a line holds at most 197
+ *   characters (inih's 200-byte line buffer; a longer line is an error,
+ *   never split). Comments start with ';' or '#' at the start of a line, or
+ *   ' ;' after a value.
  *
- * Validation (every error names the file and the line): known sections
- * [floor] [h1] [h2] [v] each at most once and [floor], [h1], [v] present;
- * [h2] present or `h2 = same_as_h1` declared (never assumed), not both;
- * known keys only, each once; frequencies in SL_FLOOR_F_MIN_HZ-
+ * CSV (RFC 4180; LF or CRLF; UTF-8 with or without BOM; no line-length
+ * limit): "# key: value" comment lines with the same floor keys (name,
+ * units required; elevation_m, building, description, seed, h2, and
+ * zpa_h1, zpa_h2, zpa_v), then a header row "f_hz,h1_5,h1_10,h2_5,...,v_2"
+ * (<h1|h2|v>_<damping in percent>), then one row per frequency. Every cell
+ * holds a number (an empty cell is an error). Errors name file:line:column
+ * (column = 1-based field of the row).
+ *
+ * Validation, the same for both formats (one checking path, floor.c; every
+ * error names the file and the line): [floor], [h1], [v] (or their
+ * columns) present; H2 given or `h2 = same_as_h1` declared (never assumed),
+ * not both; known keys only, each once; frequencies in SL_FLOOR_F_MIN_HZ-
  * SL_FLOOR_F_MAX_HZ and strictly increasing (at least SL_FLOOR_MIN_POINTS);
  * values positive, finite and at most SL_FLOOR_MAX_SA_G once converted to
  * SI, as many as frequencies; a file larger than SL_FLOOR_MAX_BYTES is
- * refused before it is read; damping ratios in (0, 1), each once per section; units
- * known; name not empty.
+ * refused before it is read, and a file with a NUL byte is "not a text
+ * file"; damping ratios in (0, 1), each once per direction; units known;
+ * name not empty; a given ZPA within SL_FLOOR_ZPA_END_MIN-SL_FLOOR_ZPA_END_MAX
+ * of the spectrum's high-frequency end (below).
  *
- * Zero-period acceleration of a component: the `zpa` key when given, else
- * the largest over its dampings of the value at its highest frequency.
+ * Zero-period acceleration of a component: the `zpa` key (CSV: `# zpa_h1:`)
+ * when given, else the largest over its dampings of the value at its
+ * highest frequency. A given ZPA is checked against the value at the
+ * highest frequency of the table at its lowest damping (the spectrum that
+ * is last to reach the ZPA): a ratio outside 0.8-1.25 is an input error
+ * naming the zpa line (a typo or a units slip, e.g. zpa = 1e-300).
  *
  * Memory: sl_floor_load() returns a floor the caller frees with
  * sl_floor_free(). The struct is plain data; its spectra are owned by it.
- * Values are stored in SI (m/s^2), whatever the file's units.
+ * Values are stored in SI (m/s^2), whatever the file's units or format.
  */
 #ifndef SL_FLOOR_H
 #define SL_FLOOR_H
@@ -47,7 +65,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "signal/spectrum.h"
+#include "core/spectrum_type.h"
 #include "core/standards.h"
 #include "core/status.h"
 #include "core/units.h"
@@ -69,8 +87,18 @@
 /* Plausible horizontal ZPA of a floor, g (sl_floor_check_plausible). */
 #define SL_FLOOR_ZPA_MIN_G 0.01
 #define SL_FLOOR_ZPA_MAX_G 5.0
+/* A given ZPA must lie within these multiples of the spectrum's value at
+ * its highest frequency, at its lowest damping. */
+#define SL_FLOOR_ZPA_END_MIN 0.8
+#define SL_FLOOR_ZPA_END_MAX 1.25
 /* The damping of the spectra the ASCE/SEI 43-05 method uses. */
 #define SL_FLOOR_ASCE_DAMPING SL_ASCE_DAMPING /* core/standards.h */
+
+/* The format of a floor file, from its extension. */
+typedef enum sl_floor_format {
+    SL_FLOOR_INI = 0, /* .ini */
+    SL_FLOOR_CSV      /* .csv */
+} sl_floor_format;
 
 typedef enum sl_floor_comp {
     SL_FLOOR_H1 = 0,
@@ -85,23 +113,28 @@ typedef struct sl_floor_component {
     sl_spectrum *spec;  /* nspec spectra, ascending damping, same frequencies, m/s^2 */
     double zpa_ms2;     /* zero-period acceleration, m/s^2 */
     int zpa_given;      /* 1: from the `zpa` key; 0: from the high-frequency end */
-    long line;          /* line of the section header (H2 = H1: that of [h1]) */
+    long line;          /* line of the section header or CSV header row
+                           (H2 = H1: that of [h1]) */
 } sl_floor_component;
 
 typedef struct sl_floor {
     char *path;         /* the file read */
     char *name;         /* the floor's name */
     char *description;  /* free text, "" when not given */
+    char *building;     /* free text, "" when not given */
+    sl_floor_format format; /* the file's format */
     double elevation_m; /* NAN when not given */
     sl_unit units;      /* units of the file (values stored in m/s^2) */
     long units_line;    /* line of the units key */
+    char *units_text;   /* the units as written ("gal", "cm/s2") */
     int h2_same_as_h1;  /* 1 when the file declared `h2 = same_as_h1` (H2 copies H1) */
     int has_seed;       /* 1 when the file gave `seed =` */
     uint64_t seed;      /* that seed (0 when not given) */
     sl_floor_component comp[SL_FLOOR_NCOMP];
 } sl_floor;
 
-/* Read and validate a floor file. Returns NULL and fills err (file, line,
+/* Read and validate a floor file, CSV when its name ends in .csv (any
+ * case), else INI. Returns NULL and fills err (file, line,
  * message; SL_EIO, SL_EPARSE, SL_EINVAL or SL_ENOMEM) on failure. */
 sl_floor *sl_floor_load(const char *path, sl_error *err);
 
@@ -111,9 +144,14 @@ sl_floor *sl_floor_load(const char *path, sl_error *err);
  * in g). The caller decides whether that stops the run. */
 sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
 
-/* The floor files named by `arg`: the file itself, or every *.ini in it
- * when it is a folder (sorted). Appends strdup'd paths to paths[*n], at most
- * `max` in all. SL_EIO (missing, unreadable, no *.ini) or SL_EINVAL (more
+/* The format a path names by its extension: SL_FLOOR_CSV for .csv (any
+ * case), else SL_FLOOR_INI. */
+sl_floor_format sl_floor_format_of(const char *path);
+
+/* The floor files named by `arg`: the file itself, or every *.ini and
+ * *.csv in it (any case of the extension; hidden files skipped) when it is
+ * a folder (sorted by name). Appends strdup'd paths to paths[*n], at most
+ * `max` in all. SL_EIO (missing, unreadable, no floor file) or SL_EINVAL (more
  * than max) with the path in err. */
 sl_status sl_floor_list(const char *arg, char **paths, size_t *n, size_t max, sl_error *err);
 

@@ -10,6 +10,7 @@
 #include <strings.h>
 
 #include "core/units.h"
+#include "io/text.h"
 
 /* A file as NUL-terminated lines (CR stripped); line k is 1-based k+1. */
 typedef struct lines {
@@ -25,38 +26,19 @@ static void lines_free(lines *t)
     memset(t, 0, sizeof *t);
 }
 
+/* The file through the shared loader (io/text.h), cut into lines. */
 static sl_status lines_read(const char *path, lines *t, sl_error *err)
 {
     memset(t, 0, sizeof *t);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return sl_error_set(err, SL_EIO, path, 0, "cannot open: %s", strerror(errno));
-    if (fseek(f, 0, SEEK_END) != 0) {
-        fclose(f);
-        return sl_error_set(err, SL_EIO, path, 0, "cannot seek");
-    }
-    long sz = ftell(f);
-    if (sz < 0 || sz > SL_MOTION_MAX_BYTES) {
-        fclose(f);
-        return sl_error_set(err, SL_EINVAL, path, 0,
-                            "file of %ld bytes is larger than the limit of %ld bytes", sz,
-                            (long)SL_MOTION_MAX_BYTES);
-    }
-    rewind(f);
-    t->buf = malloc((size_t)sz + 1);
-    if (!t->buf) {
-        fclose(f);
-        return sl_error_set(err, SL_ENOMEM, path, 0, "out of memory reading the file");
-    }
-    size_t got = fread(t->buf, 1, (size_t)sz, f);
-    fclose(f);
-    if (got != (size_t)sz) {
-        lines_free(t);
-        return sl_error_set(err, SL_EIO, path, 0, "read error");
-    }
-    t->buf[sz] = '\0';
+    sl_text tx;
+    const sl_text_opts to = {SL_MOTION_MAX_BYTES, "a motion file", NULL, 0};
+    sl_status st = sl_text_load(path, &to, &tx, err);
+    if (st != SL_OK)
+        return st;
+    t->buf = tx.mem;
+    size_t sz = tx.len + (size_t)(tx.buf - tx.mem);
     size_t nl = 1;
-    for (long i = 0; i < sz; i++)
+    for (size_t i = 0; i < sz; i++)
         nl += t->buf[i] == '\n';
     t->l = malloc(nl * sizeof *t->l);
     if (!t->l) {
@@ -65,26 +47,16 @@ static sl_status lines_read(const char *path, lines *t, sl_error *err)
     }
     char *p = t->buf;
     while (*p) {
-        char *e = strchr(p, '\n');
+        char *nlp = strchr(p, '\n');
         t->l[t->n++] = p;
-        if (!e)
+        if (!nlp)
             break;
-        *e = '\0';
-        if (e > p && e[-1] == '\r')
-            e[-1] = '\0';
-        p = e + 1;
+        *nlp = '\0';
+        if (nlp > p && nlp[-1] == '\r')
+            nlp[-1] = '\0';
+        p = nlp + 1;
     }
     return SL_OK;
-}
-
-/* Case-insensitive substring search; pointer into s or NULL. */
-static const char *find_ci(const char *s, const char *needle)
-{
-    size_t n = strlen(needle);
-    for (; *s; s++)
-        if (!strncasecmp(s, needle, n))
-            return s;
-    return NULL;
 }
 
 static int starts_ci(const char *s, const char *prefix)
@@ -112,13 +84,13 @@ static void set_comp(char *dst, const char *s, size_t n)
 int sl_formats_is_v2a(const char *first_line)
 {
     return first_line && starts_ci(first_line, "Corrected accelerogram") &&
-           !find_ci(first_line, "Chan");
+           !sl_text_find_str_ci(first_line, "Chan");
 }
 
 int sl_formats_is_csmip_v2(const char *first_line)
 {
     return first_line && starts_ci(first_line, "Corrected accelerogram") &&
-           find_ci(first_line, "Chan") != NULL;
+           sl_text_find_str_ci(first_line, "Chan") != NULL;
 }
 
 int sl_component_is_vertical(const char *comp)
@@ -222,11 +194,11 @@ static sl_status v2a_channel(const lines *t, size_t s, const char *path, sl_chan
     sl_unit u = SL_UNIT_NONE;
     for (size_t i = s; i < s + TEXT; i++) {
         const char *l = t->l[i], *p;
-        if ((p = find_ci(l, "Number of points")) != NULL) {
+        if ((p = sl_text_find_str_ci(l, "Number of points")) != NULL) {
             npl = (long)i + 1;
             if (sscanf(p + 16, "%ld", &npts) != 1)
                 return sl_error_set(err, SL_EPARSE, path, npl, "bad number of points in '%s'", l);
-        } else if ((p = find_ci(l, "data at")) != NULL) {
+        } else if ((p = sl_text_find_str_ci(l, "data at")) != NULL) {
             dtl = (long)i + 1;
             if (sscanf(p + 7, "%lf", &dt) != 1)
                 return sl_error_set(err, SL_EPARSE, path, dtl, "bad sample interval in '%s'", l);
@@ -238,7 +210,7 @@ static sl_status v2a_channel(const lines *t, size_t s, const char *path, sl_chan
         } else if (starts_ci(l, "Acceleration:")) {
             ul = (long)i + 1;
             /* "Acceleration:  peak  -41.6 mm/s/s at 43.68 sec ..." */
-            const char *q = find_ci(l, "peak");
+            const char *q = sl_text_find_str_ci(l, "peak");
             double pk;
             char unit[32];
             if (!q || sscanf(q + 4, "%lf %31s", &pk, unit) != 2)
@@ -310,7 +282,7 @@ static sl_status csmip_channel(const lines *t, size_t s, size_t end, const char 
                 have_comp = 1;
             }
         }
-        if (find_ci(l, "points of accel data")) {
+        if (sl_text_find_str_ci(l, "points of accel data")) {
             ai = i;
             break;
         }
@@ -325,7 +297,7 @@ static sl_status csmip_channel(const lines *t, size_t s, size_t end, const char 
     const long line = (long)ai + 1;
     long npts;
     double dt;
-    const char *p = find_ci(l, "spaced at");
+    const char *p = sl_text_find_str_ci(l, "spaced at");
     if (sscanf(l, "%ld", &npts) != 1 || !p || sscanf(p + 9, "%lf", &dt) != 1)
         return sl_error_set(err, SL_EPARSE, path, line, "bad points or interval in '%s'", l);
     sl_status st = check_npts_dt(npts, dt, path, line, err);
@@ -334,11 +306,11 @@ static sl_status csmip_channel(const lines *t, size_t s, size_t end, const char 
     /* unit: "..., in cm/sec2. (8f10.6)" or "(UNITS: CM/SEC/SEC)" */
     sl_unit u = SL_UNIT_NONE;
     const char *q;
-    if ((q = find_ci(l, "UNITS:")) != NULL) {
+    if ((q = sl_text_find_str_ci(l, "UNITS:")) != NULL) {
         q += 6;
         q += strspn(q, " ");
         u = csmip_unit(q, strcspn(q, ") "));
-    } else if ((q = find_ci(p, ", in ")) != NULL) {
+    } else if ((q = sl_text_find_str_ci(p, ", in ")) != NULL) {
         q += 5;
         size_t n = strcspn(q, " ");
         if (n && q[n - 1] == '.')
@@ -348,7 +320,7 @@ static sl_status csmip_channel(const lines *t, size_t s, size_t end, const char 
     if (u == SL_UNIT_NONE)
         return sl_error_set(err, SL_EINVAL, path, line, "unknown or missing unit in '%s'", l);
     int per = 8, width = 10;
-    if ((q = strchr(l, '(')) != NULL && !find_ci(q, "UNITS")) {
+    if ((q = strchr(l, '(')) != NULL && !sl_text_find_str_ci(q, "UNITS")) {
         int dec;
         if (sscanf(q, "(%d%*[fFeE]%d.%d)", &per, &width, &dec) != 3 || per < 1 || per > 20 ||
             width < 2 || width > 40)
@@ -429,7 +401,7 @@ sl_motion *sl_smc_read(const char *path, char *comp, size_t compn, sl_error *err
         goto done;
     }
     /* the component: text line 6 "... component=    360" or "... component=   up" */
-    const char *c = find_ci(t.l[5], "component=");
+    const char *c = sl_text_find_str_ci(t.l[5], "component=");
     if (!c) {
         sl_error_set(err, SL_EPARSE, path, 6, "no 'component=' in '%s'", t.l[5]);
         goto done;

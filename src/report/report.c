@@ -43,7 +43,7 @@ char *sl_report_floor_id(const char *path, char *buf, size_t n)
     if (slash)
         base = slash + 1;
     size_t len = strlen(base);
-    if (len > 4 && !strcasecmp(base + len - 4, ".ini"))
+    if (len > 4 && (!strcasecmp(base + len - 4, ".ini") || !strcasecmp(base + len - 4, ".csv")))
         len -= 4;
     size_t k = 0;
     for (size_t i = 0; i < len && k + 1 < n && k < ID_MAX; i++)

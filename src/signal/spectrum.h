@@ -51,7 +51,8 @@
 
 #include <stddef.h>
 
-#include "io/motion.h"
+#include "core/motion_type.h"
+#include "core/spectrum_type.h"
 #include "core/status.h"
 
 /* Sub-steps per natural period for the sampled peak (REFERENCE.md 4:
@@ -72,31 +73,6 @@
 /* Most sub-steps per input step (a guard against absurd options): a
  * frequency needing more is refused with SL_EINVAL. */
 #define SL_SPECTRUM_MAX_SUBSTEPS 1e6
-
-/* A spectrum at one damping: plain data. Each struct owns its two arrays
- * (free with sl_spectrum_free). */
-typedef struct sl_spectrum {
-    size_t n;        /* number of frequencies */
-    double damping;  /* ratio of critical damping */
-    double *f_hz;    /* n frequencies, Hz, strictly increasing, > 0 */
-    double *sa_ms2;  /* n pseudo-spectral accelerations, m/s^2 */
-} sl_spectrum;
-
-/* Allocate a spectrum of n points (arrays zeroed), damping set. Returns NULL
- * on n == 0 or allocation failure. Free with sl_spectrum_free(). */
-sl_spectrum *sl_spectrum_alloc(size_t n, double damping);
-
-/* Free a spectrum and its arrays; harmless on NULL. */
-void sl_spectrum_free(sl_spectrum *s);
-
-/* Free only the arrays of a spectrum embedded in another struct (sets them
- * to NULL and n to 0); harmless on NULL. */
-void sl_spectrum_clear(sl_spectrum *s);
-
-/* Log-log interpolation of a spectrum at f_hz (power law between points):
- * SA(f) = SA_i (f/f_i)^p, p = ln(SA_{i+1}/SA_i)/ln(f_{i+1}/f_i).
- * Outside [f_0, f_{n-1}] returns NAN. Values must be positive. */
-double sl_spectrum_interp(const sl_spectrum *s, double f_hz);
 
 /* Options of a spectrum computation. */
 typedef struct sl_spectrum_opts {

@@ -61,7 +61,7 @@ t_run run "$D/fl/01-ground.ini" -o "$D/slash/" $FAST; t_expect_rc slash-again 0
 sed 's/^units = g/units = gal/' floors/01-ground.ini > "$D/gal.ini"
 L=$(grep -n '^units' "$D/gal.ini" | cut -d: -f1)
 t_run run "$D/gal.ini" -o "$D/gal" $FAST; t_expect_rc gal 1
-t_expect_err gal-msg "gal.ini:$L: units = cm/s2 gives a horizontal ZPA of 0.0003059 g, outside the plausible 0.01-5 g"
+t_expect_err gal-msg "gal.ini:$L: units = gal gives a horizontal ZPA of 0.0003059 g, outside the plausible 0.01-5 g"
 nothing_left gal "$D/gal"
 t_run run "$D/gal.ini" -o "$D/galf" $FAST --force; t_expect_rc gal-force 0
 
