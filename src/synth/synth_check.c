@@ -8,6 +8,28 @@
 
 void sl_synth_check_motion(const sl_synth_motion *m, sl_synth_check *out)
 {
+    sl_synth_check_motion_psd(m, out, 1);
+}
+
+/* The App. B PSD of acc against target spectrum ts into out (ok_psd only
+ * required when psd_frac > 0); pass updated. */
+void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectrum *ts,
+                        double psd_frac, sl_synth_check *out)
+{
+    sl_psd_check pc;
+    sl_error e;
+    out->ok_psd = 1;
+    out->psd_min_ratio = out->f_psd_min_hz = NAN;
+    if (!sl_psd_check_motion(acc, n, dt, ts, psd_frac, SL_PSD_FMIN_HZ, SL_PSD_FMAX_HZ, &pc,
+                             &e)) {
+        out->psd_min_ratio = pc.min_ratio;
+        out->f_psd_min_hz = pc.f_min_ratio_hz;
+        out->ok_psd = psd_frac > 0 ? pc.ok : 1; /* 0: reported only */
+    }
+}
+
+void sl_synth_check_motion_psd(const sl_synth_motion *m, sl_synth_check *out, int with_psd)
+{
     const sl_synth *s = m->s;
     const sl_synth_params *p = &s->p;
     memset(out, 0, sizeof *out);
@@ -86,15 +108,10 @@ void sl_synth_check_motion(const sl_synth_motion *m, sl_synth_check *out)
     if (sl_realism_expected(m->tspec, &out->va_expect_s, &da, &out->adv2_expect, &e)) {
         out->va_expect_s = out->adv2_expect = NAN;
     }
-    sl_psd_check pc;
     out->ok_psd = 1;
     out->psd_min_ratio = out->f_psd_min_hz = NAN;
-    if (!sl_psd_check_motion(m->best_acc, s->n, dt, m->tspec, p->psd_frac, SL_PSD_FMIN_HZ,
-                             SL_PSD_FMAX_HZ, &pc, &e)) {
-        out->psd_min_ratio = pc.min_ratio;
-        out->f_psd_min_hz = pc.f_min_ratio_hz;
-        out->ok_psd = p->psd_frac > 0 ? pc.ok : 1; /* 0: reported only */
-    }
+    if (with_psd)
+        sl_synth_check_psd(m->best_acc, s->n, dt, m->tspec, p->psd_frac, out);
     out->ok_corr = 1;
     out->pass = out->ok_below && out->ok_above && out->ok_run && out->ok_d5_75 &&
                 out->ok_duration && out->ok_end && out->ok_pga && out->ok_peaks && out->ok_psd;

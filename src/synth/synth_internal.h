@@ -39,6 +39,9 @@
 #define SYNTH_RELAX 1.6
 /* Iterations without improvement after which an attempt is given up. */
 #define SYNTH_STALL 8u
+#ifndef SYNTH_STALL_FULL
+#define SYNTH_STALL_FULL 8u
+#endif
 #define SYNTH_COARSE_MARGIN 0.02
 /* Smallest motion handled, samples. */
 #define SYNTH_MIN_N 16
@@ -141,6 +144,13 @@ void sl_synth_spectral_check(const sl_synth_motion *m, const double *psa,
 /* Violation of the spectral limits, 0 when all hold (synth_iterate.c). */
 double sl_synth_violation(const sl_synth_params *p, const sl_synth_spec_check *c,
                           size_t npoints);
+/* sl_synth_check_motion with the App. B PSD computed only when with_psd
+ * (else ok_psd = 1 and the PSD fields NAN; synth_check.c). */
+void sl_synth_check_motion_psd(const sl_synth_motion *m, sl_synth_check *out, int with_psd);
+/* The App. B PSD fields of out for acc against the target spectrum ts
+ * (synth_check.c). */
+void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectrum *ts,
+                        double psd_frac, sl_synth_check *out);
 /* Leave the coarse phase: the best iterate at full accuracy (synth_iterate.c). */
 sl_status sl_synth_end_coarse(sl_synth_motion *m, sl_error *err);
 

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <omp.h>
+
 #include "io/atomic.h"
 #include "core/units.h"
 
@@ -44,6 +46,8 @@ typedef struct job {
     size_t rec_n;
     double *acc;          /* result, n samples (malloc'd) */
     sl_synth_check check;
+    int psd_done;         /* check has the App. B PSD fields */
+    const sl_spectrum *tspec; /* the target spectrum (borrowed) */
     sl_status st;
     sl_error err;
 } job;
@@ -60,7 +64,7 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
      * phases, is cheaper than the rest of the cap: CPU time of 20 RG 1.60
      * sets 3.6 s without, 3.1-3.3 s with 6-8; docs/synthesis.md 8). */
     while (!jb->st && !sl_synth_test(m) && sl_synth_iterations(m) < s->p.max_iter &&
-           sl_synth_iterations(m) < m->best_iter + SYNTH_STALL)
+           sl_synth_iterations(m) < m->best_iter + (m->coarse ? SYNTH_STALL : SYNTH_STALL_FULL))
         jb->st = sl_synth_iterate(m, &jb->err);
     /* An attempt given up in the coarse phase is redone, unless it is the
      * last: then its best iterate gets the full-accuracy spectrum, so that
@@ -70,7 +74,12 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
         jb->st = sl_synth_end_coarse(m, &jb->err);
     if (jb->st)
         return;
-    sl_synth_check_motion(m, &jb->check);
+    /* The App. B PSD (an FFT planned for each window length) is computed
+     * here only when it decides a redo (psd_frac > 0); otherwise collect()
+     * computes it for the motions kept. */
+    sl_synth_check_motion_psd(m, &jb->check, s->p.psd_frac > 0);
+    jb->psd_done = s->p.psd_frac > 0;
+    jb->tspec = t->spec;
     jb->check.corr_record = jb->check.peaks_record = NAN;
     if (jb->rec) {
         jb->check.corr_record = sl_synth_corr(sl_synth_acc(m), jb->rec, jb->rec_n);
@@ -86,18 +95,39 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
     memcpy(jb->acc, sl_synth_acc(m), s->n * sizeof *jb->acc);
 }
 
-/* Run jobs[idx[0..nidx-1]] in parallel; each thread has its own workspace.
- * Returns the first failure in index order (err filled). */
+/* Per-thread motion workspaces kept across the rounds of one call (their
+ * spectrum and FFTW plans are made once, not once per round). */
+typedef struct workspaces {
+    sl_synth_motion **m;
+    size_t n;
+} workspaces;
+
+static void workspaces_free(workspaces *w)
+{
+    for (size_t i = 0; i < w->n; i++)
+        sl_synth_motion_free(w->m[i]);
+    free(w->m);
+    w->m = NULL;
+    w->n = 0;
+}
+
+/* Run jobs[idx[0..nidx-1]] in parallel; each thread has its own workspace
+ * (ws->m[thread], made on first use). Returns the first failure in index
+ * order (err filled). */
 static sl_status run_jobs(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
                           uint64_t seed, size_t first_set, job *jobs, const size_t *idx,
                           size_t nidx, size_t *done, size_t total, sl_synth_progress progress,
-                          void *ctx, sl_error *err)
+                          void *ctx, workspaces *ws, sl_error *err)
 {
     long long nj = (long long)nidx;
 #pragma omp parallel
     {
         sl_error e;
-        sl_synth_motion *m = sl_synth_motion_alloc(s, &e);
+        size_t tid = (size_t)omp_get_thread_num();
+        sl_synth_motion *own = NULL, **slot = tid < ws->n ? &ws->m[tid] : &own;
+        if (!*slot)
+            *slot = sl_synth_motion_alloc(s, &e);
+        sl_synth_motion *m = *slot;
 #pragma omp for schedule(dynamic, 1)
         for (long long q = 0; q < nj; q++) {
             job *jb = &jobs[idx[q]];
@@ -113,7 +143,7 @@ static sl_status run_jobs(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_
                     progress(ctx, *done, total);
             }
         }
-        sl_synth_motion_free(m);
+        sl_synth_motion_free(own);
     }
     for (size_t q = 0; q < nidx; q++) {
         job *jb = &jobs[idx[q]];
@@ -154,6 +184,16 @@ static int set_corr(const sl_synth *s, job *jb3, double corr[SL_SYNTH_NPAIR])
 static sl_status collect(const sl_synth *s, job *jobs, size_t count, const char *prefix,
                          size_t first_set, sl_synth_set *out, sl_error *err)
 {
+    /* The App. B PSD of the motions kept, where run_job left it out. */
+    long long nj = (long long)(count * SL_SYNTH_NCOMP);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long long i = 0; i < nj; i++) {
+        job *jb = &jobs[i];
+        if (jb->acc && !jb->psd_done && !jb->st) {
+            sl_synth_check_psd(jb->acc, s->n, s->dt, jb->tspec, s->p.psd_frac, &jb->check);
+            jb->psd_done = 1;
+        }
+    }
     int all_pass = 1;
     for (size_t k = 0; k < count; k++) {
         sl_synth_set *o = &out[k];
@@ -227,13 +267,17 @@ sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYN
     }
     size_t done = 0, total = nj, nidx = nj;
     sl_status st = SL_OK;
+    workspaces ws = {calloc((size_t)omp_get_max_threads(), sizeof(sl_synth_motion *)),
+                     (size_t)omp_get_max_threads()};
+    if (!ws.m)
+        ws.n = 0; /* every thread then makes its own */
     /* Rounds: run the pending jobs, then redo (next attempt) every component
      * that failed its spectral or D5-75 checks and the later component of each set's
      * worst correlated pair, while attempts remain. Every decision depends
      * only on results, so the rounds are the same for any thread count. */
     while (nidx > 0) {
         st = run_jobs(s, tgt, seed, first_set, jobs, idx, nidx, &done, total, progress, ctx,
-                      err);
+                      &ws, err);
         if (st)
             break;
         nidx = 0;
@@ -257,6 +301,7 @@ sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYN
         }
         total += nidx;
     }
+    workspaces_free(&ws);
     if (!st)
         st = collect(s, jobs, count, NULL, first_set, out, err);
     free_jobs(jobs, nj);
@@ -295,7 +340,8 @@ sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYN
     if (nidx == 0)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "synth: no record to match");
     size_t done = 0;
-    sl_status st = run_jobs(s, tgt, 0, 0, jobs, idx, nidx, &done, nidx, NULL, NULL, err);
+    workspaces ws = {NULL, 0};
+    sl_status st = run_jobs(s, tgt, 0, 0, jobs, idx, nidx, &done, nidx, NULL, NULL, &ws, err);
     if (!st)
         st = collect(s, jobs, 1, "match", 0, out, err);
     for (int c = 0; c < SL_SYNTH_NCOMP; c++)
