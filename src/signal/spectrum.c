@@ -271,26 +271,43 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
     return SL_OK;
 }
 
-/* Oscillators stepped together in registers (time loop inside). */
-#define BLOCK 8
+/* Oscillators stepped together (time loop inside): blocks of BLOCK_WIDE
+ * lanes, a group's last few in blocks of BLOCK_NARROW. */
+#define BLOCK_WIDE 16
+#define BLOCK_NARROW 4
 
-/* Positions [p0, p1) (at most BLOCK, one sub-step count m) over the whole
+/* Function multiversioning (GCC, x86-64): the kernel is compiled twice,
+ * for AVX2 (4 doubles a vector) and for the baseline (SSE2, 2), and the
+ * loader picks the one the CPU runs. Both do the same IEEE operations in the
+ * same order (no FMA contraction: -std=c11 sets -ffp-contract=off), so the
+ * results are the same bits on either. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    !defined(SL_SPECTRUM_NO_CLONES)
+#define SL_KERNEL_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define SL_KERNEL_CLONES
+#endif
+
+/* Positions [p0, p0 + nb) (nb <= W, one sub-step count m) over the whole
  * record and nfree free sub-steps; max|u| into umax[p], max|u''+a| into
- * amax[p] (when amax is not NULL). Time is the inner loop: the block's state
- * stays in registers and its oscillators are independent, so they run in
- * parallel lanes. Every oscillator does exactly the arithmetic of map (2)
- * in the same order as a one-at-a-time loop, so the result does not depend
- * on the blocking. */
-static void run_block(const work *wk, size_t p0, size_t p1, size_t m, const double *acc,
-                      size_t n, size_t nfree, double *umax_out, double *amax_out)
+ * amax[p] (when want_amax). Time is the inner loop: the block's state stays
+ * in vector registers and its oscillators are independent, so they run in
+ * parallel lanes (W / 4 AVX2 vectors: independent chains that hide the
+ * latency of the recurrence). Every oscillator does exactly the arithmetic
+ * of map (2) in the same order as a one-at-a-time loop, so the result does
+ * not depend on the blocking or the vector width. W and want_amax are
+ * constants after inlining. */
+static inline __attribute__((always_inline)) void
+block_kernel(const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,
+             size_t nfree, double *umax_out, double *amax_out, const size_t W,
+             const int want_amax)
 {
-    double c11[BLOCK], c12[BLOCK], c21[BLOCK], c22[BLOCK];
-    double bu0[BLOCK], bu1[BLOCK], bv0[BLOCK], bv1[BLOCK];
-    double w2[BLOCK], tzw[BLOCK];
-    double u[BLOCK] = {0}, v[BLOCK] = {0}, umax[BLOCK] = {0}, amax[BLOCK] = {0};
-    size_t nb = p1 - p0;
+    double c11[BLOCK_WIDE], c12[BLOCK_WIDE], c21[BLOCK_WIDE], c22[BLOCK_WIDE];
+    double bu0[BLOCK_WIDE], bu1[BLOCK_WIDE], bv0[BLOCK_WIDE], bv1[BLOCK_WIDE];
+    double w2[BLOCK_WIDE], tzw[BLOCK_WIDE];
+    double u[BLOCK_WIDE], v[BLOCK_WIDE], umax[BLOCK_WIDE], amax[BLOCK_WIDE];
     /* Unused lanes copy the first oscillator (results discarded). */
-    for (size_t b = 0; b < BLOCK; b++) {
+    for (size_t b = 0; b < W; b++) {
         size_t p = p0 + (b < nb ? b : 0);
         c11[b] = wk->c[C11][p];
         c12[b] = wk->c[C12][p];
@@ -302,23 +319,23 @@ static void run_block(const work *wk, size_t p0, size_t p1, size_t m, const doub
         bv1[b] = wk->c[BV1][p];
         w2[b] = wk->w2[p];
         tzw[b] = wk->tzw[p];
+        u[b] = v[b] = umax[b] = amax[b] = 0.0;
     }
     const double inv_m = 1.0 / (double)m;
     /* one sub-step of every lane with input as -> as1 (map (2)) */
 #define STEP_BLOCK(as, as1)                                                                   \
-    for (size_t b = 0; b < BLOCK; b++) {                                                      \
+    for (size_t b = 0; b < W; b++) {                                                          \
         double un = c11[b] * u[b] + c12[b] * v[b] + bu0[b] * (as) + bu1[b] * (as1);           \
         double vn = c21[b] * u[b] + c22[b] * v[b] + bv0[b] * (as) + bv1[b] * (as1);           \
         u[b] = un;                                                                            \
         v[b] = vn;                                                                            \
         double au = fabs(un);                                                                 \
         umax[b] = au > umax[b] ? au : umax[b];                                                \
-    }                                                                                         \
-    if (amax_out)                                                                             \
-        for (size_t b = 0; b < BLOCK; b++) {                                                  \
-            double aa = fabs(w2[b] * u[b] + tzw[b] * v[b]);                                   \
+        if (want_amax) {                                                                      \
+            double aa = fabs(w2[b] * un + tzw[b] * vn);                                       \
             amax[b] = aa > amax[b] ? aa : amax[b];                                            \
-        }
+        }                                                                                     \
+    }
     if (m == 1) {
         for (size_t i = 0; i + 1 < n; i++) {
             const double as = acc[i], as1 = acc[i + 1];
@@ -342,13 +359,33 @@ static void run_block(const work *wk, size_t p0, size_t p1, size_t m, const doub
 #undef STEP_BLOCK
     for (size_t b = 0; b < nb; b++) {
         umax_out[p0 + b] = umax[b];
-        if (amax_out)
+        if (want_amax)
             amax_out[p0 + b] = amax[b];
     }
 }
 
+/* The kernel's instances: wide and narrow blocks, with and without the
+ * absolute acceleration. */
+SL_KERNEL_CLONES static void run_block(const work *wk, size_t p0, size_t nb, size_t m,
+                                       const double *acc, size_t n, size_t nfree,
+                                       double *umax_out, double *amax_out)
+{
+    if (nb > BLOCK_NARROW) {
+        if (amax_out)
+            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);
+        else
+            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);
+    } else {
+        if (amax_out)
+            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);
+        else
+            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);
+    }
+}
+
 /* Every group of equal m, in blocks: the record, then (free_vib) the free
- * sub-steps of the block's lowest frequency. */
+ * sub-steps of the block's lowest frequency. A group runs in blocks of
+ * BLOCK_WIDE; a remainder of at most BLOCK_NARROW runs narrow. */
 static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
                        double *amax)
 {
@@ -358,15 +395,17 @@ static void run_groups(const work *wk, const double *acc, size_t n, int free_vib
         size_t p1 = p0 + 1;
         while (p1 < nf && wk->m[p1] == m)
             p1++;
-        for (size_t q = p0; q < p1; q += BLOCK) {
-            size_t q1 = q + BLOCK < p1 ? q + BLOCK : p1;
+        for (size_t q = p0; q < p1;) {
+            size_t left = p1 - q;
+            size_t nb = left > BLOCK_WIDE ? BLOCK_WIDE : left;
             /* free sub-steps of the block's lowest frequency; the higher
              * ones run on past their first extremum, where later extrema
              * of a free damped vibration are smaller */
             size_t nfree = 0;
-            for (size_t p = q; p < q1 && free_vib; p++)
+            for (size_t p = q; p < q + nb && free_vib; p++)
                 nfree = wk->nfree[p] > nfree ? wk->nfree[p] : nfree;
-            run_block(wk, q, q1, m, acc, n, nfree, umax, amax);
+            run_block(wk, q, nb, m, acc, n, nfree, umax, amax);
+            q += nb;
         }
         p0 = p1;
     }
