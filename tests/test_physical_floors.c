@@ -1,6 +1,6 @@
 /*
  * test_physical_floors.c - synthesized floor motions slide like the physical
- * floor motions behind their spectrum (issue 12; docs/synthesis.md 10-12).
+ * floor motions behind their spectrum (issue 12; docs/synthesis.md 10-12, docs/notes.md 3).
  *
  * Physical floor motions: real three-component records of ../shared/records
  * (study/physfloor.h: rule, scaled to a larger horizontal PGA of 0.3 g)
@@ -11,7 +11,7 @@
  * NLTHA engine (sl_slide_batch) slides a block on the physical and on the
  * synthesized sets. The issue asks for the ratio of the mean peak sliding,
  * synthesized / physical, in [0.75, 1.33] at mu g/ZPA = 0.1 ... 0.9 on every
- * floor. MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 12):
+ * floor. MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 10):
  * 0.79-0.97 at mu g/ZPA 0.1-0.5, 0.78-0.88 at 0.7, 0.75-1.07 at 0.9 (SE
  * 0.07-0.17), inside the band everywhere; without the intensity scatter
  * 0.45-0.51 at 0.7 and 0.10-0.15 at 0.9. Setting the scatter to 0.10 fails
@@ -72,7 +72,7 @@ static const char *const recs[] = {
 #define HI 1.33
 
 /* The full comparison (tools/physfloors.c: 83 records, 48 synthesized sets
- * per case, seed 12; docs/synthesis.md 12): ratio synthesized / physical at
+ * per case, seed 12; docs/synthesis.md 10): ratio synthesized / physical at
  * mu g/ZPA = 0.1 ... 0.9 per floor, and ground (synthesized RG 1.60 /
  * records matched to RG 1.60). This test's subset must agree with it within
  * 3 standard errors of its own ratio (P1 of study/physfloor.h) plus 0.02. */

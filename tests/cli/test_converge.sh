@@ -4,11 +4,14 @@
 #  - the per-floor CSV carries the sets, SE and band, and the stopping rule
 #    holds in it;
 #  - the options are checked;
-#  - two seeds of the example facility, at the default targets, agree at
-#    every floor and mu within max(30 %, 6 mm) (four standard errors of a
-#    difference at 5 % each: 4 sqrt(2) 5 % = 28 %). This one takes 2 x 75-90 s
-#    of CPU (432 and 536 motion sets), under a minute and a half of wall time
-#    on 2 free cores; SEISLIDE_QUICK=1 skips it.
+#  - two seeds of two floors of the example facility (the RG 1.60 ground
+#    level and the amplified floor el. 24 m), at the default targets, agree
+#    at every floor and mu within max(30 %, 6 mm) (four standard errors of a
+#    difference at 5 % each: 4 sqrt(2) 5 % = 28 %). The property is one of
+#    the stopping rule and the stated SE, floor by floor: the two other floors
+#    (el. 12 m needs the most sets: 160 and 114) add time, not proof. Measured
+#    (2 cores, load 3): the whole facility took 51 + 55 s of wall time (716
+#    sets), these two floors 275 sets; SEISLIDE_QUICK=1 skips it.
 . "$(dirname "$0")/lib.sh"
 t_suite cli_converge
 D=$T_TMP
@@ -71,19 +74,22 @@ t_expect_rc max-sets 0; t_expect_err max-sets-msg "NOT converged"
 grep -q "not converged" "$D/outm/floors.csv" && grep -q ",max_sets," "$D/outm/floors.csv" \
   && t_pass || t_fail "floors.csv lacks the flag"
 
-# 4. two seeds of the example facility agree within max(30 %, 6 mm)
+# 4. two seeds of two floors agree within max(30 %, 6 mm)
 if [ -n "$SEISLIDE_QUICK" ]; then
   t_skip "two-seed facility run (SEISLIDE_QUICK set)"
 else
-  t_run run floors -o "$D/s1" --seed 1 --created 0 -q; t_expect_rc seed1 0
-  t_run run floors -o "$D/s2" --seed 2 --created 0 -q; t_expect_rc seed2 0
+  F2="floors/01-ground.ini floors/03-el24.ini"
+  # shellcheck disable=SC2086
+  t_run run $F2 -o "$D/s1" --seed 1 --created 0 -q; t_expect_rc seed1 0
+  # shellcheck disable=SC2086
+  t_run run $F2 -o "$D/s2" --seed 2 --created 0 -q; t_expect_rc seed2 0
   grep -v '^#' "$D/s1/summary.csv" >"$D/t1"; grep -v '^#' "$D/s2/summary.csv" >"$D/t2"
   paste -d, "$D/t1" "$D/t2" | tr -d '\r' | awk -F, '
     NR == 1 { nf = NF / 2; next }
     { for (i = 2; i <= nf; i++) { a = $i; b = $(i + nf); d = a - b; if (d < 0) d = -d;
         m = a > b ? a : b; tol = 0.30 * m; if (tol < 6) tol = 6; n++;
         if (!(d <= tol)) { bad++; msg = msg sprintf(" [mu %s col %d: %s vs %s]", $1, i, a, b) } } }
-    END { if (n != 4 * 76 || bad) { print n " points, " bad " outside:" msg; exit 1 } }' \
+    END { if (n != 2 * 76 || bad) { print n " points, " bad " outside:" msg; exit 1 } }' \
     >"$D/cmp" && t_pass || t_fail "seeds 1 and 2 disagree: $(head -c 600 "$D/cmp")"
 fi
 t_end
