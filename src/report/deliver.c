@@ -94,7 +94,9 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
                                   .dampings = sl_analysis_dampings_text(an[i], damp[i],
                                                                         sizeof damp[i]),
                                   .dampings_min = NAN, .dampings_max = NAN,
-                                  .dampings_ok = an[i]->dampings_ok};
+                                  .dampings_ok = an[i]->dampings_ok,
+                                  .n_failed_motions = an[i]->n_failed_motions,
+                                  .sa10_fallback = an[i]->sa10_fallback};
         for (size_t k = 0; k < an[i]->n_dampings; k++) {
             const sl_analysis_damping *dk = &an[i]->dampings[k];
             rf[i].dampings_min = isnan(rf[i].dampings_min) ? dk->set_min
@@ -158,6 +160,7 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
     sl_report_init(&rep);
     rep.version = o->version;
     rep.command_line = o->command_line;
+    rep.seed = s_seed;
     rep.created = o->created;
     rep.project = o->project;
     rep.n_floors = n;

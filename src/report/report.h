@@ -8,15 +8,27 @@
  *    as sl_design_clearance_at()), with every intermediate cell visible;
  *  - "Summary": rows mu, one column per floor, required clearance in mm;
  *    below it each floor's horizontal ZPA and crossover;
- *  - one sheet per floor: mu, mu g/ZPA, NLTHA mean and sd, NLTHA design,
- *    ASCE best and design, cap, clearance (all mm), flags, and a scatter
- *    chart of the design sliding spectra with the cap and the crossover;
- *  - "Motion quality": every synthesized motion's checks;
+ *  - one sheet per floor, named by its id (sl_report_floor_id; "F1", "F2",
+ *    ... when an id cannot be a sheet name), the full name in its title:
+ *    mu, mu g/ZPA, NLTHA mean and design with its standard error, ASCE best
+ *    and design, cap, clearance (all mm), flags, and a scatter chart of the
+ *    design sliding spectra with the cap and the crossover on a page of its
+ *    own;
+ *  - "Motion quality": the synthesized motions' checks, one row per set;
+ *  - "Notes": assumptions and limits, every count given per floor;
  *  - "Inputs": what reproduces the run (version, command, floor files with
- *    size and CRC-32, seed, settings).
+ *    size and CRC-32, seed, settings);
+ *  - "Data" (hidden, not printed): the tables the charts and Lookup read.
+ * One writer per sheet (sheet_*.c, csv.c; sheets.h); printed through
+ * LibreOffice every page is A4 and readable at 100 % (tests/cli/test_pdf.sh).
  * CSV (RFC 4180: CRLF line ends, fields quoted when needed; units in the
  * column names): floor_<name>.csv per floor, summary.csv, floors.csv (ZPA,
  * crossover, ranges, notes per floor), motion_quality.csv.
+ *
+ * Each CSV starts with comment lines that trace it to its run: program,
+ * command, creation time, seed and the CRC-32 of every floor file it holds.
+ * A floor whose motions failed their checks (n_failed_motions > 0) is named
+ * in the first lines of every sheet and CSV that holds it.
  *
  * Every file is written atomically (atomic.h): a failure leaves no partial
  * file under its final name. The workbook's creation date is
@@ -69,6 +81,12 @@ typedef struct sl_report_floor {
     const char *dampings;
     double dampings_min, dampings_max;
     int dampings_ok;
+    /* Motion components of the floor that failed a quality check
+     * (sl_analysis.n_failed_motions; kept only by --accept-failed-checks):
+     * every sheet and CSV of the floor says so in its first lines. */
+    size_t n_failed_motions;
+    int sa10_fallback;       /* 1: the file had no 10 % table (sl_analysis.sa10_fallback):
+                                a Notes entry and a line on the floor's sheet say so */
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */
@@ -100,6 +118,7 @@ typedef struct sl_report_project {
 typedef struct sl_report {
     const char *version;
     const char *command_line;
+    const char *seed;        /* the run's seed as text, for the record (NULL: "-") */
     time_t created;          /* workbook creation date (pin it for reproducible files) */
     sl_report_project project;
     size_t n_floors;
@@ -144,9 +163,12 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
 
 /* Write floor_<id>.csv per floor, summary.csv, floors.csv,
  * asce_below_nltha.csv and motion_quality.csv into dir (which must exist).
- * Every file starts with '#' comment lines naming the program, the file's
- * content, the floor(s), ZPA and units; then one header line; one value per
- * field. Every number written is finite (a value that does not exist is an
+ * Every file starts with '#' comment lines: "# WARNING: CHECKS FAILED ..."
+ * per floor whose motions failed their checks, then "# program:",
+ * "# content:", "# command:", "# created:" (UTC, ISO 8601), "# seed:",
+ * "# floor_file_crc32: CRC ID (PATH, N bytes)" per floor it holds, the
+ * title block, and the floor(s), ZPA and units; then one header line; one
+ * value per field. Every number written is finite (a value that does not exist is an
  * empty field); a non-finite result is an error, not a file. */
 sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err);
 

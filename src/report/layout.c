@@ -1,0 +1,319 @@
+/* layout.c - what every sheet shares: formats, row heights that show wrapped
+ * text whole, page setup, the title block, chart axes and series, sheet
+ * names (sheets.h). */
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+#include "report/sheets.h"
+
+/* Header/footer text limit (Excel: 255 characters) and the longest project
+ * name the header shows before cutting it with "...". */
+#define HF_MAX 255
+#define HF_PROJECT_MAX 90
+/* Row heights: points per line of the default 11-point font, and the
+ * characters per line of a column w units wide. LibreOffice prints a unit
+ * about 8 points wide and the font's text averages 5.5-6 points a
+ * character (measured on the rendered PDF: 94 characters a line in a
+ * column 72 wide); bold is wider. Rounded down, so a row errs tall. */
+#define LINE_PT 15.0
+/* Chart sizes: libxlsxwriter anchors a chart by its own column model, 7
+ * pixels a unit plus 5, and a chart is 480 pixels wide at scale 1. */
+#define XLSX_PX_PER_UNIT 7.0
+#define XLSX_PX_PAD 5.0
+#define XLSX_CHART_PX 480.0
+#define CHARS_PER_WIDTH 1.12
+#define CHARS_PER_WIDTH_BOLD 1.05
+
+void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
+{
+    F->bold = workbook_add_format(wb);
+    format_set_bold(F->bold);
+    format_set_text_wrap(F->bold);
+    format_set_align(F->bold, LXW_ALIGN_VERTICAL_TOP);
+    F->label = workbook_add_format(wb);
+    format_set_bold(F->label);
+    format_set_text_wrap(F->label);
+    format_set_align(F->label, LXW_ALIGN_VERTICAL_TOP);
+    F->title = workbook_add_format(wb);
+    format_set_bold(F->title);
+    format_set_font_size(F->title, 14);
+    F->mm = workbook_add_format(wb);
+    format_set_num_format(F->mm, "0.0");
+    F->mm0 = workbook_add_format(wb);
+    format_set_num_format(F->mm0, "0");
+    F->mmbold = workbook_add_format(wb);
+    format_set_num_format(F->mmbold, "0.0");
+    format_set_bold(F->mmbold);
+    F->ratio = workbook_add_format(wb);
+    format_set_num_format(F->ratio, "0.000");
+    F->sci = workbook_add_format(wb);
+    format_set_num_format(F->sci, "0.0E+00");
+    F->mu = workbook_add_format(wb);
+    format_set_num_format(F->mu, "0.00");
+    F->wrap = workbook_add_format(wb);
+    format_set_text_wrap(F->wrap);
+    format_set_align(F->wrap, LXW_ALIGN_VERTICAL_TOP);
+    F->note = workbook_add_format(wb);
+    format_set_text_wrap(F->note);
+    format_set_align(F->note, LXW_ALIGN_VERTICAL_TOP);
+    F->result = workbook_add_format(wb);
+    format_set_bold(F->result);
+    format_set_font_size(F->result, 14);
+    format_set_num_format(F->result, "0.0");
+    format_set_bg_color(F->result, 0xE2EFDA);
+    format_set_border(F->result, LXW_BORDER_THIN);
+    format_set_align(F->result, LXW_ALIGN_LEFT);
+    F->input = workbook_add_format(wb);
+    format_set_bg_color(F->input, 0xFFF2CC);
+    format_set_border(F->input, LXW_BORDER_THIN);
+    format_set_unlocked(F->input);
+    format_set_align(F->input, LXW_ALIGN_LEFT);
+    F->header = workbook_add_format(wb);
+    format_set_bold(F->header);
+    format_set_text_wrap(F->header);
+    format_set_align(F->header, LXW_ALIGN_VERTICAL_TOP);
+    format_set_bottom(F->header, LXW_BORDER_THIN);
+    F->warn = workbook_add_format(wb);
+    format_set_bold(F->warn);
+    format_set_text_wrap(F->warn);
+    format_set_align(F->warn, LXW_ALIGN_VERTICAL_TOP);
+    format_set_font_color(F->warn, 0xC00000);
+}
+
+/* Lines of s word-wrapped at cpl characters ('\n' breaks; a word longer
+ * than a line takes as many lines as it needs). */
+static int wrapped_lines(const char *s, int cpl)
+{
+    int lines = 1, col = 0;
+    if (cpl < 1)
+        cpl = 1;
+    for (const char *p = s; *p;) {
+        if (*p == '\n') {
+            lines++;
+            col = 0;
+            p++;
+            continue;
+        }
+        if (*p == ' ') {
+            p++;
+            if (col)
+                col++;
+            continue;
+        }
+        int len = 0;
+        while (p[len] && p[len] != ' ' && p[len] != '\n')
+            len++;
+        if (col && col + len > cpl) {
+            lines++;
+            col = 0;
+        }
+        while (len > cpl) { /* a word longer than the line breaks anywhere */
+            lines++;
+            len -= cpl;
+            p += cpl;
+        }
+        col += len;
+        p += len;
+    }
+    return lines;
+}
+
+double sl_rpt_chart_scale(const double *width, size_t n)
+{
+    double px = 0;
+    for (size_t c = 0; c < n; c++)
+        px += XLSX_PX_PER_UNIT * width[c] + XLSX_PX_PAD;
+    return 0.98 * px / XLSX_CHART_PX;
+}
+
+double sl_rpt_text_height(const char *s, double width, int bold)
+{
+    int cpl = (int)floor(width * (bold ? CHARS_PER_WIDTH_BOLD : CHARS_PER_WIDTH)) - 1;
+    return LINE_PT * wrapped_lines(s ? s : "", cpl) + 1.0;
+}
+
+/* Text for a header/footer: '&' doubled (Excel's escape), cut to max
+ * characters with "..." (buf of size n > max + 4). */
+static void hf_escape(const char *s, size_t max, char *buf, size_t n)
+{
+    size_t k = 0, shown = 0;
+    for (; s && *s && k + 5 < n; s++, shown++) {
+        if (shown == max) {
+            strcpy(buf + k, "...");
+            return;
+        }
+        if (*s == '&')
+            buf[k++] = '&';
+        buf[k++] = *s == '\n' || *s == '\r' ? ' ' : *s;
+    }
+    buf[k] = '\0';
+}
+
+void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
+                       const char *failed_ids)
+{
+    char proj[2 * HF_PROJECT_MAX + 8], doc[80], rev[40], ids[120], h[2 * HF_MAX], ver[80];
+    const sl_report_project *p = &r->project;
+    hf_escape(p->project && *p->project ? p->project : "project not named (--project)",
+              HF_PROJECT_MAX, proj, sizeof proj);
+    hf_escape(p->document && *p->document ? p->document : "not given (--document)", 30, doc,
+              sizeof doc);
+    hf_escape(p->revision && *p->revision ? p->revision : "not given (--revision)", 24, rev,
+              sizeof rev);
+    hf_escape(failed_ids, 40, ids, sizeof ids);
+    hf_escape(r->version, 60, ver, sizeof ver);
+    worksheet_set_paper(ws, 9); /* A4 */
+    worksheet_set_margins(ws, 0.5, 0.5, 0.85, 0.75);
+    if (landscape)
+        worksheet_set_landscape(ws);
+    else
+        worksheet_set_portrait(ws);
+    /* left: who and what (two lines), right: the sheet, and the floors whose
+     * motions failed their checks; nothing in the centre to run into */
+    snprintf(h, sizeof h, "&L&8%s\nDocument %s, revision %s&R&8&A%s%s", proj, doc, rev,
+             ids[0] ? "\n&\"-,Bold\"checks failed: " : "", ids);
+    worksheet_set_header(ws, h);
+    snprintf(h, sizeof h, "&L&8%s&C&8&F&R&8Page &P of &N", ver);
+    worksheet_set_footer(ws, h);
+}
+
+void sl_rpt_protect(lxw_worksheet *ws)
+{
+    lxw_protection p;
+    memset(&p, 0, sizeof p);
+    worksheet_protect(ws, NULL, &p); /* no password: a guard against typing over, not a lock */
+}
+
+void sl_rpt_title_block(lxw_worksheet *ws, const sl_rpt_fmts *F, const sl_report *r,
+                        const char *title, lxw_col_t c, lxw_col_t c_last, double width)
+{
+    worksheet_write_string(ws, 0, c, title, F->title);
+    const char *const label[] = {"Project", "Document no.", "Revision", "Prepared by",
+                                 "Checked by", "Date", "Units"};
+    const char *const value[] = {r->project.project, r->project.document, r->project.revision,
+                                 r->project.prepared, r->project.checked, r->project.date,
+                                 "clearance and displacements in mm; accelerations in g; "
+                                 "mu (friction coefficient) dimensionless"};
+    for (lxw_row_t i = 0; i < SL_RPT_TB_ROWS - 1; i++) {
+        const char *v = sl_rpt_or_dash(value[i]);
+        worksheet_write_string(ws, i + 1, c, label[i], F->label);
+        if (c_last > c + 1)
+            worksheet_merge_range(ws, i + 1, c + 1, i + 1, c_last, v, F->note);
+        else
+            worksheet_write_string(ws, i + 1, c + 1, v, F->note);
+        worksheet_set_row(ws, i + 1, sl_rpt_text_height(v, width, 0), NULL);
+    }
+}
+
+void sl_rpt_col_name(size_t c, char *buf)
+{
+    char tmp[8];
+    int k = 0;
+    c++;
+    while (c > 0) {
+        tmp[k++] = (char)('A' + (c - 1) % 26);
+        c = (c - 1) / 26;
+    }
+    for (int i = 0; i < k; i++)
+        buf[i] = tmp[k - 1 - i];
+    buf[k] = '\0';
+}
+
+void sl_rpt_num_or_blank(lxw_worksheet *ws, lxw_row_t row, lxw_col_t col, double v,
+                         lxw_format *f)
+{
+    if (isfinite(v))
+        worksheet_write_number(ws, row, col, v, f);
+    else
+        worksheet_write_blank(ws, row, col, f);
+}
+
+sl_rpt_axes sl_rpt_shared_axes(const sl_report *r)
+{
+    sl_rpt_axes a = {r->floors[0].design->rows[0].mu, 0, HUGE_VAL, 0};
+    size_t n = r->floors[0].design->n;
+    a.mu_max = r->floors[0].design->rows[n - 1].mu;
+    for (size_t i = 0; i < r->n_floors; i++)
+        for (size_t k = 0; k < n; k++) {
+            const sl_design_row *w = &r->floors[i].design->rows[k];
+            const double v[] = {w->nltha_design_m, w->asce_design_m, w->nltha_mean_m, w->cap_m};
+            for (size_t c = 0; c < 4; c++)
+                if (isfinite(v[c]) && v[c] > 0) {
+                    a.y_min = fmin(a.y_min, SL_RPT_MM_PER_M * v[c]);
+                    a.y_max = fmax(a.y_max, SL_RPT_MM_PER_M * v[c]);
+                }
+        }
+    if (!(a.y_max > 0)) {
+        a.y_min = 1;
+        a.y_max = 10;
+    }
+    a.y_min = fmax(SL_RPT_CHART_MIN_MM, pow(10, floor(log10(a.y_min))));
+    /* a power of ten at least twice the largest value: a cap of 987 mm is
+     * drawn a third of a decade below the 1,000 mm line, not along the top
+     * edge of a 1,000 mm axis */
+    a.y_max = pow(10, ceil(log10(SL_RPT_CHART_HEADROOM * a.y_max)));
+    if (a.y_max <= a.y_min)
+        a.y_max = 10 * a.y_min;
+    return a;
+}
+
+void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax)
+{
+    chart_axis_set_name(ch->x_axis, "friction coefficient mu");
+    chart_axis_set_name(ch->y_axis, "mm (log scale)");
+    chart_axis_set_min(ch->x_axis, ax->mu_min);
+    chart_axis_set_max(ch->x_axis, ax->mu_max);
+    chart_axis_set_num_format(ch->x_axis, "0.00");
+    chart_axis_set_log_base(ch->y_axis, 10);
+    chart_axis_set_min(ch->y_axis, ax->y_min);
+    chart_axis_set_max(ch->y_axis, ax->y_max);
+    chart_axis_set_num_format(ch->y_axis, "#,##0.#");
+    chart_axis_set_crossing(ch->y_axis, ax->y_min); /* x axis at the bottom */
+    /* thin light gridlines, under the curves: a curve on one stays visible */
+    lxw_chart_line grid = {.color = 0xD9D9D9, .width = 0.5f};
+    chart_axis_major_gridlines_set_visible(ch->y_axis, LXW_TRUE);
+    chart_axis_major_gridlines_set_line(ch->y_axis, &grid);
+    chart_legend_set_position(ch, LXW_CHART_LEGEND_BOTTOM);
+}
+
+void sl_rpt_add_series(lxw_chart *ch, const char *sheet, lxw_col_t xc, lxw_col_t yc,
+                       lxw_row_t r0, lxw_row_t r1, const char *name, lxw_color_t color,
+                       float width, uint8_t dash, uint8_t transparency)
+{
+    char xr[128], yr[128], a[8], b[8];
+    sl_rpt_col_name(xc, a);
+    sl_rpt_col_name(yc, b);
+    snprintf(xr, sizeof xr, "='%s'!$%s$%u:$%s$%u", sheet, a, (unsigned)r0 + 1, a, (unsigned)r1 + 1);
+    snprintf(yr, sizeof yr, "='%s'!$%s$%u:$%s$%u", sheet, b, (unsigned)r0 + 1, b, (unsigned)r1 + 1);
+    lxw_chart_series *s = chart_add_series(ch, xr, yr);
+    chart_series_set_name(s, name);
+    lxw_chart_line line = {.color = color, .width = width, .dash_type = dash,
+                           .transparency = transparency};
+    chart_series_set_line(s, &line);
+    chart_series_set_marker_type(s, LXW_CHART_MARKER_NONE);
+}
+
+void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX + 1])
+{
+    static const char *const other[] = {"Lookup", "Summary", "Motion quality", "Notes",
+                                        "Inputs", "Data", "History"};
+    int use_ids = 1;
+    for (size_t i = 0; i < r->n_floors && use_ids; i++) {
+        const char *id = r->floors[i].id;
+        use_ids = *id && strlen(id) <= SL_RPT_SHEET_NAME_MAX && id[0] != '\'';
+        for (size_t k = 0; k < sizeof other / sizeof other[0] && use_ids; k++)
+            use_ids = strcasecmp(id, other[k]) != 0;
+        for (size_t j = 0; j < i && use_ids; j++)
+            use_ids = strcasecmp(id, r->floors[j].id) != 0;
+        for (const char *p = id; *p && use_ids; p++) /* sl_report_floor_id's characters */
+            use_ids = isalnum((unsigned char)*p) || *p == '-' || *p == '_';
+    }
+    for (size_t i = 0; i < r->n_floors; i++)
+        if (use_ids)
+            snprintf(names[i], SL_RPT_SHEET_NAME_MAX + 1, "%s", r->floors[i].id);
+        else
+            snprintf(names[i], SL_RPT_SHEET_NAME_MAX + 1, "F%zu", i + 1);
+}

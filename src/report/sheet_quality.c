@@ -1,0 +1,104 @@
+/* sheet_quality.c - the "Motion quality" sheet: the SRP 3.7.1 checks of the
+ * synthesized motions, one row per three-component set with its verdict
+ * (every component's values are in motion_quality.csv); each floor's count
+ * of failures first (sheets.h). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "report/sheets.h"
+
+enum { Q_COLS = 10 };
+#define W_VERDICT 20.0
+
+void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r)
+{
+    lxw_worksheet *ws = workbook_add_worksheet(wb, "Motion quality");
+    size_t w_id = 8;
+    for (size_t i = 0; i < r->n_floors; i++)
+        w_id = strlen(r->floors[i].id) > w_id ? strlen(r->floors[i].id) : w_id;
+    /* about 86 units: a portrait A4 page at 75 % */
+    const double width[Q_COLS] = {(double)w_id * 0.9 + 1.5, 4, 6.5, 6.5, 6.5, 7.5, 7.5, 7.5, 9,
+                                  W_VERDICT};
+    double w_all = 0;
+    for (lxw_col_t c = 0; c < Q_COLS; c++) {
+        worksheet_set_column(ws, c, c, width[c], NULL);
+        w_all += width[c];
+    }
+    char buf[1200], ids[400];
+    lxw_row_t row = 0;
+    worksheet_write_string(ws, row++, 0, "Motion quality: the SRP 3.7.1 checks, one row per set",
+                           F->title);
+    const char *intro = "Each row is one synthesized three-component set: the extremes over its "
+                        "components H1, H2 and V. Every component's values, and which check it "
+                        "failed, are in motion_quality.csv.";
+    worksheet_merge_range(ws, row, 0, row, Q_COLS - 1, intro, F->note);
+    worksheet_set_row(ws, row++, sl_rpt_text_height(intro, w_all, 0), NULL);
+    for (size_t i = 0; i < r->n_floors; i++) {
+        const sl_report_floor *fl = &r->floors[i];
+        sl_rpt_failed_text(r, fl, buf, sizeof buf);
+        if (!buf[0])
+            snprintf(buf, sizeof buf, "%s: %zu sets, every component passed every check", fl->id,
+                     fl->design->n_sets);
+        worksheet_merge_range(ws, row, 0, row, Q_COLS - 1, buf,
+                              fl->n_failed_motions ? F->warn : F->note);
+        worksheet_set_row(ws, row++, sl_rpt_text_height(buf, w_all, fl->n_failed_motions > 0),
+                          NULL);
+    }
+    lxw_row_t head = ++row;
+    static const char *const hd[Q_COLS] = {
+        "floor id", "set", "PGA H1, g", "PGA H2, g", "PGA V, g", "lowest ratio to target",
+        "highest ratio to target", "longest run below target (limit 9)",
+        "largest |correlation| between components", "verdict"};
+    double hh = 0;
+    for (lxw_col_t c = 0; c < Q_COLS; c++) {
+        worksheet_write_string(ws, head, c, hd[c], F->header);
+        hh = fmax(hh, sl_rpt_text_height(hd[c], width[c], 1));
+    }
+    worksheet_set_row(ws, head, hh, NULL);
+    worksheet_freeze_panes(ws, head + 1, 0);
+    row = head + 1;
+    for (size_t q = 0; q < r->n_quality;) {
+        const sl_report_quality *m = &r->quality[q];
+        size_t e = q; /* the set's components: consecutive rows of one floor and set */
+        while (e < r->n_quality && r->quality[e].set == m->set &&
+               !strcmp(r->quality[e].floor, m->floor))
+            e++;
+        double lo = HUGE_VAL, hi = -HUGE_VAL, corr = 0, pga[3] = {NAN, NAN, NAN};
+        int run = 0, pass = 1;
+        size_t used = 0;
+        buf[0] = '\0';
+        for (size_t k = q; k < e; k++) {
+            const sl_report_quality *c = &r->quality[k];
+            int ci = !strcmp(c->component, "H1") ? 0 : !strcmp(c->component, "H2") ? 1 : 2;
+            pga[ci] = c->pga_g;
+            lo = fmin(lo, c->min_ratio);
+            hi = fmax(hi, c->max_ratio);
+            run = c->max_run_below > run ? c->max_run_below : run;
+            corr = fmax(corr, c->max_corr);
+            if (!c->pass) {
+                int w = snprintf(buf + used, sizeof buf - used, "%s%s %s", pass ? "FAIL: " : "; ",
+                                 c->component, c->why && *c->why ? c->why : "failed");
+                used += w > 0 && (size_t)w < sizeof buf - used ? (size_t)w : 0;
+                pass = 0;
+            }
+        }
+        worksheet_write_string(ws, row, 0, m->floor, NULL);
+        worksheet_write_number(ws, row, 1, m->set, NULL);
+        for (lxw_col_t c = 0; c < 3; c++)
+            sl_rpt_num_or_blank(ws, row, (lxw_col_t)(2 + c), pga[c], F->ratio);
+        sl_rpt_num_or_blank(ws, row, 5, lo, F->ratio);
+        sl_rpt_num_or_blank(ws, row, 6, hi, F->ratio);
+        worksheet_write_number(ws, row, 7, run, NULL);
+        sl_rpt_num_or_blank(ws, row, 8, corr, F->ratio);
+        worksheet_write_string(ws, row, 9, pass ? "pass" : buf, pass ? F->wrap : F->warn);
+        if (!pass)
+            worksheet_set_row(ws, row, sl_rpt_text_height(buf, W_VERDICT, 1), NULL);
+        row++;
+        q = e;
+    }
+    sl_rpt_page_setup(ws, r, 0, sl_rpt_failed_ids(r, ids, sizeof ids));
+    worksheet_fit_to_pages(ws, 1, 0);
+    worksheet_repeat_rows(ws, head, head);
+    sl_rpt_protect(ws);
+}

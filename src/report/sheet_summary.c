@@ -1,0 +1,162 @@
+/* sheet_summary.c - the "Summary" sheet: the clearance of every floor
+ * against mu, each floor's numbers and statements, and one chart of every
+ * floor; the named ranges the Lookup reads (sheets.h). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/units.h"
+#include "report/sheets.h"
+
+#define W_LABEL 16.0 /* column A: mu, and the labels below the table */
+#define W_FLOOR 12.0 /* one column per floor: 4 floors fill a portrait A4 page */
+
+/* A label in A and its value merged over B..last, the row as tall as both. */
+static lxw_row_t record_row(lxw_worksheet *ws, const sl_rpt_fmts *F, lxw_row_t row,
+                            lxw_col_t last, const char *label, const char *value,
+                            lxw_format *vf)
+{
+    worksheet_write_string(ws, row, 0, label, F->label);
+    if (last > 1)
+        worksheet_merge_range(ws, row, 1, row, last, value, vf);
+    else
+        worksheet_write_string(ws, row, 1, value, vf);
+    double h = fmax(sl_rpt_text_height(label, W_LABEL, 1),
+                    sl_rpt_text_height(value, W_FLOOR * (double)last, vf == F->warn));
+    worksheet_set_row(ws, row, h, NULL);
+    return row + 1;
+}
+
+void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r,
+                          const sl_rpt_axes *ax)
+{
+    lxw_worksheet *ws = workbook_add_worksheet(wb, "Summary");
+    size_t n = r->floors[0].design->n, nf = r->n_floors;
+    lxw_col_t last = (lxw_col_t)(nf > 3 ? nf : 3); /* the printed columns: B..last */
+    char buf[2400], ids[400];
+    worksheet_set_column(ws, 0, 0, W_LABEL, NULL);
+    worksheet_set_column(ws, 1, last, W_FLOOR, NULL);
+    sl_rpt_title_block(ws, F, r, "Required clearance per floor, mm", 0, last,
+                       W_FLOOR * (double)last);
+    sl_rpt_failed_ids(r, ids, sizeof ids);
+    if (ids[0]) {
+        snprintf(buf, sizeof buf, "CHECKS FAILED: motions of floor(s) %s failed their SRP 3.7.1 "
+                 "checks; their results were kept by --accept-failed-checks (below and Motion "
+                 "quality)", ids);
+        worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, last, buf, F->warn);
+        worksheet_set_row(ws, SL_RPT_WARN_ROW,
+                          sl_rpt_text_height(buf, W_LABEL + W_FLOOR * (double)last, 1), NULL);
+    }
+    worksheet_write_string(ws, SL_RPT_SUM_HEAD, 0, "mu", F->header);
+    double hh = 15;
+    for (size_t i = 0; i < nf; i++) {
+        worksheet_write_string(ws, SL_RPT_SUM_HEAD, (lxw_col_t)(i + 1), r->floors[i].name,
+                               F->header);
+        hh = fmax(hh, sl_rpt_text_height(r->floors[i].name, W_FLOOR, 1));
+    }
+    worksheet_set_row(ws, SL_RPT_SUM_HEAD, hh, NULL);
+    worksheet_freeze_panes(ws, SL_RPT_SUM_HEAD + 1, 1);
+    for (size_t k = 0; k < n; k++) {
+        lxw_row_t row = (lxw_row_t)(SL_RPT_SUM_HEAD + 1 + k);
+        worksheet_write_number(ws, row, 0, r->floors[0].design->rows[k].mu, F->mu);
+        for (size_t i = 0; i < nf; i++)
+            sl_rpt_num_or_blank(ws, row, (lxw_col_t)(i + 1),
+                                SL_RPT_MM_PER_M * r->floors[i].design->rows[k].clearance_m,
+                                sl_rpt_shown_decimals(&r->floors[i], k) ? F->mm : F->mm0);
+    }
+    /* short values, one column per floor (the Lookup reads ZPA and sets) */
+    lxw_row_t b = (lxw_row_t)(SL_RPT_SUM_HEAD + n + 2);
+    static const char *const lab[] = {"floor id", "horizontal ZPA, g", "motion sets",
+                                      "sets stopped because"};
+    for (lxw_row_t q = 0; q < 4; q++) {
+        worksheet_write_string(ws, b + q, 0, lab[q], F->label);
+        worksheet_set_row(ws, b + q, sl_rpt_text_height(lab[q], W_LABEL, 1), NULL);
+    }
+    for (size_t i = 0; i < nf; i++) {
+        const sl_report_floor *fl = &r->floors[i];
+        lxw_col_t c = (lxw_col_t)(i + 1);
+        worksheet_write_string(ws, b, c, fl->id, F->wrap);
+        worksheet_write_number(ws, b + 1, c, fl->zpa_h_ms2 / SL_G, F->ratio);
+        worksheet_write_number(ws, b + 2, c, (double)fl->design->n_sets, NULL);
+        worksheet_write_string(ws, b + 3, c, sl_rpt_or_dash(fl->sets_stop), NULL);
+    }
+    /* each floor's statements, one record per floor */
+    lxw_row_t row = b + 5;
+    for (size_t i = 0; i < nf; i++) {
+        const sl_report_floor *fl = &r->floors[i];
+        snprintf(buf, sizeof buf, "%s: %s", fl->id, fl->name);
+        worksheet_merge_range(ws, row, 0, row, last, buf, F->header);
+        worksheet_set_row(ws, row, sl_rpt_text_height(buf, W_LABEL + W_FLOOR * (double)last, 1),
+                          NULL);
+        row++;
+        sl_rpt_failed_text(r, fl, buf, sizeof buf);
+        if (buf[0])
+            row = record_row(ws, F, row, last, "motion checks", buf, F->warn);
+        if (isfinite(fl->elevation_m))
+            snprintf(buf, sizeof buf, "%s; elevation %g m; %s", fl->path, fl->elevation_m,
+                     sl_rpt_or_dash(fl->description));
+        else
+            snprintf(buf, sizeof buf, "%s; %s", fl->path, sl_rpt_or_dash(fl->description));
+        row = record_row(ws, F, row, last, "file; description", buf, F->note);
+        row = record_row(ws, F, row, last, "crossover (docs/run.md)",
+                         sl_rpt_crossover_text(fl->design, buf, sizeof buf), F->note);
+        row = record_row(ws, F, row, last, "ASCE below NLTHA for mu in",
+                         sl_report_ranges_text(fl->design, buf, sizeof buf), F->note);
+        if (fl->sa10_fallback)
+            row = record_row(ws, F, row, last, "ASCE spectrum", sl_rpt_sa10_text(fl), F->note);
+        if (sl_rpt_has_dampings(fl))
+            snprintf(buf, sizeof buf, "%s%sother dampings, set-mean S/T of the motions' own "
+                     "spectra to the file's table: %s", fl->note ? fl->note : "",
+                     fl->note && *fl->note ? "\n" : "", fl->dampings);
+        else
+            snprintf(buf, sizeof buf, "%s", sl_rpt_or_dash(fl->note));
+        row = record_row(ws, F, row, last, "note", buf, F->note);
+        row++;
+    }
+    /* named ranges the Lookup formulas read */
+    char last_col[8], def[160];
+    sl_rpt_col_name(nf, last_col);
+    snprintf(def, sizeof def, "=Summary!$B$%d:$%s$%d", SL_RPT_SUM_HEAD + 1, last_col,
+             SL_RPT_SUM_HEAD + 1);
+    workbook_define_name(wb, "floor_names", def);
+    snprintf(def, sizeof def, "=Summary!$A$%d:$A$%zu", SL_RPT_SUM_HEAD + 2,
+             SL_RPT_SUM_HEAD + 1 + n);
+    workbook_define_name(wb, "mu_grid", def);
+    snprintf(def, sizeof def, "=Summary!$B$%d:$%s$%zu", SL_RPT_SUM_HEAD + 2, last_col,
+             SL_RPT_SUM_HEAD + 1 + n);
+    workbook_define_name(wb, "clearance_mm", def);
+    snprintf(def, sizeof def, "=Summary!$B$%u:$%s$%u", (unsigned)b + 2, last_col, (unsigned)b + 2);
+    workbook_define_name(wb, "floor_zpa_g", def);
+    snprintf(def, sizeof def, "=Summary!$B$%u:$%s$%u", (unsigned)b + 3, last_col, (unsigned)b + 3);
+    workbook_define_name(wb, "floor_sets", def);
+    /* one chart with every floor, on a page of its own */
+    lxw_row_t chart_row = row + 1;
+    lxw_chart *ch = workbook_add_chart(wb, LXW_CHART_SCATTER_STRAIGHT);
+    static const lxw_color_t pal[] = {0x1F4E79, 0xC55A11, 0x548235, 0x7030A0, 0xBF9000, 0x2E75B6,
+                                      0xFF0000, 0x000000};
+    for (size_t i = 0; i < nf; i++)
+        sl_rpt_add_series(ch, "Data", 0, sl_rpt_data_col_series(nf, i, SL_RPT_DS_CLEAR),
+                          SL_RPT_DATA_HEAD + 1, (lxw_row_t)(SL_RPT_DATA_HEAD + n),
+                          r->floors[i].name, pal[i % 8], 2.0f,
+                          (uint8_t)(i / 8 % 3 ? LXW_CHART_LINE_DASH_DASH
+                                              : LXW_CHART_LINE_DASH_SOLID), 0);
+    snprintf(buf, sizeof buf, "Required clearance (%s), every floor",
+             sl_clearance_policy_name(r->floors[0].design->policy));
+    chart_title_set_name(ch, buf);
+    sl_rpt_chart_axes(ch, ax);
+    lxw_row_t breaks[] = {chart_row, 0};
+    worksheet_set_h_pagebreaks(ws, breaks);
+    /* as wide as the printed columns */
+    double widths[64] = {W_LABEL};
+    size_t nw = 1;
+    for (; nw <= last && nw < 64; nw++)
+        widths[nw] = W_FLOOR;
+    double xs = sl_rpt_chart_scale(widths, nw);
+    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 2.0 * xs};
+    worksheet_insert_chart_opt(ws, chart_row, 0, ch, &co);
+    sl_rpt_page_setup(ws, r, 0, ids);
+    worksheet_fit_to_pages(ws, 1, 0);
+    worksheet_repeat_rows(ws, SL_RPT_SUM_HEAD, SL_RPT_SUM_HEAD);
+    worksheet_print_area(ws, 0, 0, chart_row + 30, last);
+    sl_rpt_protect(ws);
+}

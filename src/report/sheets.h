@@ -1,0 +1,127 @@
+/*
+ * sheets.h - the report's writers, one per sheet (sheet_*.c) and one for the
+ * CSV files (csv.c), and what they share (layout.c: formats, row heights,
+ * page setup, the title block, charts; text.c: the statements every sheet
+ * and CSV makes about a floor). Internal to src/report: not installed, not
+ * in seislide.h. report.c assembles the workbook from these.
+ */
+#ifndef SL_REPORT_SHEETS_H
+#define SL_REPORT_SHEETS_H
+
+#include <stddef.h>
+#include <xlsxwriter.h>
+
+#include "report/report.h"
+
+#define SL_RPT_MM_PER_M 1000.0
+#define SL_RPT_SHEET_NAME_MAX 31 /* Excel's limit */
+#define SL_RPT_ID_MAX 64         /* longest floor id (sl_report_floor_id) */
+#define SL_RPT_WORKBOOK "seislide-clearance.xlsx"
+/* Print: the floor sheets' fixed scale, % (the PDF test checks >= 70 %). */
+#define SL_RPT_FLOOR_PRINT_SCALE 72
+/* Charts: log axis floor, mm (a log axis has no 0). */
+#define SL_RPT_CHART_MIN_MM 0.1
+/* Charts: the log axis ends at a power of ten at least this times the
+ * largest value, so that the cap is never drawn on the top edge. */
+#define SL_RPT_CHART_HEADROOM 2.0
+
+typedef struct sl_rpt_fmts {
+    lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
+        *note, *label, *sci, *warn;
+} sl_rpt_fmts;
+
+/* Layout (0-based rows). */
+enum {
+    SL_RPT_TB_ROWS = 8,                  /* title + 7 fields */
+    SL_RPT_WARN_ROW = SL_RPT_TB_ROWS,    /* failed checks, under the title block */
+    SL_RPT_SUM_HEAD = SL_RPT_TB_ROWS + 1,/* Summary table header row */
+    SL_RPT_DATA_HEAD = 3,                /* Data sheet header row */
+};
+
+/* Data sheet series per floor (chart columns). */
+enum { SL_RPT_DS_NDESIGN, SL_RPT_DS_ADESIGN, SL_RPT_DS_MEAN, SL_RPT_DS_CAP, SL_RPT_DS_CLEAR,
+       SL_RPT_DS_LO, SL_RPT_DS_HI, SL_RPT_DS_N };
+
+/* The chart axes every chart shares: x = mu over the grid, y = log over
+ * every floor, its top a decade above the largest value's so that no curve
+ * (the cap above all) runs along the top edge. */
+typedef struct sl_rpt_axes {
+    double mu_min, mu_max, y_min, y_max;
+} sl_rpt_axes;
+
+/* report.c: SL_EINVAL naming the floor when a number to be written is not
+ * finite (ASCE may be undefined: NAN, an empty cell), or the floors do not
+ * share the friction grid. */
+sl_status sl_rpt_check_finite(const sl_report *r, sl_error *err);
+
+/* ---- text.c: statements about a floor ---------------------------------- */
+double sl_rpt_design_se_m(const sl_report_floor *fl, size_t k);
+int sl_rpt_shown_decimals(const sl_report_floor *fl, size_t k);
+int sl_rpt_has_dampings(const sl_report_floor *fl);
+char *sl_rpt_crossover_text(const sl_design *d, char *buf, size_t n);
+char *sl_rpt_asce_shape_text(const sl_design *d, char *buf, size_t n);
+/* "" when every motion of the floor passed its checks; else "CHECKS FAILED:
+ * 12 of 204 motion components of this floor failed their SRP 3.7.1 checks
+ * (below 5, run_below 7; ...)", counted from r->quality. */
+char *sl_rpt_failed_text(const sl_report *r, const sl_report_floor *fl, char *buf, size_t n);
+/* The ids of the floors whose motions failed ("" when none), ", "-separated. */
+char *sl_rpt_failed_ids(const sl_report *r, char *buf, size_t n);
+/* "" when the floor file has a 10 % table; else what ASCE used instead. */
+const char *sl_rpt_sa10_text(const sl_report_floor *fl);
+/* "FLOOR: N sets; FLOOR: N sets; ..." (every floor's own count). */
+char *sl_rpt_sets_text(const sl_report *r, const char *fmt, char *buf, size_t n);
+const char *sl_rpt_or_dash(const char *s);
+
+/* ---- layout.c ---------------------------------------------------------- */
+void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F);
+/* Row height, points, that shows `s` whole when wrapped in a column (or
+ * merged range) `width` characters wide (LibreOffice does not grow a row
+ * whose height a file sets, nor one it reads without one). */
+double sl_rpt_text_height(const char *s, double width, int bold);
+/* The x_scale of a chart as wide as n columns of these widths. */
+double sl_rpt_chart_scale(const double *width, size_t n);
+/* Page setup shared by every sheet: A4, margins, a two-line header with the
+ * title block's identity on the left and the sheet on the right (and the
+ * floors whose checks failed), footer with program, file and page x of y. */
+void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
+                       const char *failed_ids);
+void sl_rpt_protect(lxw_worksheet *ws);
+/* The title block: rows 0-7 from column c, values merged over columns
+ * c+1..c_last (together `width` characters wide); row heights fit. */
+void sl_rpt_title_block(lxw_worksheet *ws, const sl_rpt_fmts *F, const sl_report *r,
+                        const char *title, lxw_col_t c, lxw_col_t c_last, double width);
+void sl_rpt_col_name(size_t c, char *buf);
+void sl_rpt_num_or_blank(lxw_worksheet *ws, lxw_row_t row, lxw_col_t col, double v,
+                         lxw_format *f);
+sl_rpt_axes sl_rpt_shared_axes(const sl_report *r);
+void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax);
+void sl_rpt_add_series(lxw_chart *ch, const char *sheet, lxw_col_t xc, lxw_col_t yc,
+                       lxw_row_t r0, lxw_row_t r1, const char *name, lxw_color_t color,
+                       float width, uint8_t dash, uint8_t transparency);
+/* Sheet names of the floors (names[i], SL_RPT_SHEET_NAME_MAX + 1 each):
+ * the floor ids when every one fits, is unique without case and is not
+ * another sheet's name; else "F1", "F2", ... */
+void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX + 1]);
+
+/* ---- the sheets -------------------------------------------------------- */
+void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
+void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r,
+                          const sl_rpt_axes *ax);
+void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r, size_t i,
+                        const char *sheet_name, const sl_rpt_axes *ax);
+void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
+void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
+void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
+void sl_rpt_data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r,
+                       const sl_rpt_axes *ax);
+
+/* Data sheet columns: A mu, then per floor i of nf: se (1 + i), flags
+ * (1 + nf + i), chart series s (1 + 2 nf + SL_RPT_DS_N i + s); the band
+ * block (two rows per ASCE-below-NLTHA range) of floor i from
+ * sl_rpt_data_band_row. */
+lxw_col_t sl_rpt_data_col_se(size_t nf, size_t i);
+lxw_col_t sl_rpt_data_col_flags(size_t nf, size_t i);
+lxw_col_t sl_rpt_data_col_series(size_t nf, size_t i, int s);
+lxw_row_t sl_rpt_data_band_row(const sl_report *r, size_t i);
+
+#endif
