@@ -161,7 +161,8 @@ static const char synth_help_head[] =
 static const char synth_help_tail[] =
     "\n"
     "files: DIR/setNN_h1.AT2, setNN_h2.AT2, setNN_v.AT2 (or match_h1.AT2 ...),\n"
-    "DIR/report.csv: one row per motion with every check (docs/synthesis.md).\n"
+    "DIR/report.csv: one row per motion with every check (docs/synthesis.md); an\n"
+    "empty field does not apply (corr_record of a synthetic motion), never nan.\n"
     "Exit status: 0 every check passed, 1 bad input, failed write or a motion that\n"
     "failed a check (files still written), 2 usage error.\n";
 
