@@ -52,7 +52,7 @@ int cli_parse_double(const char *s, double *out)
 
 int cli_parse_ulong(const char *s, unsigned long *out)
 {
-    if (!s || !*s || *s == '-')
+    if (!s || !(*s >= '0' && *s <= '9')) /* strtoul would take " 5", "+5" and "-5" */
         return -1;
     char *end;
     errno = 0;
@@ -294,7 +294,11 @@ static int take(const char *cmd, const cli_opt *o, const char *arg, void *dst)
     char opt[64];
     snprintf(opt, sizeof opt, "--%s", o->name);
     switch (o->kind) {
-    case CLI_STRING: *(const char **)(void *)at = arg; return CLI_EXIT_OK;
+    case CLI_STRING:
+        if (!*arg)
+            return cli_usage(cmd, "%s needs a value, not an empty text", opt);
+        *(const char **)(void *)at = arg;
+        return CLI_EXIT_OK;
     case CLI_FLAG: *(int *)(void *)at = 1; return CLI_EXIT_OK;
     case CLI_POSITIVE: return cli_positive(cmd, opt, arg, o->unit, (double *)(void *)at);
     case CLI_NONNEG: {
@@ -319,6 +323,8 @@ static int take(const char *cmd, const cli_opt *o, const char *arg, void *dst)
     case CLI_MU_LIST:
     case CLI_MU_RANGE: {
         cli_mu *m = (cli_mu *)(void *)at;
+        if (m->v)
+            return cli_usage(cmd, "give the friction values once, by --mu or by --mu-range");
         return cli_friction(cmd, o->kind == CLI_MU_RANGE, arg, &m->v, &m->n);
     }
     case CLI_COUNT1: {
@@ -380,6 +386,16 @@ int cli_mu_nonneg(const char *cmd, const cli_mu *mu)
         if (!(mu->v[k] >= 0))
             return cli_usage(cmd, "friction coefficient %g must be >= 0", mu->v[k]);
     return CLI_EXIT_OK;
+}
+
+int cli_mu_increasing(const char *cmd, const cli_mu *mu)
+{
+    int rc = cli_mu_nonneg(cmd, mu);
+    for (size_t k = 1; rc == CLI_EXIT_OK && k < mu->n; k++)
+        if (!(mu->v[k] > mu->v[k - 1]))
+            rc = cli_usage(cmd, "friction values must increase: %g follows %g", mu->v[k],
+                           mu->v[k - 1]);
+    return rc;
 }
 
 void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col)

@@ -51,10 +51,10 @@ int cmd_study(int argc, char **argv);
  *     };
  *
  * and calls cli_parse("asce", opts, CLI_NOPTS(opts), argc, argv, &a, NULL,
- * NULL). Kinds: CLI_STRING (const char *), CLI_FLAG (int set to 1),
+ * NULL). Kinds: CLI_STRING (const char *, not empty), CLI_FLAG (int set to 1),
  * CLI_POSITIVE / CLI_NONNEG (double > 0 / >= 0; `unit` named in the
  * message), CLI_COUNT1 (unsigned long >= 1), CLI_UNITS (sl_unit),
- * CLI_MU_LIST / CLI_MU_RANGE (cli_mu: --mu 0.1,0.2 or --mu-range A:B:S),
+ * CLI_MU_LIST / CLI_MU_RANGE (cli_mu: --mu 0.1,0.2 or --mu-range A:B:S, one of them once),
  * CLI_LIST (cli_list: a comma list of numbers), CLI_GRID (cli_grid: the
  * frequency options, see CLI_GRID_OPTS), CLI_CALL (handed to the command's
  * callback with its key and value: options that need more).
@@ -150,6 +150,9 @@ int cli_command_parse(const cli_command *c, int argc, char **argv, void *dst);
 void cli_command_line(char *buf, size_t n, int argc, char **argv);
 /* CLI_EXIT_OK when every friction value of mu is >= 0, else a usage error. */
 int cli_mu_nonneg(const char *cmd, const cli_mu *mu);
+/* CLI_EXIT_OK when every friction value is >= 0 and each is above the one
+ * before, else a usage error naming the first that is not. */
+int cli_mu_increasing(const char *cmd, const cli_mu *mu);
 
 /* Print "seislide: FILE:LINE: message" for a library error. */
 void cli_print_error(const sl_error *err);
@@ -229,7 +232,8 @@ int cli_grid_option(const char *cmd, cli_grid_opt which, const char *arg, cli_gr
 /* The frequencies to use: *f (malloc'd, the caller frees) and *nf. Returns
  * CLI_EXIT_OK, CLI_EXIT_USAGE or CLI_EXIT_ERROR (message printed). */
 int cli_grid_make(const char *cmd, cli_grid *g, double **f, size_t *nf);
-/* Strict parse of a non-negative integer. Returns 0 on success. */
+/* Strict parse of a non-negative integer (digits only: no sign, no blank).
+ * Returns 0 on success. */
 int cli_parse_ulong(const char *s, unsigned long *out);
 /* "0.05,0.1,0.2": comma list of finite doubles; *vals malloc'd. */
 int cli_parse_list(const char *s, double **vals, size_t *n);

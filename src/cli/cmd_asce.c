@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "asce_output.h"
+#include "io/floor.h"
 
 static const char asce_head[] =
     "usage: seislide asce (--rg160 PGA | --floor FILE | --h1 FILE --h2 FILE --v FILE)\n"
@@ -41,9 +42,9 @@ enum { OPT_RG160 = CLI_OPT_ID, OPT_FLOOR, OPT_H1, OPT_H2, OPT_V, OPT_UNITS, OPT_
 #define A(f) .off = offsetof(asce_args, f)
 static const cli_opt asce_opts[] = {
     {.head = "input (one of):"},
-    {"rg160", OPT_RG160, "PGA", "both horizontals the RG 1.60 horizontal spectrum at PGA\n(g); A_v "
+    {"rg160", OPT_RG160, "PGA", "both horizontals the RG 1.60 horizontal spectrum at PGA\n(g, %g-%g); A_v "
      "= PGA (the vertical ZPA); cap from 36 in per g\nper horizontal: 1.5 x 1.4 x 36 in x PGA",
-     .kind = CLI_POSITIVE, A(rg_pga_g), .unit = "g"},
+     {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_POSITIVE, A(rg_pga_g), .unit = "g"},
     {"floor", OPT_FLOOR, "FILE", "a floor response spectrum file (docs/formats-floor.md):\nits "
      "sa_0.10 spectra of H1 and H2, A_v = the V zpa; no cap\nunless --pgd is given",
      .kind = CLI_STRING, A(floor)},
@@ -80,6 +81,10 @@ static int check_args(void *dst)
     if (!isnan(a->rg_pga_g) + (a->floor != NULL) + motion != 1)
         return cli_usage("asce", "give exactly one input: --rg160 PGA, --floor FILE or "
                                  "--h1 FILE --h2 FILE --v FILE");
+    if (!isnan(a->rg_pga_g) && !(a->rg_pga_g >= SL_FLOOR_ZPA_MIN_G &&
+                                 a->rg_pga_g <= SL_FLOOR_ZPA_MAX_G))
+        return cli_usage("asce", "--rg160 %g g must be from %g to %g g", a->rg_pga_g,
+                         SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G);
     if (motion && !(a->h1 && a->h2 && a->v))
         return cli_usage("asce", "motions need all three of --h1, --h2 and --v");
     if (!motion && (a->ro.units != SL_UNIT_NONE || a->ro.dt_s > 0 || a->truncate))

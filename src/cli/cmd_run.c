@@ -56,6 +56,8 @@ int cmd_run(int argc, char **argv)
             goto fail;
         if (!a.quiet)
             run_report_floor(i + 1, in.n, in.floors[i]->name, an[i], ao->n_mu);
+        if (run_report_checks(i + 1, in.n, in.floors[i], an[i], a.accept_failed))
+            goto done; /* failed motions: message printed, nothing written (rc 1) */
     }
     cli_command_line(cmdline, sizeof cmdline, argc, argv);
     sl_deliver_opts *dop = &a.dop; /* version, write_motions, project: set by run_parse */

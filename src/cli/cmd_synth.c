@@ -82,8 +82,12 @@ int cmd_synth(int argc, char **argv)
         n = (size_t)llround(o.duration_s / dt) + 1;
     }
     plan = sl_synth_alloc(n, dt, &o.p, &err);
-    if (!plan) {
-        cli_print_error(&err);
+    if (!plan) { /* bad settings (not memory) are the options' doing: a usage error */
+        if (err.code == SL_EINVAL)
+            rc = cli_usage("synth", "%s (%zu samples of --dt %g s, --fmin %g Hz)", err.msg, n,
+                           dt, o.p.fmin_hz);
+        else
+            cli_print_error(&err);
         goto done;
     }
     if (synth_make_dirs(o.outdir) != 0) {

@@ -37,7 +37,8 @@ static void usage(FILE *f)
             "\n"
             "'seislide COMMAND --help' describes a command. Units: SI inside; every\n"
             "file and column names its unit. Exit status: 0 success, 1 error in the\n"
-            "input or the run, 2 usage error. See docs/ and 'man seislide'.\n");
+            "input or the run, 2 usage error. The manual: 'man -l docs/seislide.1' in\n"
+            "the source tree, or 'man seislide' after 'make install'; more in docs/.\n");
 }
 
 int main(int argc, char **argv)

@@ -3,12 +3,16 @@
 
 #include <signal.h>
 #include <stdio.h>
+#include <string.h>
 #include <unistd.h>
 
+#include "cli.h"
+
 static char fresh[4096], keep[2][4200];
+static char said[4600]; /* the line printed when a signal ends the command */
 static volatile sig_atomic_t writing, interrupted;
 
-/* Async-signal-safe: unlink, rmdir, signal, raise. */
+/* Async-signal-safe: write, unlink, rmdir, signal, raise. */
 static void on_signal(int s)
 {
     interrupted = s;
@@ -17,8 +21,21 @@ static void on_signal(int s)
     unlink(keep[0]);
     unlink(keep[1]);
     rmdir(fresh);
+    ssize_t w = write(STDERR_FILENO, said, strlen(said));
+    (void)w;
     signal(s, SIG_DFL);
     raise(s);
+}
+
+/* Print each "; "-separated item of what sl_atomic_dir_open found. */
+static void say_stale(const char *dir, const char *text)
+{
+    while (text && *text) {
+        const char *end = strstr(text, "; ");
+        int len = end ? (int)(end - text) : (int)strlen(text);
+        cli_msg("output folder %s: %.*s", dir, len, text);
+        text = end ? end + 2 : NULL;
+    }
 }
 
 sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
@@ -26,9 +43,12 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     sl_atomic_dir *d = sl_atomic_dir_open(dir, owns, err);
     if (!d)
         return NULL;
+    say_stale(dir, sl_atomic_dir_stale(d));
     snprintf(fresh, sizeof fresh, "%s", sl_atomic_dir_path(d));
     snprintf(keep[0], sizeof keep[0], "%s/.keep", fresh);
     snprintf(keep[1], sizeof keep[1], "%s/.gitkeep", fresh);
+    snprintf(said, sizeof said, "seislide: interrupted; the output folder %s was left as it "
+             "was\n", dir);
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
     signal(SIGHUP, on_signal);
@@ -45,6 +65,9 @@ sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err)
         return sl_error_set(err, SL_EIO, NULL, 0, "interrupted: the output folder is unchanged");
     sl_status s = sl_atomic_dir_commit(*d, err); /* consumes *d */
     *d = NULL;
+    if (s == SL_OK) /* a signal from now on finds the new outputs in place */
+        snprintf(said, sizeof said, "seislide: interrupted after the output folder was written "
+                 "whole\n");
     return s;
 }
 
@@ -52,6 +75,8 @@ void cli_outdir_finish(sl_atomic_dir *d)
 {
     sl_atomic_dir_abort(d);
     if (interrupted) {
+        fputs(said, stderr);
+        fflush(stderr);
         signal((int)interrupted, SIG_DFL);
         raise((int)interrupted);
     }

@@ -3,12 +3,15 @@
  * process is interrupted: the command line's side of atomic.h's fresh folder.
  *
  * cli_outdir_open() checks the folder (sl_outdir_check), creates the fresh
- * sibling folder and installs SIGINT, SIGTERM and SIGHUP handlers. While the
+ * sibling folder (removing those of killed earlier runs, and saying so on
+ * stderr) and installs SIGINT, SIGTERM and SIGHUP handlers. While the
  * command computes, the fresh folder is still empty (but for a carried-over
  * .keep/.gitkeep): a signal removes it and the process dies of the signal.
  * After cli_outdir_writing() a signal is only noted; cli_outdir_commit()
  * then drops the fresh folder instead of swapping it in, and
- * cli_outdir_finish() re-raises the signal.
+ * cli_outdir_finish() re-raises the signal. Either way one line is printed,
+ * "seislide: interrupted; the output folder DIR was left as it was", and the
+ * process dies of the signal (exit status 128 + its number in a shell).
  */
 #ifndef SL_CLI_OUTDIR_H
 #define SL_CLI_OUTDIR_H

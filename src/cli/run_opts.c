@@ -26,12 +26,13 @@ static const char run_tail[] =
 #define A(f) .off = offsetof(run_args, f)
 enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
        O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
-       O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER };
+       O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT };
 static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
      "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
      A(out)},
-    {"quiet", 'q', NULL, "no progress on stderr", .kind = CLI_FLAG, A(quiet)},
+    {"quiet", 'q', NULL, "no progress on stderr (warnings and errors are still printed)",
+     .kind = CLI_FLAG, A(quiet)},
     {"sets", O_SETS, "N", "a fixed number of motion sets per floor (ASCE 43-05: >= %g);\n"
      "default: sets are added until converged (docs/run.md, Convergence):",
      {SL_NLTHA_MIN_SETS}, .kind = CLI_COUNT1, A(sets)},
@@ -64,6 +65,9 @@ static const cli_opt opts[] = {
      .kind = CLI_CALL},
     {"force", O_FORCE, NULL, "run a floor whose horizontal ZPA is outside %g-%g g (warning)",
      {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_FLAG, A(force)},
+    {"accept-failed-checks", O_ACCEPT, NULL, "write the outputs although some motions failed\n"
+     "their SRP 3.7.1 checks (default: the run stops, exit 1, nothing\nwritten); the failures "
+     "are listed on stderr, also with -q", .kind = CLI_FLAG, A(accept_failed)},
     {.head = "title block of the workbook (Lookup, Summary, page headers, CSV comments):"},
     {"project", O_PROJECT, "TEXT", "project", .kind = CLI_STRING, A(dop.project.project)},
     {"document", O_DOCUMENT, "TEXT", "document number", .kind = CLI_STRING,
@@ -92,21 +96,43 @@ static int take(void *dst, int key, const char *v)
     return CLI_EXIT_OK;
 }
 
-/* The rules across options; the default friction grid. */
+/* The rules across options, every one checked here so that a bad value is a
+ * usage error before any floor is read; the default friction grid. */
 static int check(void *dst)
 {
     run_args *a = dst;
-    if (!(a->ao.rel_se < 1) || !(a->ao.rel_se > 0 || a->abs_se_mm > 0) ||
-        !isfinite(a->abs_se_mm) || a->max_sets < 2 || a->max_sets > 10000)
-        return cli_usage("run", "--rel-se must be below 1, --rel-se and --abs-se not both 0, "
-                         "--max-sets from 2 to 10000");
+    const char *r = "run";
+    if (!(a->ao.rel_se < 1))
+        return cli_usage(r, "--rel-se %g must be below 1", a->ao.rel_se);
+    if (!(a->ao.rel_se > 0 || a->abs_se_mm > 0))
+        return cli_usage(r, "--rel-se and --abs-se must not both be 0");
+    if (a->max_sets < 2 || a->max_sets > RUN_MAX_SETS)
+        return cli_usage(r, "--max-sets %lu must be from 2 to %d", a->max_sets, RUN_MAX_SETS);
+    if (a->sets > RUN_MAX_SETS)
+        return cli_usage(r, "--sets %lu must be from 1 to %d", a->sets, RUN_MAX_SETS);
+    if (a->sets && (a->ao.rel_se != SL_ANALYSIS_REL_SE || a->abs_se_mm != 1e3 *
+                    SL_ANALYSIS_ABS_SE_M || a->max_sets != SL_ANALYSIS_MAX_SETS))
+        return cli_usage(r, "--sets fixes the number of sets; --rel-se, --abs-se and --max-sets "
+                         "apply only without it");
     if (!(a->ao.scatter <= SL_SCATTER_SIGMA_MAX))
-        return cli_usage("run", "--scatter must be from 0 to %g", SL_SCATTER_SIGMA_MAX);
+        return cli_usage(r, "--scatter %g must be from 0 to %g", a->ao.scatter,
+                         SL_SCATTER_SIGMA_MAX);
+    if (!(a->ao.rtol >= SL_SLIDE_RTOL_MIN && a->ao.rtol <= SL_SLIDE_RTOL_MAX))
+        return cli_usage(r, "--accuracy %g must be from %g to %g", a->ao.rtol,
+                         SL_SLIDE_RTOL_MIN, SL_SLIDE_RTOL_MAX);
+    if (a->substeps > RUN_MAX_SUBSTEPS)
+        return cli_usage(r, "--substeps %lu must be from 1 to %d", a->substeps,
+                         RUN_MAX_SUBSTEPS);
+    if (a->substeps && a->ao.rtol != SL_SLIDE_DEFAULT_RTOL)
+        return cli_usage(r, "--substeps replaces the error control that --accuracy sets: "
+                         "give one of them");
     if (!a->mu.v && cli_parse_range(SL_MU_GRID_TEXT, &a->mu.v, &a->mu.n)) {
         cli_msg("out of memory");
         return CLI_EXIT_ERROR;
     }
-    return CLI_EXIT_OK;
+    if (a->mu.n > RUN_MAX_MU)
+        return cli_usage(r, "%zu friction values; at most %d", a->mu.n, RUN_MAX_MU);
+    return cli_mu_increasing(r, &a->mu);
 }
 
 int run_parse(int argc, char **argv, run_args *a)

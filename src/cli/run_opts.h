@@ -9,9 +9,15 @@
 #include "cli.h"
 #include "report/deliver.h"
 
+/* Bounds of the options (guards against typos that would exhaust memory or
+ * time: the default grid has 76 friction values, runs 60-160 sets). */
+#define RUN_MAX_SETS 10000      /* --sets, --max-sets */
+#define RUN_MAX_MU 1000         /* friction values */
+#define RUN_MAX_SUBSTEPS 1000000 /* --substeps (as `seislide slide`) */
+
 typedef struct run_args {
     const char *out;
-    int quiet, force;
+    int quiet, force, accept_failed; /* -q, --force, --accept-failed-checks */
     unsigned long sets, substeps, max_sets; /* for ao: n_sets, substeps, max_sets */
     double abs_se_mm, created;              /* for ao.abs_se_m (m), dop.created */
     cli_mu mu;                              /* the friction grid (default SL_MU_GRID_TEXT) */

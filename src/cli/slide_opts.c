@@ -6,6 +6,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "slide/refmodel.h"
+
 static const char slide_head[] =
     "usage: seislide slide --h1 FILE [--h2 FILE] [--v FILE] [--units g|m/s2|cm/s2]\n"
     "                      [--dt S] (--mu LIST | --mu-range A:B:S) [--scale-pga G]\n"
@@ -105,13 +107,60 @@ static int take(void *dst, int key, const char *arg)
     return CLI_EXIT_OK;
 }
 
+/* The options of one model that another would ignore: a usage error. */
+static int model_options(const slide_args *a)
+{
+    sl_slide_opts d;
+    sl_slide_opts_default(&d);
+    const sl_slide_opts *so = &a->so;
+    static const char *const model[] = {"exact", "smooth", "plastic"};
+    const char *bad = so->model != SL_MODEL_SMOOTH && so->smooth_eta != d.smooth_eta ? "--eta"
+                      : so->model != SL_MODEL_SMOOTH && so->smooth_uy_m != d.smooth_uy_m ? "--uy"
+                      : so->model != SL_MODEL_SMOOTH && so->smooth_solver != d.smooth_solver
+                          ? "--solver"
+                      : so->model != SL_MODEL_PLASTIC && so->plastic_uy_m != d.plastic_uy_m
+                          ? "--plastic-uy"
+                      : so->model != SL_MODEL_EXACT && so->substeps != d.substeps ? "--substeps"
+                      : so->model == SL_MODEL_PLASTIC && (a->rtol > 0 || a->atol > 0)
+                          ? "--rtol or --atol"
+                          : NULL;
+    if (bad)
+        return cli_usage("slide", "%s does not apply to --model %s", bad,
+                         model[so->model <= SL_MODEL_PLASTIC ? so->model : 0]);
+    if (so->model == SL_MODEL_EXACT && so->substeps != d.substeps && a->rtol > 0)
+        return cli_usage("slide", "--substeps replaces the error control that --rtol sets: "
+                         "give one of them");
+    return CLI_EXIT_OK;
+}
+
+/* The settings of a reference model, checked by the model itself on a
+ * motion of two zero samples (its ranges are its own; nothing is read yet). */
+static int model_settings(const slide_args *a)
+{
+    if (a->so.model == SL_MODEL_EXACT)
+        return CLI_EXIT_OK;
+    double zero[2] = {0, 0};
+    sl_motion m = {"", "", 2, 0.01, zero};
+    sl_set set = {&m, a->path[1] ? &m : NULL, NULL};
+    sl_slide_result r;
+    sl_error err;
+    sl_error_clear(&err);
+    if (sl_refmodel_run(&set, 1.0, &a->so, &r, NULL, &err))
+        return cli_usage("slide", "%s", err.msg);
+    return CLI_EXIT_OK;
+}
+
 /* The rules across options; fills so from rtol, atol, one_way, ratio. */
 static int check_args(void *dst)
 {
     slide_args *a = dst;
     sl_slide_opts *so = &a->so;
+    int rc = model_options(a);
+    if (rc)
+        return rc;
     if (sl_slide_opts_set_tol(so, a->rtol, a->atol, NULL))
-        return cli_usage("slide", "--rtol %g must be in [1e-9, 0.1]", a->rtol);
+        return cli_usage("slide", "--rtol %g must be in [%g, %g]", a->rtol, SL_SLIDE_RTOL_MIN,
+                         SL_SLIDE_RTOL_MAX);
     if (!a->path[0])
         return cli_usage("slide", "--h1 FILE is required");
     if (!a->mu.v)
@@ -123,7 +172,9 @@ static int check_args(void *dst)
         return cli_usage("slide", "--one-way and --up-ratio are 1-D: drop --h2");
     if (a->history && a->mu.n != 1)
         return cli_usage("slide", "--history needs exactly one mu (got %zu)", a->mu.n);
-    return cli_mu_nonneg("slide", &a->mu);
+    if ((rc = cli_mu_nonneg("slide", &a->mu)))
+        return rc;
+    return model_settings(a);
 }
 
 int slide_parse(int argc, char **argv, slide_args *a)

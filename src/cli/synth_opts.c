@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "io/floor.h"
 #include "io/motion.h"
 
 typedef enum opt_kind {
@@ -24,50 +25,51 @@ typedef struct param_opt {
     opt_kind kind;
     const char *unit;   /* shown in help; NULL = dimensionless */
     const char *help;
+    double max;         /* largest value accepted (a guard against typos); 0: none */
 } param_opt;
 
 #define P_OFF(field) offsetof(sl_synth_params, field)
 static const param_opt param_opts[] = {
     {"tol-below", P_OFF(tol_below), K_FRACTION_OPEN, NULL,
-     "largest fraction a point is below target"},
+     "largest fraction a point is below target", 0},
     {"tol-above", P_OFF(tol_above), K_NONNEG, NULL,
-     "largest fraction a point is above target"},
+     "largest fraction a point is above target", 0},
     {"max-run", P_OFF(max_run_below), K_COUNT, "points",
-     "most consecutive points below target"},
-    {"min-d575", P_OFF(min_d5_75_s), K_NONNEG, "s", "least D5-75 strong-motion duration"},
-    {"min-duration", P_OFF(min_duration_s), K_NONNEG, "s", "least total duration"},
+     "most consecutive points below target", 0},
+    {"min-d575", P_OFF(min_d5_75_s), K_NONNEG, "s", "least D5-75 strong-motion duration", 0},
+    {"min-duration", P_OFF(min_duration_s), K_NONNEG, "s", "least total duration", 0},
     {"max-corr", P_OFF(max_corr), K_FRACTION, NULL,
-     "largest |correlation| of two components"},
-    {"end-vel-frac", P_OFF(end_vel_frac), K_NONNEG, NULL, "largest |v(end)| as a fraction of PGV"},
+     "largest |correlation| of two components", 0},
+    {"end-vel-frac", P_OFF(end_vel_frac), K_NONNEG, NULL, "largest |v(end)| as a fraction of PGV", 0},
     {"end-disp-frac", P_OFF(end_disp_frac), K_NONNEG, NULL,
-     "largest |d(end)| as a fraction of PGD"},
-    {"fmin", P_OFF(fmin_hz), K_POSITIVE, "Hz", "lowest frequency checked"},
-    {"fmax", P_OFF(fmax_hz), K_POSITIVE, "Hz", "highest frequency checked"},
-    {"per-decade", P_OFF(per_decade), K_POSITIVE, NULL, "grid points per decade"},
-    {"max-iter", P_OFF(max_iter), K_UCOUNT, NULL, "correction iterations per attempt"},
+     "largest |d(end)| as a fraction of PGD", 0},
+    {"fmin", P_OFF(fmin_hz), K_POSITIVE, "Hz", "lowest frequency checked", 0},
+    {"fmax", P_OFF(fmax_hz), K_POSITIVE, "Hz", "highest frequency checked", 0},
+    {"per-decade", P_OFF(per_decade), K_POSITIVE, NULL, "grid points per decade", 1000},
+    {"max-iter", P_OFF(max_iter), K_UCOUNT, NULL, "correction iterations per attempt", 0},
     {"max-attempts", P_OFF(max_attempts), K_UCOUNT1, NULL,
-     "phase sets tried per synthetic component"},
+     "phase sets tried per synthetic component", 0},
     {"aim", P_OFF(aim), K_POSITIVE, NULL,
-     "the correction aims at aim x target (1.10: conservative)"},
+     "the correction aims at aim x target (1.10: conservative)", 0},
     {"max-peaks", P_OFF(max_peaks), K_COUNT, NULL,
-     "most peaks of |a| above 0.9 PGA (ground-like targets)"},
+     "most peaks of |a| above 0.9 PGA (ground-like targets)", 0},
     {"pga-tol-below", P_OFF(pga_tol_below), K_FRACTION, NULL,
-     "least PGA/ZPA is 1 - this (targets rigid at the end)"},
+     "least PGA/ZPA is 1 - this (targets rigid at the end)", 0},
     {"psd-frac", P_OFF(psd_frac), K_NONNEG, NULL,
-     "SRP App. B minimum PSD fraction (0: reported only)"},
+     "SRP App. B minimum PSD fraction (0: reported only)", 0},
     {"wavelet-rate", P_OFF(wavelet_rate), K_NONNEG, NULL,
-     "wave packets per s per octave (0: random phases)"},
+     "wave packets per s per octave (0: random phases)", 100},
     {"wavelet-cycles", P_OFF(wavelet_cycles), K_POSITIVE, NULL, "cycles per wave packet within +-1 standard\n"
-     "deviation of its window"},
-    {"rise-frac", P_OFF(rise_frac), K_POSITIVE, NULL, "envelope rise, fraction of the duration"},
-    {"hold-frac", P_OFF(hold_frac), K_POSITIVE, NULL, "envelope end of hold, fraction"},
-    {"end-amp", P_OFF(end_amp), K_POSITIVE, NULL, "envelope amplitude at the end"},
+     "deviation of its window", 100},
+    {"rise-frac", P_OFF(rise_frac), K_POSITIVE, NULL, "envelope rise, fraction of the duration", 0},
+    {"hold-frac", P_OFF(hold_frac), K_POSITIVE, NULL, "envelope end of hold, fraction", 0},
+    {"end-amp", P_OFF(end_amp), K_POSITIVE, NULL, "envelope amplitude at the end", 0},
     {"hp-frac", P_OFF(hp_frac), K_FRACTION_OPEN, NULL,
-     "high-pass corner / lowest checked frequency (0: none)"},
-    {"hp-order", P_OFF(hp_order), K_POSITIVE, NULL, "order of the Butterworth high-pass"},
+     "high-pass corner / lowest checked frequency (0: none)", 0},
+    {"hp-order", P_OFF(hp_order), K_POSITIVE, NULL, "order of the Butterworth high-pass", 0},
     {"match-margin", P_OFF(match_margin), K_NONNEG, NULL,
      "records: no correction where S/T is in\n"
-     "[1 + X, 1 + tol-above - X] (0: none; 0.01 keeps more)"},
+     "[1 + X, 1 + tol-above - X] (0: none; 0.01 keeps more)", 0},
 };
 #define N_PARAM_OPTS (sizeof param_opts / sizeof param_opts[0])
 
@@ -110,6 +112,8 @@ int synth_param_set(sl_synth_params *p, int key, const char *arg)
     }
     if (bad)
         return cli_usage("synth", "--%s '%s' must be a number %s", o->name, arg, want);
+    if (o->max > 0 && v > o->max)
+        return cli_usage("synth", "--%s %g above %g", o->name, v, o->max);
     *(double *)(void *)base = v;
     return CLI_EXIT_OK;
 }
@@ -157,7 +161,8 @@ static const char synth_help_head[] =
 static const char synth_help_tail[] =
     "\n"
     "files: DIR/setNN_h1.AT2, setNN_h2.AT2, setNN_v.AT2 (or match_h1.AT2 ...),\n"
-    "DIR/report.csv: one row per motion with every check (docs/synthesis.md).\n"
+    "DIR/report.csv: one row per motion with every check (docs/synthesis.md); an\n"
+    "empty field does not apply (corr_record of a synthetic motion), never nan.\n"
     "Exit status: 0 every check passed, 1 bad input, failed write or a motion that\n"
     "failed a check (files still written), 2 usage error.\n";
 
@@ -167,7 +172,8 @@ enum { OPT_FLOOR = CLI_OPT_ID, OPT_RG160, OPT_DAMPING, OPT_COUNT, OPT_SEED, OPT_
 static const cli_opt base_opts[] = {
     {.head = "target (one of):"},
     {"rg160", OPT_RG160, "PGA", "Regulatory Guide 1.60, horizontal (H1, H2) and vertical\n"
-     "(V) spectra at PGA (g); ZPA = PGA", .kind = CLI_POSITIVE, .off = A(rg_pga_g), .unit = "g"},
+     "(V) spectra at PGA (g, %g-%g); ZPA = PGA", {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G},
+     .kind = CLI_POSITIVE, .off = A(rg_pga_g), .unit = "g"},
     {"floor", OPT_FLOOR, "FILE", "a floor response spectrum file (docs/formats-floor.md):\n"
      "each component at 5 %% damping when given, else its\nlowest damping; ZPA from the file",
      .kind = CLI_STRING, .off = A(floor_path)},
@@ -274,6 +280,10 @@ int synth_parse(int argc, char **argv, synth_run *o)
         return cli_usage("synth", "give exactly one target: --floor FILE or --rg160 PGA");
     if (!o->outdir)
         return cli_usage("synth", "-o DIR is required");
+    if (o->floor_path == NULL &&
+        !(o->rg_pga_g >= SL_FLOOR_ZPA_MIN_G && o->rg_pga_g <= SL_FLOOR_ZPA_MAX_G))
+        return cli_usage("synth", "--rg160 %g g must be from %g to %g g", o->rg_pga_g,
+                         SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G);
     if (o->nmatch > 0) {
         if (o->have_count || o->have_seed || o->have_duration)
             return cli_usage("synth", "--match takes no --count, --seed or --duration");
@@ -284,7 +294,22 @@ int synth_parse(int argc, char **argv, synth_run *o)
             return cli_usage("synth", "--seed S is required: it makes the motions reproducible");
         if (o->units != SL_UNIT_NONE)
             return cli_usage("synth", "--units applies to --match files only");
+        double dt = o->dt_s > 0 ? o->dt_s : SL_SYNTH_DT_S;
+        if (o->duration_s / dt + 1 < SYNTH_MIN_SAMPLES)
+            return cli_usage("synth", "--duration %g s is fewer than %d steps of %g s",
+                             o->duration_s, SYNTH_MIN_SAMPLES, dt);
+        if (o->duration_s < o->p.min_duration_s)
+            return cli_usage("synth", "--duration %g s is below --min-duration %g s: every "
+                             "motion would fail that check", o->duration_s,
+                             o->p.min_duration_s);
     }
+    if (!(o->p.aim >= 1 - o->p.tol_below && o->p.aim <= 1 + o->p.tol_above))
+        return cli_usage("synth", "--aim %g must lie within the accepted band %g-%g "
+                         "(1 - --tol-below to 1 + --tol-above)", o->p.aim, 1 - o->p.tol_below,
+                         1 + o->p.tol_above);
+    if (!(2 * o->p.match_margin < o->p.tol_above) && o->p.match_margin > 0)
+        return cli_usage("synth", "--match-margin %g must be below half of --tol-above (%g)",
+                         o->p.match_margin, o->p.tol_above);
     sl_error err;
     if (sl_synth_params_check(&o->p, &err))
         return cli_usage("synth", "%s", err.msg);

@@ -19,6 +19,8 @@
 #define SYNTH_MAX_COUNT 1000
 /* Longest accepted motion, s (a guard against typos). */
 #define SYNTH_MAX_DURATION_S 3600.0
+/* Fewest samples of a synthetic motion (the synthesis needs 16). */
+#define SYNTH_MIN_SAMPLES 16
 /* Relative slack when a duration must be a whole number of steps. */
 #define SYNTH_STEP_SLACK 1e-9
 

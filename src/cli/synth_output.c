@@ -2,6 +2,7 @@
 #include "synth_output.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -170,6 +171,18 @@ static void report_header(FILE *f, size_t nblk)
     fputc('\n', f);
 }
 
+/* A number field: empty when the value is not finite (not applicable or
+ * not known: corr_record of a synthetic motion, a correlation of a missing
+ * component), never "nan". */
+static void put_double(FILE *f, const char *fmt, double v)
+{
+    fputc(',', f);
+    if (isfinite(v))
+        fprintf(f, fmt, v);
+}
+#define PUT_FIELD(f, fmt, v)                                                             \
+    _Generic((v), double: put_double((f), (fmt), (double)(v)), default: fprintf((f), "," fmt, (v)))
+
 static void report_line(FILE *f, const report_row *r)
 {
     fprintf(f, "%u,%s,", r->set, r->comp);
@@ -177,7 +190,7 @@ static void report_line(FILE *f, const report_row *r)
     fputc(',', f);
     csv_string(f, r->source);
     fprintf(f, ",%s", r->seed);
-#define X(name, fmt, expr) fprintf(f, "," fmt, expr);
+#define X(name, fmt, expr) PUT_FIELD(f, fmt, expr);
     REPORT_NUM_COLUMNS(X)
 #undef X
     for (size_t q = 0; q < r->nblk; q++) {
@@ -188,7 +201,7 @@ static void report_line(FILE *f, const report_row *r)
 #undef X
             continue;
         }
-#define X(name, fmt, expr) fprintf(f, "," fmt, expr);
+#define X(name, fmt, expr) PUT_FIELD(f, fmt, expr);
         REPORT_OTHER_COLUMNS(X)
 #undef X
     }

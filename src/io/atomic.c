@@ -2,7 +2,10 @@
 #define _GNU_SOURCE /* renameat2 (Linux, glibc >= 2.28) */
 #include "io/atomic.h"
 
+#include <ctype.h>
 #include <dirent.h>
+#include <signal.h>
+#include <stdio.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <ftw.h>
@@ -28,14 +31,31 @@ static mode_t current_umask(void)
     return m;
 }
 
-/* "DIR/.BASE.tmp-XXXXXX" for path "DIR/BASE" (malloc'd). A trailing '/' of
- * a folder path is ignored. */
+/* This host's name for temporary names: letters, digits, '.', '_' and '-'
+ * kept, anything else '_' (at most 64 characters). */
+static void host_name(char *buf, size_t n)
+{
+    char h[256] = "";
+    if (gethostname(h, sizeof h - 1) != 0 || !h[0])
+        snprintf(h, sizeof h, "localhost");
+    size_t k = 0;
+    for (const char *p = h; *p && k + 1 < n && k < 64; p++)
+        buf[k++] = (isalnum((unsigned char)*p) || *p == '.' || *p == '_' || *p == '-') ? *p : '_';
+    buf[k] = '\0';
+}
+
+/* "DIR/.BASE.tmp-PID@HOST-XXXXXX" for path "DIR/BASE" (malloc'd): the owner
+ * is in the name, so that a later run can tell a folder left by a killed
+ * process from a live run's. A trailing '/' of a folder path is ignored. */
 static char *hidden_sibling(const char *path)
 {
     size_t n = strlen(path);
     while (n > 1 && path[n - 1] == '/')
         n--;
-    char *t = malloc(n + 32);
+    char host[80];
+    host_name(host, sizeof host);
+    size_t cap = n + strlen(host) + 64;
+    char *t = malloc(cap);
     if (!t)
         return NULL;
     size_t dirlen = 0;
@@ -43,7 +63,8 @@ static char *hidden_sibling(const char *path)
         if (path[i] == '/')
             dirlen = i + 1;
     memcpy(t, path, dirlen);
-    snprintf(t + dirlen, n + 32 - dirlen, ".%.*s.tmp-XXXXXX", (int)(n - dirlen), path + dirlen);
+    snprintf(t + dirlen, cap - dirlen, ".%.*s" SL_ATOMIC_TMP_TAG "%ld@%s-XXXXXX",
+             (int)(n - dirlen), path + dirlen, (long)getpid(), host);
     return t;
 }
 
@@ -189,7 +210,86 @@ sl_status sl_outdir_check(const char *dir, sl_outdir_owns_fn owns, sl_error *err
 struct sl_atomic_dir {
     char *path; /* final */
     char *tmp;  /* fresh */
+    char stale[SL_ATOMIC_STALE_TEXT]; /* what was found of earlier runs (sl_atomic_dir_stale) */
 };
+
+/* Append to d->stale. */
+static void stale_note(sl_atomic_dir *d, const char *fmt, const char *name, long pid,
+                       const char *host)
+{
+    size_t used = strlen(d->stale);
+    if (used + 1 >= sizeof d->stale)
+        return;
+    if (used)
+        used += (size_t)snprintf(d->stale + used, sizeof d->stale - used, "; ");
+    if (used < sizeof d->stale)
+        snprintf(d->stale + used, sizeof d->stale - used, fmt, name, pid, host);
+}
+
+/* The fresh folders of earlier runs into d->path, in its parent folder:
+ * ".BASE.tmp-PID@HOST-XXXXXX" of this host whose process is gone
+ * (kill(pid, 0) fails with ESRCH) are removed; the others are named in
+ * d->stale (a live run's, another host's, or an older one with no owner). */
+static void clean_stale(sl_atomic_dir *d)
+{
+    size_t n = strlen(d->path);
+    while (n > 1 && d->path[n - 1] == '/')
+        n--;
+    size_t dirlen = 0;
+    for (size_t i = 0; i < n; i++)
+        if (d->path[i] == '/')
+            dirlen = i + 1;
+    char parent[4096], prefix[1024], host[80];
+    snprintf(parent, sizeof parent, "%.*s", (int)(dirlen ? dirlen : 1), dirlen ? d->path : ".");
+    snprintf(prefix, sizeof prefix, ".%.*s" SL_ATOMIC_TMP_TAG, (int)(n - dirlen), d->path + dirlen);
+    host_name(host, sizeof host);
+    DIR *dir = opendir(parent);
+    if (!dir)
+        return;
+    size_t plen = strlen(prefix);
+    for (struct dirent *e; (e = readdir(dir)) != NULL;) {
+        if (strncmp(e->d_name, prefix, plen) != 0)
+            continue;
+        char full[8192];
+        struct stat st;
+        snprintf(full, sizeof full, "%s%s%s", parent, dirlen ? "" : "/", e->d_name);
+        if (lstat(full, &st) != 0 || !S_ISDIR(st.st_mode))
+            continue;
+        /* PID@HOST-XXXXXX */
+        const char *r = e->d_name + plen, *at = strchr(r, '@'), *dash = strrchr(r, '-');
+        char *end;
+        long pid = strtol(r, &end, 10);
+        if (!(r[0] >= '0' && r[0] <= '9') || end != at || !dash || dash < at ||
+            strlen(dash + 1) != 6 || pid <= 0) {
+            stale_note(d, "kept %s (no owner recorded: remove it by hand if no run is writing "
+                       "there)", e->d_name, 0, "");
+            continue;
+        }
+        char owner[80];
+        snprintf(owner, sizeof owner, "%.*s", (int)(dash - at - 1), at + 1);
+        if (strcmp(owner, host) != 0) {
+            stale_note(d, "kept %s (process %ld of host %s, which this run cannot check)",
+                       e->d_name, pid, owner);
+            continue;
+        }
+        if (pid == (long)getpid())
+            continue;
+        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) {
+            stale_note(d, "kept %s (process %ld is running: another run writing there)",
+                       e->d_name, pid, "");
+            continue;
+        }
+        if (sl_remove_tree(full) == 0)
+            stale_note(d, "removed %s (left by process %ld, which is gone: an interrupted run)",
+                       e->d_name, pid, "");
+        else
+            stale_note(d, "could not remove %s (left by process %ld, which is gone)", e->d_name,
+                       pid, "");
+    }
+    closedir(dir);
+}
+
+const char *sl_atomic_dir_stale(const sl_atomic_dir *d) { return d ? d->stale : ""; }
 
 sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
 {
@@ -203,6 +303,7 @@ sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_er
         sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
         return NULL;
     }
+    clean_stale(a);
     if (!mkdtemp(a->tmp) || chmod(a->tmp, 0777 & ~current_umask()) != 0) {
         sl_error_set(err, SL_EIO, dir, 0, "cannot create a folder beside it: %s", strerror(errno));
         rmdir(a->tmp);

@@ -7,7 +7,9 @@
  * over the final name; sl_atomic_abort() removes it.
  *
  * Folders: sl_atomic_dir_open() creates a fresh hidden sibling folder
- * (".NAME.tmp-XXXXXX") to write every output into; sl_atomic_dir_commit()
+ * (".NAME.tmp-PID@HOST-XXXXXX", the owner in the name) to write every output
+ * into, after removing those of earlier runs into NAME whose process is gone
+ * (a run killed by SIGKILL or a power cut; sl_atomic_dir_stale says what); sl_atomic_dir_commit()
  * swaps it in for the final folder (renameat2 RENAME_EXCHANGE where the
  * system has it, else two renames) and removes the old folder, so stale files
  * of an earlier run never sit beside new ones; sl_atomic_dir_abort() removes
@@ -22,6 +24,11 @@
 #include <stdio.h>
 
 #include "core/status.h"
+
+/* Temporary names: ".BASE" SL_ATOMIC_TMP_TAG "PID@HOST-XXXXXX". */
+#define SL_ATOMIC_TMP_TAG ".tmp-"
+/* Size of the text of sl_atomic_dir_stale(). */
+#define SL_ATOMIC_STALE_TEXT 2048
 
 typedef struct sl_atomic sl_atomic;
 
@@ -54,6 +61,13 @@ typedef struct sl_atomic_dir sl_atomic_dir;
 sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err);
 /* The fresh folder to write into. */
 const char *sl_atomic_dir_path(const sl_atomic_dir *d);
+/* What sl_atomic_dir_open found beside the final folder of earlier runs'
+ * fresh folders (same name pattern): "" when none, else "; "-separated
+ * "removed NAME (left by process PID, which is gone: ...)" for a folder of
+ * this host whose process no longer exists (kill(pid, 0): ESRCH), and
+ * "kept NAME (...)" for one of a live process, of another host, or with no
+ * owner in its name (never removed). Borrowed from d. */
+const char *sl_atomic_dir_stale(const sl_atomic_dir *d);
 /* Swap the fresh folder in for the final one and remove the old one; frees
  * d. On failure the final folder is unchanged (the fresh one removed). */
 sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err);
