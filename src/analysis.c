@@ -2,6 +2,7 @@
 #include "analysis.h"
 #include "core/clock.h"
 
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -105,6 +106,10 @@ void sl_analysis_free(sl_analysis *a)
     free(a->design_hi_m);
     free(a->design_se_m);
     free(a->err_est_m);
+    free(a->vr_f_hz);
+    free(a->vr_corr_sa);
+    free(a->vr_corr_pgv);
+    free(a->vr_factor);
     if (a->sets)
         for (size_t s = 0; s < a->n_sets; s++)
             sl_synth_set_clear(&a->sets[s]);
@@ -229,6 +234,71 @@ static sl_status conv_band(sl_analysis *a, const double *peak, size_t n, const s
     return st;
 }
 
+/* Pearson correlation of x[i stride_x] and y[i stride_y], i < n: NAN when
+ * n < 3 or either is constant (gsl_stats_correlation would divide by 0). */
+static double corr_or_nan(const double *x, size_t stride_x, const double *y, size_t stride_y,
+                          size_t n)
+{
+    if (n < 3 || !(gsl_stats_sd(x, stride_x, n) > 0) || !(gsl_stats_sd(y, stride_y, n) > 0))
+        return NAN;
+    return gsl_stats_correlation(x, stride_x, y, stride_y, n);
+}
+
+/* The variance-reduction diagnostic (analysis.h, vr_*; docs/run.md,
+ * "Variance reduction"): at each mu with an f_es (a->vr_f_hz), the
+ * correlation over the n sets of the peak with Y_sa = sqrt(S_H1 S_H2)(f_es),
+ * the set's own 10 %-damped pseudo-acceleration (eq. (1)-(2) of spectrum.h),
+ * and with Y_pgv = PGV_H1 + PGV_H2; vr_factor = 1 - max rho^2, the variance
+ * left by the best linear control variate on either (Rubinstein and
+ * Marcus 1985: Var(m_cv) = (1 - rho^2) Var(m)) if its mean were known. */
+static sl_status vr_measure(sl_analysis *a, const double *peak, size_t n, size_t n_mu,
+                            sl_error *err)
+{
+    size_t nf = 0;
+    double *f = malloc(n_mu * sizeof *f);
+    double *psa = malloc(2 * n * n_mu * sizeof *psa);
+    double *ysa = malloc(n * n_mu * sizeof *ysa);
+    double *ypgv = malloc(n * sizeof *ypgv);
+    const sl_motion **mh = malloc(2 * n * sizeof *mh);
+    sl_status st = SL_OK;
+    if (!f || !psa || !ysa || !ypgv || !mh) {
+        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "analysis: out of memory");
+        goto done;
+    }
+    for (size_t k = 0; k < n_mu; k++)
+        if (isfinite(a->vr_f_hz[k]))
+            f[nf++] = a->vr_f_hz[k];
+    for (size_t s = 0; s < n; s++) {
+        mh[2 * s] = a->sets[s].set.h1;
+        mh[2 * s + 1] = a->sets[s].set.h2;
+        ypgv[s] = a->sets[s].check[SL_SYNTH_H1].pgv_ms + a->sets[s].check[SL_SYNTH_H2].pgv_ms;
+    }
+    if (nf > 0 && n >= 3 &&
+        (st = sl_spectrum_batch((const sl_motion *const *)mh, 2 * n, f, nf, SL_ASCE_DAMPING,
+                                NULL, psa, NULL, NULL, err)))
+        goto done;
+    for (size_t k = 0, j = 0; k < n_mu; k++) {
+        double rs = NAN, rp = corr_or_nan(peak + k, n_mu, ypgv, 1, n);
+        if (isfinite(a->vr_f_hz[k])) {
+            for (size_t s = 0; nf > 0 && n >= 3 && s < n; s++)
+                ysa[s] = sqrt(psa[2 * s * nf + j] * psa[(2 * s + 1) * nf + j]);
+            rs = corr_or_nan(peak + k, n_mu, ysa, 1, n);
+            j++;
+        }
+        a->vr_corr_sa[k] = rs;
+        a->vr_corr_pgv[k] = rp;
+        double r2 = fmax(isfinite(rs) ? rs * rs : 0, isfinite(rp) ? rp * rp : 0);
+        a->vr_factor[k] = isfinite(rs) || isfinite(rp) ? 1 - r2 : NAN;
+    }
+done:
+    free(f);
+    free(psa);
+    free(ysa);
+    free(ypgv);
+    free(mh);
+    return st;
+}
+
 /* Every other damping the floor file gives, checked on the motions' own
  * spectra over all a->n_sets sets (sl_synth_check_dampings: the set mean
  * of S/T against [1 - tol_below, 1 + tol_above]); the results, the same in
@@ -344,6 +414,10 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->design_hi_m = calloc(n_mu, sizeof *a->design_hi_m);
     a->design_se_m = calloc(n_mu, sizeof *a->design_se_m);
     a->err_est_m = calloc(n_mu, sizeof *a->err_est_m);
+    a->vr_f_hz = calloc(n_mu, sizeof *a->vr_f_hz);
+    a->vr_corr_sa = calloc(n_mu, sizeof *a->vr_corr_sa);
+    a->vr_corr_pgv = calloc(n_mu, sizeof *a->vr_corr_pgv);
+    a->vr_factor = calloc(n_mu, sizeof *a->vr_factor);
     sets = calloc(cap_sets, sizeof *sets);
     res = calloc(scat ? 1 : cap_sets * n_mu, sizeof *res); /* (R3) keeps its own */
     err_k = calloc(cap_sets * n_mu, sizeof *err_k);
@@ -352,7 +426,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     noslide = calloc(n_mu, sizeof *noslide);
     best = calloc(n_mu, sizeof *best);
     if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->design_se_m ||
-        !a->err_est_m || !sets ||
+        !a->err_est_m || !a->vr_f_hz || !a->vr_corr_sa || !a->vr_corr_pgv || !a->vr_factor ||
+        !sets ||
         !res || !peak || !n_skip || !noslide || !best || !err_k)
         goto nomem;
     a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
@@ -483,7 +558,12 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         if (sl_asce_eval(asce, o->mu[k], &ar, err))
             goto fail;
         best[k] = ar.delta_best_m;
+        a->vr_f_hz[k] = ar.fes_hz > 0 && isfinite(ar.fes_hz) ? ar.fes_hz : NAN;
     }
+    double t1 = wall_s();
+    if (vr_measure(a, peak, n, n_mu, err))
+        goto fail;
+    a->time_stats_s += wall_s() - t1;
 
     /* 4. design */
     sl_design_input di;

@@ -142,6 +142,18 @@ typedef struct sl_analysis {
                                    the design value actually used, the cap's where it governs */
     double *err_est_m;          /* per mu: the largest estimated integration error of any
                                    set's peak (sl_slide_result.err_est_m), m */
+    /* Variance reduction (docs/run.md, "Variance reduction"): per mu, how much of
+     * the sets' scatter a control variate could remove, measured on the run's
+     * own sets; not applied to the design value (no candidate has a known
+     * mean). NAN where undefined (fewer than 3 sets, no f_es, or a constant). */
+    double *vr_f_hz;            /* the ASCE f_es of that mu (asce.h step 4), Hz */
+    double *vr_corr_sa;         /* Pearson correlation over sets of the peak with the
+                                   set's own 10 %-damped horizontal spectral value at
+                                   vr_f_hz (geometric mean of H1 and H2) */
+    double *vr_corr_pgv;        /* the same with the set's PGV (H1 + H2) */
+    double *vr_factor;          /* 1 - max(vr_corr_sa^2, vr_corr_pgv^2): the fraction of
+                                   the sets a control variate on either would still need,
+                                   were its mean known exactly */
     sl_analysis_stop stop;      /* why the floor stopped adding sets */
     size_t n_batches;           /* batches run */
     size_t n_unconverged;       /* mu where design_se_m > target_se_m */

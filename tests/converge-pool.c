@@ -9,6 +9,7 @@
  *   /tmp/converge-pool pool FLOOR.ini N SEED > pool.txt   (N sets, default mu grid:
  *                                                          a line per set: PGD, 76 peaks, m)
  *   /tmp/converge-pool sim pool.txt FIRST MARGIN GROWTH RUNS [B [FIXED]]
+ *   /tmp/converge-pool vr FLOOR.ini N SEED [M]              (variance reduction, below)
  *
  * `sim` treats the pool as the population (its design value is the truth):
  * each run draws sets from it with replacement and applies the stopping rule
@@ -17,7 +18,19 @@
  * RMS stated SE over the scatter of the design value (range over mu and
  * mean), how often the actual SE (the pool's, at the run's count) misses
  * the target, and, with B > 0 resamples, how often the bootstrap-t and the
- * percentile bands hold the truth. */
+ * percentile bands hold the truth.
+ *
+ * `vr` (docs/run.md, "Variance reduction") synthesizes N sets and prints, at
+ * every fifth mu of the grid, the correlation over the sets of the design
+ * peak X (with the run's intensity scatter) with cheap per-set quantities a
+ * control variate could use: the mean of the two 1-D runs (H1 with V, H2
+ * with V, same scatter), the PGV and PGA sums, the Arias intensity, the PGD
+ * of the set, and the largest |rho| with the set's 10 %-damped horizontal
+ * spectral value (geometric mean of H1 and H2) over 24 frequencies
+ * 0.5-50 Hz. Then it crosses the horizontals of the first M sets (default
+ * 16): X(H1_i, H2_j, V_i) for all i, j, and splits the variance of X into
+ * the H1 part, the H2 part and their interaction (two-way random-effects
+ * ANOVA, one observation per cell: Var(row means) = s_a^2 + s_e^2 / M). */
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdio.h>
@@ -27,6 +40,7 @@
 #include "analysis.h"
 #include "slide/slide.h"
 #include "method/scatter.h"
+#include "signal/spectrum.h"
 
 #define K 76
 #define NMAX 200
@@ -199,10 +213,137 @@ static int sim(int argc, char **argv)
     return 0;
 }
 
+static double corr(const double *x, size_t sx, const double *y, size_t sy, size_t n)
+{
+    double mx = 0, my = 0, sxy = 0, sxx = 0, syy = 0;
+    for (size_t i = 0; i < n; i++) {
+        mx += x[i * sx] / (double)n;
+        my += y[i * sy] / (double)n;
+    }
+    for (size_t i = 0; i < n; i++) {
+        sxy += (x[i * sx] - mx) * (y[i * sy] - my);
+        sxx += (x[i * sx] - mx) * (x[i * sx] - mx);
+        syy += (y[i * sy] - my) * (y[i * sy] - my);
+    }
+    return sxx > 0 && syy > 0 ? sxy / sqrt(sxx * syy) : NAN;
+}
+
+#define NFV 24
+static int vr(const char *path, size_t N, uint64_t seed, size_t M)
+{
+    sl_error err;
+    sl_floor *fl = sl_floor_load(path, &err);
+    if (!fl || N < 3)
+        return 1;
+    if (M > N)
+        M = N;
+    double mu[K];
+    for (int k = 0; k < K; k++)
+        mu[k] = 0.05 + 0.01 * k;
+    sl_synth_params sp;
+    sl_synth_params_default(&sp);
+    sl_synth_target tgt[SL_SYNTH_NCOMP];
+    if (sl_synth_targets_floor(fl, 0.0, tgt, &err))
+        return 1;
+    size_t n_t = (size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1;
+    sl_synth *plan = sl_synth_alloc(n_t, SL_SYNTH_DT_S, &sp, &err);
+    sl_synth_set *ss = calloc(N, sizeof *ss);
+    sl_set *sets = calloc(N, sizeof *sets), *one = calloc(2 * N, sizeof *one);
+    sl_set *cross = calloc(M * M, sizeof *cross);
+    double *x = malloc(N * K * sizeof *x), *x1 = malloc(2 * N * K * sizeof *x1);
+    double *xc = malloc(M * M * K * sizeof *xc), *y = malloc(N * (6 + NFV) * sizeof *y);
+    sl_scatter *sc = sl_scatter_alloc(SL_ANALYSIS_SCATTER, mu, K, &err);
+    if (!plan || !ss || !sets || !one || !cross || !x || !x1 || !xc || !y || !sc)
+        return 1;
+    sl_synth_make_sets(plan, tgt, sl_analysis_floor_seed(seed, fl), 0, N, ss, NULL, NULL, &err);
+    double f[NFV];
+    for (int j = 0; j < NFV; j++)
+        f[j] = 0.5 * pow(10.0, j / 12.0);
+    for (size_t s = 0; s < N; s++) {
+        sets[s] = ss[s].set;
+        one[2 * s] = (sl_set){ss[s].set.h1, NULL, ss[s].set.v};
+        one[2 * s + 1] = (sl_set){ss[s].set.h2, NULL, ss[s].set.v};
+        double *ys = y + s * (6 + NFV), psa[2][NFV], ai = 0;
+        const sl_synth_check *c1 = &ss[s].check[SL_SYNTH_H1], *c2 = &ss[s].check[SL_SYNTH_H2];
+        for (int c = 0; c < 2; c++) {
+            const sl_motion *m = c ? sets[s].h2 : sets[s].h1;
+            if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, f, NFV, 0.10, psa[c], NULL, NULL,
+                                    &err))
+                return 1;
+            for (size_t i = 0; i < m->n; i++)
+                ai += m->acc_ms2[i] * m->acc_ms2[i] * m->dt_s;
+        }
+        ys[1] = c1->pgv_ms + c2->pgv_ms;
+        ys[2] = c1->pga_ms2 + c2->pga_ms2;
+        ys[3] = ai;
+        ys[4] = sl_set_pgd_100_40(&sets[s]);
+        for (int j = 0; j < NFV; j++)
+            ys[6 + j] = sqrt(psa[0][j] * psa[1][j]);
+    }
+    for (size_t i = 0; i < M; i++)
+        for (size_t j = 0; j < M; j++)
+            cross[i * M + j] = (sl_set){ss[i].set.h1, ss[j].set.h2, ss[i].set.v};
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    if (sl_scatter_slide_batch(sc, sets, N, &so, x, NULL, &err) ||
+        sl_scatter_slide_batch(sc, one, 2 * N, &so, x1, NULL, &err) ||
+        sl_scatter_slide_batch(sc, cross, M * M, &so, xc, NULL, &err))
+        return 1;
+    printf("%s, %zu sets (seed %llu): correlation over sets of the design peak X with\n", path, N,
+           (unsigned long long)seed);
+    printf("%5s %9s %7s %6s %6s %6s %6s %13s | crossed %zu x %zu: share of Var X\n", "mu",
+           "mean X", "1-D", "PGV", "PGA", "Arias", "PGD", "SA best (Hz)", M, M);
+    for (int k = 0; k < K; k += 5) {
+        for (size_t s = 0; s < N; s++)
+            y[s * (6 + NFV)] = 0.5 * (x1[2 * s * K + k] + x1[(2 * s + 1) * K + k]);
+        double r[5], rb = 0, fb = 0, mx = 0;
+        for (int q = 0; q < 5; q++)
+            r[q] = corr(x + k, K, y + q, 6 + NFV, N);
+        for (int j = 0; j < NFV; j++) {
+            double rj = corr(x + k, K, y + 6 + j, 6 + NFV, N);
+            if (fabs(rj) > fabs(rb)) {
+                rb = rj;
+                fb = f[j];
+            }
+        }
+        for (size_t s = 0; s < N; s++)
+            mx += x[s * K + k] / (double)N;
+        /* two-way ANOVA of X(H1_i, H2_j) */
+        double g = 0, va = 0, vb = 0, ve = 0, a[64], b[64];
+        size_t m = M < 64 ? M : 64;
+        for (size_t i = 0; i < m; i++)
+            for (size_t j = 0; j < m; j++)
+                g += xc[(i * M + j) * K + k] / (double)(m * m);
+        for (size_t i = 0; i < m; i++) {
+            a[i] = b[i] = -g;
+            for (size_t j = 0; j < m; j++) {
+                a[i] += xc[(i * M + j) * K + k] / (double)m;
+                b[i] += xc[(j * M + i) * K + k] / (double)m;
+            }
+        }
+        for (size_t i = 0; i < m; i++) {
+            va += a[i] * a[i] / (double)(m - 1);
+            vb += b[i] * b[i] / (double)(m - 1);
+            for (size_t j = 0; j < m; j++) {
+                double e = xc[(i * M + j) * K + k] - g - a[i] - b[j];
+                ve += e * e / (double)((m - 1) * (m - 1));
+            }
+        }
+        double sa = va - ve / (double)m, sb = vb - ve / (double)m, tot = sa + sb + ve;
+        printf("%5.2f %9.4f %+7.2f %+6.2f %+6.2f %+6.2f %+6.2f %+6.2f (%5.2f) | H1 %.2f, H2 %.2f, "
+               "interaction %.2f\n", mu[k], mx, r[0], r[1], r[2], r[3], r[4], rb, fb, sa / tot,
+               sb / tot, ve / tot);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc >= 5 && !strcmp(argv[1], "pool"))
         return pool(argv[2], (size_t)atoi(argv[3]), (uint64_t)atoll(argv[4]));
+    if (argc >= 5 && !strcmp(argv[1], "vr"))
+        return vr(argv[2], (size_t)atoi(argv[3]), (uint64_t)atoll(argv[4]),
+                  argc > 5 ? (size_t)atoi(argv[5]) : 16);
     if (argc >= 7 && !strcmp(argv[1], "sim"))
         return sim(argc, argv);
     fprintf(stderr, "usage: see the comment at the top of tests/converge-pool.c\n");

@@ -5,8 +5,12 @@
  * one is tests/converge-bruteforce.sh). Runs from the repository root. */
 #include <omp.h>
 
+#include <math.h>
+
 #include "analysis.h"
 #include "harness.h"
+#include "signal/spectrum.h"
+#include "slide/slide.h"
 
 #define ROOF "floors/04-roof36.ini"
 
@@ -340,6 +344,74 @@ static void test_cap_se(void)
     sl_floor_free(fl);
 }
 
+/* The variance-reduction diagnostic (analysis.h vr_*): recomputed here
+ * from the run's own sets by another path (peaks from sl_slide_run one set
+ * at a time, spectra from sl_spectrum_compute one motion at a time, the
+ * correlation from its definition), and 1 - max rho^2. */
+static void test_vr_diagnostic(void)
+{
+    sl_floor *fl = load(ROOF);
+    if (!fl)
+        return;
+    sl_analysis_opts o;
+    sl_analysis_opts_default(&o);
+    o.mu = mu3;
+    o.n_mu = 3;
+    o.n_sets = 12;
+    o.scatter = 0; /* peaks are one NLTHA each */
+    o.boot_resamples = 0;
+    sl_error err;
+    sl_analysis *a = sl_analysis_run(fl, &o, &err);
+    CHECK(a != NULL, "run");
+    if (!a) {
+        sl_floor_free(fl);
+        return;
+    }
+    const size_t n = a->n_sets;
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    double pk[12][3], ysa[12], ypgv[12];
+    for (size_t s = 0; s < n; s++) {
+        sl_slide_result r[3];
+        CHECK(sl_slide_run(&a->sets[s].set, mu3, 3, &so, r, &err) == SL_OK, "slide %zu", s);
+        for (int k = 0; k < 3; k++)
+            pk[s][k] = r[k].peak_m;
+        ypgv[s] = a->sets[s].check[SL_SYNTH_H1].pgv_ms + a->sets[s].check[SL_SYNTH_H2].pgv_ms;
+    }
+    for (int k = 0; k < 3; k++) {
+        double f = a->vr_f_hz[k];
+        CHECK(isfinite(f) && f > 0, "mu %g: f_es %g", mu3[k], f);
+        for (size_t s = 0; s < n; s++) {
+            const sl_motion *h[2] = {a->sets[s].set.h1, a->sets[s].set.h2};
+            double p[2];
+            for (int c = 0; c < 2; c++)
+                sl_spectrum_compute(h[c]->acc_ms2, h[c]->n, h[c]->dt_s, &f, 1, 0.10, &p[c], NULL,
+                                    NULL, &err);
+            ysa[s] = sqrt(p[0] * p[1]);
+        }
+        double rho[2];
+        for (int q = 0; q < 2; q++) {
+            const double *y = q ? ypgv : ysa;
+            double mx = 0, my = 0, sxy = 0, sxx = 0, syy = 0;
+            for (size_t s = 0; s < n; s++) {
+                mx += pk[s][k] / (double)n;
+                my += y[s] / (double)n;
+            }
+            for (size_t s = 0; s < n; s++) {
+                sxy += (pk[s][k] - mx) * (y[s] - my);
+                sxx += (pk[s][k] - mx) * (pk[s][k] - mx);
+                syy += (y[s] - my) * (y[s] - my);
+            }
+            rho[q] = sxy / sqrt(sxx * syy);
+        }
+        CHECK_CLOSE(a->vr_corr_sa[k], rho[0], 1e-9, 0);
+        CHECK_CLOSE(a->vr_corr_pgv[k], rho[1], 1e-9, 0);
+        CHECK_CLOSE(a->vr_factor[k], 1 - fmax(rho[0] * rho[0], rho[1] * rho[1]), 1e-9, 0);
+    }
+    sl_analysis_free(a);
+    sl_floor_free(fl);
+}
+
 static void test_bad_options(void)
 {
     sl_floor *fl = load(ROOF);
@@ -386,5 +458,6 @@ int main(void)
     RUN(test_stopping_rule);
     RUN(test_stated_se);
     RUN(test_cap_se);
+    RUN(test_vr_diagnostic);
     return HARNESS_END("analysis");
 }
