@@ -26,6 +26,7 @@
 
 /* Commands: each takes argc/argv with argv[0] the command name. */
 int cmd_run(int argc, char **argv);
+int cmd_merge(int argc, char **argv);
 int cmd_slide(int argc, char **argv);
 int cmd_spectrum(int argc, char **argv);
 int cmd_rg160(int argc, char **argv);

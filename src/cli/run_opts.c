@@ -11,14 +11,20 @@
 #include "core/standards.h"
 #include "slide/model.h"
 #include "method/scatter.h"
+#include "plant/plant.h"
+#include "report/plant_book.h"
 
 static const char run_head[] =
-    "usage: seislide run [FLOOR.ini ... | DIR] [options]\n\nThe main job: for every floor "
+    "usage: seislide run [FLOOR.ini ... | DIR | PLANT] [options]\n\nThe main job: for every floor "
     "response spectrum file (default: every *.ini in floors/),\nsynthesize motion sets, "
     "compute the peak vector sliding displacement of each by\nNLTHA over the friction grid "
     "and the ASCE/SEI 43-05 estimate, the design sliding\nspectra, every range where ASCE "
     "is below NLTHA, and the required clearance; write\nDIR/" SL_DELIVER_WORKBOOK " and "
-    "the CSV files (docs/run.md).\n\noptions:\n";
+    "the CSV files (docs/run.md).\n\nA PLANT is a folder of buildings, one sub-folder each with its floor files:\n"
+    "DIR/<building>/ gets each building's outputs, DIR/" SL_PLANT_BOOK_CSV " and DIR/" SL_PLANT_BOOK_XLSX "\n"
+    "the plant index. Every floor's result is kept in a cache and reused while its\n"
+    "spectra and the settings are unchanged; an interrupted run resumes (docs/plant.md).\n"
+    "\noptions:\n";
 static const char run_tail[] =
     "\nExit status: 0 success, 1 bad input or failed run (the output folder unchanged),\n"
     "2 usage error.\n";
@@ -26,7 +32,7 @@ static const char run_tail[] =
 #define A(f) .off = offsetof(run_args, f)
 enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
        O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
-       O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT };
+       O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT, O_SHARD, O_CACHE, O_NO_CACHE };
 static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
      "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
@@ -68,6 +74,13 @@ static const cli_opt opts[] = {
     {"accept-failed-checks", O_ACCEPT, NULL, "write the outputs although some motions failed\n"
      "their SRP 3.7.1 checks (default: the run stops, exit 1, nothing\nwritten); the failures "
      "are listed on stderr, also with -q", .kind = CLI_FLAG, A(accept_failed)},
+    {.head = "plant (docs/plant.md):"},
+    {"shard", O_SHARD, "K/N", "compute shard K of N (a deterministic share of the floors, balanced\n"
+     "by expected cost) into DIR for `seislide merge`", .kind = CLI_CALL},
+    {"cache", O_CACHE, "CDIR", "keep and reuse floor results in CDIR (default DIR/.seislide-cache);\n"
+     "may be shared by runs at the same time", .kind = CLI_STRING, A(cache)},
+    {"no-cache", O_NO_CACHE, NULL, "recompute every floor and keep no results", .kind = CLI_FLAG,
+     A(no_cache)},
     {.head = "title block of the workbook (Lookup, Summary, page headers, CSV comments):"},
     {"project", O_PROJECT, "TEXT", "project", .kind = CLI_STRING, A(dop.project.project)},
     {"document", O_DOCUMENT, "TEXT", "document number", .kind = CLI_STRING,
@@ -83,6 +96,16 @@ static int take(void *dst, int key, const char *v)
 {
     run_args *a = dst;
     unsigned long ul = 0;
+    if (key == O_SHARD) {
+        unsigned long k = 0, n = 0;
+        char tail;
+        if (sscanf(v, "%lu/%lu%c", &k, &n, &tail) != 2 || k < 1 || k > n || n > SL_PLANT_MAX_SHARDS)
+            return cli_usage("run", "bad value '%s' for --shard: K/N with 1 <= K <= N <= %d", v,
+                             SL_PLANT_MAX_SHARDS);
+        a->shard_k = (unsigned)k;
+        a->shard_n = (unsigned)n;
+        return CLI_EXIT_OK;
+    }
     int p = key == O_POLICY ? sl_clearance_policy_parse(v) : 0;
     int bad = key == O_SEED ? cli_parse_ulong(v, &ul) : key == O_POLICY ? p < 0
               : cli_parse_double(v, &a->created) || a->created < 0 || a->created > 4e12;
@@ -114,6 +137,13 @@ static int check(void *dst)
                     SL_ANALYSIS_ABS_SE_M || a->max_sets != SL_ANALYSIS_MAX_SETS))
         return cli_usage(r, "--sets fixes the number of sets; --rel-se, --abs-se and --max-sets "
                          "apply only without it");
+    if (!isfinite(a->abs_se_mm))
+        return cli_usage(r, "--abs-se must be a finite number of mm");
+    if (a->shard_n && a->dop.write_motions)
+        return cli_usage(r, "--motions cannot be combined with --shard (a shard writes results, "
+                         "not outputs)");
+    if (a->cache && a->no_cache)
+        return cli_usage(r, "--cache and --no-cache exclude each other");
     if (!(a->ao.scatter <= SL_SCATTER_SIGMA_MAX))
         return cli_usage(r, "--scatter %g must be from 0 to %g", a->ao.scatter,
                          SL_SCATTER_SIGMA_MAX);

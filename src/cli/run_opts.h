@@ -23,6 +23,10 @@ typedef struct run_args {
     cli_mu mu;                              /* the friction grid (default SL_MU_GRID_TEXT) */
     sl_analysis_opts ao;                    /* --rel-se, --accuracy (rtol), --seed, --policy */
     sl_deliver_opts dop;                    /* --motions, the title block */
+    /* the plant (docs/plant.md): --shard K/N, --cache DIR, --no-cache */
+    unsigned shard_k, shard_n;              /* 0/0: not sharded */
+    const char *cache;                      /* NULL: OUT/.seislide-cache */
+    int no_cache;
 } run_args;
 
 /* Parse the command line into a (defaults first) and check it; operands

@@ -33,7 +33,7 @@ static sl_status file_crc(const char *path, unsigned long *crc, long *size, sl_e
     return bad ? sl_error_set(err, SL_EIO, path, 0, "cannot read") : SL_OK;
 }
 
-static sl_status write_motions(const char *dir, size_t n, const sl_floor *const *floors,
+static sl_status write_motions(const char *dir, size_t n, const sl_deliver_meta *floors,
                                const char *const *ids, const sl_analysis *const *an,
                                uint64_t seed, sl_error *err)
 {
@@ -49,7 +49,7 @@ static sl_status write_motions(const char *dir, size_t n, const sl_floor *const 
         for (size_t s = 0; s < an[i]->n_sets; s++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
                 snprintf(path, sizeof path, "%s/set%02zu_%s.AT2", sub, s + 1, cn[c]);
-                snprintf(title, sizeof title, "%s, set %zu, %s, seed %llu", floors[i]->name,
+                snprintf(title, sizeof title, "%s, set %zu, %s, seed %llu", floors[i].name,
                          s + 1, cn[c], (unsigned long long)seed);
                 if (sl_synth_write_at2(path, sl_synth_set_motion(&an[i]->sets[s], (sl_synth_comp)c), title, err))
                     return err ? err->code : SL_EIO;
@@ -58,9 +58,32 @@ static sl_status write_motions(const char *dir, size_t n, const sl_floor *const 
     return SL_OK;
 }
 
+sl_status sl_deliver_meta_of(const sl_floor *fl, sl_deliver_meta *m, sl_error *err)
+{
+    *m = (sl_deliver_meta){.name = fl->name, .path = fl->path, .description = fl->description,
+                           .units = sl_unit_name(fl->units), .elevation_m = fl->elevation_m};
+    return file_crc(fl->path, &m->crc32, &m->size_bytes, err);
+}
+
 sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *floors,
                            const char *const *ids, const sl_analysis *const *an,
                            const sl_deliver_opts *o, sl_error *err)
+{
+    sl_deliver_meta *m = calloc(n ? n : 1, sizeof *m);
+    if (!m)
+        return sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+    sl_status st = SL_OK;
+    for (size_t i = 0; i < n && !st; i++)
+        st = sl_deliver_meta_of(floors[i], &m[i], err);
+    if (!st)
+        st = sl_deliver_write_meta(dir, n, m, ids, an, o, err);
+    free(m);
+    return st;
+}
+
+sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta *floors,
+                                const char *const *ids, const sl_analysis *const *an,
+                                const sl_deliver_opts *o, sl_error *err)
 {
     if (n == 0)
         return sl_error_set(err, SL_EINVAL, dir, 0, "no floors to write");
@@ -79,10 +102,11 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
     static const char *const comp[SL_SYNTH_NCOMP] = {"H1", "H2", "V"};
     size_t q = 0;
     for (size_t i = 0; i < n && !st; i++) {
-        const sl_floor *fl = floors[i];
+        const sl_deliver_meta *fl = &floors[i];
         rf[i] = (sl_report_floor){.id = ids[i], .name = fl->name, .path = fl->path,
                                   .description = fl->description, .elevation_m = fl->elevation_m,
-                                  .units = sl_unit_name(fl->units), .zpa_h_ms2 = an[i]->zpa_h_ms2,
+                                  .units = fl->units, .crc32 = fl->crc32,
+                                  .size_bytes = fl->size_bytes, .zpa_h_ms2 = an[i]->zpa_h_ms2,
                                   .design = an[i]->design, .note = an[i]->note,
                                   .n_mu_skipped = an[i]->n_mu_skipped,
                                   .design_lo_m = an[i]->design_lo_m,
@@ -104,7 +128,6 @@ sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *flo
             rf[i].dampings_max = isnan(rf[i].dampings_max) ? dk->set_max
                                                            : fmax(rf[i].dampings_max, dk->set_max);
         }
-        st = file_crc(fl->path, &rf[i].crc32, &rf[i].size_bytes, err);
         for (size_t s = 0; s < an[i]->n_sets; s++)
             for (int c = 0; c < SL_SYNTH_NCOMP; c++, q++) {
                 const sl_synth_check *k = &an[i]->sets[s].check[c];

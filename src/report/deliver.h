@@ -51,6 +51,25 @@ sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args,
                                  int force, char *warnings, size_t nw, sl_error *err);
 void sl_deliver_inputs_free(sl_deliver_inputs *in);
 
+/* What the outputs say about a floor file (beside its analysis): from the
+ * floor read (sl_deliver_meta_of) or from a shard's record (merge). */
+typedef struct sl_deliver_meta {
+    const char *name, *path, *description, *units;
+    double elevation_m;       /* NAN when not given */
+    unsigned long crc32;      /* of the file's bytes */
+    long size_bytes;
+} sl_deliver_meta;
+
+/* The meta of floor fl (its strings borrowed from fl); reads the file for
+ * its CRC-32 and size. */
+sl_status sl_deliver_meta_of(const sl_floor *fl, sl_deliver_meta *m, sl_error *err);
+
+/* sl_deliver_write from metas: the same outputs (write_motions needs the
+ * analyses' motions). */
+sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta *meta,
+                                const char *const *ids, const sl_analysis *const *an,
+                                const sl_deliver_opts *o, sl_error *err);
+
 /* Write everything for n floors (floors[i] analysed as an[i]; ids[i] from
  * sl_report_floor_id, already checked unique) into folder dir. Returns
  * SL_OK or the first error (err names the file). */

@@ -1,0 +1,290 @@
+/* plant.c - a plant's floors, keys, costs and shards; see plant.h. */
+#include "plant/plant.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/units.h"
+#include "plant/cache.h"
+#include "report/plant_book.h"
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The non-hidden sub-folders of dir, sorted (malloc'd names into sub[]). */
+static sl_status list_subdirs(const char *dir, char **sub, size_t *n, size_t max, sl_error *err)
+{
+    DIR *d = opendir(dir);
+    *n = 0;
+    if (!d)
+        return SL_OK; /* not a folder: sl_floor_list says what it is */
+    struct dirent *e;
+    char path[4400];
+    sl_status st = SL_OK;
+    while (!st && (e = readdir(d)) != NULL) {
+        struct stat s;
+        if (e->d_name[0] == '.')
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        if (stat(path, &s) != 0 || !S_ISDIR(s.st_mode))
+            continue;
+        if (*n >= max)
+            st = sl_error_set(err, SL_EINVAL, dir, 0, "more than %zu buildings", max);
+        else if (!(sub[(*n)++] = strdup(e->d_name)))
+            st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+    }
+    closedir(d);
+    qsort(sub, *n, sizeof *sub, cmp_str);
+    return st;
+}
+
+/* Does the folder hold floor files of its own (sl_floor_list finds some)? */
+static int has_floor_files(const char *dir)
+{
+    char *paths[SL_DELIVER_MAX_FLOORS] = {NULL};
+    size_t n = 0;
+    sl_status st = sl_floor_list(dir, paths, &n, SL_DELIVER_MAX_FLOORS, NULL);
+    for (size_t i = 0; i < n; i++)
+        free(paths[i]);
+    return st == SL_OK || n > 0;
+}
+
+static char *dup_or_empty(const char *s) { return strdup(s ? s : ""); }
+
+static sl_status add_building(sl_plant *p, const char *id, const char *const *args, size_t nargs,
+                              int force, char *warnings, size_t nw, sl_error *err)
+{
+    size_t b = p->n_buildings;
+    for (size_t j = 0; j < b; j++)
+        if (!strcmp(p->building[j], id))
+            return sl_error_set(err, SL_EINVAL, args[0], 0, "building id '%s' is also that of "
+                                "another folder: rename one", id);
+    sl_deliver_inputs *in = calloc(1, sizeof *in);
+    if (!in)
+        return sl_error_set(err, SL_ENOMEM, args[0], 0, "out of memory");
+    p->inputs[b] = in;
+    snprintf(p->building[b], sizeof p->building[b], "%s", id);
+    p->n_buildings++;
+    size_t used = nw ? strlen(warnings) : 0;
+    sl_status st = sl_deliver_inputs_load(in, args, nargs, force, warnings + used, nw - used,
+                                          err);
+    if (st)
+        return st;
+    if (p->n + in->n > SL_PLANT_MAX_FLOORS)
+        return sl_error_set(err, SL_EINVAL, args[0], 0, "more than %d floors in the plant",
+                            SL_PLANT_MAX_FLOORS);
+    for (size_t i = 0; i < in->n; i++) {
+        sl_plant_floor *f = &p->floors[p->n++];
+        const sl_floor *fl = in->floors[i];
+        sl_deliver_meta m;
+        f->building = b;
+        f->floor = fl;
+        if ((st = sl_deliver_meta_of(fl, &m, err)))
+            return st;
+        f->id = strdup(in->idp[i]);
+        f->name = dup_or_empty(m.name);
+        f->path = dup_or_empty(m.path);
+        f->description = dup_or_empty(m.description);
+        f->units = dup_or_empty(m.units);
+        f->elevation_m = m.elevation_m;
+        f->crc32 = m.crc32;
+        f->size_bytes = m.size_bytes;
+        if (!f->id || !f->name || !f->path || !f->description || !f->units)
+            return sl_error_set(err, SL_ENOMEM, fl->path, 0, "out of memory");
+    }
+    return SL_OK;
+}
+
+sl_status sl_plant_load(sl_plant *p, const char *const *args, size_t nargs, int force,
+                        char *warnings, size_t nw, sl_error *err)
+{
+    if (nw)
+        warnings[0] = '\0';
+    p->building = calloc(SL_PLANT_MAX_BUILDINGS, sizeof *p->building);
+    p->inputs = calloc(SL_PLANT_MAX_BUILDINGS, sizeof *p->inputs);
+    p->floors = calloc(SL_PLANT_MAX_FLOORS, sizeof *p->floors);
+    if (!p->building || !p->inputs || !p->floors)
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
+    char *sub[SL_PLANT_MAX_BUILDINGS];
+    size_t ns = 0;
+    sl_status st = SL_OK;
+    if (nargs == 1 && (st = list_subdirs(args[0], sub, &ns, SL_PLANT_MAX_BUILDINGS, err)))
+        return st;
+    if (ns == 0 || has_floor_files(args[0])) { /* one building, as before */
+        for (size_t i = 0; i < ns; i++)
+            free(sub[i]);
+        return add_building(p, "", args, nargs, force, warnings, nw, err);
+    }
+    p->is_plant = 1;
+    char path[4400], id[SL_DELIVER_ID_MAX];
+    for (size_t i = 0; i < ns; i++) {
+        if (!st) {
+            snprintf(path, sizeof path, "%s/%s", args[0], sub[i]);
+            const char *one[1] = {path};
+            sl_report_floor_id(sub[i], id, sizeof id);
+            st = add_building(p, id, one, 1, force, warnings, nw, err);
+        }
+        free(sub[i]);
+    }
+    return st;
+}
+
+/* Expected cost (plant.h, "Cost model"). */
+static double floor_cost(const sl_floor *fl, const sl_analysis_opts *o)
+{
+    double zpa = fmax(fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2);
+    double reach = zpa * exp(2 * o->scatter);
+    size_t m = 0;
+    for (size_t k = 0; k < o->n_mu; k++)
+        m += o->mu[k] * SL_G < reach;
+    double sets = o->n_sets ? (double)o->n_sets : SL_PLANT_COST_SETS;
+    return sets * (1.0 + (double)m);
+}
+
+sl_status sl_plant_keys(sl_plant *p, const sl_analysis_opts *o, const char *version,
+                        sl_error *err)
+{
+    for (size_t i = 0; i < p->n; i++) {
+        sl_status st = sl_entry_key_make(p->floors[i].floor, o, version, &p->floors[i].key, err);
+        if (st)
+            return st;
+        p->floors[i].cost = floor_cost(p->floors[i].floor, o);
+    }
+    return SL_OK;
+}
+
+static const sl_plant *sort_plant;
+static int by_cost(const void *a, const void *b)
+{
+    size_t i = *(const size_t *)a, j = *(const size_t *)b;
+    double ci = sort_plant->floors[i].cost, cj = sort_plant->floors[j].cost;
+    if (ci != cj)
+        return ci > cj ? -1 : 1;
+    return i < j ? -1 : i > j;
+}
+
+void sl_plant_assign(sl_plant *p, unsigned n_shards)
+{
+    size_t *order = malloc((p->n ? p->n : 1) * sizeof *order);
+    double *load = calloc(n_shards ? n_shards : 1, sizeof *load);
+    if (!order || !load) { /* cannot sort: deal round-robin in plant order (still deterministic) */
+        for (size_t i = 0; i < p->n; i++)
+            p->floors[i].shard = (unsigned)(i % n_shards) + 1;
+        free(order);
+        free(load);
+        return;
+    }
+    for (size_t i = 0; i < p->n; i++)
+        order[i] = i;
+    sort_plant = p;
+    qsort(order, p->n, sizeof *order, by_cost);
+    for (size_t r = 0; r < p->n; r++) {
+        unsigned best = 0;
+        for (unsigned k = 1; k < n_shards; k++)
+            if (load[k] < load[best])
+                best = k;
+        load[best] += p->floors[order[r]].cost;
+        p->floors[order[r]].shard = best + 1;
+    }
+    free(order);
+    free(load);
+}
+
+void sl_plant_free(sl_plant *p)
+{
+    for (size_t i = 0; p->floors && i < p->n; i++) {
+        sl_plant_floor *f = &p->floors[i];
+        free(f->id);
+        free(f->name);
+        free(f->path);
+        free(f->description);
+        free(f->units);
+        sl_entry_key_free(&f->key);
+        sl_analysis_free(f->an);
+    }
+    for (size_t b = 0; p->inputs && b < p->n_buildings; b++) {
+        if (p->inputs[b])
+            sl_deliver_inputs_free(p->inputs[b]);
+        free(p->inputs[b]);
+    }
+    free(p->floors);
+    free(p->inputs);
+    free(p->building);
+    memset(p, 0, sizeof *p);
+}
+
+int sl_plant_owns_name(const char *name)
+{
+    return !strcmp(name, SL_PLANT_BOOK_CSV) || !strcmp(name, SL_PLANT_BOOK_XLSX) ||
+           !strcmp(name, SL_CACHE_DIR_NAME);
+}
+
+/* The outputs of building b into folder dir. */
+static sl_status deliver_building(const sl_plant *p, size_t b, const char *dir,
+                                  const sl_deliver_opts *o, sl_error *err)
+{
+    size_t n = 0;
+    sl_deliver_meta *m = calloc(p->n ? p->n : 1, sizeof *m);
+    const char **ids = calloc(p->n ? p->n : 1, sizeof *ids);
+    const sl_analysis **an = calloc(p->n ? p->n : 1, sizeof *an);
+    sl_status st = SL_OK;
+    if (!m || !ids || !an)
+        st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+    for (size_t i = 0; !st && i < p->n; i++) {
+        const sl_plant_floor *f = &p->floors[i];
+        if (f->building != b)
+            continue;
+        m[n] = (sl_deliver_meta){f->name, f->path, f->description, f->units, f->elevation_m,
+                                 f->crc32, f->size_bytes};
+        ids[n] = f->id;
+        an[n++] = f->an;
+    }
+    if (!st)
+        st = sl_deliver_write_meta(dir, n, m, ids, an, o, err);
+    free(m);
+    free(ids);
+    free(an);
+    return st;
+}
+
+sl_status sl_plant_deliver(const sl_plant *p, const char *dir, const sl_deliver_opts *o,
+                           sl_error *err)
+{
+    if (!p->is_plant)
+        return deliver_building(p, 0, dir, o, err);
+    char sub[4400];
+    for (size_t b = 0; b < p->n_buildings; b++) {
+        snprintf(sub, sizeof sub, "%s/%s", dir, p->building[b]);
+        if (mkdir(sub, 0777) != 0)
+            return sl_error_set(err, SL_EIO, sub, 0, "cannot create: %s", strerror(errno));
+        sl_status st = deliver_building(p, b, sub, o, err);
+        if (st)
+            return st;
+    }
+    sl_plant_book_row *rows = calloc(p->n ? p->n : 1, sizeof *rows);
+    if (!rows)
+        return sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+    for (size_t i = 0; i < p->n; i++) {
+        const sl_plant_floor *f = &p->floors[i];
+        rows[i] = (sl_plant_book_row){.building = p->building[f->building], .id = f->id,
+                                      .name = f->name, .elevation_m = f->elevation_m,
+                                      .zpa_h_ms2 = f->an->zpa_h_ms2, .n_sets = f->an->n_sets,
+                                      .stop = sl_analysis_stop_name(f->an->stop),
+                                      .design = f->an->design};
+    }
+    sl_plant_book book = {.version = o->version, .command_line = o->command_line,
+                          .created = o->created, .project = o->project, .n = p->n,
+                          .rows = rows, .lookup_mu = SL_REPORT_LOOKUP_MU};
+    sl_status st = sl_plant_book_write_csv(&book, dir, err);
+    if (!st)
+        st = sl_plant_book_write_xlsx(&book, dir, err);
+    free(rows);
+    return st;
+}

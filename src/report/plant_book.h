@@ -1,0 +1,64 @@
+/*
+ * plant_book.h - the plant index: one row per floor of every building, as
+ * plant.csv and plant.xlsx.
+ *
+ * Row: building, floor id, floor name, elevation, horizontal ZPA, motion
+ * sets, convergence ("converged", "max_sets", "fixed"), the required
+ * clearance at mu = SL_PLANT_BOOK_MU (sl_design_clearance_at; empty outside
+ * the grid) and the governing method: which design curve gives the
+ * clearance at the grid rows where it is not zero ("NLTHA", "ASCE", "NLTHA
+ * and ASCE" under the envelope policy), " (capped)" when the cap governs at
+ * any of them.
+ *
+ * plant.xlsx: "Lookup" (building from a drop-down list, floor from a list of
+ * that building's floors, mu typed; the clearance in mm by linear
+ * interpolation in mu with every step visible, the same formula and input
+ * checks as the building workbook's Lookup, report.h; only the three inputs
+ * editable), "Plant" (the rows above) and "Data" (the tables the Lookup
+ * reads: every floor's clearance on the whole friction grid). Every sheet is
+ * protected (no password: a guard against typing over).
+ */
+#ifndef SL_PLANT_BOOK_H
+#define SL_PLANT_BOOK_H
+
+#include <stddef.h>
+#include <time.h>
+
+#include "method/design.h"
+#include "report/report.h"
+
+#define SL_PLANT_BOOK_CSV "plant.csv"
+#define SL_PLANT_BOOK_XLSX "plant.xlsx"
+#define SL_PLANT_BOOK_NMU 6
+extern const double SL_PLANT_BOOK_MU[SL_PLANT_BOOK_NMU]; /* 0.05 0.1 0.2 0.3 0.4 0.5 */
+
+typedef struct sl_plant_book_row {
+    const char *building, *id, *name;
+    double elevation_m;       /* NAN: not given */
+    double zpa_h_ms2;
+    size_t n_sets;
+    const char *stop;
+    const sl_design *design;  /* every row the same friction grid */
+} sl_plant_book_row;
+
+typedef struct sl_plant_book {
+    const char *version, *command_line;
+    time_t created;
+    sl_report_project project;
+    size_t n;
+    const sl_plant_book_row *rows; /* grouped by building */
+    /* The Lookup's initial inputs (NULL: the first row's; "": blank; mu NAN:
+     * blank) and, for tests, 0 as every formula's cached value. */
+    const char *lookup_building, *lookup_floor;
+    double lookup_mu;
+    int lookup_zero_cache;
+} sl_plant_book;
+
+/* The governing method of a row as text (above), into buf of size n. */
+const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n);
+
+/* dir/plant.csv and dir/plant.xlsx, each written atomically. */
+sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_error *err);
+sl_status sl_plant_book_write_xlsx(const sl_plant_book *b, const char *dir, sl_error *err);
+
+#endif

@@ -1,0 +1,161 @@
+#!/bin/sh
+# End-to-end tests of plant runs (docs/plant.md): a folder of buildings, the
+# per-building outputs and the plant index against per-building runs, the
+# floor-result cache (reuse, one floor changed, SIGKILL and resume, a damaged
+# entry, two runs sharing one cache), shards through GNU parallel and merge.
+. "$(dirname "$0")/lib.sh"
+t_suite cli_plant
+D=$T_TMP
+B="$SEISLIDE_BIN"
+mkdir -p "$D/plant/bldA" "$D/plant/bldB" "$D/parts"
+cp floors/01-ground.ini floors/02-el12.ini "$D/plant/bldA/"
+# the same floor file name in two buildings is fine; so is the same floor
+cp floors/01-ground.ini floors/04-roof36.ini "$D/plant/bldB/"
+OPTS="--sets 2 --mu 0.05,0.1,0.2,0.3,0.5 --created 1700000000"
+now_ms() { date +%s%N | cut -c1-13; }
+# same outputs: the same files, every CSV byte for byte (the workbooks record
+# the command line, which names the output folder)
+same_out() {
+  [ "$(cd "$1" && find . -path ./.seislide-cache -prune -o -type f -print | sort)" = \
+    "$(cd "$2" && find . -path ./.seislide-cache -prune -o -type f -print | sort)" ] || return 1
+  for f in $(cd "$2" && find . -name '*.csv'); do cmp -s "$1/$f" "$2/$f" || return 1; done
+}
+
+t0=$(now_ms)
+t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc plant-run 0
+t1=$(now_ms)
+for f in plant.csv plant.xlsx bldA/seislide-clearance.xlsx bldA/summary.csv \
+         bldA/floor_01-ground.csv bldA/floor_02-el12.csv bldB/floor_01-ground.csv \
+         bldB/floor_04-roof36.csv bldB/motion_quality.csv; do
+  [ -s "$D/out1/$f" ] && t_pass || t_fail "missing output $f"
+done
+[ -e "$D/out1/seislide-clearance.xlsx" ] && t_fail "a plant has no top-level building workbook" || t_pass
+# bldB/01-ground is bldA/01-ground (the same numbers): computed once, then reused
+t_expect_err progress-per-floor "floor 3/4 'bldB/01-ground' reused from the cache; 3/4 floors done \(1 reused\), 6 sets"
+t_expect_err progress-per-floor "floor 4/4 'bldB/04-roof36' computed; 4/4 floors done \(1 reused\), 8 sets, elapsed [0-9:]+, ETA"
+[ "$(grep -v '^#' "$D/out1/plant.csv" | wc -l)" -eq 5 ] && t_pass || t_fail "plant.csv: header + 4 rows expected"
+grep -v '^#' "$D/out1/plant.csv" | head -1 | grep -q '^building,floor,floor_name,elevation_m,zpa_g,sets,convergence,clearance_mm_mu_0.05,clearance_mm_mu_0.1,clearance_mm_mu_0.2,clearance_mm_mu_0.3,clearance_mm_mu_0.4,clearance_mm_mu_0.5,governing' && t_pass || t_fail "plant.csv header"
+head -1 "$D/out1/plant.csv" | od -c | grep -q '\\r  \\n' && t_pass || t_fail "plant.csv: CRLF line ends"
+
+# per-building runs (no cache): the same files, byte for byte
+for b in bldA bldB; do
+  t_run run "$D/plant/$b" -o "$D/single-$b" $OPTS --no-cache -q; t_expect_rc "run $b" 0
+  [ ! -e "$D/single-$b/.seislide-cache" ] && t_pass || t_fail "--no-cache wrote a cache"
+  [ ! -e "$D/single-$b/plant.csv" ] && t_pass || t_fail "one building writes no plant index"
+  for f in "$D/single-$b"/*.csv; do
+    cmp -s "$f" "$D/out1/$b/$(basename "$f")" && t_pass || t_fail "$b/$(basename "$f") differs from the building run"
+  done
+  # plant.csv against the building's own floor tables: clearance at mu 0.05, 0.1, 0.2, 0.3, 0.5
+  for fl in "$D/single-$b"/floor_*.csv; do
+    id=$(basename "$fl" .csv); id=${id#floor_}
+    row=$(awk -F, -v b="$b" -v id="$id" '$1 == b && $2 == id' "$D/out1/plant.csv")
+    [ -n "$row" ] || { t_fail "plant.csv lacks $b/$id"; continue; }
+    res=$(grep -v '^#' "$fl" | awk -F, -v row="$row" '
+      NR == 1 { for (i = 1; i <= NF; i++) if ($i == "clearance_mm") c = i; next }
+      { v[$1 + 0] = $c }
+      END { nr = split(row, r, ","); n = split("0.05 0.1 0.2 0.3 0.5", m, " "); col[1] = nr - 6; col[2] = nr - 5; col[3] = nr - 4; col[4] = nr - 3; col[5] = nr - 1
+            bad = 0; for (k = 1; k <= n; k++) { d = r[col[k]] - v[m[k] + 0]; if (d < 0) d = -d; if (d > 0.0015 || r[col[k]] == "") bad = 1 }
+            print bad ? "bad" : "ok" }')
+    [ "$res" = ok ] && t_pass || t_fail "plant.csv row of $b/$id disagrees with $fl: $row"
+  done
+done
+# a floor's results do not depend on its building (the same file in both)
+grep -v '^# floor' "$D/out1/bldA/floor_01-ground.csv" > "$D/ga"
+grep -v '^# floor' "$D/out1/bldB/floor_01-ground.csv" > "$D/gb"
+cmp -s "$D/ga" "$D/gb" && t_pass || t_fail "the same floor in two buildings gives different tables"
+
+# cache: an unchanged rerun reuses every floor, >= 10 x faster, same outputs
+cp -r "$D/out1" "$D/ref"
+t2=$(now_ms)
+t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc rerun 0
+t3=$(now_ms)
+t_expect_err rerun-reused "reused 4 of 4 floors"
+grep -q "computed;" "$T_ERR" && t_fail "rerun computed a floor" || t_pass
+same_out "$D/out1" "$D/ref" && t_pass || t_fail "rerun outputs differ from the first run"
+cold=$((t1 - t0)); warm=$((t3 - t2)); [ "$warm" -lt 1 ] && warm=1
+[ $((cold / warm)) -ge 10 ] && t_pass || t_fail "rerun not 10 x faster: ${cold} ms, then ${warm} ms"
+
+# one number of one floor changed: exactly that floor recomputed
+cp -r "$D/plant" "$D/plant2"
+sed -i '0,/0.0226/s//0.0227/' "$D/plant2/bldB/04-roof36.ini"
+cp -r "$D/out1" "$D/out2"
+t_run run "$D/plant2" -o "$D/out2" $OPTS; t_expect_rc changed 0
+t_expect_err changed-reused "reused 3 of 4 floors"
+[ "$(grep -c 'computed;' "$T_ERR")" -eq 1 ] && grep -q "'bldB/04-roof36' computed" "$T_ERR" && t_pass || t_fail "not exactly the changed floor recomputed: $(grep computed "$T_ERR")"
+cmp -s "$D/out2/bldB/floor_04-roof36.csv" "$D/out1/bldB/floor_04-roof36.csv" && t_fail "the changed floor's table did not change" || t_pass
+grep -v '^# floor_file' "$D/out2/bldA/floor_02-el12.csv" > "$D/u2"
+grep -v '^# floor_file' "$D/out1/bldA/floor_02-el12.csv" > "$D/u1"
+cmp -s "$D/u1" "$D/u2" && t_pass || t_fail "an unchanged floor's table changed"
+
+# a flipped byte in one cache entry: detected, the floor recomputed and said, outputs the same
+E=$(ls "$D/out1/.seislide-cache"/*.slr | head -1)
+size=$(wc -c < "$E")
+printf '\377' | dd of="$E" bs=1 seek=$((size / 2)) conv=notrunc 2>/dev/null
+t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc flipped 0
+t_expect_err flipped-said "cache entry .*$(basename "$E") failed its check \(checksum mismatch"
+t_expect_err flipped-reused "reused [23] of 4 floors"
+same_out "$D/out1" "$D/ref" && t_pass || t_fail "outputs after a damaged entry differ"
+# a truncated entry and a foreign file as an entry: never used, never a crash
+E=$(ls "$D/out1/.seislide-cache"/*.slr | head -1)
+head -c 100 "$E" > "$D/trunc" && cp "$D/trunc" "$E"
+t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc truncated 0
+t_expect_err truncated-said "failed its check"
+same_out "$D/out1" "$D/ref" && t_pass || t_fail "outputs after a truncated entry differ"
+
+# SIGKILL in the middle, then the same command: identical outputs, finished floors reused
+( "$B" run "$D/plant" -o "$D/outk" $OPTS -q & echo $! > "$D/pid"; wait ) 2>/dev/null &
+i=0
+while [ $i -lt 600 ] && [ "$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c '\.slr$')" -lt 2 ]; do
+  sleep 0.1; i=$((i + 1))
+done
+kill -9 "$(cat "$D/pid")" 2>/dev/null; wait
+n_done=$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c '\.slr$')
+[ "$n_done" -ge 1 ] && [ ! -e "$D/outk/plant.csv" ] && t_pass || t_fail "kill: expected finished entries and no outputs yet ($n_done entries)"
+t_run run "$D/plant" -o "$D/outk" $OPTS; t_expect_rc resumed 0
+t_expect_err resumed-reused "reused [1-3] of 4 floors"
+same_out "$D/outk" "$D/ref" && t_pass || t_fail "resumed outputs differ from an uninterrupted run"
+
+# two runs sharing one cache at once: every floor computed once, both outputs right
+mkdir "$D/shared"
+"$B" run "$D/plant" -o "$D/outs1" $OPTS --cache "$D/shared" 2> "$D/s1.err" &
+p1=$!
+"$B" run "$D/plant" -o "$D/outs2" $OPTS --cache "$D/shared" 2> "$D/s2.err" &
+p2=$!
+wait $p1; r1=$?; wait $p2; r2=$?
+[ $r1 -eq 0 ] && [ $r2 -eq 0 ] && t_pass || t_fail "shared cache: exit $r1, $r2"
+# bldA/01-ground and bldB/01-ground are one entry: 3 distinct floors to compute
+[ "$(cat "$D/s1.err" "$D/s2.err" | grep -c 'computed;')" -eq 3 ] && t_pass || t_fail "shared cache: $(cat "$D/s1.err" "$D/s2.err" | grep -c 'computed;') floors computed, 3 expected"
+same_out "$D/outs1" "$D/ref" && same_out "$D/outs2" "$D/ref" && t_pass || t_fail "shared cache: outputs differ"
+[ "$(ls "$D/shared" | grep -c '\.slr$')" -eq 3 ] && [ -z "$(ls -a "$D/shared" | grep -E 'lock|tmp')" ] && t_pass || t_fail "shared cache: $(ls -a "$D/shared")"
+
+# shards through GNU parallel, then merge: the outputs of the single run
+if command -v parallel >/dev/null 2>&1; then
+  parallel "$B" run "$D/plant" --shard {}/3 -o "$D/parts/{}" $OPTS -q ::: 1 2 3; r=$?
+  [ $r -eq 0 ] && t_pass || t_fail "parallel shards: exit $r"
+  t_run merge "$D"/parts/* -o "$D/merged" --created 1700000000; t_expect_rc merge 0
+  for f in $(cd "$D/ref" && find . -name '*.csv'); do
+    cmp -s "$D/merged/$f" "$D/ref/$f" && t_pass || t_fail "merged $f differs from the single run"
+  done
+  # the merged cache makes a later run into it reuse everything
+  t_run run "$D/plant" -o "$D/merged" $OPTS; t_expect_rc after-merge 0
+  t_expect_err after-merge-reused "reused 4 of 4 floors"
+  t_run merge "$D/parts/1" "$D/parts/3" -o "$D/m2"; t_expect_rc missing 1
+  t_expect_err missing-named "shard 2/3 missing"
+  t_run merge "$D/parts/1" "$D/parts/2" "$D/parts/2" "$D/parts/3" -o "$D/m2"; t_expect_rc duplicate 1
+  t_expect_err duplicate-named "shard 2/3 given twice: .*parts/2 and .*parts/2"
+  [ ! -e "$D/m2" ] && t_pass || t_fail "a failed merge wrote outputs"
+  # a damaged shard result is refused, naming it
+  R=$(ls "$D/parts/1/results"/*.slr | head -1)
+  printf '\377' | dd of="$R" bs=1 seek=40 conv=notrunc 2>/dev/null
+  t_run merge "$D"/parts/* -o "$D/m3"; t_expect_rc damaged-shard 1
+  t_expect_err damaged-shard-named "$(basename "$R").*failed its check"
+else
+  t_skip "GNU parallel absent (apt-get install parallel): shards not tested"
+fi
+t_run run "$D/plant" --shard 4/3 -o "$D/x"; t_expect_rc bad-shard 2
+t_run run "$D/plant" --shard 1/2 --motions -o "$D/x"; t_expect_rc shard-motions 2
+
+# -q: nothing on stderr
+t_run run "$D/plant" -o "$D/out1" $OPTS -q; t_expect_rc quiet 0
+[ ! -s "$T_ERR" ] && t_pass || t_fail "-q must silence stderr: $(head -c 300 "$T_ERR")"
+t_end
