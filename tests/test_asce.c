@@ -356,7 +356,7 @@ static void test_input_from_floor(void)
 {
     const char *text =
         "[floor]\nname = hand\nunits = g\n"
-        "[h1]\nf_hz = 0.1, 1, 10, 50\nsa_0.10 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.2\n"
+        "[h1]\nf_hz = 0.1, 1, 10, 50\nsa_0.10 = 0.05, 0.5, 0.6, 0.2\nzpa = 0.2\n"
         "[h2]\nf_hz = 0.1, 1, 10, 50\nsa_0.10 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.5\n"
         "[v]\nf_hz = 0.1, 1, 10, 50\nsa_0.10 = 0.02, 0.2, 0.2, 0.1\nzpa = 0.1\n";
     const char *path = harness_tmpfile("asce-floor.ini", text);
@@ -392,7 +392,7 @@ static void test_input_from_floor(void)
     sl_floor_free(fl);
     /* without sa_0.10 and without a fallback: an error naming the file */
     const char *t5 = "[floor]\nname = five\nunits = g\n"
-                     "[h1]\nf_hz = 0.1, 1, 10, 50\nsa_0.05 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.2\n"
+                     "[h1]\nf_hz = 0.1, 1, 10, 50\nsa_0.05 = 0.05, 0.5, 0.6, 0.2\nzpa = 0.2\n"
                      "[h2]\nf_hz = 0.1, 1, 10, 50\nsa_0.05 = 0.05, 0.5, 0.6, 0.5\nzpa = 0.5\n"
                      "[v]\nf_hz = 0.1, 1, 10, 50\nsa_0.05 = 0.02, 0.2, 0.2, 0.1\nzpa = 0.1\n";
     path = harness_tmpfile("asce-floor5.ini", t5);
