@@ -145,6 +145,7 @@ static const struct {
     {"bad-csv-ragged.csv", 6, "ragged row: 3 cells, the header row has 4", 4},
     {"bad-csv-repeated-key.csv", 4, "key 'units' repeated (first at line 2)", 0},
     {"bad-csv-units.csv", 2, "unknown units 'furlongs'", 0},
+    {"bad-csv-extra-cell.csv", 6, "ragged row: 5 cells, the header row has 4", 5}, /* CRLF */
     {"bad-csv-two-errors.csv", 6, "v_5: value -0.6 must be positive", 4}, /* the first in the file */
     {"bad-csv-unknown-key.csv", 4, "unknown comment key 'floor_name'", 0},
     {"bad-csv-zpa-h2-same.csv", 4, "zpa_h2 given but H2 is declared the same as H1", 0},
