@@ -145,6 +145,8 @@ static const struct {
     {"bad-csv-ragged.csv", 6, "ragged row: 3 cells, the header row has 4", 4},
     {"bad-csv-repeated-key.csv", 4, "key 'units' repeated (first at line 2)", 0},
     {"bad-csv-units.csv", 2, "unknown units 'furlongs'", 0},
+    {"bad-csv-extra-cell.csv", 6, "ragged row: 5 cells, the header row has 4", 5}, /* CRLF */
+    {"bad-csv-two-errors.csv", 6, "v_5: value -0.6 must be positive", 4}, /* the first in the file */
     {"bad-csv-unknown-key.csv", 4, "unknown comment key 'floor_name'", 0},
     {"bad-csv-zpa-h2-same.csv", 4, "zpa_h2 given but H2 is declared the same as H1", 0},
     {"bad-csv-zpa.csv", 4, "zpa_h1: 1e-300 g is 2.5e-300 x the 5 % spectrum's value", 0},
@@ -229,6 +231,8 @@ static void test_good_small_csv(void)
     CHECK(h1->zpa_given && h1->zpa_ms2 == 3.2, "zpa_h1");
     const sl_spectrum *v = sl_floor_spectrum(fl, SL_FLOOR_V, 0.025);
     CHECK(v && v->damping == 0.025 && v->sa_ms2[2] == 2.0, "v_2.5 (quoted cell)");
+    const sl_spectrum *v10 = sl_floor_spectrum(fl, SL_FLOOR_V, 0.10);
+    CHECK(v10 && v10->damping == 0.10 && v10->sa_ms2[3] == 1.2, "v_1e1 is 10 %%");
     CHECK(!fl->comp[SL_FLOOR_V].zpa_given && fl->comp[SL_FLOOR_V].zpa_ms2 == 1.5, "v zpa");
     CHECK(fl->comp[SL_FLOOR_H2].nspec == 1 && fl->comp[SL_FLOOR_H2].spec[0].sa_ms2[3] == 2.7,
           "h2");

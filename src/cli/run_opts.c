@@ -15,8 +15,8 @@
 #include "report/plant_book.h"
 
 static const char run_head[] =
-    "usage: seislide run [FLOOR.ini ... | DIR | PLANT] [options]\n\nThe main job: for every floor "
-    "response spectrum file (default: every *.ini in floors/),\nsynthesize motion sets, "
+    "usage: seislide run [FLOOR.ini|FLOOR.csv ... | DIR | PLANT] [options]\n\nThe main job: for every floor "
+    "response spectrum file (default: every *.ini and *.csv in floors/),\nsynthesize motion sets, "
     "compute the peak vector sliding displacement of each by\nNLTHA over the friction grid "
     "and the ASCE/SEI 43-05 estimate, the design sliding\nspectra, every range where ASCE "
     "is below NLTHA, and the required clearance; write\nDIR/" SL_DELIVER_WORKBOOK " and "
