@@ -28,6 +28,9 @@ r2=$(OMP_NUM_THREADS=2 run "$BIN" run "$W/plant" -o "$W/out2" --no-cache -q $OPT
 mkdir -p "$W/parts"
 rs=$(OMP_NUM_THREADS=1 run parallel -j 2 "$BIN" run "$W/plant" --shard {}/2 -o "$W/parts/{}" --no-cache -q $OPTS ::: 1 2)
 rm_=$(run "$BIN" merge "$W"/parts/1 "$W"/parts/2 -o "$W/merged" -q)
+# each shard alone (CPU time: the balance, whatever the machine's load)
+c1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" --shard 1/2 -o "$W/parts/1" --no-cache -q $OPTS)
+c2=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" --shard 2/2 -o "$W/parts/2" --no-cache -q $OPTS)
 S=$(sets "$W/out1")
 same=yes
 for f in $(cd "$W/out1" && find . -name '*.csv'); do
@@ -44,4 +47,6 @@ row "1 thread" "$r1" 1
 row "2 threads (OMP_NUM_THREADS=2)" "$r2" 2
 row "2 shards x 1 thread (GNU parallel)" "$rs" 2
 echo
+echo "$c1 $c2 ${r1#* }" | awk '{ m = $2 > $4 ? $2 : $4; printf "shards alone: CPU %.1f s and %.1f s (balance, largest / mean: %.3f); ideal 2-machine efficiency, CPU of 1 thread / (2 x largest shard CPU): %.0f %%\n", $2, $4, 2 * m / ($2 + $4), 100 * $5 / (2 * m) }'
+echo "CPU of 2 threads / CPU of 1 thread: $(echo "${r2#* } ${r1#* }" | awk '{ printf "%.3f", $1 / $2 }') (threading overhead); load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "merge of the 2 shards: $(echo "$rm_" | awk '{ printf "%.2f s wall", $1 }'); CSV outputs of all three runs identical: $same"
