@@ -105,7 +105,8 @@ cp -r "$D/res" "$D/res.before"
 pid=$!
 sleep 1; kill -TERM $pid; wait $pid; rc=$?
 [ "$rc" -ne 0 ] && t_pass || t_fail "interrupted run exit $rc"
-diff -r "$D/res.before" "$D/res" >/dev/null && t_pass || t_fail "SIGTERM changed the output folder"
+# the outputs unchanged (the result cache may have gained the floors finished: docs/plant.md)
+diff -r -x .seislide-cache "$D/res.before" "$D/res" >/dev/null && t_pass || t_fail "SIGTERM changed the output folder"
 ls -a "$D" | grep -q '\.tmp-' && t_fail "SIGTERM left a temporary: $(ls -a "$D" | tr '\n' ' ')" || t_pass
 
 # --created 0 and SOURCE_DATE_EPOCH=0: identical workbooks a second apart
