@@ -1,4 +1,4 @@
-# seislide - see README.md. Targets: all test bench study install clean asan mutate physfloors.
+# seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate physfloors.
 CC      ?= cc
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -46,7 +46,7 @@ STUDY_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(shell grep -l '^\#include
 # found by the compiler, so a header added to or moved under seislide.h follows.
 PUBLIC_H  := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
-.PHONY: all test bench study install clean asan check-tools mutate physfloors
+.PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant
 all: $(PROG) $(SHLIB) $(TEST_BIN)
 
 # (the library's objects are rebuilt when the Makefile changes: a tree
@@ -87,6 +87,11 @@ test: all
 
 bench: all
 	./$(PROG) bench
+
+# A plant of BENCH_PLANT_FLOORS floors (default 12) from a building model, run at
+# 1 and 2 threads and as 2 shards (GNU parallel); docs/performance.md, "Plant runs".
+bench-plant: $(PROG) $(BUILD)/tools/benchplant
+	bash tools/bench-plant.sh ./$(PROG) $(BUILD)/tools/benchplant
 
 # The source study reproduced from ../shared/records (or $$SEISLIDE_SHARED/records):
 # docs/validation.md and docs/validation/ (figures need gnuplot: gnuplot-nox).

@@ -84,8 +84,9 @@ static int try_cache(runner *r, size_t i, const char *lab)
     if (c != SL_CACHE_HIT)
         return 0;
     f->reused = 1;
-    plant_progress_floor(&r->pp, i + 1, lab, f->cost);
-    plant_progress_done(&r->pp, i + 1, lab, f->an, 1, r->n_mu);
+    size_t seq = r->pp.done + 1; /* the floor's place in this run's sequence */
+    plant_progress_floor(&r->pp, seq, lab, f->cost);
+    plant_progress_done(&r->pp, seq, lab, f->an, 1, r->n_mu);
     return 1;
 }
 
@@ -93,7 +94,8 @@ static int try_cache(runner *r, size_t i, const char *lab)
 static sl_status compute(runner *r, size_t i, const char *lab, sl_error *err)
 {
     sl_plant_floor *f = &r->p->floors[i];
-    plant_progress_floor(&r->pp, i + 1, lab, f->cost);
+    size_t seq = r->pp.done + 1; /* the floor's place in this run's sequence */
+    plant_progress_floor(&r->pp, seq, lab, f->cost);
     r->pp.cache_dir = r->cache;
     r->pp.lock_hash = r->cache ? f->key.hash : NULL;
     f->an = sl_analysis_run(f->floor, r->ao, err);
@@ -102,7 +104,7 @@ static sl_status compute(runner *r, size_t i, const char *lab, sl_error *err)
         return err ? err->code : SL_EINVAL;
     sl_status st = r->cache ? sl_cache_write(r->cache, &f->key, f->an, err) : SL_OK;
     if (!st)
-        plant_progress_done(&r->pp, i + 1, lab, f->an, 0, r->n_mu);
+        plant_progress_done(&r->pp, seq, lab, f->an, 0, r->n_mu);
     return st;
 }
 
@@ -230,8 +232,10 @@ int cmd_run(int argc, char **argv)
         r.cache = a.cache ? a.cache : cache_dir;
         r.out = a.cache ? NULL : a.out;
     }
-    if (!(mine = calloc(plant.n ? plant.n : 1, 1)))
+    if (!(mine = calloc(plant.n ? plant.n : 1, 1))) {
+        sl_error_set(&err, SL_ENOMEM, NULL, 0, "out of memory");
         goto fail;
+    }
     size_t n_mine = 0;
     double cost = 0;
     for (size_t i = 0; i < plant.n; i++) {

@@ -32,7 +32,10 @@ void plant_progress_done(plant_progress *pp, size_t i, const char *label, const 
                          int reused, size_t n_mu);
 /* A message that must not be overwritten by the updating line. */
 void plant_progress_msg(plant_progress *pp, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 /* Clear the updating line. */
 void plant_progress_end(plant_progress *pp);
 

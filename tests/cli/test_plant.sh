@@ -87,10 +87,10 @@ grep -v '^# floor_file' "$D/out2/bldA/floor_02-el12.csv" > "$D/u2"
 grep -v '^# floor_file' "$D/out1/bldA/floor_02-el12.csv" > "$D/u1"
 cmp -s "$D/u1" "$D/u2" && t_pass || t_fail "an unchanged floor's table changed"
 
-# a flipped byte in one cache entry: detected, the floor recomputed and said, outputs the same
+# a flipped byte in one cache entry (in its payload: a motion check): detected, the floor recomputed and said, outputs the same
 E=$(ls "$D/out1/.seislide-cache"/*.slr | head -1)
 size=$(wc -c < "$E")
-printf '\377' | dd of="$E" bs=1 seek=$((size / 2)) conv=notrunc 2>/dev/null
+printf '\377' | dd of="$E" bs=1 seek=$((size - 200)) conv=notrunc 2>/dev/null
 t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc flipped 0
 t_expect_err flipped-said "cache entry .*$(basename "$E") failed its check \(checksum mismatch"
 t_expect_err flipped-reused "reused [23] of 4 floors"
@@ -154,6 +154,15 @@ else
 fi
 t_run run "$D/plant" --shard 4/3 -o "$D/x"; t_expect_rc bad-shard 2
 t_run run "$D/plant" --shard 1/2 --motions -o "$D/x"; t_expect_rc shard-motions 2
+
+# on a terminal: one line updated in place (carriage returns), no line per floor
+if command -v script >/dev/null 2>&1; then
+  script -qc "'$B' run '$D/plant' -o '$D/outt' $OPTS" /dev/null > "$D/tty.txt" 2>&1
+  [ "$(tr '\r' '\n' < "$D/tty.txt" | grep -c "$(printf '\033')\[Krun: ")" -ge 4 ] && tr '\r' '\n' < "$D/tty.txt" | grep -q "4/4 floors done (1 reused), 8 sets, elapsed" &&
+    ! grep -q "computed;" "$D/tty.txt" && t_pass || t_fail "terminal progress: $(tr '\r' '\n' < "$D/tty.txt" | tail -3)"
+else
+  t_skip "script (util-linux) absent: terminal progress not tested"
+fi
 
 # -q: nothing on stderr
 t_run run "$D/plant" -o "$D/out1" $OPTS -q; t_expect_rc quiet 0

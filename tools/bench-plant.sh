@@ -1,0 +1,52 @@
+#!/bin/bash
+# bench-plant.sh - `make bench-plant` (docs/performance.md, "Plant runs"):
+# N floors of tools/benchplant.c's building model run as one plant at 1 and
+# 2 OpenMP threads and as 2 shards of 1 thread each (GNU parallel) plus
+# merge; prints a markdown table: wall time, CPU time, sets, CPU per set,
+# sets per floor, speed-up and efficiency against 1 thread.
+#   BENCH_PLANT_FLOORS=N (default 12), BENCH_PLANT_OPTS="run options"
+#   (default: the program's defaults, converged sets), BENCH_PLANT_DIR (scratch folder).
+set -eu
+BIN=${1:-./seislide}
+GEN=${2:-build/tools/benchplant}
+N=${BENCH_PLANT_FLOORS:-12}
+OPTS=${BENCH_PLANT_OPTS:-}
+W=${BENCH_PLANT_DIR:-$(mktemp -d)}
+mkdir -p "$W"
+rm -rf "$W/ground" "$W/plant" "$W/out1" "$W/out2" "$W/parts" "$W/merged"
+"$BIN" synth --rg160 1 --count 3 --seed 1 -o "$W/ground" -q >/dev/null
+"$GEN" "$W/ground" "$N" "$W/plant" >/dev/null
+TIMEFORMAT='%R %U %S'
+run() { # label, then the command; prints "wall cpu"
+  local t
+  t=$( { time "$@" >/dev/null 2>&1; } 2>&1 | tail -1 )
+  echo "$t" | awk '{ printf "%.2f %.2f\n", $1, $2 + $3 }'
+}
+sets() { grep -v '^#' "$1/plant.csv" | awk -F, 'NR > 1 { s += $(NF - 8) } END { print s }'; }
+r1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" -o "$W/out1" --no-cache -q $OPTS)
+r2=$(OMP_NUM_THREADS=2 run "$BIN" run "$W/plant" -o "$W/out2" --no-cache -q $OPTS)
+mkdir -p "$W/parts"
+rs=$(OMP_NUM_THREADS=1 run parallel -j 2 "$BIN" run "$W/plant" --shard {}/2 -o "$W/parts/{}" --no-cache -q $OPTS ::: 1 2)
+rm_=$(run "$BIN" merge "$W"/parts/1 "$W"/parts/2 -o "$W/merged" -q)
+# each shard alone (CPU time: the balance, whatever the machine's load)
+c1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" --shard 1/2 -o "$W/parts/1" --no-cache -q $OPTS)
+c2=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" --shard 2/2 -o "$W/parts/2" --no-cache -q $OPTS)
+S=$(sets "$W/out1")
+same=yes
+for f in $(cd "$W/out1" && find . -name '*.csv'); do
+  cmp -s "$W/out1/$f" "$W/out2/$f" && cmp -s "$W/out1/$f" "$W/merged/$f" || same=no
+done
+w1=${r1% *}
+echo "plant: $N floors ($(ls "$W/plant" | wc -l) building folders), $S motion sets, options '${OPTS:-defaults}'; nproc $(nproc)"
+echo
+echo "| run | wall, s | CPU, s | CPU per set, s | sets per floor | speed-up | efficiency |"
+echo "|---|---|---|---|---|---|---|"
+row() { echo "$2" | awk -v l="$1" -v s="$S" -v n="$N" -v w1="$w1" -v k="$3" '{
+  printf "| %s | %.1f | %.1f | %.3f | %.1f | %.2f | %.0f %% |\n", l, $1, $2, $2 / s, s / n, w1 / $1, 100 * w1 / $1 / k }'; }
+row "1 thread" "$r1" 1
+row "2 threads (OMP_NUM_THREADS=2)" "$r2" 2
+row "2 shards x 1 thread (GNU parallel)" "$rs" 2
+echo
+echo "$c1 $c2 ${r1#* }" | awk '{ m = $2 > $4 ? $2 : $4; printf "shards alone: CPU %.1f s and %.1f s (balance, largest / mean: %.3f); ideal 2-machine efficiency, CPU of 1 thread / (2 x largest shard CPU): %.0f %%\n", $2, $4, 2 * m / ($2 + $4), 100 * $5 / (2 * m) }'
+echo "CPU of 2 threads / CPU of 1 thread: $(echo "${r2#* } ${r1#* }" | awk '{ printf "%.3f", $1 / $2 }') (threading overhead); load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "merge of the 2 shards: $(echo "$rm_" | awk '{ printf "%.2f s wall", $1 }'); CSV outputs of all three runs identical: $same"
