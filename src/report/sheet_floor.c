@@ -8,7 +8,7 @@
 #include "report/sheets.h"
 
 enum { FL_COLS = 10 }; /* table columns: mu, x, 7 values, flags */
-enum { CHART_ROWS = 41 }; /* rows of 20 pixels the chart covers, and one */
+enum { CHART_ROWS = 33 }; /* rows of 20 pixels the chart covers, and one */
 
 /* Column widths (characters): mu, mu g/ZPA, the values; flags as wide as
  * its longest text, at most FLAGS_MAX (then wrapped, rows grown). */
@@ -194,7 +194,7 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     const double widths[FL_COLS] = {W_MU, W_X, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL,
                                     w_flags};
     double xs = sl_rpt_chart_scale(widths, FL_COLS);
-    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 2.0 * xs};
+    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 1.6 * xs};
     worksheet_insert_chart_opt(ws, chart_row, 0, floor_chart(wb, r, i, ax), &co);
     const char *band = "The red band along the bottom marks every range of mu where the ASCE "
                        "design value is below the NLTHA design value; the black dash-dot line "
