@@ -91,7 +91,7 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
         sl_rpt_num_or_blank(ws, row, 6, hi, F->ratio);
         worksheet_write_number(ws, row, 7, run, NULL);
         sl_rpt_num_or_blank(ws, row, 8, corr, F->ratio);
-        worksheet_write_string(ws, row, 9, pass ? "pass" : buf, pass ? F->wrap : F->warn);
+        worksheet_write_string(ws, row, 9, pass ? "pass" : buf, pass ? F->indent : F->warn);
         if (!pass)
             worksheet_set_row(ws, row, sl_rpt_text_height(buf, W_VERDICT, 1), NULL);
         row++;
