@@ -109,6 +109,7 @@ static void test_lookup_libreoffice(void)
     CHECK(d[0] && d[1], "designs");
     if (!d[0] || !d[1])
         return;
+    d[1]->n_sets = 7; /* the policy text must give the chosen floor's own count */
     sl_report_floor fl[2] = {
         {.id = "ground", .name = "Ground", .path = "ground.ini", .elevation_m = NAN,
          .units = "g", .zpa_h_ms2 = 0.3 * SL_G, .design = d[0], .note = ""},
@@ -157,11 +158,13 @@ static void test_lookup_libreoffice(void)
     n += snprintf(cmd + n, sizeof cmd - (size_t)n, " >/dev/null 2>&1");
     CHECK(system(cmd) == 0, "soffice conversion: %s", cmd);
     for (size_t c = 0; c < N_CASES; c++) {
-        char csv[700], check[256] = "", result[256] = "";
+        char csv[700], check[256] = "", result[256] = "", policy[2048] = "";
         snprintf(csv, sizeof csv, "%s/csv/case%02zu.csv", dir, c);
         /* Lookup!B15: the input check; B14: the clearance (rows 1-based) */
         CHECK(csv_cell(csv, 14, 1, check, sizeof check) == 0, "case %zu: no B15 in %s", c, csv);
         CHECK(csv_cell(csv, 13, 1, result, sizeof result) == 0, "case %zu: no B14", c);
+        /* A32: the policy paragraph, with the chosen floor's number of sets */
+        CHECK(csv_cell(csv, 31, 0, policy, sizeof policy) == 0, "case %zu: no A32", c);
         CHECK(!strcmp(check, cases[c].check), "case %zu (%s, %g): check '%s', expected '%s'", c,
               cases[c].floor, cases[c].mu, check, cases[c].check);
         if (!strcmp(cases[c].check, "ok")) {
@@ -174,8 +177,13 @@ static void test_lookup_libreoffice(void)
             double got = strtod(result, &end);
             CHECK(end != result, "case %zu: result '%s' is not a number", c, result);
             CHECK_CLOSE(got, exp, 1e-9, 1e-9);
+            char want[80];
+            snprintf(want, sizeof want, "of %zu synthesized motion sets of this floor", dd->n_sets);
+            CHECK(strstr(policy, want) != NULL, "case %zu: policy '%s' lacks '%s'", c, policy, want);
         } else {
             CHECK(!strcmp(result, "-"), "case %zu: result '%s', expected '-'", c, result);
+            CHECK(strstr(policy, "of the floor's synthesized motion sets") != NULL,
+                  "case %zu: policy '%s'", c, policy);
         }
     }
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);

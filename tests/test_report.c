@@ -145,11 +145,87 @@ static void test_design_se(void)
     sl_design_free(d);
 }
 
+/* A floor whose motions failed their checks says so in the first line of
+ * every CSV that holds it; every CSV traces its run (command, created, seed,
+ * the floor file's CRC-32). */
+static void test_failed_checks_and_trace(void)
+{
+    sl_design *d = design(0.2);
+    CHECK(d != NULL, "design");
+    if (!d)
+        return;
+    char dir[] = "/tmp/sl-report-fail-XXXXXX", path[512], line[2048];
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    sl_report_floor fl[2] = {
+        {.id = "f1", .name = "Floor 1", .path = "f1.ini", .elevation_m = NAN, .units = "g",
+         .zpa_h_ms2 = 0.5 * SL_G, .design = d, .note = "", .crc32 = 0xfbca2e0fUL,
+         .size_bytes = 3623, .n_failed_motions = 2, .sa10_fallback = 1},
+        {.id = "f2", .name = "Floor 2", .path = "f2.ini", .elevation_m = NAN, .units = "g",
+         .zpa_h_ms2 = 0.5 * SL_G, .design = d, .note = "", .crc32 = 0x1234abcdUL}};
+    const sl_report_quality q[] = {
+        {.floor = "f1", .set = 1, .component = "H1", .pass = 0, .why = "below run_below "},
+        {.floor = "f1", .set = 1, .component = "H2", .pass = 1, .why = ""},
+        {.floor = "f1", .set = 1, .component = "V", .pass = 0, .why = "pga"},
+        {.floor = "f2", .set = 1, .component = "H1", .pass = 1, .why = ""}};
+    sl_report r;
+    sl_report_init(&r);
+    r.version = "seislide test";
+    r.command_line = "seislide run floors --seed 7";
+    r.seed = "7";
+    r.created = 1700000000;
+    r.n_floors = 2;
+    r.floors = fl;
+    r.n_quality = 4;
+    r.quality = q;
+    sl_error e;
+    CHECK(sl_report_write_csv(&r, dir, &e) == SL_OK, "csv: %s", e.msg);
+    static const char *const files[] = {"floor_f1.csv", "floor_f2.csv", "summary.csv",
+                                        "floors.csv", "motion_quality.csv"};
+    for (size_t k = 0; k < 5; k++) {
+        snprintf(path, sizeof path, "%s/%s", dir, files[k]);
+        FILE *f = fopen(path, "r");
+        CHECK(f != NULL, "%s", files[k]);
+        if (!f)
+            continue;
+        int first = 1, warned = 0, cmd = 0, created = 0, seed = 0, crc1 = 0, crc2 = 0;
+        while (fgets(line, sizeof line, f) && line[0] == '#') {
+            if (first)
+                warned = !strncmp(line, "# WARNING: CHECKS FAILED: 2 of 3 motion components of "
+                                  "floor f1 failed their SRP 3.7.1 checks (below 1, run_below 1, "
+                                  "pga 1;", 120);
+            first = 0;
+            cmd |= !strcmp(line, "# command: seislide run floors --seed 7\r\n");
+            created |= !strcmp(line, "# created: 2023-11-14T22:13:20Z\r\n");
+            seed |= !strcmp(line, "# seed: 7\r\n");
+            crc1 |= !strcmp(line, "# floor_file_crc32: fbca2e0f f1 (f1.ini, 3623 bytes)\r\n");
+            crc2 |= !strncmp(line, "# floor_file_crc32: 1234abcd f2 ", 32);
+        }
+        fclose(f);
+        int has_f1 = k != 1, has_f2 = k != 0;
+        CHECK(warned == has_f1, "%s: first line warns of f1's failed checks: %d", files[k], warned);
+        CHECK(cmd && created && seed, "%s: command %d, created %d, seed %d", files[k], cmd, created,
+              seed);
+        CHECK(crc1 == has_f1 && crc2 == has_f2, "%s: CRC-32 lines %d %d", files[k], crc1, crc2);
+    }
+    snprintf(path, sizeof path, "%s/x.xlsx", dir);
+    CHECK(sl_report_write_xlsx(&r, path, &e) == SL_OK, "xlsx: %s", e.msg);
+    /* the workbook's text is compressed: unzip -p when present */
+    snprintf(line, sizeof line, "command -v unzip >/dev/null && unzip -p '%s' "
+             "xl/sharedStrings.xml | grep -q 'Floor f1: the floor file gives no 10 %%-damped' && "
+             "unzip -p '%s' xl/sharedStrings.xml | grep -q 'CHECKS FAILED: 2 of 3'", path, path);
+    if (system("command -v unzip >/dev/null 2>&1") == 0)
+        CHECK(system(line) == 0, "workbook: Notes entry for the 10 %% fallback and the failed checks");
+    snprintf(line, sizeof line, "rm -rf '%s'", dir);
+    CHECK(system(line) == 0, "clean up");
+    sl_design_free(d);
+}
+
 int main(void)
 {
     RUN(test_floor_id);
     RUN(test_ranges_text);
     RUN(test_csv_band_and_finite);
     RUN(test_design_se);
+    RUN(test_failed_checks_and_trace);
     return HARNESS_END("report");
 }

@@ -8,7 +8,7 @@
 #include "report/sheets.h"
 
 enum { FL_COLS = 10 }; /* table columns: mu, x, 7 values, flags */
-enum { CHART_ROWS = 41 }; /* rows of 20 pixels the chart covers, and one */
+enum { CHART_ROWS = 33 }; /* rows of 20 pixels the chart covers, and one */
 
 /* Column widths (characters): mu, mu g/ZPA, the values; flags as wide as
  * its longest text, at most FLAGS_MAX (then wrapped, rows grown). */
@@ -102,7 +102,7 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         size_t len = strlen(sl_report_flags(d->rows[k].flags, flags, sizeof flags));
         longest = len > longest ? len : longest;
     }
-    double w_flags = fmin(W_FLAGS_MAX, fmax(W_FLAGS_MIN, (double)longest * 0.9 + 2));
+    double w_flags = fmin(W_FLAGS_MAX, fmax(W_FLAGS_MIN, (double)longest * 0.9 + 3));
     double w_all = W_MU + W_X + 7 * W_VAL + w_flags, w_value = 6 * W_VAL + w_flags;
     worksheet_set_column(ws, 0, 0, W_MU, NULL);
     worksheet_set_column(ws, 1, 1, W_X, NULL);
@@ -159,7 +159,7 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     snprintf(h[5], sizeof h[5], "ASCE best estimate, mm");
     snprintf(h[6], sizeof h[6], "ASCE design (%g x best), mm", d->fs_asce);
     snprintf(h[7], sizeof h[7], "cap (%g x PGD), mm", d->cap_factor);
-    snprintf(h[8], sizeof h[8], "required clearance, mm");
+    snprintf(h[8], sizeof h[8], "required clearance in mm");
     snprintf(h[9], sizeof h[9], "flags");
     double hh = 0;
     for (lxw_col_t c = 0; c < FL_COLS; c++) {
@@ -180,8 +180,8 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
             sl_rpt_num_or_blank(ws, rr, (lxw_col_t)(2 + c), SL_RPT_MM_PER_M * v[c],
                                 c == 6 ? F->mmbold : F->mm);
         sl_report_flags(w->flags, flags, sizeof flags);
-        worksheet_write_string(ws, rr, 9, flags[0] ? flags : "-", F->wrap);
-        double fh = sl_rpt_text_height(flags, w_flags, 0);
+        worksheet_write_string(ws, rr, 9, flags[0] ? flags : "-", F->indent);
+        double fh = sl_rpt_text_height(flags, w_flags - 1, 0); /* less the indent */
         if (fh > 20) /* more than a line */
             worksheet_set_row(ws, rr, fh, NULL);
     }
@@ -194,7 +194,7 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     const double widths[FL_COLS] = {W_MU, W_X, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL,
                                     w_flags};
     double xs = sl_rpt_chart_scale(widths, FL_COLS);
-    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 2.0 * xs};
+    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 1.6 * xs};
     worksheet_insert_chart_opt(ws, chart_row, 0, floor_chart(wb, r, i, ax), &co);
     const char *band = "The red band along the bottom marks every range of mu where the ASCE "
                        "design value is below the NLTHA design value; the black dash-dot line "

@@ -55,7 +55,7 @@ void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
         worksheet_write_string(ws, row, 3, sl_rpt_or_dash(fl->units), NULL);
         worksheet_write_number(ws, row, 4, (double)fl->size_bytes, NULL);
         snprintf(buf, sizeof buf, "%08lx", fl->crc32 & 0xffffffffUL);
-        worksheet_write_string(ws, row, 5, buf, NULL);
+        worksheet_write_string(ws, row, 5, buf, F->indent);
         double h = sl_rpt_text_height(fl->name, W_NAME, 0);
         h = h > sl_rpt_text_height(fl->path, W_VALUE, 0) ? h : sl_rpt_text_height(fl->path, W_VALUE, 0);
         h = h > sl_rpt_text_height(fl->id, 12, 0) ? h : sl_rpt_text_height(fl->id, 12, 0);

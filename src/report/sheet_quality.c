@@ -9,7 +9,7 @@
 #include "report/sheets.h"
 
 enum { Q_COLS = 10 };
-#define W_VERDICT 20.0
+#define W_VERDICT 19.0
 
 void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r)
 {
@@ -18,7 +18,7 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
     for (size_t i = 0; i < r->n_floors; i++)
         w_id = strlen(r->floors[i].id) > w_id ? strlen(r->floors[i].id) : w_id;
     /* about 86 units: a portrait A4 page at 75 % */
-    const double width[Q_COLS] = {(double)w_id * 0.9 + 1.5, 4, 6.5, 6.5, 6.5, 7.5, 7.5, 7.5, 9,
+    const double width[Q_COLS] = {(double)w_id * 0.9 + 1.5, 4, 6.5, 6.5, 6.5, 7.5, 7.5, 7.5, 10.5,
                                   W_VERDICT};
     double w_all = 0;
     for (lxw_col_t c = 0; c < Q_COLS; c++) {
@@ -49,7 +49,7 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
     static const char *const hd[Q_COLS] = {
         "floor id", "set", "PGA H1, g", "PGA H2, g", "PGA V, g", "lowest ratio to target",
         "highest ratio to target", "longest run below target (limit 9)",
-        "largest |correlation| between components", "verdict"};
+        "largest correlation of two components", "verdict"};
     double hh = 0;
     for (lxw_col_t c = 0; c < Q_COLS; c++) {
         worksheet_write_string(ws, head, c, hd[c], F->header);
@@ -91,7 +91,7 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
         sl_rpt_num_or_blank(ws, row, 6, hi, F->ratio);
         worksheet_write_number(ws, row, 7, run, NULL);
         sl_rpt_num_or_blank(ws, row, 8, corr, F->ratio);
-        worksheet_write_string(ws, row, 9, pass ? "pass" : buf, pass ? F->wrap : F->warn);
+        worksheet_write_string(ws, row, 9, pass ? "pass" : buf, pass ? F->indent : F->warn);
         if (!pass)
             worksheet_set_row(ws, row, sl_rpt_text_height(buf, W_VERDICT, 1), NULL);
         row++;

@@ -27,7 +27,7 @@
 
 typedef struct sl_rpt_fmts {
     lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
-        *note, *label, *sci, *warn;
+        *note, *label, *sci, *warn, *indent;
 } sl_rpt_fmts;
 
 /* Layout (0-based rows). */

@@ -20,7 +20,8 @@ d = sys.argv[1]
 z = zipfile.ZipFile(d + '/seislide-clearance.xlsx')
 wb = z.read('xl/workbook.xml').decode()
 rels = z.read('xl/_rels/workbook.xml.rels').decode()
-sheets = re.findall(r'<sheet name="([^"]+)" sheetId="\d+" r:id="(rId\d+)"', wb)
+sheets = re.findall(r'<sheet name="([^"]+)" sheetId="\d+"(?: state="hidden")? r:id="(rId\d+)"', wb)
+hidden = re.findall(r'<sheet name="([^"]+)" sheetId="\d+" state="hidden"', wb)
 target = dict(re.findall(r'Id="(rId\d+)"[^>]*Target="([^"]+)"', rels))
 target.update({k: v for v, k in re.findall(r'Target="([^"]+)"[^>]*Id="(rId\d+)"', rels)})
 xml = {name: z.read('xl/' + target[rid]).decode() for name, rid in sheets}
@@ -31,8 +32,24 @@ def strings(name):
 def ok(cond, what):
     print(('ok ' if cond else 'FAIL ') + what)
 names = [n for n, _ in sheets]
-floors = [n for n in names if re.match(r'\d+ ', n)]
+floors = names[2:-4]
 ok(names[:2] == ['Lookup', 'Summary'] and names[-4:] == ['Motion quality', 'Notes', 'Inputs', 'Data'] and len(floors) == 2, 'sheets ' + '|'.join(names))
+# floor sheets named by the floor ids, the full name in their title; Data hidden (not printed)
+ok(floors == ['01-ground', '04-roof36'], 'floor sheets named by id: %s' % floors)
+ok(hidden == ['Data'], 'Data hidden: %s' % hidden)
+ok(any(t.startswith('Floor 04-roof36: Roof el. 36 m') for t in strings('04-roof36')), 'full name in the floor sheet title')
+# every CSV traces its run: command, created, seed, and each floor file's CRC-32 as Inputs gives it
+import glob
+inputs = strings('Inputs')
+for f in sorted(glob.glob(d + '/*.csv')):
+    head = [l for l in open(f, newline='').read().split('\r\n') if l.startswith('#')]
+    keys = [l.split(':')[0] for l in head]
+    ok(all(k in keys for k in ('# program', '# command', '# created', '# seed', '# floor_file_crc32')), f + ' comment lines: %s' % keys)
+    ok('# created: 2023-11-14T22:13:20Z' in head and '# seed: 1' in head and any('--created 1700000000' in l for l in head if l.startswith('# command')), f + ' created, seed, command')
+    for l in head:
+        if l.startswith('# floor_file_crc32: '):
+            c = l.split()[2]
+            ok(c in inputs, f + ' CRC-32 %s as on Inputs' % c)
 # title block on Lookup and Summary
 for n in ('Lookup', 'Summary'):
     s = strings(n)
@@ -96,14 +113,15 @@ for n in floors:
     ok(m is not None and int(m.group(1)) >= 70 and 'fitToPage' not in xml[n] and 'orientation="portrait"' in xml[n], n + ' print scale %s' % (m and m.group(1)))
 for n in names:
     ok('Page &amp;P of &amp;N' in xml[n] and '<oddHeader>' in xml[n], n + ' header and footer')
+    ok('Plant &amp;&amp; Unit 2' in xml[n] and 'Document DOC-0042, revision C' in xml[n] and '&amp;C' not in xml[n].split('<oddHeader>')[1].split('</oddHeader>')[0], n + ' header: title block left, nothing centred')
 PY
 grep '^FAIL' "$D/check.txt" | while read -r l; do echo "  FAIL cli_workbook: $l" >&2; done
 np=$(grep -c '^ok ' "$D/check.txt"); nf=$(grep -c '^FAIL' "$D/check.txt")
 [ "$np" -gt 40 ] && [ "$nf" -eq 0 ] && t_pass || t_fail "workbook checks: $np ok, $nf failed ($(grep -v '^ok ' "$D/check.txt" | head -5))"
 
-# render to PDF: Lookup 1 page, Summary 2 (table, chart), each floor 2 (table, chart),
-# Notes 2 (its paragraphs in rows tall enough to show them whole), Motion quality,
-# Inputs, Data 1 each: 12 pages for two floors
+# render to PDF: Lookup 1 page, Summary 3 (table, floors, chart), each floor 2 (table at
+# 72 %, chart), Motion quality 1 (one row per set), Notes 2 (its paragraphs in rows tall
+# enough to show them whole), Inputs 1; Data is hidden: 12 pages for two floors
 if command -v soffice >/dev/null 2>&1; then
   (cd "$D" && timeout 180 soffice -env:UserInstallation=file://$D/lo --headless --convert-to pdf --outdir pdf res/seislide-clearance.xlsx >/dev/null 2>&1)
   if [ -s "$D/pdf/seislide-clearance.pdf" ]; then
