@@ -150,16 +150,17 @@ wait_fresh keep
 kill -KILL $pid; { wait $pid; } 2>/dev/null
 left=$(ls -a "$D" | grep "^\.keep\.tmp-$pid@")
 [ -n "$left" ] && t_pass || t_fail "no fresh folder of the killed run $pid: $(ls -a "$D" | tr '\n' ' ')"
-# beside it: a live run's (this shell), one of another host, one without owner
+# beside it: a live run's (this shell), one of another host (a pid not running
+# here), one without owner
 host=$(hostname | tr -c 'A-Za-z0-9._\n-' '_')
-mkdir "$D/.keep.tmp-$$@$host-AAAAAA" "$D/.keep.tmp-1@other-host.example-BBBBBB" "$D/.keep.tmp-CCCCCC"
+mkdir "$D/.keep.tmp-$$@$host-AAAAAA" "$D/.keep.tmp-999999@other-host.example-BBBBBB" "$D/.keep.tmp-CCCCCC"
 t_run run $G -o "$D/keep" $FAST -q; t_expect_rc after-kill 0
 [ ! -e "$D/$left" ] && t_pass || t_fail "the killed run's folder $left is still there"
 t_expect_err stale-removed "output folder $D/keep: removed $left \(left by process $pid, which is gone: an interrupted run\)"
-for k in ".keep.tmp-$$@$host-AAAAAA" ".keep.tmp-1@other-host.example-BBBBBB" ".keep.tmp-CCCCCC"; do
+for k in ".keep.tmp-$$@$host-AAAAAA" ".keep.tmp-999999@other-host.example-BBBBBB" ".keep.tmp-CCCCCC"; do
   [ -d "$D/$k" ] && t_pass || t_fail "$k removed: never remove a folder whose owner cannot be shown gone"
   t_expect_err "stale-kept-$k" "output folder $D/keep: kept $k \("
 done
 t_expect_err stale-live "kept .keep.tmp-$$@$host-AAAAAA \(process $$ is running"
-t_expect_err stale-host "kept .keep.tmp-1@other-host.example-BBBBBB \(process 1 of host other-host.example"
+t_expect_err stale-host "kept .keep.tmp-999999@other-host.example-BBBBBB \(process 999999 of host other-host.example"
 t_end
