@@ -69,10 +69,9 @@ static const cli_opt opts[] = {
      .kind = CLI_CALL},
     {"eta", O_ETA, "E", "smooth model: exponent (5), yield displacement, m (1e-4)",
      .show = "--eta E, --uy M", .kind = CLI_CALL},
-    {"uy", O_UY, "M", NULL, .kind = CLI_POSITIVE, A(so.smooth_uy_m), .unit = "m"},
+    {"uy", O_UY, "M", NULL, .kind = CLI_CALL},
     {"solver", O_SOLVER, "S", "smooth model: msbdf, rk4imp, bsimp or rkf45", .kind = CLI_CALL},
-    {"plastic-uy", O_PUY, "M", "plastic model: yield displacement, m (1e-4)", .kind = CLI_POSITIVE,
-     A(so.plastic_uy_m), .unit = "m"},
+    {"plastic-uy", O_PUY, "M", "plastic model: yield displacement, m (1e-4)", .kind = CLI_CALL},
     {.head = "output:"},
     {"csv", O_CSV, NULL, "one CSV row per mu on stdout: mu, peak_m, residual_m,\npeak_x_m, "
      "peak_y_m, t_peak_s, residual_x_m,\nresidual_y_m, path_m, max_speed_m_s, t_rest_s,\n"
@@ -85,9 +84,15 @@ static const cli_opt opts[] = {
 /* The options that need more than a kind: names and bounded numbers. */
 static int take(void *dst, int key, const char *arg)
 {
-    sl_slide_opts *so = &((slide_args *)dst)->so;
+    slide_args *a = dst;
+    sl_slide_opts *so = &a->so;
     unsigned long ul;
     int q;
+    if (key >= O_SUBSTEPS && key <= O_PUY)
+        a->given |= 1u << (key - O_SUBSTEPS);
+    if (key == O_UY || key == O_PUY)
+        return cli_positive("slide", key == O_UY ? "--uy" : "--plastic-uy", arg, "m",
+                            key == O_UY ? &so->smooth_uy_m : &so->plastic_uy_m);
     if (key == O_SUBSTEPS) {
         if (cli_parse_ulong(arg, &ul) || ul < 1 || ul > 1000000)
             return cli_usage("slide", "--substeps '%s' must be an integer >= 1", arg);
@@ -110,26 +115,23 @@ static int take(void *dst, int key, const char *arg)
 /* The options of one model that another would ignore: a usage error. */
 static int model_options(const slide_args *a)
 {
-    sl_slide_opts d;
-    sl_slide_opts_default(&d);
-    const sl_slide_opts *so = &a->so;
     static const char *const model[] = {"exact", "smooth", "plastic"};
-    const char *bad = so->model != SL_MODEL_SMOOTH && so->smooth_eta != d.smooth_eta ? "--eta"
-                      : so->model != SL_MODEL_SMOOTH && so->smooth_uy_m != d.smooth_uy_m ? "--uy"
-                      : so->model != SL_MODEL_SMOOTH && so->smooth_solver != d.smooth_solver
-                          ? "--solver"
-                      : so->model != SL_MODEL_PLASTIC && so->plastic_uy_m != d.plastic_uy_m
-                          ? "--plastic-uy"
-                      : so->model != SL_MODEL_EXACT && so->substeps != d.substeps ? "--substeps"
-                      : so->model == SL_MODEL_PLASTIC && (a->rtol > 0 || a->atol > 0)
-                          ? "--rtol or --atol"
-                          : NULL;
+    const sl_model m = a->so.model;
+#define GIVEN(k) ((a->given >> ((k) - O_SUBSTEPS)) & 1u)
+    const char *bad = m != SL_MODEL_SMOOTH && GIVEN(O_ETA)      ? "--eta"
+                      : m != SL_MODEL_SMOOTH && GIVEN(O_UY)     ? "--uy"
+                      : m != SL_MODEL_SMOOTH && GIVEN(O_SOLVER) ? "--solver"
+                      : m != SL_MODEL_PLASTIC && GIVEN(O_PUY)   ? "--plastic-uy"
+                      : m != SL_MODEL_EXACT && GIVEN(O_SUBSTEPS) ? "--substeps"
+                      : m == SL_MODEL_PLASTIC && (a->rtol > 0 || a->atol > 0) ? "--rtol or --atol"
+                                                                              : NULL;
     if (bad)
         return cli_usage("slide", "%s does not apply to --model %s", bad,
-                         model[so->model <= SL_MODEL_PLASTIC ? so->model : 0]);
-    if (so->model == SL_MODEL_EXACT && so->substeps != d.substeps && a->rtol > 0)
+                         model[m <= SL_MODEL_PLASTIC ? m : 0]);
+    if (m == SL_MODEL_EXACT && GIVEN(O_SUBSTEPS) && a->rtol > 0)
         return cli_usage("slide", "--substeps replaces the error control that --rtol sets: "
                          "give one of them");
+#undef GIVEN
     return CLI_EXIT_OK;
 }
 

@@ -15,6 +15,7 @@ typedef struct slide_args {
     cli_mu mu;
     double scale_g, ratio, rtol, atol;
     int csv, truncate, one_way;
+    unsigned given; /* the model options given: 1 << (key - O_SUBSTEPS) (slide_opts.c) */
 } slide_args;
 
 /* Parse the command line into a (defaults first) and check it. Returns

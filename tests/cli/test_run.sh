@@ -134,7 +134,14 @@ awk -F, 'NR > 1 { lo = $(NF-3); hi = $(NF-2); v = $(NF-1); d = $NF;
   if (d !~ /H1 10 %: / || d !~ /H2 2 %: / || d !~ /V 10 %: /) bad++;
   if ((v == "ok") != (d !~ /OUTSIDE/)) bad++; n++ } END { exit !(n == 2 && bad == 0) }' "$FC" \
   && t_pass || t_fail "floors.csv: other dampings values: $(cat "$FC")"
-t_expect_err dampings-line "floor 'Roof el. 36 m': other dampings against the motions' own spectra \(set mean S/T of 5 sets, limits 0.9-1.3; reported, not a pass condition\): H1 2 %: [0-9.]+-[0-9.]+ (ok|OUTSIDE); H1 10 %"
+t_expect_err dampings-line "floor 'Roof el. 36 m': the motions, matched at 5 % damping, against the file's other tables \(set mean of S/T over 5 sets, lowest-highest; ok within 0.9-1.3\): H1 2 %: [0-9.]+-[0-9.]+ (ok|OUTSIDE); H1 10 %"
+# what OUTSIDE means for the result is said whenever it appears
+if grep -q "Roof el. 36 m.*OUTSIDE" "$T_ERR"; then
+  t_expect_err outside-means "floor 'Roof el. 36 m': OUTSIDE: at that damping the motions' spectrum is not within 0.9-1.3 x the file's table; reported only"
+fi
+# skipped friction values in words a reader can use, not "slide at no intensity"
+t_expect_err skipped-words "floor 2/2 'Roof el. 36 m': ZPA 0.630 g; (every one of the 3 friction values slides \(each from NLTHA\)|[0-9]+ of 3 friction values \(the largest\) never slide)"
+grep -q "slide at no intensity" "$T_ERR" && t_fail "old wording 'slide at no intensity' on stderr" || t_pass
 # a doctored 10 % table (x 1.5 in a copy; both copies pin the floor's seed,
 # so the motions are the same): the motions' own 10 % spectra are then 1/1.5
 # of it: OUTSIDE at every component, exit status unchanged; a file with the
@@ -148,7 +155,9 @@ awk '/^sa_0\.(02|1) =/ { t = 1; next } /^[a-z]/ { t = 0 } t && /^[ \t]/ { next }
   floors/04-roof36.ini > "$D/one/04-roof36.ini"
 grep -q "^sa_0.1 = 0.0282, 0.0633," "$D/doct/04-roof36.ini" && ! grep -q "^sa_0.1\|^sa_0.02" "$D/one/04-roof36.ini" \
   && t_pass || t_fail "doctored floor files: $(grep -A1 '^sa_0.1' "$D/doct/04-roof36.ini" | head -2)"
-t_run run "$D/doct" -o "$D/outd" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc doctored 0
+# (seed 11, set 1: one motion misses 'below' at 0.84 x the 5 % target, so the
+# run needs --accept-failed-checks; test_run_errors.sh checks the refusal)
+t_run run "$D/doct" -o "$D/outd" --sets 3 --mu-range 0.1:0.3:0.1 --created 0 --accept-failed-checks; t_expect_rc doctored 0
 for c in H1 H2 V; do
   t_expect_err "doctored-$c" "$c 10 %: 0\.[0-9]+-[0-9.]+ OUTSIDE"
 done
@@ -156,12 +165,14 @@ tr -d '\r' < "$D/outd/floors.csv" | grep -v "^#" | awk -F, 'NR == 2 { exit !($(N
   && t_pass || t_fail "doctored 10 % table not reported outside: $(tail -1 "$D/outd/floors.csv")"
 # the 10 % set mean falls by the factor: doctored / original = 1 / 1.5 (same motions)
 r1=$(sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p" "$T_ERR")
-t_run run "$D/orig" -o "$D/outo" --sets 3 --mu-range 0.1:0.3:0.1 --created 0
+t_run run "$D/orig" -o "$D/outo" --sets 3 --mu-range 0.1:0.3:0.1 --created 0 --accept-failed-checks
 r0=$(grep "Roof el. 36" "$T_ERR" | sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p")
 awk -v a="$r1" -v b="$r0" 'BEGIN { split(a, x, " "); split(b, y, " "); for (i = 1; i <= 2; i++) { e = x[i] * 1.5 / y[i] - 1; if (e < 0) e = -e; if (!(e < 0.005)) exit 1 } }' \
   && t_pass || t_fail "doctored 10 % set mean ($r1) is not original ($r0) / 1.5"
 t_run run "$D/one" -o "$D/out1d" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc one-damping 0
 t_expect_err one-damping-msg "floor 'Roof el. 36 m': other dampings: none"
+# no 10 % table: a warning naming the file (the ASCE estimate on the motions' mean spectrum)
+t_expect_err no-sa10-warning "run: warning: .*one/04-roof36.ini: no 10 %-damped table for H1 and H2: the ASCE estimate of floor 'Roof el. 36 m' uses the mean 10 % spectrum of its 3 synthesized sets"
 tr -d '\r' < "$D/out1d/floors.csv" | grep -v "^#" | tail -1 | grep -q ",none,none,none,none$" \
   && t_pass || t_fail "one damping: floors.csv $(tail -1 "$D/out1d/floors.csv")"
 

@@ -111,7 +111,7 @@ t_run synth --floor tests/data/floors/good-small.ini --damping 0.07 --count 1 --
 t_expect_rc floor-damping 1; t_expect_err floor-damping-msg "good-small.ini:[0-9]+: \[h1\] gives no spectrum at damping 0.07"
 
 # ---- failures are reported, never passed --------------------------------
-t_run synth --rg160 0.3 --count 1 --seed 1 --tol-below 0.001 --tol-above 0.001 --max-iter 1 --max-attempts 1 -o "$D/imp"
+t_run synth --rg160 0.3 --count 1 --seed 1 --tol-below 0.001 --tol-above 0.001 --max-iter 1 --max-attempts 1 --aim 1 -o "$D/imp"
 t_expect_rc impossible 1; t_expect_err impossible-msg "3 of 3 motions failed a check"
 all_rows "$D/imp/report.csv" pass 0 && t_pass || t_fail "impossible limits passed"
 all_rows "$D/imp/report.csv" lim_min_ratio 0.999 && t_pass || t_fail "limit not in the report"
