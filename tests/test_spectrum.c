@@ -182,6 +182,32 @@ static void test_order_and_groups(void)
     free(a);
 }
 
+/* The kernel's blocks (16, 8 and 4 oscillators, compiled for AVX2 and the
+ * baseline): any number of frequencies, in groups of every sub-step count,
+ * gives each oscillator the same bits as computing it alone (every lane does
+ * the arithmetic of map (2) in the same order). 1-40 frequencies cover full
+ * blocks of 16 and remainders of 1-15. */
+static void test_blocks_same_bits(void)
+{
+    size_t n = 600;
+    double *a = malloc(n * sizeof *a);
+    for (size_t i = 0; i < n; i++)
+        a[i] = sin(0.031 * (double)(i * i % 1009)) + 0.3 * cos(0.7 * (double)i);
+    double f[40], psa[40], sd[40], sa[40];
+    for (size_t nf = 1; nf <= 40; nf++) {
+        for (size_t j = 0; j < nf; j++) /* 0.2-45 Hz at dt 0.01: m = 1 ... 9 */
+            f[j] = 0.2 * pow(225.0, (double)((j * 7) % nf) / (double)(nf > 1 ? nf - 1 : 1));
+        CHECK(sl_spectrum_compute(a, n, 0.01, f, nf, 0.05, psa, sd, sa, NULL) == SL_OK, "ok");
+        for (size_t j = 0; j < nf; j++) {
+            double p1, d1, s1;
+            sl_spectrum_compute(a, n, 0.01, &f[j], 1, 0.05, &p1, &d1, &s1, NULL);
+            CHECK(p1 == psa[j] && d1 == sd[j] && s1 == sa[j],
+                  "%zu frequencies, f %g: together %.17g alone %.17g", nf, f[j], psa[j], p1);
+        }
+    }
+    free(a);
+}
+
 /* Rectangular pulse a0 for t_d < T/2 (the record ends at its last sample,
  * then a = 0), undamped: the peak comes after the record,
  * PSA = 2 a0 sin(pi t_d/T), at t = T/4 + t_d/2 (here a sample). */
@@ -583,6 +609,7 @@ int main(void)
     RUN(test_harmonic_steady_state);
     RUN(test_linearity);
     RUN(test_order_and_groups);
+    RUN(test_blocks_same_bits);
     RUN(test_peak_after_record);
     RUN(test_peak_after_record_block);
     RUN(test_sampled_peak_convergence);

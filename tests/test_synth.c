@@ -18,6 +18,7 @@
 #include "signal/rg160.h"
 #include "signal/spectrum.h"
 #include "synth/synth.h"
+#include "synth/synth_internal.h"
 
 /* The standard motion of the issue: 20 s at 200 samples/s. */
 #define T_N 4001
@@ -292,6 +293,85 @@ static void test_rg160_levels(void)
                 "max iterations %u\n",
                 rmin, rmax, cmax, itmax);
     sl_synth_free(s);
+}
+
+/* A start wavelet (eq. 1) by recurrences against the direct formula, over
+ * the longest span the start uses (+-3 s_q clipped to the motion: 4001
+ * samples at 0.05 Hz) and a short one at 50 Hz: within 1e-12 of the
+ * amplitude (measured 0.7-3e-13; without the restarts 9.4e-11 at 0.05 Hz). */
+static void test_wavelet_recurrence(void)
+{
+    const double dt = 0.005, amp = 1.7;
+    const double fq[] = {0.05, 0.7, 5.3, 50.0}, phi[] = {0.3, 2.9, 5.1, 1.0};
+    double *a = calloc(T_N, sizeof *a);
+    for (int q = 0; q < 4; q++) {
+        double sg = 1.0 / fq[q], tk = 7.3;
+        double ja = floor((tk - 3 * sg) / dt), jb = ceil((tk + 3 * sg) / dt);
+        size_t j0 = ja < 0 ? 0 : (size_t)ja, j1 = jb >= T_N - 1 ? T_N - 1 : (size_t)jb;
+        for (size_t j = 0; j < T_N; j++)
+            a[j] = 0.25; /* it adds to what is there */
+        sl_synth_add_wavelet(a, j0, j1, dt, tk, amp, sg, fq[q], phi[q]);
+        double worst = 0;
+        for (size_t j = 0; j < T_N; j++) {
+            double x = dt * (double)j - tk, want = 0.25;
+            if (j >= j0 && j <= j1)
+                want += amp * exp(-0.5 * x * x / (sg * sg)) * cos(2 * M_PI * fq[q] * x + phi[q]);
+            worst = fmax(worst, fabs(a[j] - want) / amp);
+        }
+        if (verbose())
+            fprintf(stderr, "  wavelet %g Hz: %.3g\n", fq[q], worst);
+        CHECK(worst <= 1e-12, "wavelet at %g Hz (%zu samples): error %.3g of the amplitude",
+              fq[q], j1 - j0 + 1, worst);
+    }
+    free(a);
+}
+
+/* The App. B PSD of a kept motion (computed after the retry rounds when
+ * psd_frac = 0, for every attempt otherwise) is the motion's own: the
+ * report's psd_min_ratio equals sl_psd_check_motion on the motion, and the
+ * same whether or not it decides redos (psd_frac 0 against a tiny
+ * psd_frac that every motion meets). */
+static void test_psd_of_kept_motions(void)
+{
+    sl_error e;
+    sl_spectrum *sp[3];
+    sl_synth_target tgt[3];
+    sl_synth_params p;
+    sl_synth_params_default(&p);
+    sl_synth *s = sl_synth_alloc(T_N, T_DT, &p, &e);
+    p.psd_frac = 1e-9;
+    sl_synth *s2 = sl_synth_alloc(T_N, T_DT, &p, &e);
+    if (!s || !s2 || sl_synth_targets_rg160(0.3 * SL_G, 0.05, NULL, sp, tgt, &e)) {
+        CHECK(0, "%s", e.msg);
+        return;
+    }
+    sl_synth_set a[2], b[2];
+    CHECK(sl_synth_make_sets(s, tgt, 5, 0, 2, a, NULL, NULL, &e) == SL_OK, "%s", e.msg);
+    CHECK(sl_synth_make_sets(s2, tgt, 5, 0, 2, b, NULL, NULL, &e) == SL_OK, "%s", e.msg);
+    for (int k = 0; k < 2; k++)
+        for (int c = 0; c < 3; c++) {
+            const sl_motion *m = sl_synth_set_motion(&a[k], (sl_synth_comp)c);
+            sl_psd_check pc;
+            CHECK(sl_psd_check_motion(m->acc_ms2, m->n, m->dt_s, tgt[c].spec, 0, SL_PSD_FMIN_HZ,
+                                      SL_PSD_FMAX_HZ, &pc, &e) == SL_OK,
+                  "%s", e.msg);
+            CHECK(isfinite(a[k].check[c].psd_min_ratio) &&
+                      a[k].check[c].psd_min_ratio == pc.min_ratio &&
+                      a[k].check[c].f_psd_min_hz == pc.f_min_ratio_hz,
+                  "set %d %s: reported %.17g, own %.17g", k, sl_synth_comp_name((sl_synth_comp)c),
+                  a[k].check[c].psd_min_ratio, pc.min_ratio);
+            CHECK(b[k].check[c].psd_min_ratio == a[k].check[c].psd_min_ratio,
+                  "psd_frac 0 and 1e-9 differ: %.17g %.17g", a[k].check[c].psd_min_ratio,
+                  b[k].check[c].psd_min_ratio);
+        }
+    for (int k = 0; k < 2; k++) {
+        sl_synth_set_clear(&a[k]);
+        sl_synth_set_clear(&b[k]);
+    }
+    for (int c = 0; c < 3; c++)
+        sl_spectrum_free(sp[c]);
+    sl_synth_free(s);
+    sl_synth_free(s2);
 }
 
 /* A floor: the template (RG 1.60 at 0.3 g times a floor amplification at
@@ -1012,6 +1092,8 @@ static void test_realism_seeds(void)
 int main(void)
 {
     RUN(test_defaults);
+    RUN(test_wavelet_recurrence);
+    RUN(test_psd_of_kept_motions);
     RUN(test_plan);
     RUN(test_stream_seeds);
     RUN(test_rg160_levels);

@@ -272,8 +272,11 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
 }
 
 /* Oscillators stepped together (time loop inside): blocks of BLOCK_WIDE
- * lanes, a group's last few in blocks of BLOCK_NARROW. */
+ * lanes (4 AVX2 vectors: enough independent chains to hide the latency of
+ * the recurrence), a group's last few in blocks of BLOCK_MID or BLOCK_NARROW
+ * so that few lanes are idle. */
 #define BLOCK_WIDE 16
+#define BLOCK_MID 8
 #define BLOCK_NARROW 4
 
 /* Function multiversioning (GCC, x86-64): the kernel is compiled twice,
@@ -370,22 +373,25 @@ SL_KERNEL_CLONES static void run_block(const work *wk, size_t p0, size_t nb, siz
                                        const double *acc, size_t n, size_t nfree,
                                        double *umax_out, double *amax_out)
 {
-    if (nb > BLOCK_NARROW) {
-        if (amax_out)
-            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);
-        else
-            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);
-    } else {
-        if (amax_out)
-            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);
-        else
-            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);
-    }
+#define RUN_WIDTH(W)                                                                          \
+    do {                                                                                      \
+        if (amax_out)                                                                         \
+            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, W, 1);             \
+        else                                                                                  \
+            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, W, 0);                 \
+    } while (0)
+    if (nb > BLOCK_MID)
+        RUN_WIDTH(BLOCK_WIDE);
+    else if (nb > BLOCK_NARROW)
+        RUN_WIDTH(BLOCK_MID);
+    else
+        RUN_WIDTH(BLOCK_NARROW);
+#undef RUN_WIDTH
 }
 
 /* Every group of equal m, in blocks: the record, then (free_vib) the free
  * sub-steps of the block's lowest frequency. A group runs in blocks of
- * BLOCK_WIDE; a remainder of at most BLOCK_NARROW runs narrow. */
+ * BLOCK_WIDE, its remainder in the narrowest block that holds it. */
 static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
                        double *amax)
 {
