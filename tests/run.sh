@@ -1,7 +1,7 @@
 #!/bin/sh
 # Run every test layer and print one verdict: "N passed, N failed, N skipped".
 #  - unit and numerical tests: every binary $SEISLIDE_TESTBIN/test_*
-#  - end-to-end tests of the command line: every tests/cli/*.sh
+#  - end-to-end tests of the command line: every tests/cli/test_*.sh
 # Each suite prints its own "SUITE: N passed, N failed, N skipped" line.
 # The suites run in parallel, $SEISLIDE_TEST_JOBS at a time (default 3: the
 # suites are a mix of CPU and waiting on LibreOffice, files and processes);
@@ -59,7 +59,7 @@ slow="tests/cli/test_converge.sh $SEISLIDE_TESTBIN/test_physical_floors tests/cl
   tests/cli/test_deliver.sh $SEISLIDE_TESTBIN/test_lookup tests/cli/test_synth.sh"
 {
   for t in $slow; do [ -e "$t" ] && echo "$t"; done
-  for t in "$SEISLIDE_TESTBIN"/test_* tests/cli/*.sh; do
+  for t in "$SEISLIDE_TESTBIN"/test_* tests/cli/test_*.sh; do
     [ -f "$t" ] || continue
     case $t in *.sh) ;; *) [ -x "$t" ] || continue ;; esac
     case " $(echo $slow) " in *" $t "*) continue ;; esac
