@@ -80,7 +80,8 @@ $(BUILD)/tests/%: tests/%.c $(STUDY_LIB) $(LIB) tests/harness.h tests/oracle.h t
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_LIBS) $(LIB) $(LIBS_ALL)
 
-# Every layer, one verdict: "N passed, N failed, N skipped".
+# Every layer, one verdict: "N passed, N failed, N skipped"; the suites run in parallel
+# (tests/run.sh: SEISLIDE_TEST_JOBS at a time, default 3; each suite's output printed whole).
 test: all
 	@SEISLIDE_BIN=$(abspath $(PROG)) SEISLIDE_TESTBIN=$(abspath $(BUILD)/tests) \
 	  SEISLIDE_MAKEVARS="BUILD=$(BUILD) PROG=$(PROG)" SEISLIDE_LDFLAGS="$(LDFLAGS)" sh tests/run.sh
@@ -119,7 +120,8 @@ $(BUILD)/seislide.pc: seislide.pc.in Makefile src/cli/cli.h
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' $< > $@
 
 # Mutation testing (minutes; not part of test): tests/mutations.txt, one line each,
-# applied to a scratch copy; ends with "N mutations, M survived".
+# applied in 2 scratch copies in parallel, each running only the suites that can see
+# the mutated file (tools/mutate.sh); ends with "N mutations, M survived, ...".
 mutate:
 	sh tools/mutate.sh
 
