@@ -152,6 +152,9 @@ if command -v parallel >/dev/null 2>&1; then
 else
   t_skip "GNU parallel absent (apt-get install parallel): shards not tested"
 fi
+t_run run "$D/plant" -o "$D/x" $OPTS --cache "$D/no/such/folder"; t_expect_rc unusable-cache 1
+t_expect_err unusable-cache-named "no/such/folder: cannot create the cache folder"
+[ ! -e "$D/x" ] && t_pass || t_fail "an unusable cache wrote outputs"
 t_run run "$D/plant" --shard 4/3 -o "$D/x"; t_expect_rc bad-shard 2
 t_run run "$D/plant" --shard 1/2 --motions -o "$D/x"; t_expect_rc shard-motions 2
 
