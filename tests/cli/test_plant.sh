@@ -75,6 +75,13 @@ same_out "$D/out1" "$D/ref" && t_pass || t_fail "rerun outputs differ from the f
 cold=$((t1 - t0)); warm=$((t3 - t2)); [ "$warm" -lt 1 ] && warm=1
 [ $((cold / warm)) -ge 10 ] && t_pass || t_fail "rerun not 10 x faster: ${cold} ms, then ${warm} ms"
 
+# the key holds the numbers, not the file name, floor name, description or elevation
+mkdir -p "$D/plant3/other"
+sed -e 's/^name = .*/name = Renamed floor/' -e 's/^description = .*/description = moved/' \
+    -e 's/^elevation_m = .*/elevation_m = 99/' floors/02-el12.ini > "$D/plant3/other/x.ini"
+t_run run "$D/plant3/other" -o "$D/out3" $OPTS --cache "$D/out1/.seislide-cache"; t_expect_rc renamed 0
+t_expect_err renamed-reused "reused 1 of 1 floors"
+
 # one number of one floor changed: exactly that floor recomputed
 cp -r "$D/plant" "$D/plant2"
 sed -i '0,/0.0226/s//0.0227/' "$D/plant2/bldB/04-roof36.ini"
