@@ -232,6 +232,8 @@ int cmd_run(int argc, char **argv)
         r.cache = a.cache ? a.cache : cache_dir;
         r.out = a.cache ? NULL : a.out;
     }
+    if (a.cache && cache_ready(&r, &err)) /* a cache given that cannot be used: before any work */
+        goto fail;
     if (!(mine = calloc(plant.n ? plant.n : 1, 1))) {
         sl_error_set(&err, SL_ENOMEM, NULL, 0, "out of memory");
         goto fail;

@@ -75,6 +75,13 @@ same_out "$D/out1" "$D/ref" && t_pass || t_fail "rerun outputs differ from the f
 cold=$((t1 - t0)); warm=$((t3 - t2)); [ "$warm" -lt 1 ] && warm=1
 [ $((cold / warm)) -ge 10 ] && t_pass || t_fail "rerun not 10 x faster: ${cold} ms, then ${warm} ms"
 
+# the key holds the numbers, not the file name, floor name, description or elevation
+mkdir -p "$D/plant3/other"
+sed -e 's/^name = .*/name = Renamed floor/' -e 's/^description = .*/description = moved/' \
+    -e 's/^elevation_m = .*/elevation_m = 99/' floors/02-el12.ini > "$D/plant3/other/x.ini"
+t_run run "$D/plant3/other" -o "$D/out3" $OPTS --cache "$D/out1/.seislide-cache"; t_expect_rc renamed 0
+t_expect_err renamed-reused "reused 1 of 1 floors"
+
 # one number of one floor changed: exactly that floor recomputed
 cp -r "$D/plant" "$D/plant2"
 sed -i '0,/0.0226/s//0.0227/' "$D/plant2/bldB/04-roof36.ini"
@@ -152,6 +159,9 @@ if command -v parallel >/dev/null 2>&1; then
 else
   t_skip "GNU parallel absent (apt-get install parallel): shards not tested"
 fi
+t_run run "$D/plant" -o "$D/x" $OPTS --cache "$D/no/such/folder"; t_expect_rc unusable-cache 1
+t_expect_err unusable-cache-named "no/such/folder: cannot create the cache folder"
+[ ! -e "$D/x" ] && t_pass || t_fail "an unusable cache wrote outputs"
 t_run run "$D/plant" --shard 4/3 -o "$D/x"; t_expect_rc bad-shard 2
 t_run run "$D/plant" --shard 1/2 --motions -o "$D/x"; t_expect_rc shard-motions 2
 
