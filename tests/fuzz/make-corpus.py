@@ -101,3 +101,29 @@ put("fuzz_motion", 6, smc.encode())
 # CWA .acc: time (s) and acceleration (m/s^2), no header
 acc = "".join("%8.3f %12.6f\n" % (0.01 * k, v) for k, v in enumerate(vals))
 put("fuzz_motion", 7, acc.encode())
+
+# fuzz_result: real cache entries and a shard manifest from a small run of the
+# program (skipped when ./seislide is not built): 0 the entry file, 1 its
+# payload alone, 2 the manifest, 3 K, N and the manifest's body.
+import struct, subprocess, tempfile
+if os.path.exists("./seislide"):
+    mu = ",".join("%.2f" % (0.05 * k) for k in range(1, 17))  # 16 mu, as fuzz_result.c
+    with tempfile.TemporaryDirectory() as t:
+        os.makedirs(t + "/plant/A")
+        os.makedirs(t + "/plant/B")
+        shutil.copy("floors/01-ground.ini", t + "/plant/A/")
+        shutil.copy("floors/04-roof36.ini", t + "/plant/B/")
+        args = ["--sets", "5", "--mu", mu, "-q", "--created", "0"]
+        subprocess.run(["./seislide", "run", t + "/plant", "--shard", "1/2", "-o", t + "/p1"] + args,
+                       check=True)
+        for p in sorted(glob.glob(t + "/p1/**/*.slr", recursive=True)):
+            b = read(p)
+            put("fuzz_result", 0, b)
+            klen = struct.unpack("<Q", b[8:16])[0]
+            put("fuzz_result", 1, b[16 + klen + 8:-4])
+        m = read(t + "/p1/seislide-shard.bin")
+        put("fuzz_result", 2, m)
+        k, n = struct.unpack("<QQ", m[8:24])
+        put("fuzz_result", 3, bytes([(k - 1) % 4, (n - 1) % 4]) + m[32:-4])
+else:
+    print("make-corpus.py: ./seislide not built: no fuzz_result seeds")
