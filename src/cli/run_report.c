@@ -140,6 +140,14 @@ static double limit(const run_check *c, const sl_synth_params *p)
 /* The sets of component comp that failed check c, as "1-10,12" into buf
  * (at most n bytes; "..." and the count when it does not fit). Returns how
  * many. */
+/* Component c of a set was synthesized and checked: its motion is there, or,
+ * for a result read back from the cache (which keeps the checks, not the
+ * motions: plant/entry.h), its check covers grid points. */
+static int has_comp(const sl_synth_set *set, int c)
+{
+    return sl_synth_set_motion(set, (sl_synth_comp)c) != NULL || set->check[c].npoints > 0;
+}
+
 static size_t failed_sets(const sl_analysis *q, int comp, const run_check *c, char *buf,
                           size_t n)
 {
@@ -147,13 +155,13 @@ static size_t failed_sets(const sl_analysis *q, int comp, const run_check *c, ch
     int cut = 0;
     buf[0] = '\0';
     while (s < q->n_sets) {
-        if (!sl_synth_set_motion(&q->sets[s], (sl_synth_comp)comp) ||
+        if (!has_comp(&q->sets[s], comp) ||
             !failed(&q->sets[s].check[comp], c)) {
             s++;
             continue;
         }
         size_t e = s;
-        while (e + 1 < q->n_sets && sl_synth_set_motion(&q->sets[e + 1], (sl_synth_comp)comp) &&
+        while (e + 1 < q->n_sets && has_comp(&q->sets[e + 1], comp) &&
                failed(&q->sets[e + 1].check[comp], c))
             e++;
         count += e - s + 1;
@@ -184,7 +192,7 @@ static void worst_ratio(const sl_analysis *q, char *buf, size_t n)
     for (size_t s = 0; s < q->n_sets; s++)
         for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
             const sl_synth_check *k = &q->sets[s].check[c];
-            if (!sl_synth_set_motion(&q->sets[s], (sl_synth_comp)c) || k->pass)
+            if (!has_comp(&q->sets[s], c) || k->pass)
                 continue;
             if (!lo || k->min_ratio < lo->min_ratio)
                 lo = k, slo = s, clo = c;
@@ -213,7 +221,7 @@ int run_report_checks(size_t i, size_t n, const sl_floor *fl, const sl_analysis 
     size_t total = 0;
     for (size_t s = 0; s < q->n_sets; s++)
         for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-            total += sl_synth_set_motion(&q->sets[s], (sl_synth_comp)c) != NULL;
+            total += has_comp(&q->sets[s], c) != 0;
     cli_msg("run: %s%s (floor %zu/%zu '%s'): %zu of %zu motions (%zu sets) failed their SRP 3.7.1 "
             "checks:", accept ? "warning (--accept-failed-checks): " : "", path, i, n, fl->name,
             q->n_failed_motions, total, q->n_sets);

@@ -87,7 +87,22 @@ static const field f_check[] = {
     FD(sl_synth_check, ok_above, F_INT),  FD(sl_synth_check, ok_run, F_INT),
     FD(sl_synth_check, ok_d5_75, F_INT),  FD(sl_synth_check, ok_duration, F_INT),
     FD(sl_synth_check, ok_end, F_INT),    FD(sl_synth_check, ok_pga, F_INT),
-    FD(sl_synth_check, ok_corr, F_INT)};
+    FD(sl_synth_check, ok_corr, F_INT),
+    /* the rest of the check, so that what run_report_checks says of failed motions
+     * (where, how far) and any later column are the same for a reused floor */
+    FD(sl_synth_check, damping, F_F64),   FD(sl_synth_check, f_lo_hz, F_F64),
+    FD(sl_synth_check, f_hi_hz, F_F64),   FD(sl_synth_check, npoints, F_SIZE),
+    FD(sl_synth_check, f_min_ratio_hz, F_F64), FD(sl_synth_check, f_max_ratio_hz, F_F64),
+    FD(sl_synth_check, n_below, F_SIZE),  FD(sl_synth_check, duration_s, F_F64),
+    FD(sl_synth_check, zpa_ms2, F_F64),   FD(sl_synth_check, pgv_ms, F_F64),
+    FD(sl_synth_check, pgd_m, F_F64),     FD(sl_synth_check, iterations, F_UINT),
+    FD(sl_synth_check, attempt, F_UINT),  FD(sl_synth_check, pga_zpa, F_F64),
+    FD(sl_synth_check, peaks, F_SIZE),    FD(sl_synth_check, va_s, F_F64),
+    FD(sl_synth_check, adv2, F_F64),      FD(sl_synth_check, va_expect_s, F_F64),
+    FD(sl_synth_check, adv2_expect, F_F64), FD(sl_synth_check, psd_min_ratio, F_F64),
+    FD(sl_synth_check, f_psd_min_hz, F_F64), FD(sl_synth_check, corr_record, F_F64),
+    FD(sl_synth_check, peaks_record, F_F64), FD(sl_synth_check, ok_peaks, F_INT),
+    FD(sl_synth_check, ok_psd, F_INT)};
 
 static const field f_set[] = {FD(sl_synth_set, pass, F_INT)};
 

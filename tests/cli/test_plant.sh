@@ -13,12 +13,19 @@ cp floors/01-ground.ini floors/02-el12.ini "$D/plant/bldA/"
 cp floors/01-ground.ini floors/04-roof36.ini "$D/plant/bldB/"
 OPTS="--sets 2 --mu 0.05,0.1,0.2,0.3,0.5 --created 1700000000"
 now_ms() { date +%s%N | cut -c1-13; }
-# same outputs: the same files, every CSV byte for byte (the workbooks record
-# the command line, which names the output folder)
+# the same CSV file apart from the recorded command line (which names the
+# output folder and the options; issue 23: byte-identical apart from it)
+csv_same() {
+  cmp -s "$1" "$2" && return 0
+  grep -v '^# command: ' "$1" > "$T_TMP/csv_a"; grep -v '^# command: ' "$2" > "$T_TMP/csv_b"
+  cmp -s "$T_TMP/csv_a" "$T_TMP/csv_b"
+}
+# same outputs: the same files, every CSV byte for byte but for its command
+# line (the workbooks record it too)
 same_out() {
   [ "$(cd "$1" && find . -path ./.seislide-cache -prune -o -type f -print | sort)" = \
     "$(cd "$2" && find . -path ./.seislide-cache -prune -o -type f -print | sort)" ] || return 1
-  for f in $(cd "$2" && find . -name '*.csv'); do cmp -s "$1/$f" "$2/$f" || return 1; done
+  for f in $(cd "$2" && find . -name '*.csv'); do csv_same "$1/$f" "$2/$f" || return 1; done
 }
 
 t0=$(now_ms)
@@ -43,7 +50,7 @@ for b in bldA bldB; do
   [ ! -e "$D/single-$b/.seislide-cache" ] && t_pass || t_fail "--no-cache wrote a cache"
   [ ! -e "$D/single-$b/plant.csv" ] && t_pass || t_fail "one building writes no plant index"
   for f in "$D/single-$b"/*.csv; do
-    cmp -s "$f" "$D/out1/$b/$(basename "$f")" && t_pass || t_fail "$b/$(basename "$f") differs from the building run"
+    csv_same "$f" "$D/out1/$b/$(basename "$f")" && t_pass || t_fail "$b/$(basename "$f") differs from the building run"
   done
   # plant.csv against the building's own floor tables: clearance at mu 0.05, 0.1, 0.2, 0.3, 0.5
   for fl in "$D/single-$b"/floor_*.csv; do
@@ -90,8 +97,8 @@ t_run run "$D/plant2" -o "$D/out2" $OPTS; t_expect_rc changed 0
 t_expect_err changed-reused "reused 3 of 4 floors"
 [ "$(grep -c 'computed;' "$T_ERR")" -eq 1 ] && grep -q "'bldB/04-roof36' computed" "$T_ERR" && t_pass || t_fail "not exactly the changed floor recomputed: $(grep computed "$T_ERR")"
 cmp -s "$D/out2/bldB/floor_04-roof36.csv" "$D/out1/bldB/floor_04-roof36.csv" && t_fail "the changed floor's table did not change" || t_pass
-grep -v '^# floor_file' "$D/out2/bldA/floor_02-el12.csv" > "$D/u2"
-grep -v '^# floor_file' "$D/out1/bldA/floor_02-el12.csv" > "$D/u1"
+grep -v -e '^# floor_file' -e '^# command: ' "$D/out2/bldA/floor_02-el12.csv" > "$D/u2"
+grep -v -e '^# floor_file' -e '^# command: ' "$D/out1/bldA/floor_02-el12.csv" > "$D/u1"
 cmp -s "$D/u1" "$D/u2" && t_pass || t_fail "an unchanged floor's table changed"
 
 # a flipped byte in one cache entry (in its payload: a motion check): detected, the floor recomputed and said, outputs the same
@@ -141,7 +148,7 @@ if command -v parallel >/dev/null 2>&1; then
   [ $r -eq 0 ] && t_pass || t_fail "parallel shards: exit $r"
   t_run merge "$D"/parts/* -o "$D/merged" --created 1700000000; t_expect_rc merge 0
   for f in $(cd "$D/ref" && find . -name '*.csv'); do
-    cmp -s "$D/merged/$f" "$D/ref/$f" && t_pass || t_fail "merged $f differs from the single run"
+    csv_same "$D/merged/$f" "$D/ref/$f" && t_pass || t_fail "merged $f differs from the single run"
   done
   # the merged cache makes a later run into it reuse everything
   t_run run "$D/plant" -o "$D/merged" $OPTS; t_expect_rc after-merge 0
@@ -174,7 +181,7 @@ else
   t_skip "script (util-linux) absent: terminal progress not tested"
 fi
 
-# -q: nothing on stderr
+# -q: no progress on stderr (warnings stay: here the one about fewer than 5 sets)
 t_run run "$D/plant" -o "$D/out1" $OPTS -q; t_expect_rc quiet 0
-[ ! -s "$T_ERR" ] && t_pass || t_fail "-q must silence stderr: $(head -c 300 "$T_ERR")"
+[ -z "$(grep -v 'warning' "$T_ERR")" ] && t_pass || t_fail "-q must silence the progress: $(head -c 300 "$T_ERR")"
 t_end
