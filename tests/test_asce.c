@@ -345,7 +345,8 @@ static void test_newmark(void)
 
 /* The ASCE input of a floor (asce_input.h), against a hand calculation.
  * Floor: H1 zpa 0.2 g, H2 zpa 0.5 g, V zpa 0.1 g; both horizontals
- * SA_0.10 = 0.05, 0.5, 0.6, 0.5 g at 0.1, 1, 10, 50 Hz.
+ * SA_0.10 = 0.05, 0.5, 0.6 g at 0.1, 1, 10 Hz, then 0.2 (H1) and 0.5 g (H2)
+ * at 50 Hz (each ZPA agrees with its spectrum's end, as floor.h requires).
  *  - ZPA_h is the LARGER horizontal, 0.5 g (with the smaller, 0.2 g, the
  *    block below would be reported as not sliding);
  *  - mu = 0.3: mu_e = 0.3 (1 - 0.4 x 0.1) = 0.288, c_s = 0.576 g; SA_vH =
