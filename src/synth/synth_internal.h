@@ -39,10 +39,6 @@
 #define SYNTH_RELAX 1.6
 /* Iterations without improvement after which an attempt is given up. */
 #define SYNTH_STALL 8u
-/* The same after the coarse phase, where an iteration costs a full-accuracy
- * spectrum (about 6 coarse ones): 3 (RG 1.60, 40 sets: 12 % less CPU time
- * than 8, the same pass rate; docs/synthesis.md 3.4). */
-#define SYNTH_STALL_FULL 3u
 #define SYNTH_COARSE_MARGIN 0.02
 /* Smallest motion handled, samples. */
 #define SYNTH_MIN_N 16

@@ -63,13 +63,8 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
      * SYNTH_STALL iterations is given up (the next attempt, with new
      * phases, is cheaper than the rest of the cap: CPU time of 20 RG 1.60
      * sets 3.6 s without, 3.1-3.3 s with 6-8; docs/synthesis.md 8). */
-    /* After the coarse phase a synthetic attempt that is not the last is
-     * given up sooner (SYNTH_STALL_FULL): its iterations cost full spectra. A
-     * record has one attempt and keeps SYNTH_STALL. */
-    const unsigned stall_full =
-        jb->rec || jb->attempt + 1 >= s->p.max_attempts ? SYNTH_STALL : SYNTH_STALL_FULL;
     while (!jb->st && !sl_synth_test(m) && sl_synth_iterations(m) < s->p.max_iter &&
-           sl_synth_iterations(m) < m->best_iter + (m->coarse ? SYNTH_STALL : stall_full))
+           sl_synth_iterations(m) < m->best_iter + SYNTH_STALL)
         jb->st = sl_synth_iterate(m, &jb->err);
     /* An attempt given up in the coarse phase is redone, unless it is the
      * last: then its best iterate gets the full-accuracy spectrum, so that
