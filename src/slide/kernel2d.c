@@ -359,13 +359,14 @@ VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *F
         /* near a stop: the speed is within one sample's change of
          * zero while friction can hold the block (|a| < mu N somewhere
          * in the sample); (5) and the halving then find the stop */
-        const double sp_min2 = min2(min2(vx * vx + vy * vy, vxm * vxm + vym * vym),
-                                    pvx[j] * pvx[j] + pvy[j] * pvy[j]);
-        const double fc = c_n * pmu[j];
-        const double dv_max = hv + fc;
+        const double s0 = sqrt(pvx[j] * pvx[j] + pvy[j] * pvy[j]);
+        const double sm = sqrt(vxm * vxm + vym * vym), s1 = sqrt(vx * vx + vy * vy);
+        /* |v| changes at most at the rate |a| + mu N: over a half step of h/2
+         * between speeds s0 and sm it stays above (s0 + sm - rate h/2) / 2 */
+        const double dv_half = 0.5 * (hv + c_h * pmu[j] * pmax);
         const double can_hold = amin < pmu[j] * pmax ? 1.0 : SL_K2_TURN;
         const double near_stop =
-            can_hold * (sp_min2 < SL_K2_NEAR_STOP * SL_K2_NEAR_STOP * dv_max * dv_max ? 1.0 : 0.0);
+            can_hold * (min2(s0 + sm, sm + s1) < SL_K2_NEAR_STOP * dv_half ? 1.0 : 0.0);
         const double within = eu + SL_K2_TV * ev <= ptol[j] ? 1.0 : 0.0;
         pd[j] = within * (near_stop == 0.0 ? 1.0 : 0.0) > 0.0 ? bad : 1.0;
         pns[j] = near_stop;
@@ -518,8 +519,24 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                 /* a slow block (near a stop) starts finer: a stop and restart
                  * inside one step can look alike at 1 and 2 sub-steps */
                 const unsigned n0 = pns[j] != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
-                blk A = run_level(B[k], &s, mu[k], n0, x0), C = run_level(B[k], &s, mu[k], 2 * n0, x0);
-                unsigned n = 2 * n0;
+                /* sent here by the tolerance alone (sliding, no split, not
+                 * slow): the vector pass's two half steps are level 2 already
+                 * (the same steps (3)-(4)), and level 1 against them failed */
+                const int tol_only = x0 == 0.0 && pns[j] == 0.0 && pbad[j] == 0.0;
+                blk A, C;
+                unsigned n;
+                if (tol_only) {
+                    A = B[k];
+                    A.ux = pux[j];
+                    A.uy = puy[j];
+                    A.vx = pvx[j];
+                    A.vy = pvy[j];
+                    n = 4;
+                } else {
+                    A = run_level(B[k], &s, mu[k], n0, x0);
+                    n = 2 * n0;
+                }
+                C = run_level(B[k], &s, mu[k], n, x0);
                 for (;;) {
                     const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
                     const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
