@@ -30,9 +30,15 @@
  * difference of the two is the local error estimate (step doubling,
  * Richardson: the error of the two half steps is about a third of it where
  * the solution is smooth, equal to it at a stop). Blocks whose difference
- * |du| + T_V |dv| exceeds their share eta max(rtol peak, atol), or whose
- * step needs (5), are redone alone with 1, 2, 4, ... sub-steps and the full
- * step (2)-(5) until two successive levels agree. The accepted differences
+ * |du| + T_V |dv| exceeds their share eta max(rtol peak, atol), whose
+ * step needs (5), or whose speed could reach zero within the sample
+ * (SL_K2_NEAR_STOP), are redone alone (refine) with 1, 2, 4, ... sub-steps
+ * (a slow block from SL_K2_NEAR_STOP_SUB; a block sent by the tolerance
+ * alone from the vector pass's two half steps, level 2) and the full step
+ * (2)-(5) until two successive levels agree. Per sample, sl_kernel2d_run
+ * finds the blocks that can move (find_live), packs them (pack), takes the
+ * vector pass (step), unpacks the accepted (accept), refines the rest
+ * (refine) and records block 0's history (push_history). The accepted differences
  * accumulate into the error estimate of the peak: position differences add,
  * and a velocity difference adds dt per sample until the block stops
  * (friction is monotone, so velocity differences do not grow).
@@ -359,13 +365,14 @@ VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *F
         /* near a stop: the speed is within one sample's change of
          * zero while friction can hold the block (|a| < mu N somewhere
          * in the sample); (5) and the halving then find the stop */
-        const double sp_min2 = min2(min2(vx * vx + vy * vy, vxm * vxm + vym * vym),
-                                    pvx[j] * pvx[j] + pvy[j] * pvy[j]);
-        const double fc = c_n * pmu[j];
-        const double dv_max = hv + fc;
+        const double s0 = sqrt(pvx[j] * pvx[j] + pvy[j] * pvy[j]);
+        const double sm = sqrt(vxm * vxm + vym * vym), s1 = sqrt(vx * vx + vy * vy);
+        /* |v| changes at most at the rate |a| + mu N: over a half step of h/2
+         * between speeds s0 and sm it stays above (s0 + sm - rate h/2) / 2 */
+        const double dv_half = 0.5 * (hv + c_h * pmu[j] * pmax);
         const double can_hold = amin < pmu[j] * pmax ? 1.0 : SL_K2_TURN;
         const double near_stop =
-            can_hold * (sp_min2 < SL_K2_NEAR_STOP * SL_K2_NEAR_STOP * dv_max * dv_max ? 1.0 : 0.0);
+            can_hold * (min2(s0 + sm, sm + s1) < SL_K2_NEAR_STOP * dv_half ? 1.0 : 0.0);
         const double within = eu + SL_K2_TV * ev <= ptol[j] ? 1.0 : 0.0;
         pd[j] = within * (near_stop == 0.0 ? 1.0 : 0.0) > 0.0 ? bad : 1.0;
         pns[j] = near_stop;
@@ -402,168 +409,238 @@ static void err_add(errv *e, double dux, double duy, double dvx, double dvy, dou
         e->at_peak = hypot(e->ex, e->ey);
 }
 
-int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
-                    const double *scale_m, size_t m,
-                    const sl_k2_opts *o, sl_k2_out *out, sl_history *hist)
+/* The working state of one run: every block, its error estimate, and the
+ * packed arrays of the live blocks of the current sample (P_N rows of m). */
+typedef struct k2_work {
+    size_t m;
+    blk *B;
+    errv *E;
+    double *P;
+    size_t *live, *redo;
+    long *refined;
+} k2_work;
+
+static void work_free(k2_work *w)
 {
-    blk *B = calloc(m ? m : 1, sizeof *B);
-    errv *E = calloc(m ? m : 1, sizeof *E);
-    double *P = malloc((size_t)P_N * (m ? m : 1) * sizeof *P);
-    size_t *live = malloc((m ? m : 1) * sizeof *live), *redo = malloc((m ? m : 1) * sizeof *redo);
-    long *refined = calloc(m ? m : 1, sizeof *refined);
-    if (!B || !E || !P || !live || !redo || !refined) {
-        free(B);
-        free(E);
-        free(P);
-        free(live);
-        free(redo);
-        free(refined);
+    free(w->B);
+    free(w->E);
+    free(w->P);
+    free(w->live);
+    free(w->redo);
+    free(w->refined);
+}
+
+static int work_alloc(k2_work *w, size_t m)
+{
+    const size_t m1 = m ? m : 1;
+    w->m = m;
+    w->B = calloc(m1, sizeof *w->B);
+    w->E = calloc(m1, sizeof *w->E);
+    w->P = malloc((size_t)P_N * m1 * sizeof *w->P);
+    w->live = malloc(m1 * sizeof *w->live);
+    w->redo = malloc(m1 * sizeof *w->redo);
+    w->refined = calloc(m1, sizeof *w->refined);
+    if (!w->B || !w->E || !w->P || !w->live || !w->redo || !w->refined) {
+        work_free(w);
         return -1;
     }
-    double *restrict pmu = P + P_MU * m, *restrict ptol = P + P_TOL * m;
-    double *restrict pux = P + P_UX * m, *restrict puy = P + P_UY * m;
-    double *restrict pvx = P + P_VX * m, *restrict pvy = P + P_VY * m;
-    double *restrict cux = P + P_CUX * m, *restrict cuy = P + P_CUY * m;
-    double *restrict cvx = P + P_CVX * m, *restrict cvy = P + P_CVY * m;
-    double *restrict pbad = P + P_BAD * m, *restrict ppk2 = P + P_PK2 * m;
-    double *restrict pd = P + P_D * m, *restrict pdux = P + P_DUX * m, *restrict pduy = P + P_DUY * m,
-                     *restrict pdvx = P + P_DVX * m, *restrict pdvy = P + P_DVY * m,
-                     *restrict pns = P + P_NS * m;
-    const double dt = in->dt_s, g = in->g_ms2;
-    const int adaptive = (o->substeps == 0);
-    for (size_t i = 0; i + 1 < in->n; i++) {
-        sample s;
-        s.ax0 = in->sign * in->ax[i];
-        s.ax1 = in->sign * in->ax[i + 1];
-        s.ay0 = in->ay ? in->sign * in->ay[i] : 0.0;
-        s.ay1 = in->ay ? in->sign * in->ay[i + 1] : 0.0;
-        s.n0 = g + (in->av ? in->av[i] : 0.0);
-        s.n1 = g + (in->av ? in->av[i + 1] : 0.0);
-        s.dt = dt;
-        s.t0 = (double)i * dt;
-        const double t1 = s.t0 + dt;
-        /* held at both ends of the sample: held throughout, since |a| is
-         * convex and mu N linear (one test per sample) */
-        const double a0m = hypot(s.ax0, s.ay0), a1m = hypot(s.ax1, s.ay1);
-        const double p0 = fmax(s.n0, 0.0), p1 = fmax(s.n1, 0.0);
-        size_t na = 0;
-        for (size_t k = 0; k < m; k++)
-            if (!(B[k].vx == 0.0 && B[k].vy == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
-                live[na++] = k;
-        if (!adaptive) {
-            for (size_t li = 0; li < na; li++) {
-                const size_t k = live[li];
-                B[k] = run_level(B[k], &s, mu[k], o->substeps, 0.0);
-            }
-        } else if (na > 0) {
-            const force Fc = force_of(&s, 0.0, 1.0), Fa = force_of(&s, 0.0, 0.5),
-                        Fb = force_of(&s, 0.5, 1.0);
-            const double hv = dt * fmax(a0m, a1m); /* most the floor changes v in a sample */
-            /* friction may hold a block somewhere in the sample only if the
-             * smallest |a| on the sample (the distance from 0 to the segment
-             * a0-a1) is below the largest mu N */
-            const double dax = s.ax1 - s.ax0, day = s.ay1 - s.ay0, dd = dax * dax + day * day;
-            const double tc = dd > 0.0 ? fmin(fmax(-(s.ax0 * dax + s.ay0 * day) / dd, 0.0), 1.0) : 0.0;
-            const double amin = hypot(s.ax0 + tc * dax, s.ay0 + tc * day), pmax = fmax(p0, p1);
-            for (size_t li = 0; li < na; li++) { /* pack */
-                const size_t k = live[li];
-                const double pk = scale_m ? fmax(scale_m[k], sqrt(B[k].peak2)) : sqrt(B[k].peak2);
-                const double sc = fmax(o->rtol * pk, o->atol_m);
-                pmu[li] = mu[k];
-                ptol[li] = (eta ? eta[k] : SL_K2_ETA) * sc;
-                pux[li] = B[k].ux;
-                puy[li] = B[k].uy;
-                pvx[li] = B[k].vx;
-                pvy[li] = B[k].vy;
-            }
-            doubling_pass(na, &Fc, &Fa, &Fb, hv, amin, pmax, pmu, ptol, pux, puy, pvx, pvy,
-                          cux, cuy, cvx, cvy, pbad, ppk2, pd, pdux, pduy, pdvx, pdvy, pns);
-            size_t nr = 0;
-            for (size_t j = 0; j < na; j++) { /* unpack the accepted, collect the rest */
-                const size_t k = live[j];
-                if (pd[j] != 0.0 || (B[k].vx == 0.0 && B[k].vy == 0.0)) {
-                    redo[nr++] = j;
-                    continue;
-                }
-                blk *b = &B[k];
-                const double spm = sqrt(cux[j] * cux[j] + cuy[j] * cuy[j]);
-                const double sp2 = pvx[j] * pvx[j] + pvy[j] * pvy[j], sp = sqrt(sp2);
-                b->path += 0.25 * dt * (b->sp + 2.0 * spm + sp);
-                b->tslide += dt;
-                b->vmax2 = fmax(b->vmax2, fmax(sp2, spm * spm));
-                b->sp = sp;
-                b->ux = pux[j];
-                b->uy = puy[j];
-                b->vx = pvx[j];
-                b->vy = pvy[j];
-                const int raised = ppk2[j] > b->peak2;
-                if (raised) {
-                    b->peak2 = ppk2[j];
-                    b->tpeak = t1;
-                }
-                b->px = fmax(b->px, fabs(b->ux));
-                b->py = fmax(b->py, fabs(b->uy));
-                /* smooth step: local order 3, the two half steps err about
-                 * a third of their difference from the full step */
-                err_add(&E[k], pdux[j] / SL_K2_RICHARDSON, pduy[j] / SL_K2_RICHARDSON,
-                        pdvx[j] / SL_K2_RICHARDSON, pdvy[j] / SL_K2_RICHARDSON, dt, raised);
-            }
-            for (size_t r = 0; r < nr; r++) { /* the rest alone, halving until it agrees */
-                const size_t j = redo[r], k = live[j];
-                const double tol = ptol[j];
-                /* from rest: held until the exact onset instant, then slide */
-                const double x0 = (B[k].vx == 0.0 && B[k].vy == 0.0) ? onset(&s, mu[k], 0.0) : 0.0;
-                if (!(x0 < 1.0))
-                    continue;
-                /* a slow block (near a stop) starts finer: a stop and restart
-                 * inside one step can look alike at 1 and 2 sub-steps */
-                const unsigned n0 = pns[j] != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
-                blk A = run_level(B[k], &s, mu[k], n0, x0), C = run_level(B[k], &s, mu[k], 2 * n0, x0);
-                unsigned n = 2 * n0;
-                for (;;) {
-                    const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
-                    const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
-                    if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
-                        break;
-                    A = C;
-                    n *= 2;
-                    C = run_level(B[k], &s, mu[k], n, x0);
-                }
-                refined[k] += (n > 2);
-                const int raised = C.peak2 > B[k].peak2;
-                const blk B0 = B[k];
-                B[k] = C;
-                /* a smooth sample (sent here by the tolerance alone) keeps the
-                 * Richardson factor; a stop, onset or turn counts in full */
-                const double rf = (x0 == 0.0 && pns[j] == 0.0 && pbad[j] == 0.0 &&
-                                   C.episodes == B0.episodes && C.tstop == B0.tstop)
-                                      ? SL_K2_RICHARDSON
-                                      : 1.0;
-                err_add(&E[k], (C.ux - A.ux) / rf, (C.uy - A.uy) / rf, (C.vx - A.vx) / rf,
-                        (C.vy - A.vy) / rf, dt, raised);
-            }
-        }
-        for (size_t li = 0; li < na; li++) { /* a block at rest forgets its velocity error */
-            const size_t k = live[li];
-            if (B[k].vx == 0.0 && B[k].vy == 0.0)
-                E[k].wx = E[k].wy = 0.0;
-        }
-        if (hist) {
-            /* F/W = absolute block acceleration / g at the sample */
-            const blk *b = &B[0];
-            double fx = 0.0, fy = 0.0, sp = hypot(b->vx, b->vy);
-            if (sp > 0.0 && s.n1 > 0.0) {
-                fx = -mu[0] * s.n1 * b->vx / sp / g;
-                fy = -mu[0] * s.n1 * b->vy / sp / g;
-            } else if (sp == 0.0) {
-                fx = s.ax1 / g; /* stuck: moves with the floor */
-                fy = s.ay1 / g;
-            }
-            sl_history_push(hist, t1, b->ux, b->uy, b->vx, b->vy, fx, fy);
-        }
+    return 0;
+}
+
+/* Sample i of the motion: the linear forcing between samples i and i + 1. */
+static sample sample_at(const sl_k2_motion *in, size_t i)
+{
+    sample s;
+    s.ax0 = in->sign * in->ax[i];
+    s.ax1 = in->sign * in->ax[i + 1];
+    s.ay0 = in->ay ? in->sign * in->ay[i] : 0.0;
+    s.ay1 = in->ay ? in->sign * in->ay[i + 1] : 0.0;
+    s.n0 = in->g_ms2 + (in->av ? in->av[i] : 0.0);
+    s.n1 = in->g_ms2 + (in->av ? in->av[i + 1] : 0.0);
+    s.dt = in->dt_s;
+    s.t0 = (double)i * in->dt_s;
+    return s;
+}
+
+/* The blocks that may move in sample s into w->live; returns how many. A
+ * block held at both ends of the sample is held throughout, since |a| is
+ * convex and mu N linear (one test per sample). */
+static size_t find_live(k2_work *w, const sample *s, const double *mu)
+{
+    const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
+    const double p0 = fmax(s->n0, 0.0), p1 = fmax(s->n1, 0.0);
+    size_t na = 0;
+    for (size_t k = 0; k < w->m; k++) {
+        const blk *b = &w->B[k];
+        if (!(b->vx == 0.0 && b->vy == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
+            w->live[na++] = k;
     }
-    for (size_t k = 0; k < m; k++) {
-        const blk *b = &B[k];
+    return na;
+}
+
+/* Pack the na live blocks: friction, tolerance share eta max(rtol peak,
+ * atol) (peak at least scale_m), position and velocity. */
+static void pack(k2_work *w, size_t na, const double *mu, const double *eta,
+                 const double *scale_m, const sl_k2_opts *o)
+{
+    const size_t m = w->m;
+    double *pmu = w->P + P_MU * m, *ptol = w->P + P_TOL * m;
+    double *pux = w->P + P_UX * m, *puy = w->P + P_UY * m;
+    double *pvx = w->P + P_VX * m, *pvy = w->P + P_VY * m;
+    for (size_t li = 0; li < na; li++) {
+        const size_t k = w->live[li];
+        const blk *b = &w->B[k];
+        const double pk = scale_m ? fmax(scale_m[k], sqrt(b->peak2)) : sqrt(b->peak2);
+        const double sc = fmax(o->rtol * pk, o->atol_m);
+        pmu[li] = mu[k];
+        ptol[li] = (eta ? eta[k] : SL_K2_ETA) * sc;
+        pux[li] = b->ux;
+        puy[li] = b->uy;
+        pvx[li] = b->vx;
+        pvy[li] = b->vy;
+    }
+}
+
+/* The vector pass over the packed blocks of sample s (doubling_pass). */
+static void step(k2_work *w, size_t na, const sample *s)
+{
+    const size_t m = w->m;
+    double *P = w->P;
+    const force Fc = force_of(s, 0.0, 1.0), Fa = force_of(s, 0.0, 0.5), Fb = force_of(s, 0.5, 1.0);
+    const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
+    const double hv = s->dt * fmax(a0m, a1m); /* most the floor changes v in a sample */
+    /* friction may hold a block somewhere in the sample only if the smallest
+     * |a| on the sample (the distance from 0 to the segment a0-a1) is below
+     * the largest mu N */
+    const double dax = s->ax1 - s->ax0, day = s->ay1 - s->ay0, dd = dax * dax + day * day;
+    const double tc = dd > 0.0 ? fmin(fmax(-(s->ax0 * dax + s->ay0 * day) / dd, 0.0), 1.0) : 0.0;
+    const double amin = hypot(s->ax0 + tc * dax, s->ay0 + tc * day);
+    const double pmax = fmax(fmax(s->n0, 0.0), fmax(s->n1, 0.0));
+    doubling_pass(na, &Fc, &Fa, &Fb, hv, amin, pmax, P + P_MU * m, P + P_TOL * m, P + P_UX * m,
+                  P + P_UY * m, P + P_VX * m, P + P_VY * m, P + P_CUX * m, P + P_CUY * m,
+                  P + P_CVX * m, P + P_CVY * m, P + P_BAD * m, P + P_PK2 * m, P + P_D * m,
+                  P + P_DUX * m, P + P_DUY * m, P + P_DVX * m, P + P_DVY * m, P + P_NS * m);
+}
+
+/* Unpack the blocks whose step passed (statistics, peak at t1, error
+ * estimate: a smooth step of local order 3 errs about a third of the
+ * difference, SL_K2_RICHARDSON); the packed indices of the rest go to
+ * w->redo. Returns how many are to be redone. */
+static size_t accept(k2_work *w, size_t na, double dt, double t1)
+{
+    const size_t m = w->m;
+    const double *P = w->P;
+    const double *pux = P + P_UX * m, *puy = P + P_UY * m, *pvx = P + P_VX * m,
+                 *pvy = P + P_VY * m, *cux = P + P_CUX * m, *cuy = P + P_CUY * m,
+                 *ppk2 = P + P_PK2 * m, *pd = P + P_D * m, *pdux = P + P_DUX * m,
+                 *pduy = P + P_DUY * m, *pdvx = P + P_DVX * m, *pdvy = P + P_DVY * m;
+    size_t nr = 0;
+    for (size_t j = 0; j < na; j++) {
+        const size_t k = w->live[j];
+        blk *b = &w->B[k];
+        if (pd[j] != 0.0 || (b->vx == 0.0 && b->vy == 0.0)) {
+            w->redo[nr++] = j;
+            continue;
+        }
+        const double spm = sqrt(cux[j] * cux[j] + cuy[j] * cuy[j]); /* mid-sample speed */
+        const double sp2 = pvx[j] * pvx[j] + pvy[j] * pvy[j], sp = sqrt(sp2);
+        b->path += 0.25 * dt * (b->sp + 2.0 * spm + sp);
+        b->tslide += dt;
+        b->vmax2 = fmax(b->vmax2, fmax(sp2, spm * spm));
+        b->sp = sp;
+        b->ux = pux[j];
+        b->uy = puy[j];
+        b->vx = pvx[j];
+        b->vy = pvy[j];
+        const int raised = ppk2[j] > b->peak2;
+        if (raised) {
+            b->peak2 = ppk2[j];
+            b->tpeak = t1;
+        }
+        b->px = fmax(b->px, fabs(b->ux));
+        b->py = fmax(b->py, fabs(b->uy));
+        err_add(&w->E[k], pdux[j] / SL_K2_RICHARDSON, pduy[j] / SL_K2_RICHARDSON,
+                pdvx[j] / SL_K2_RICHARDSON, pdvy[j] / SL_K2_RICHARDSON, dt, raised);
+    }
+    return nr;
+}
+
+/* Redo packed block j of sample s alone: from rest held until the exact
+ * onset instant; then 1, 2, 4, ... sub-steps with the full step (2)-(5)
+ * (a slow block starts at SL_K2_NEAR_STOP_SUB: a stop and restart inside
+ * one step can look alike at 1 and 2 sub-steps) until two successive
+ * levels agree within its tolerance. */
+static void refine(k2_work *w, size_t j, const sample *s, const double *mu)
+{
+    const size_t m = w->m, k = w->live[j];
+    const double *P = w->P;
+    const double tol = P[P_TOL * m + j], ns = P[P_NS * m + j], bad = P[P_BAD * m + j];
+    const double x0 = (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) ? onset(s, mu[k], 0.0) : 0.0;
+    if (!(x0 < 1.0))
+        return;
+    const unsigned n0 = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+    /* sent here by the tolerance alone (sliding, no split, not slow): the
+     * vector pass's two half steps are level 2 already (the same steps
+     * (3)-(4)), and level 1 against them failed */
+    const int tol_only = x0 == 0.0 && ns == 0.0 && bad == 0.0;
+    blk A, C;
+    unsigned n;
+    if (tol_only) {
+        A = w->B[k];
+        A.ux = P[P_UX * m + j];
+        A.uy = P[P_UY * m + j];
+        A.vx = P[P_VX * m + j];
+        A.vy = P[P_VY * m + j];
+        n = 4;
+    } else {
+        A = run_level(w->B[k], s, mu[k], n0, x0);
+        n = 2 * n0;
+    }
+    C = run_level(w->B[k], s, mu[k], n, x0);
+    for (;;) {
+        const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
+        const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
+        if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
+            break;
+        A = C;
+        n *= 2;
+        C = run_level(w->B[k], s, mu[k], n, x0);
+    }
+    w->refined[k] += (n > 2);
+    const int raised = C.peak2 > w->B[k].peak2;
+    const blk B0 = w->B[k];
+    w->B[k] = C;
+    /* a smooth sample (sent here by the tolerance alone) keeps the
+     * Richardson factor; a stop, onset or turn counts in full */
+    const double rf = (x0 == 0.0 && ns == 0.0 && bad == 0.0 && C.episodes == B0.episodes &&
+                       C.tstop == B0.tstop)
+                          ? SL_K2_RICHARDSON
+                          : 1.0;
+    err_add(&w->E[k], (C.ux - A.ux) / rf, (C.uy - A.uy) / rf, (C.vx - A.vx) / rf,
+            (C.vy - A.vy) / rf, s->dt, raised);
+}
+
+/* The history of block 0 at the end of sample s: F/W = the absolute block
+ * acceleration / g. */
+static void push_history(sl_history *hist, const blk *b, const sample *s, double mu, double g)
+{
+    double fx = 0.0, fy = 0.0;
+    const double sp = hypot(b->vx, b->vy);
+    if (sp > 0.0 && s->n1 > 0.0) {
+        fx = -mu * s->n1 * b->vx / sp / g;
+        fy = -mu * s->n1 * b->vy / sp / g;
+    } else if (sp == 0.0) {
+        fx = s->ax1 / g; /* stuck: moves with the floor */
+        fy = s->ay1 / g;
+    }
+    sl_history_push(hist, s->t0 + s->dt, b->ux, b->uy, b->vx, b->vy, fx, fy);
+}
+
+static void write_out(const k2_work *w, int adaptive, sl_k2_out *out)
+{
+    for (size_t k = 0; k < w->m; k++) {
+        const blk *b = &w->B[k];
+        const errv *e = &w->E[k];
         sl_k2_out *r = &out[k];
         r->ux = b->ux;
         r->uy = b->uy;
@@ -578,16 +655,45 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
         r->t_stop_s = b->tstop;
         r->slide_time_s = b->tslide;
         r->episodes = b->episodes;
-        r->err_m = adaptive ? E[k].at_peak : NAN;
-        r->err_end_m = adaptive ? hypot(E[k].ex, E[k].ey) : NAN;
-        r->err_v_ms = adaptive ? hypot(E[k].wx, E[k].wy) : NAN;
-        r->refined = refined[k];
+        r->err_m = adaptive ? e->at_peak : NAN;
+        r->err_end_m = adaptive ? hypot(e->ex, e->ey) : NAN;
+        r->err_v_ms = adaptive ? hypot(e->wx, e->wy) : NAN;
+        r->refined = w->refined[k];
     }
-    free(B);
-    free(E);
-    free(P);
-    free(live);
-    free(redo);
-    free(refined);
+}
+
+int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
+                    const double *scale_m, size_t m,
+                    const sl_k2_opts *o, sl_k2_out *out, sl_history *hist)
+{
+    k2_work w;
+    if (work_alloc(&w, m))
+        return -1;
+    const int adaptive = (o->substeps == 0);
+    for (size_t i = 0; i + 1 < in->n; i++) {
+        const sample s = sample_at(in, i);
+        const size_t na = find_live(&w, &s, mu);
+        if (!adaptive) {
+            for (size_t li = 0; li < na; li++) {
+                const size_t k = w.live[li];
+                w.B[k] = run_level(w.B[k], &s, mu[k], o->substeps, 0.0);
+            }
+        } else if (na > 0) {
+            pack(&w, na, mu, eta, scale_m, o);
+            step(&w, na, &s);
+            const size_t nr = accept(&w, na, s.dt, s.t0 + s.dt);
+            for (size_t r = 0; r < nr; r++)
+                refine(&w, w.redo[r], &s, mu);
+        }
+        for (size_t li = 0; li < na; li++) { /* a block at rest forgets its velocity error */
+            const size_t k = w.live[li];
+            if (w.B[k].vx == 0.0 && w.B[k].vy == 0.0)
+                w.E[k].wx = w.E[k].wy = 0.0;
+        }
+        if (hist)
+            push_history(hist, &w.B[0], &s, mu[0], in->g_ms2);
+    }
+    write_out(&w, adaptive, out);
+    work_free(&w);
     return 0;
 }

@@ -61,9 +61,12 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
 /* Step doubling on a smooth step of local order 3: the error of the two
  * half steps is the difference from the full step over 2^3/2 - 1 = 3. */
 #define SL_K2_RICHARDSON 3.0
-/* A sliding block is refined alone when its speed in a sample falls below
- * this many times the most a sample can change it, (|a| + mu N) dt, and
- * friction could hold it there (a stop is possible). */
+/* A sliding block is refined alone when its speed could reach zero within
+ * the sample and friction could hold it there (a stop is possible): |v|
+ * changes at most at the rate max|a| + mu max N, so between two points h/2
+ * apart with speeds s0 and s1 it reaches zero only if s0 + s1 <= that rate
+ * times h/2; the test is s0 + sm or sm + s1 (sm at mid-sample, from the
+ * vector pass) below this many times (max|a| + mu max N) dt/2. */
 #define SL_K2_NEAR_STOP 1.0
 /* 1: the same for a slow block that friction cannot hold (it turns through
  * a near-zero speed, and the friction direction flips within the sample). */
