@@ -177,6 +177,12 @@ static void test_lookup_libreoffice(void)
             double got = strtod(result, &end);
             CHECK(end != result, "case %zu: result '%s' is not a number", c, result);
             CHECK_CLOSE(got, exp, 1e-9, 1e-9);
+            /* B17: the floor's ZPA, read through the named range floor_zpa_g */
+            char zpa[64] = "";
+            CHECK(csv_cell(csv, 16, 1, zpa, sizeof zpa) == 0, "case %zu: no B17", c);
+            double zpa_g = dd == d[0] ? 0.3 : 0.63;
+            CHECK(fabs(strtod(zpa, NULL) - zpa_g) < 5e-4, "case %zu: ZPA '%s', expected %g", c, zpa,
+                  zpa_g);
             char want[80];
             snprintf(want, sizeof want, "of %zu synthesized motion sets of this floor", dd->n_sets);
             CHECK(strstr(policy, want) != NULL, "case %zu: policy '%s' lacks '%s'", c, policy, want);

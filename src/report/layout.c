@@ -78,6 +78,7 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     format_set_bottom(F->header, LXW_BORDER_THIN);
     F->indent = workbook_add_format(wb); /* text after a number: kept off it */
     format_set_text_wrap(F->indent);
+    format_set_align(F->indent, LXW_ALIGN_VERTICAL_TOP);
     format_set_indent(F->indent, 1);
     F->warn = workbook_add_format(wb);
     format_set_bold(F->warn);

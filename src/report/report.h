@@ -7,7 +7,8 @@
  *    the required clearance in mm, interpolated linearly in mu (the same rule
  *    as sl_design_clearance_at()), with every intermediate cell visible;
  *  - "Summary": rows mu, one column per floor, required clearance in mm;
- *    below it each floor's horizontal ZPA and crossover;
+ *    below it each floor's ZPA and sets, then each floor's file, crossover,
+ *    ranges and note, and a chart of every floor;
  *  - one sheet per floor, named by its id (sl_report_floor_id; "F1", "F2",
  *    ... when an id cannot be a sheet name), the full name in its title:
  *    mu, mu g/ZPA, NLTHA mean and design with its standard error, ASCE best
@@ -20,9 +21,10 @@
  *    size and CRC-32, seed, settings);
  *  - "Data" (hidden, not printed): the tables the charts and Lookup read.
  * One writer per sheet (sheet_*.c, csv.c; sheets.h); printed through
- * LibreOffice every page is A4 and readable at 100 % (tests/cli/test_pdf.sh).
+ * LibreOffice every page is A4 with no text cut or overprinted
+ * (tests/cli/test_pdf.sh).
  * CSV (RFC 4180: CRLF line ends, fields quoted when needed; units in the
- * column names): floor_<name>.csv per floor, summary.csv, floors.csv (ZPA,
+ * column names): floor_<id>.csv per floor, summary.csv, floors.csv (ZPA,
  * crossover, ranges, notes per floor), motion_quality.csv.
  *
  * Each CSV starts with comment lines that trace it to its run: program,

@@ -52,8 +52,8 @@ void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
         worksheet_write_string(ws, row, 0, fl->name, F->wrap);
         worksheet_write_string(ws, row, 1, fl->path, F->wrap);
         worksheet_write_string(ws, row, 2, fl->id, F->wrap);
-        worksheet_write_string(ws, row, 3, sl_rpt_or_dash(fl->units), NULL);
-        worksheet_write_number(ws, row, 4, (double)fl->size_bytes, NULL);
+        worksheet_write_string(ws, row, 3, sl_rpt_or_dash(fl->units), F->wrap); /* all at the top */
+        worksheet_write_number(ws, row, 4, (double)fl->size_bytes, F->wrap);
         snprintf(buf, sizeof buf, "%08lx", fl->crc32 & 0xffffffffUL);
         worksheet_write_string(ws, row, 5, buf, F->indent);
         double h = sl_rpt_text_height(fl->name, W_NAME, 0);
