@@ -11,10 +11,12 @@ D=$T_TMP
 G=floors/01-ground.ini
 FAST="--sets 5 --mu-range 0.1:0.5:0.1 --created 0"
 
-# nothing_written NAME DIR: DIR was not created and no fresh folder beside it
+# nothing_written NAME DIR: no output in DIR (absent, or holding only a floor
+# result cache .seislide-cache) and no fresh folder beside it
 nothing_written() {
-  if [ ! -e "$2" ] && ! ls -a "$(dirname "$2")" | grep -q "^\.$(basename "$2")\.tmp-"; then t_pass
-  else t_fail "$1: something written at $2: $(ls -a "$(dirname "$2")" | tr '\n' ' ')"; fi
+  if { [ ! -e "$2" ] || [ -z "$(ls -A "$2" | grep -vx '\.seislide-cache')" ]; } &&
+     ! ls -a "$(dirname "$2")" | grep -q "^\.$(basename "$2")\.tmp-"; then t_pass
+  else t_fail "$1: something written at $2: $(ls -a "$(dirname "$2")" "$2" 2>&1 | tr '\n' ' ')"; fi
 }
 # usage NAME REGEX ARGS...: exit 2, stderr matches REGEX (the option), no work
 # started (no progress line), nothing written into $D/o
@@ -101,8 +103,9 @@ for q in "" -q; do
   nothing_written "spike$q" "$D/o"
   t_expect_err "spike$q-count" "run: .*spike.ini \(floor 1/1 'Spiked ground'\): [0-9]+ of 15 motions \(5 sets\) failed their SRP 3.7.1 checks:"
   t_expect_err "spike$q-below" "run:   below \(no point of the spectrum more than 10 % below the target\): 5 motions: H1 sets 1-5"
-  t_expect_err "spike$q-where" "lowest S/T 0\.0[0-9]+ at (0\.9|1\.0)[0-9]* Hz \(set [1-5] H1\)"
-  t_expect_err "spike$q-advice" "nothing written \(the output folder is unchanged\).*check .*spike.ini; --accept-failed-checks writes the outputs anyway"
+  # where the spectrum is hardest (a result reused from a cache keeps the ratio, not the Hz)
+  t_expect_err "spike$q-where" "lowest S/T 0\.0[0-9]+( at (0\.9|1\.0)[0-9]* Hz)? \(set [1-5] H1\)"
+  t_expect_err "spike$q-advice" "no output written \(the output folder's outputs are unchanged\).*check .*spike.ini; --accept-failed-checks writes the outputs anyway"
 done
 t_run run "$D/spike/spike.ini" -o "$D/keep" $FAST -q; t_expect_rc spike-keep 1
 [ "$(cat "$D/keep"/* | cksum)" = "$sum0" ] && t_pass || t_fail "a refused run changed the output folder"
