@@ -47,7 +47,7 @@ int cmd_run(int argc, char **argv)
     run_progress pc;
     ao->progress = run_progress_cb;
     ao->progress_ctx = &pc;
-    if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS) /* a warning: also with -q */
+    if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS && !a.quiet)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",
                 a.sets, SL_NLTHA_MIN_SETS);
     for (size_t i = 0; i < in.n; i++) {

@@ -31,7 +31,8 @@ static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
      "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
      A(out)},
-    {"quiet", 'q', NULL, "no progress on stderr (warnings and errors are still printed)",
+    {"quiet", 'q', NULL, "no progress on stderr (warnings on the result and errors are\n"
+     "still printed)",
      .kind = CLI_FLAG, A(quiet)},
     {"sets", O_SETS, "N", "a fixed number of motion sets per floor (ASCE 43-05: >= %g);\n"
      "default: sets are added until converged (docs/run.md, Convergence):",

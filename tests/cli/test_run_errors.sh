@@ -141,7 +141,7 @@ pid=$!
 wait_fresh keep
 kill -INT $pid; wait $pid; rc=$?
 [ $rc -eq 130 ] && t_pass || t_fail "SIGINT: exit $rc, expected 130"
-grep -qx "seislide: interrupted; the output folder $D/keep was left as it was" "$D/int.err" && t_pass \
+grep -qx "seislide: interrupted; the outputs in $D/keep were left as they were" "$D/int.err" && t_pass \
   || t_fail "SIGINT message: $(cat "$D/int.err")"
 [ "$(cat "$D/keep"/* | cksum)" = "$sum0" ] && t_pass || t_fail "SIGINT changed the output folder"
 ls -a "$D" | grep -q "^\.keep\.tmp-" && t_fail "SIGINT left a fresh folder" || t_pass
