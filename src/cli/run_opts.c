@@ -67,8 +67,8 @@ static const cli_opt opts[] = {
     {"force", O_FORCE, NULL, "run a floor whose horizontal ZPA is outside %g-%g g (warning)",
      {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_FLAG, A(force)},
     {"accept-failed-checks", O_ACCEPT, NULL, "write the outputs although some motions failed\n"
-     "their SRP 3.7.1 checks (default: the run stops, exit 1, nothing\nwritten); the failures "
-     "are listed on stderr, also with -q", .kind = CLI_FLAG, A(accept_failed)},
+     "their SRP 3.7.1 checks (default: the run stops, exit 1, no output\nwritten); the "
+     "failures are listed on stderr, also with -q", .kind = CLI_FLAG, A(accept_failed)},
     {.head = "title block of the workbook (Lookup, Summary, page headers, CSV comments):"},
     {"project", O_PROJECT, "TEXT", "project", .kind = CLI_STRING, A(dop.project.project)},
     {"document", O_DOCUMENT, "TEXT", "document number", .kind = CLI_STRING,
