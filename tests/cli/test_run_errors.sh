@@ -155,7 +155,7 @@ left=$(ls -a "$D" | grep "^\.keep\.tmp-$pid@")
 [ -n "$left" ] && t_pass || t_fail "no fresh folder of the killed run $pid: $(ls -a "$D" | tr '\n' ' ')"
 # beside it: a live run's (this shell), one of another host (a pid not running
 # here), one without owner
-host=$(hostname | tr -c 'A-Za-z0-9._\n-' '_')
+host=$(hostname | tr -c 'A-Za-z0-9._\n-' '_' | cut -c1-32)
 mkdir "$D/.keep.tmp-$$@$host-AAAAAA" "$D/.keep.tmp-999999@other-host.example-BBBBBB" "$D/.keep.tmp-CCCCCC"
 t_run run $G -o "$D/keep" $FAST -q; t_expect_rc after-kill 0
 [ ! -e "$D/$left" ] && t_pass || t_fail "the killed run's folder $left is still there"
