@@ -223,7 +223,7 @@ int cmd_run(int argc, char **argv)
     owns_plant = &plant;
     if (!(out = cli_outdir_open(a.out, owns, &err)))
         goto fail;
-    if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS) /* a warning: also with -q */
+    if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS && !a.quiet)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",
                 a.sets, SL_NLTHA_MIN_SETS);
     runner r = {.p = &plant, .ao = ao, .n_mu = a.mu.n, .read_cache = !a.dop.write_motions};

@@ -47,8 +47,8 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     snprintf(fresh, sizeof fresh, "%s", sl_atomic_dir_path(d));
     snprintf(keep[0], sizeof keep[0], "%s/.keep", fresh);
     snprintf(keep[1], sizeof keep[1], "%s/.gitkeep", fresh);
-    snprintf(said, sizeof said, "seislide: interrupted; the output folder %s was left as it "
-             "was\n", dir);
+    snprintf(said, sizeof said, "seislide: interrupted; the outputs in %s were left as they "
+             "were\n", dir);
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
     signal(SIGHUP, on_signal);

@@ -10,7 +10,7 @@
  * After cli_outdir_writing() a signal is only noted; cli_outdir_commit()
  * then drops the fresh folder instead of swapping it in, and
  * cli_outdir_finish() re-raises the signal. Either way one line is printed,
- * "seislide: interrupted; the output folder DIR was left as it was", and the
+ * "seislide: interrupted; the outputs in DIR were left as they were", and the
  * process dies of the signal (exit status 128 + its number in a shell).
  */
 #ifndef SL_CLI_OUTDIR_H

@@ -37,7 +37,8 @@ static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/); the run writes a fresh folder and\n"
      "swaps it in: DIR must be new, empty or hold only seislide outputs", .kind = CLI_STRING,
      A(out)},
-    {"quiet", 'q', NULL, "no progress on stderr (warnings and errors are still printed)",
+    {"quiet", 'q', NULL, "no progress on stderr (warnings on the result and errors are\n"
+     "still printed)",
      .kind = CLI_FLAG, A(quiet)},
     {"sets", O_SETS, "N", "a fixed number of motion sets per floor (ASCE 43-05: >= %g);\n"
      "default: sets are added until converged (docs/run.md, Convergence):",
@@ -72,8 +73,8 @@ static const cli_opt opts[] = {
     {"force", O_FORCE, NULL, "run a floor whose horizontal ZPA is outside %g-%g g (warning)",
      {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_FLAG, A(force)},
     {"accept-failed-checks", O_ACCEPT, NULL, "write the outputs although some motions failed\n"
-     "their SRP 3.7.1 checks (default: the run stops, exit 1, nothing\nwritten); the failures "
-     "are listed on stderr, also with -q", .kind = CLI_FLAG, A(accept_failed)},
+     "their SRP 3.7.1 checks (default: the run stops, exit 1, no output\nwritten); the "
+     "failures are listed on stderr, also with -q", .kind = CLI_FLAG, A(accept_failed)},
     {.head = "plant (docs/plant.md):"},
     {"shard", O_SHARD, "K/N", "compute shard K of N (a deterministic share of the floors, balanced\n"
      "by expected cost) into DIR for `seislide merge`", .kind = CLI_CALL},

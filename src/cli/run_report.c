@@ -114,8 +114,21 @@ static const run_check checks[] = {
 #undef OK
 #define N_CHECKS (sizeof checks / sizeof checks[0])
 
-static int failed(const sl_synth_check *k, const run_check *c)
+/* Component comp of set s was synthesized: its motion is held, or (a
+ * result read back from a plant cache keeps the checks, not the motions)
+ * its check has a PGA. */
+static int present(const sl_synth_set *s, int comp)
 {
+    return sl_synth_set_motion(s, (sl_synth_comp)comp) != NULL || s->check[comp].pga_ms2 > 0;
+}
+
+/* Motion comp of set s failed check c. Only a failed motion counts (a cached
+ * result keeps every flag of the check: plant/entry.c). */
+static int failed(const sl_synth_set *s, int comp, const run_check *c)
+{
+    const sl_synth_check *k = &s->check[comp];
+    if (!present(s, comp) || k->pass)
+        return 0;
     return !*(const int *)(const void *)((const char *)k + c->ok);
 }
 
@@ -140,14 +153,6 @@ static double limit(const run_check *c, const sl_synth_params *p)
 /* The sets of component comp that failed check c, as "1-10,12" into buf
  * (at most n bytes; "..." and the count when it does not fit). Returns how
  * many. */
-/* Component c of a set was synthesized and checked: its motion is there, or,
- * for a result read back from the cache (which keeps the checks, not the
- * motions: plant/entry.h), its check covers grid points. */
-static int has_comp(const sl_synth_set *set, int c)
-{
-    return sl_synth_set_motion(set, (sl_synth_comp)c) != NULL || set->check[c].npoints > 0;
-}
-
 static size_t failed_sets(const sl_analysis *q, int comp, const run_check *c, char *buf,
                           size_t n)
 {
@@ -155,14 +160,12 @@ static size_t failed_sets(const sl_analysis *q, int comp, const run_check *c, ch
     int cut = 0;
     buf[0] = '\0';
     while (s < q->n_sets) {
-        if (!has_comp(&q->sets[s], comp) ||
-            !failed(&q->sets[s].check[comp], c)) {
+        if (!failed(&q->sets[s], comp, c)) {
             s++;
             continue;
         }
         size_t e = s;
-        while (e + 1 < q->n_sets && has_comp(&q->sets[e + 1], comp) &&
-               failed(&q->sets[e + 1].check[comp], c))
+        while (e + 1 < q->n_sets && failed(&q->sets[e + 1], comp, c))
             e++;
         count += e - s + 1;
         char one[48];
@@ -192,7 +195,7 @@ static void worst_ratio(const sl_analysis *q, char *buf, size_t n)
     for (size_t s = 0; s < q->n_sets; s++)
         for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
             const sl_synth_check *k = &q->sets[s].check[c];
-            if (!has_comp(&q->sets[s], c) || k->pass)
+            if (!present(&q->sets[s], c) || k->pass)
                 continue;
             if (!lo || k->min_ratio < lo->min_ratio)
                 lo = k, slo = s, clo = c;
@@ -203,10 +206,17 @@ static void worst_ratio(const sl_analysis *q, char *buf, size_t n)
         buf[0] = '\0';
         return;
     }
-    snprintf(buf, n, "lowest S/T %.3g at %.3g Hz (set %zu %s), highest %.3g at %.3g Hz (set %zu "
-             "%s), S the motion's spectrum and T the target at %g %% damping", lo->min_ratio,
-             lo->f_min_ratio_hz, slo + 1, comp_name[clo], hi->max_ratio, hi->f_max_ratio_hz,
-             shi + 1, comp_name[chi], 100 * lo->damping);
+    /* a result read back from a plant cache keeps the ratios, not where */
+    char flo[48] = "", fhi[48] = "", z[48] = "";
+    if (lo->f_min_ratio_hz > 0)
+        snprintf(flo, sizeof flo, " at %.3g Hz", lo->f_min_ratio_hz);
+    if (hi->f_max_ratio_hz > 0)
+        snprintf(fhi, sizeof fhi, " at %.3g Hz", hi->f_max_ratio_hz);
+    if (lo->damping > 0)
+        snprintf(z, sizeof z, " at %g %% damping", 100 * lo->damping);
+    snprintf(buf, n, "lowest S/T %.3g%s (set %zu %s), highest %.3g%s (set %zu %s), S the "
+             "motion's spectrum and T the target%s", lo->min_ratio, flo, slo + 1, comp_name[clo],
+             hi->max_ratio, fhi, shi + 1, comp_name[chi], z);
 }
 
 int run_report_checks(size_t i, size_t n, const sl_floor *fl, const sl_analysis *q, int accept)
@@ -221,7 +231,7 @@ int run_report_checks(size_t i, size_t n, const sl_floor *fl, const sl_analysis 
     size_t total = 0;
     for (size_t s = 0; s < q->n_sets; s++)
         for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-            total += has_comp(&q->sets[s], c) != 0;
+            total += present(&q->sets[s], c) != 0;
     cli_msg("run: %s%s (floor %zu/%zu '%s'): %zu of %zu motions (%zu sets) failed their SRP 3.7.1 "
             "checks:", accept ? "warning (--accept-failed-checks): " : "", path, i, n, fl->name,
             q->n_failed_motions, total, q->n_sets);
@@ -254,9 +264,9 @@ int run_report_checks(size_t i, size_t n, const sl_floor *fl, const sl_analysis 
                 "motion_quality.csv)", fl->name);
         return CLI_EXIT_OK;
     }
-    cli_msg("run: nothing written (the output folder is unchanged)%s. A target the synthesis "
-            "cannot match (a spike, a ZPA far from the spectrum's high-frequency end) is the "
-            "usual cause: check %s; --accept-failed-checks writes the outputs anyway", i < n ?
-            ", the floors after this one not run" : "", path);
+    cli_msg("run: no output written (the output folder's outputs are unchanged). A target the "
+            "synthesis cannot match (a spike, a ZPA far from the spectrum's high-frequency end) "
+            "is the usual cause: check %s; --accept-failed-checks writes the outputs anyway",
+            path);
     return CLI_EXIT_ERROR;
 }

@@ -32,14 +32,15 @@ static mode_t current_umask(void)
 }
 
 /* This host's name for temporary names: letters, digits, '.', '_' and '-'
- * kept, anything else '_' (at most 64 characters). */
+ * kept, anything else '_'; at most 32 characters, so that a temporary name
+ * stays well below NAME_MAX. */
 static void host_name(char *buf, size_t n)
 {
     char h[256] = "";
     if (gethostname(h, sizeof h - 1) != 0 || !h[0])
         snprintf(h, sizeof h, "localhost");
     size_t k = 0;
-    for (const char *p = h; *p && k + 1 < n && k < 64; p++)
+    for (const char *p = h; *p && k + 1 < n && k < 32; p++)
         buf[k++] = (isalnum((unsigned char)*p) || *p == '.' || *p == '_' || *p == '-') ? *p : '_';
     buf[k] = '\0';
 }

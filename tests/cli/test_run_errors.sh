@@ -11,13 +11,12 @@ D=$T_TMP
 G=floors/01-ground.ini
 FAST="--sets 5 --mu-range 0.1:0.5:0.1 --created 0"
 
-# nothing_written NAME DIR: no output in DIR and no fresh folder beside it; DIR may
-# hold the floor-result cache alone (DIR/.seislide-cache: the floors computed before
-# the run stopped, which a rerun reuses; docs/plant.md), nothing else
+# nothing_written NAME DIR: no output in DIR (absent, or holding only a floor
+# result cache .seislide-cache) and no fresh folder beside it
 nothing_written() {
   if { [ ! -e "$2" ] || [ -z "$(ls -A "$2" | grep -vx '\.seislide-cache')" ]; } &&
      ! ls -a "$(dirname "$2")" | grep -q "^\.$(basename "$2")\.tmp-"; then t_pass
-  else t_fail "$1: something written at $2: $(ls -a "$(dirname "$2")" | tr '\n' ' ')"; fi
+  else t_fail "$1: something written at $2: $(ls -a "$(dirname "$2")" "$2" 2>&1 | tr '\n' ' ')"; fi
 }
 # usage NAME REGEX ARGS...: exit 2, stderr matches REGEX (the option), no work
 # started (no progress line), nothing written into $D/o
@@ -104,8 +103,9 @@ for q in "" -q; do
   nothing_written "spike$q" "$D/o"
   t_expect_err "spike$q-count" "run: .*spike.ini \(floor 1/1 'Spiked ground'\): [0-9]+ of 15 motions \(5 sets\) failed their SRP 3.7.1 checks:"
   t_expect_err "spike$q-below" "run:   below \(no point of the spectrum more than 10 % below the target\): 5 motions: H1 sets 1-5"
-  t_expect_err "spike$q-where" "lowest S/T 0\.0[0-9]+ at (0\.9|1\.0)[0-9]* Hz \(set [1-5] H1\)"
-  t_expect_err "spike$q-advice" "nothing written \(the output folder is unchanged\).*check .*spike.ini; --accept-failed-checks writes the outputs anyway"
+  # where the spectrum is hardest (a result reused from a cache keeps the ratio, not the Hz)
+  t_expect_err "spike$q-where" "lowest S/T 0\.0[0-9]+( at (0\.9|1\.0)[0-9]* Hz)? \(set [1-5] H1\)"
+  t_expect_err "spike$q-advice" "no output written \(the output folder's outputs are unchanged\).*check .*spike.ini; --accept-failed-checks writes the outputs anyway"
 done
 t_run run "$D/spike/spike.ini" -o "$D/keep" $FAST -q; t_expect_rc spike-keep 1
 [ "$(cat "$D/keep"/* | cksum)" = "$sum0" ] && t_pass || t_fail "a refused run changed the output folder"
@@ -141,7 +141,7 @@ pid=$!
 wait_fresh keep
 kill -INT $pid; wait $pid; rc=$?
 [ $rc -eq 130 ] && t_pass || t_fail "SIGINT: exit $rc, expected 130"
-grep -qx "seislide: interrupted; the output folder $D/keep was left as it was" "$D/int.err" && t_pass \
+grep -qx "seislide: interrupted; the outputs in $D/keep were left as they were" "$D/int.err" && t_pass \
   || t_fail "SIGINT message: $(cat "$D/int.err")"
 [ "$(cat "$D/keep"/* | cksum)" = "$sum0" ] && t_pass || t_fail "SIGINT changed the output folder"
 ls -a "$D" | grep -q "^\.keep\.tmp-" && t_fail "SIGINT left a fresh folder" || t_pass
@@ -155,7 +155,7 @@ left=$(ls -a "$D" | grep "^\.keep\.tmp-$pid@")
 [ -n "$left" ] && t_pass || t_fail "no fresh folder of the killed run $pid: $(ls -a "$D" | tr '\n' ' ')"
 # beside it: a live run's (this shell), one of another host (a pid not running
 # here), one without owner
-host=$(hostname | tr -c 'A-Za-z0-9._\n-' '_')
+host=$(hostname | tr -c 'A-Za-z0-9._\n-' '_' | cut -c1-32)
 mkdir "$D/.keep.tmp-$$@$host-AAAAAA" "$D/.keep.tmp-999999@other-host.example-BBBBBB" "$D/.keep.tmp-CCCCCC"
 t_run run $G -o "$D/keep" $FAST -q; t_expect_rc after-kill 0
 [ ! -e "$D/$left" ] && t_pass || t_fail "the killed run's folder $left is still there"
