@@ -221,6 +221,8 @@ int cmd_run(int argc, char **argv)
     if (a.shard_n)
         sl_plant_assign(&plant, a.shard_n);
     owns_plant = &plant;
+    if (!a.no_cache && !a.cache) /* a run killed just before its swap left the cache there */
+        cli_outdir_salvage(a.out, SL_CACHE_DIR_NAME, owns);
     if (!(out = cli_outdir_open(a.out, owns, &err)))
         goto fail;
     if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS) /* a warning: also with -q */
