@@ -8,12 +8,15 @@
 #include <string.h>
 #include <time.h>
 
+#include "outdir.h"
 #include "signal/spectrum.h"
 
 void cli_print_error(const sl_error *err)
 {
     char buf[2200];
-    fprintf(stderr, "seislide: %s\n", sl_error_format(err, buf, sizeof buf));
+    sl_error named = *err; /* a file of the fresh output folder named as in the final one */
+    cli_outdir_final_name(named.file, sizeof named.file);
+    fprintf(stderr, "seislide: %s\n", sl_error_format(&named, buf, sizeof buf));
 }
 
 void cli_msg(const char *fmt, ...)

@@ -117,7 +117,9 @@ static sl_status run_floors(runner *r, const unsigned char *mine, sl_error *err)
     unsigned char *later = calloc(p->n ? p->n : 1, 1);
     if (!later)
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
-    sl_status st = SL_OK;
+    /* the cache opened first: an unwritable one stops the run before any work, and
+     * what killed runs left in it goes even when every floor is reused */
+    sl_status st = r->cache ? cache_ready(r, err) : SL_OK;
     size_t n_later = 0;
     for (int pass = 0; !st && (pass == 0 || n_later); pass++) {
         int progressed = 0;
@@ -221,6 +223,8 @@ int cmd_run(int argc, char **argv)
     if (a.shard_n)
         sl_plant_assign(&plant, a.shard_n);
     owns_plant = &plant;
+    if (!a.no_cache && !a.cache) /* a run killed just before its swap left the cache there */
+        cli_outdir_salvage(a.out, SL_CACHE_DIR_NAME, owns);
     if (!(out = cli_outdir_open(a.out, owns, &err)))
         goto fail;
     if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS && !a.quiet)

@@ -1,4 +1,5 @@
 /* main.c - seislide: dispatch to a command. */
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -44,6 +45,10 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    /* A file size limit (ulimit -f) must not kill the program silently: with
+     * SIGXFSZ ignored, the write that crosses it fails with EFBIG and the
+     * command reports the file it could not write (docs/reliability.md). */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;

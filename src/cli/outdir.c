@@ -8,7 +8,7 @@
 
 #include "cli.h"
 
-static char fresh[4096], keep[2][4200];
+static char final_dir[4096], fresh[4096], keep[2][4200];
 static char said[4600]; /* the line printed when a signal ends the command */
 static volatile sig_atomic_t writing, interrupted;
 
@@ -44,6 +44,7 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     if (!d)
         return NULL;
     say_stale(dir, sl_atomic_dir_stale(d));
+    snprintf(final_dir, sizeof final_dir, "%s", dir);
     snprintf(fresh, sizeof fresh, "%s", sl_atomic_dir_path(d));
     snprintf(keep[0], sizeof keep[0], "%s/.keep", fresh);
     snprintf(keep[1], sizeof keep[1], "%s/.gitkeep", fresh);
@@ -53,6 +54,24 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     signal(SIGTERM, on_signal);
     signal(SIGHUP, on_signal);
     return d;
+}
+
+void cli_outdir_salvage(const char *dir, const char *name, sl_outdir_owns_fn owns)
+{
+    char text[8400];
+    if (sl_outdir_check(dir, owns, NULL) == SL_OK && sl_atomic_dir_salvage(dir, name, text,
+                                                                           sizeof text))
+        cli_msg("output folder %s: %s", dir, text);
+}
+
+void cli_outdir_final_name(char *path, size_t n)
+{
+    size_t k = strlen(fresh);
+    if (!k || strncmp(path, fresh, k) != 0 || path[k] != '/')
+        return;
+    char tail[4096];
+    snprintf(tail, sizeof tail, "%s", path + k);
+    snprintf(path, n, "%.*s%s", (int)strcspn(final_dir, "\n"), final_dir, tail);
 }
 
 void cli_outdir_writing(void) { writing = 1; }

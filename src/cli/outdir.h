@@ -18,12 +18,20 @@
 
 #include "io/atomic.h"
 
+/* Before cli_outdir_open: take `name` (the cache a run moves into its fresh
+ * folder just before the swap) back into dir from a fresh folder of a run
+ * killed in between (sl_atomic_dir_salvage), saying so on stderr; nothing
+ * when dir fails sl_outdir_check. */
+void cli_outdir_salvage(const char *dir, const char *name, sl_outdir_owns_fn owns);
 sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err);
 /* From now on a signal is noted, not acted on. */
 void cli_outdir_writing(void);
 /* Swap the fresh folder in and set *d to NULL (SL_OK, or the swap's
  * error); after a noted signal do nothing and return SL_EIO. */
 sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err);
+/* A path inside the fresh folder renamed to the same path in the final
+ * folder (what the user will look for), in place; others unchanged. */
+void cli_outdir_final_name(char *path, size_t n);
 /* Nonzero when a signal was noted. */
 int cli_outdir_interrupted(void);
 /* Drop a fresh folder not committed (NULL: nothing) and, after a noted

@@ -227,23 +227,62 @@ static void stale_note(sl_atomic_dir *d, const char *fmt, const char *name, long
         snprintf(d->stale + used, sizeof d->stale - used, fmt, name, pid, host);
 }
 
+/* Where the fresh folders of runs into `path` live: *parent (the folder
+ * that holds `path`, "." for a bare name), *prefix (".BASE.tmp-") and
+ * whether `path` named a parent at all (*has_dir). */
+static void sibling_prefix(const char *path, char *parent, size_t nparent, char *prefix,
+                           size_t nprefix, int *has_dir)
+{
+    size_t n = strlen(path);
+    while (n > 1 && path[n - 1] == '/')
+        n--;
+    size_t dirlen = 0;
+    for (size_t i = 0; i < n; i++)
+        if (path[i] == '/')
+            dirlen = i + 1;
+    snprintf(parent, nparent, "%.*s", (int)(dirlen ? dirlen : 1), dirlen ? path : ".");
+    snprintf(prefix, nprefix, ".%.*s" SL_ATOMIC_TMP_TAG, (int)(n - dirlen), path + dirlen);
+    *has_dir = dirlen != 0;
+}
+
+/* Who left a fresh folder "PREFIX" + rest ("PID@HOST-XXXXXX"). */
+typedef enum sibling_owner {
+    OWNER_UNKNOWN, /* no owner in the name */
+    OWNER_OTHER_HOST,
+    OWNER_SELF,
+    OWNER_LIVE,    /* a running process of this host */
+    OWNER_GONE     /* a process of this host that no longer exists */
+} sibling_owner;
+
+static sibling_owner owner_of(const char *rest, long *pid, char *owner, size_t nowner)
+{
+    const char *at = strchr(rest, '@'), *dash = strrchr(rest, '-');
+    char *end, host[80];
+    *pid = strtol(rest, &end, 10);
+    owner[0] = '\0';
+    if (!(rest[0] >= '0' && rest[0] <= '9') || end != at || !dash || dash < at ||
+        strlen(dash + 1) != 6 || *pid <= 0)
+        return OWNER_UNKNOWN;
+    snprintf(owner, nowner, "%.*s", (int)(dash - at - 1), at + 1);
+    host_name(host, sizeof host);
+    if (strcmp(owner, host) != 0)
+        return OWNER_OTHER_HOST;
+    if (*pid == (long)getpid())
+        return OWNER_SELF;
+    if (kill((pid_t)*pid, 0) == 0 || errno != ESRCH)
+        return OWNER_LIVE;
+    return OWNER_GONE;
+}
+
 /* The fresh folders of earlier runs into d->path, in its parent folder:
  * ".BASE.tmp-PID@HOST-XXXXXX" of this host whose process is gone
  * (kill(pid, 0) fails with ESRCH) are removed; the others are named in
  * d->stale (a live run's, another host's, or an older one with no owner). */
 static void clean_stale(sl_atomic_dir *d)
 {
-    size_t n = strlen(d->path);
-    while (n > 1 && d->path[n - 1] == '/')
-        n--;
-    size_t dirlen = 0;
-    for (size_t i = 0; i < n; i++)
-        if (d->path[i] == '/')
-            dirlen = i + 1;
-    char parent[4096], prefix[1024], host[80];
-    snprintf(parent, sizeof parent, "%.*s", (int)(dirlen ? dirlen : 1), dirlen ? d->path : ".");
-    snprintf(prefix, sizeof prefix, ".%.*s" SL_ATOMIC_TMP_TAG, (int)(n - dirlen), d->path + dirlen);
-    host_name(host, sizeof host);
+    char parent[4096], prefix[1024];
+    int has_dir;
+    sibling_prefix(d->path, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
     DIR *dir = opendir(parent);
     if (!dir)
         return;
@@ -251,43 +290,75 @@ static void clean_stale(sl_atomic_dir *d)
     for (struct dirent *e; (e = readdir(dir)) != NULL;) {
         if (strncmp(e->d_name, prefix, plen) != 0)
             continue;
-        char full[8192];
+        char full[8192], owner[80];
         struct stat st;
-        snprintf(full, sizeof full, "%s%s%s", parent, dirlen ? "" : "/", e->d_name);
+        snprintf(full, sizeof full, "%s%s%s", parent, has_dir ? "" : "/", e->d_name);
         if (lstat(full, &st) != 0 || !S_ISDIR(st.st_mode))
             continue;
-        /* PID@HOST-XXXXXX */
-        const char *r = e->d_name + plen, *at = strchr(r, '@'), *dash = strrchr(r, '-');
-        char *end;
-        long pid = strtol(r, &end, 10);
-        if (!(r[0] >= '0' && r[0] <= '9') || end != at || !dash || dash < at ||
-            strlen(dash + 1) != 6 || pid <= 0) {
+        long pid;
+        switch (owner_of(e->d_name + plen, &pid, owner, sizeof owner)) {
+        case OWNER_UNKNOWN:
             stale_note(d, "kept %s (no owner recorded: remove it by hand if no run is writing "
                        "there)", e->d_name, 0, "");
-            continue;
-        }
-        char owner[80];
-        snprintf(owner, sizeof owner, "%.*s", (int)(dash - at - 1), at + 1);
-        if (strcmp(owner, host) != 0) {
+            break;
+        case OWNER_OTHER_HOST:
             stale_note(d, "kept %s (process %ld of host %s, which this run cannot check)",
                        e->d_name, pid, owner);
-            continue;
-        }
-        if (pid == (long)getpid())
-            continue;
-        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) {
+            break;
+        case OWNER_SELF:
+            break;
+        case OWNER_LIVE:
             stale_note(d, "kept %s (process %ld is running: another run writing there)",
                        e->d_name, pid, "");
-            continue;
+            break;
+        case OWNER_GONE:
+            if (sl_remove_tree(full) == 0)
+                stale_note(d, "removed %s (left by process %ld, which is gone: an interrupted "
+                           "run)", e->d_name, pid, "");
+            else
+                stale_note(d, "could not remove %s (left by process %ld, which is gone)",
+                           e->d_name, pid, "");
+            break;
         }
-        if (sl_remove_tree(full) == 0)
-            stale_note(d, "removed %s (left by process %ld, which is gone: an interrupted run)",
-                       e->d_name, pid, "");
-        else
-            stale_note(d, "could not remove %s (left by process %ld, which is gone)", e->d_name,
-                       pid, "");
     }
     closedir(dir);
+}
+
+int sl_atomic_dir_salvage(const char *dir, const char *name, char *said, size_t nsaid)
+{
+    char parent[4096], prefix[1024], want[8192];
+    struct stat st;
+    int has_dir, moved = 0;
+    if (said && nsaid)
+        said[0] = '\0';
+    snprintf(want, sizeof want, "%s/%s", dir, name);
+    if (lstat(want, &st) == 0)
+        return 0;
+    sibling_prefix(dir, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
+    DIR *d = opendir(parent);
+    if (!d)
+        return 0;
+    size_t plen = strlen(prefix);
+    for (struct dirent *e; !moved && (e = readdir(d)) != NULL;) {
+        char from[8192], owner[80];
+        long pid;
+        if (strncmp(e->d_name, prefix, plen) != 0 ||
+            owner_of(e->d_name + plen, &pid, owner, sizeof owner) != OWNER_GONE)
+            continue;
+        snprintf(from, sizeof from, "%s%s%s/%s", parent, has_dir ? "" : "/", e->d_name, name);
+        if (lstat(from, &st) != 0)
+            continue;
+        if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+            break;
+        if (rename(from, want) != 0)
+            break;
+        moved = 1;
+        if (said && nsaid)
+            snprintf(said, nsaid, "took %s back from %s (left by process %ld, which is gone: a "
+                     "run killed just before its swap)", name, e->d_name, pid);
+    }
+    closedir(d);
+    return moved;
 }
 
 const char *sl_atomic_dir_stale(const sl_atomic_dir *d) { return d ? d->stale : ""; }

@@ -74,6 +74,15 @@ sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err);
 /* Remove the fresh folder and its contents; frees d. Harmless on NULL. */
 void sl_atomic_dir_abort(sl_atomic_dir *d);
 
+/* Before sl_atomic_dir_open (which removes them): move the entry `name` of
+ * a fresh folder left by a process of this host that is gone back into
+ * `dir` (created when absent), when `dir` has no `name` itself. For what a
+ * caller moves into the fresh folder just before the swap (a cache): a run
+ * killed between that move and the swap left it there. Returns 1 when
+ * moved (said: "took NAME back from FOLDER (left by process PID, ...)"),
+ * else 0 (said: ""). */
+int sl_atomic_dir_salvage(const char *dir, const char *name, char *said, size_t nsaid);
+
 /* Remove a folder tree (no symbolic links followed). 0 or -1 (errno). */
 int sl_remove_tree(const char *path);
 

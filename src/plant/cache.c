@@ -30,6 +30,8 @@ static int pid_alive(long pid)
     return pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM);
 }
 
+static int lock_stale(const char *path);
+
 sl_status sl_cache_open(const char *dir, sl_error *err)
 {
     if (mkdir(dir, 0777) != 0 && errno != EEXIST)
@@ -43,18 +45,25 @@ sl_status sl_cache_open(const char *dir, sl_error *err)
         closedir(d);
         return sl_error_set(err, SL_EIO, dir, 0, "the cache folder is not writable");
     }
-    char host[128], prefix[160], path[4400];
+    char host[128], prefix[160], aside[160], path[4400];
     host_name(host, sizeof host);
     snprintf(prefix, sizeof prefix, ".tmp-%s-", host);
+    snprintf(aside, sizeof aside, ".lock.stale-%s-", host);
     struct dirent *e;
     while ((e = readdir(d)) != NULL) {
+        size_t len = strlen(e->d_name);
         const char *t = e->d_name[0] == '.' ? strstr(e->d_name, prefix) : NULL;
-        if (!t)
-            continue;
-        long pid = strtol(t + strlen(prefix), NULL, 10);
-        if (!pid_alive(pid)) {
-            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-            unlink(path);
+        const char *a = strstr(e->d_name, aside);
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        if (t || a) { /* a temporary entry, or a lock put aside, of a dead process */
+            if (!pid_alive(strtol((t ? t + strlen(prefix) : a + strlen(aside)), NULL, 10)))
+                unlink(path);
+        } else if (len > 5 && !strcmp(e->d_name + len - 5, ".lock") && lock_stale(path)) {
+            /* the lock of a run killed after its entry was written: broken as sl_cache_lock does */
+            char moved[4600];
+            snprintf(moved, sizeof moved, "%s.stale-%s-%ld", path, host, (long)getpid());
+            if (rename(path, moved) == 0)
+                unlink(moved);
         }
     }
     closedir(d);

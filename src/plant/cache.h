@@ -14,8 +14,8 @@
  * Writing: a temporary file ".<hash>.tmp-<host>-<pid>-XXXXXX" in the same
  * folder, written, fsync'd, renamed over the final name, the folder fsync'd:
  * a reader sees the old entry, no entry or the whole new one, never part of
- * one, whatever is interrupted. Temporary files of dead processes of this
- * host are removed by sl_cache_open.
+ * one, whatever is interrupted. Temporary files and locks of dead processes
+ * of this host are removed by sl_cache_open.
  *
  * Locks: "<hash>.lock" created with open(O_CREAT | O_EXCL) (atomic on local
  * file systems and on NFS version 3 and later), holding "host pid time". A
@@ -44,8 +44,10 @@
 #define SL_CACHE_LOCK_STALE_S 600.0
 #define SL_CACHE_LOCK_TOUCH_S 30.0
 
-/* Create the folder when absent (its parent must exist) and remove the
- * temporary files of dead processes of this host. SL_EIO naming it. */
+/* Create the folder when absent (its parent must exist), check that it is
+ * writable, and remove the temporary files and the locks of dead processes
+ * of this host (a run killed while writing an entry, or after writing it and
+ * before unlocking). SL_EIO naming it. */
 sl_status sl_cache_open(const char *dir, sl_error *err);
 
 /* Outcome of reading an entry. */
