@@ -1,6 +1,7 @@
 /* cli.c - message printing and strict parsing for the command line. */
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -376,11 +377,46 @@ int cli_command_parse(const cli_command *c, int argc, char **argv, void *dst)
     return c->check ? c->check(dst) : CLI_EXIT_OK;
 }
 
+/* Append s to buf (size n, holding `used` bytes) as one POSIX shell word:
+ * as it is when it holds only characters no shell treats specially, else in
+ * single quotes (a quote inside written '\''). Returns the new length, or n
+ * when it does not fit (buf unchanged then). */
+static size_t shell_word(char *buf, size_t used, size_t n, const char *s)
+{
+    int plain = *s != '\0';
+    for (const char *p = s; *p; p++)
+        if (!isalnum((unsigned char)*p) && !strchr("-_./:=,+@%", *p))
+            plain = 0;
+    size_t k = used;
+    if (k + 1 >= n)
+        return n;
+    buf[k++] = ' ';
+    if (!plain && k < n)
+        buf[k++] = '\'';
+    for (const char *p = s; *p && k < n; p++) {
+        if (*p == '\'' && !plain) {
+            for (const char *q = "'\\''"; *q && k < n; q++)
+                buf[k++] = *q;
+        } else {
+            buf[k++] = *p;
+        }
+    }
+    if (!plain && k < n)
+        buf[k++] = '\'';
+    if (k >= n) {
+        buf[used] = '\0';
+        return n;
+    }
+    buf[k] = '\0';
+    return k;
+}
+
 void cli_command_line(char *buf, size_t n, int argc, char **argv)
 {
     snprintf(buf, n, "seislide");
-    for (int i = 0; i < argc && strlen(buf) + strlen(argv[i]) + 2 < n; i++)
-        strcat(strcat(buf, " "), argv[i]);
+    size_t used = strlen(buf);
+    for (int i = 0; i < argc && used < n; i++)
+        used = shell_word(buf, used, n, argv[i]);
 }
 
 int cli_mu_nonneg(const char *cmd, const cli_mu *mu)

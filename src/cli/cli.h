@@ -147,7 +147,9 @@ typedef struct cli_command {
  * stdout, or CLI_EXIT_USAGE (message printed; also what check returns). */
 int cli_command_parse(const cli_command *c, int argc, char **argv, void *dst);
 /* "seislide" and the words of argv (argv[0] the command name), joined by
- * blanks into buf of size n, up to the first word that does not fit. */
+ * blanks into buf of size n, up to the first word that does not fit; a word
+ * with a blank or another character a shell treats specially is single-quoted,
+ * so that the recorded line can be pasted into a shell and runs the same. */
 void cli_command_line(char *buf, size_t n, int argc, char **argv);
 /* CLI_EXIT_OK when every friction value of mu is >= 0, else a usage error. */
 int cli_mu_nonneg(const char *cmd, const cli_mu *mu);

@@ -11,6 +11,9 @@ cp floors/01-ground.ini floors/04-roof36.ini "$D/floors/"
 t_run run "$D/floors" -o "$D/res" --sets 3 --mu-range 0.05:0.80:0.05 --created 1700000000 -q \
   --project "Plant & Unit 2" --document DOC-0042 --revision C --prepared "A. Author" --checked "B. Checker"
 t_expect_rc run 0
+# the recorded command line pastes into a shell: a value with blanks or '&' is quoted
+grep -q "^# command: seislide run .* --project 'Plant & Unit 2' --document DOC-0042 .* --prepared 'A. Author'" \
+  "$D/res/summary.csv" && t_pass || t_fail "command line not shell-quoted: $(grep '^# command' "$D/res/summary.csv")"
 if ! command -v python3 >/dev/null 2>&1; then
   t_skip "python3 absent: workbook not inspected"; t_end; exit $?
 fi
