@@ -122,17 +122,12 @@ static int present(const sl_synth_set *s, int comp)
     return sl_synth_set_motion(s, (sl_synth_comp)comp) != NULL || s->check[comp].pga_ms2 > 0;
 }
 
-/* Motion comp of set s failed check c. Only a failed motion counts; the
- * peak and PSD flags only while the motion is held (a cached result does not
- * keep them). */
+/* Motion comp of set s failed check c. Only a failed motion counts (a cached
+ * result keeps every flag of the check: plant/entry.c). */
 static int failed(const sl_synth_set *s, int comp, const run_check *c)
 {
     const sl_synth_check *k = &s->check[comp];
     if (!present(s, comp) || k->pass)
-        return 0;
-    if ((c->ok == offsetof(sl_synth_check, ok_peaks) ||
-         c->ok == offsetof(sl_synth_check, ok_psd)) &&
-        !sl_synth_set_motion(s, (sl_synth_comp)comp))
         return 0;
     return !*(const int *)(const void *)((const char *)k + c->ok);
 }
