@@ -100,6 +100,9 @@ int cmd_synth(int argc, char **argv)
         cli_msg("out of memory");
         goto done;
     }
+    char left[4400];
+    snprintf(left, sizeof left, "no file of this run written in %s yet", o.outdir);
+    cli_on_interrupt(left);
     int show = !o.quiet && isatty(STDERR_FILENO);
     sl_status st;
     if (o.nmatch > 0) {
@@ -120,6 +123,9 @@ int cmd_synth(int argc, char **argv)
     }
     synth_output out = {o.outdir, o.csv, o.seed, o.nmatch > 0 ? o.match : NULL,
                         (const char(*)[512])desc, &o.p};
+    snprintf(left, sizeof left, "%s holds some of this run's motion files (each whole), not "
+             "its report.csv, perhaps a hidden .*.tmp-* file; run it again", o.outdir);
+    cli_on_interrupt(left);
     if (synth_write_outputs(&out, sets, nsets) != CLI_EXIT_OK)
         goto done;
     if (fl && !o.quiet)

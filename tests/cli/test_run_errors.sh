@@ -147,6 +147,16 @@ grep -qx "seislide: interrupted; the outputs in $D/keep were left as they were" 
 [ "$(cat "$D/keep"/* | cksum)" = "$sum0" ] && t_pass || t_fail "SIGINT changed the output folder"
 ls -a "$D" | grep -q "^\.keep\.tmp-" && t_fail "SIGINT left a fresh folder" || t_pass
 
+# synth: the line says what the folder holds (nothing of this run before the writing)
+"$SEISLIDE_BIN" synth --rg160 0.3 --count 50 --seed 1 -o "$D/sint" -q 2> "$D/sint.err" &
+pid=$!
+i=0; while [ $i -lt 200 ] && [ ! -d "$D/sint" ]; do sleep 0.1; i=$((i + 1)); done
+sleep 0.5 # the handlers are installed right after the folder is made
+kill -INT $pid; wait $pid; rc=$?
+[ $rc -eq 130 ] && t_pass || t_fail "synth SIGINT: exit $rc, expected 130"
+grep -qx "seislide: interrupted; no file of this run written in $D/sint yet" "$D/sint.err" && t_pass \
+  || t_fail "synth SIGINT message: $(cat "$D/sint.err")"
+
 # ---- SIGKILL leaves the fresh folder; the next run removes it and says so --
 "$SEISLIDE_BIN" run floors -o "$D/keep" -q --created 0 2>/dev/null &
 pid=$!
