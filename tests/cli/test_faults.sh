@@ -81,6 +81,7 @@ after_kill() {
   if [ "$RC" -eq 0 ]; then where="finished first"
   elif [ "$st" = new ]; then where="after the swap"
   elif [ -n "$fresh" ] && [ -n "$(files_of "$fresh")" ]; then where="writing the outputs"
+  elif [ "$ne" -eq 4 ]; then where="after the last floor"
   else where="computing floor $((ne + 1))"; fi
   KILLED="$KILLED$trial:$what:$where; "
   run_plant > "$D/rerun.err" 2>&1; rc=$?
