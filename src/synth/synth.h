@@ -127,7 +127,9 @@
 #define SL_SYNTH_DT_S 0.005          /* time step of synthetic motions, s (200/s) */
 #define SL_SYNTH_DURATION_S 20.0     /* duration of synthetic motions, s */
 #define SL_SYNTH_MAX_ITER 30         /* correction iterations per attempt */
-#define SL_SYNTH_MAX_ATTEMPTS 10     /* phase sets tried per synthetic component */
+#define SL_SYNTH_MAX_ATTEMPTS 30     /* phase sets tried per synthetic component
+                                      (docs/synthesis.md 3.4: a cap that changes
+                                      only the motions that fail every attempt below it) */
 /* The correction aims at aim x target: 1.03 puts the set mean spectrum at
  * 1.01-1.07 x the target (unbiased within the issue's 0.98-1.08; 1.04 gave
  * 1.08 at some frequencies). A deliberately conservative set: aim 1.10 (the
