@@ -63,6 +63,18 @@ static void test_entry_roundtrip_and_damage(void)
                   "design row %zu differs", k);
         CHECK(!strcmp(a->note, b->note) && a->n_sets == b->n_sets && b->sets[1].check[2].pass ==
               a->sets[1].check[2].pass, "scalars differ");
+        /* the variance-reduction diagnostic and a motion's whole check (what
+         * run_report_checks says of a failed motion: where, how far) come back */
+        CHECK(a->vr_factor && b->vr_factor && a->vr_corr_sa && b->vr_corr_sa &&
+                  !memcmp(a->vr_factor, b->vr_factor, N_MU_RUN * sizeof *a->vr_factor) &&
+                  !memcmp(a->vr_corr_sa, b->vr_corr_sa, N_MU_RUN * sizeof *a->vr_corr_sa),
+              "vr_* arrays lost");
+        CHECK(b->sets[1].check[0].npoints == a->sets[1].check[0].npoints &&
+                  b->sets[1].check[0].npoints > 0 &&
+                  !memcmp(&b->sets[1].check[0].f_min_ratio_hz, &a->sets[1].check[0].f_min_ratio_hz,
+                          sizeof(double)) &&
+                  b->sets[1].check[0].ok_peaks == a->sets[1].check[0].ok_peaks,
+              "a motion's check lost fields");
     }
     sl_analysis_free(b);
     /* the decoder on every truncation and on byte flips (no checksum in front) */

@@ -164,7 +164,13 @@ static uint64_t schema_hash(void)
     } all[] = {{key_opts, NF(key_opts)}, {f_analysis, NF(f_analysis)}, {f_design, NF(f_design)},
                {f_row, NF(f_row)},       {f_range, NF(f_range)},       {f_conv, NF(f_conv)},
                {f_damping, NF(f_damping)}, {f_check, NF(f_check)},     {f_set, NF(f_set)}};
+    /* the per-mu and per-set arrays, in the order they are written */
+    static const char *const arrays[] = {"design_lo_m", "design_hi_m", "design_se_m",
+                                         "err_est_m",   "vr_f_hz",     "vr_corr_sa",
+                                         "vr_corr_pgv", "vr_factor",   "pgd_m"};
     uint64_t h = SL_FNV64_OFFSET;
+    for (size_t i = 0; i < NF(arrays); i++)
+        h = sl_fnv64(h, arrays[i], strlen(arrays[i]) + 1);
     for (size_t a = 0; a < NF(all); a++)
         for (size_t i = 0; i < all[a].n; i++) {
             h = sl_fnv64(h, all[a].t[i].name, strlen(all[a].t[i].name) + 1);
@@ -250,6 +256,10 @@ void sl_entry_encode(sl_pbuf *w, const sl_analysis *a)
     put_array(w, a->design_hi_m, d->n);
     put_array(w, a->design_se_m, d->n);
     put_array(w, a->err_est_m, d->n);
+    put_array(w, a->vr_f_hz, d->n);
+    put_array(w, a->vr_corr_sa, d->n);
+    put_array(w, a->vr_corr_pgv, d->n);
+    put_array(w, a->vr_factor, d->n);
     sl_pbuf_u64(w, a->n_sets);
     put_array(w, a->pgd_m, a->n_sets);
     sl_pbuf_u64(w, a->n_dampings);
@@ -330,6 +340,10 @@ sl_analysis *sl_entry_decode(sl_preader *r, size_t n_mu)
     a->design_hi_m = get_array(r, n);
     a->design_se_m = get_array(r, n);
     a->err_est_m = get_array(r, n);
+    a->vr_f_hz = get_array(r, n);
+    a->vr_corr_sa = get_array(r, n);
+    a->vr_corr_pgv = get_array(r, n);
+    a->vr_factor = get_array(r, n);
     size_t ns = (size_t)sl_preader_count(r, SL_ENTRY_MAX_SETS, "too many sets");
     a->pgd_m = get_array(r, ns);
     size_t nd = (size_t)sl_preader_count(r, SL_ANALYSIS_MAX_DAMPINGS, "too many dampings");
