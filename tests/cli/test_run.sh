@@ -155,19 +155,19 @@ awk '/^sa_0\.(02|1) =/ { t = 1; next } /^[a-z]/ { t = 0 } t && /^[ \t]/ { next }
   floors/04-roof36.ini > "$D/one/04-roof36.ini"
 grep -q "^sa_0.1 = 0.0282, 0.0633," "$D/doct/04-roof36.ini" && ! grep -q "^sa_0.1\|^sa_0.02" "$D/one/04-roof36.ini" \
   && t_pass || t_fail "doctored floor files: $(grep -A1 '^sa_0.1' "$D/doct/04-roof36.ini" | head -2)"
-# (seed 11, set 1: one motion misses 'below' at 0.84 x the 5 % target, so the
-# run needs --accept-failed-checks; test_run_errors.sh checks the refusal)
-t_run run "$D/doct" -o "$D/outd" --sets 3 --mu-range 0.1:0.3:0.1 --created 0 --accept-failed-checks; t_expect_rc doctored 0
+# (seed 11: H1 of set 1 needs more than ten attempts; docs/synthesis.md 3.4)
+t_run run "$D/doct" -o "$D/outd" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc doctored 0
 for c in H1 H2 V; do
   t_expect_err "doctored-$c" "$c 10 %: 0\.[0-9]+-[0-9.]+ OUTSIDE"
 done
 tr -d '\r' < "$D/outd/floors.csv" | grep -v "^#" | awk -F, 'NR == 2 { exit !($(NF-1) == "outside" && $(NF-3) + 0 < 0.9 && $(NF-3) + 0 > 0.5) }' \
   && t_pass || t_fail "doctored 10 % table not reported outside: $(tail -1 "$D/outd/floors.csv")"
-# the 10 % set mean falls by the factor: doctored / original = 1 / 1.5 (same motions)
+# the 10 % set mean falls by the factor: doctored / original = 1 / 1.5 (same motions),
+# within the rounding of the two printed digits (0.005 on 0.6: 0.8 %, on both: 1.5 %)
 r1=$(sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p" "$T_ERR")
-t_run run "$D/orig" -o "$D/outo" --sets 3 --mu-range 0.1:0.3:0.1 --created 0 --accept-failed-checks
+t_run run "$D/orig" -o "$D/outo" --sets 3 --mu-range 0.1:0.3:0.1 --created 0
 r0=$(grep "Roof el. 36" "$T_ERR" | sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p")
-awk -v a="$r1" -v b="$r0" 'BEGIN { split(a, x, " "); split(b, y, " "); for (i = 1; i <= 2; i++) { e = x[i] * 1.5 / y[i] - 1; if (e < 0) e = -e; if (!(e < 0.005)) exit 1 } }' \
+awk -v a="$r1" -v b="$r0" 'BEGIN { split(a, x, " "); split(b, y, " "); for (i = 1; i <= 2; i++) { e = x[i] * 1.5 / y[i] - 1; if (e < 0) e = -e; if (!(e < 0.015)) exit 1 } }' \
   && t_pass || t_fail "doctored 10 % set mean ($r1) is not original ($r0) / 1.5"
 t_run run "$D/one" -o "$D/out1d" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc one-damping 0
 t_expect_err one-damping-msg "floor 'Roof el. 36 m': other dampings: none"
