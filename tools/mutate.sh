@@ -32,8 +32,8 @@
 # the diff, then run `make mutate`.
 #
 # Parallel: $SEISLIDE_MUTATE_JOBS (default 2) workers, each in its own
-# scratch copy. INT/TERM stop every worker and its children at once, remove
-# the scratch copies and exit 130. Records: $SEISLIDE_SHARED (default
+# scratch copy. INT/TERM stop every worker and its descendants at once (by
+# their ids), remove the scratch copies and exit 130. Records: $SEISLIDE_SHARED (default
 # ../shared).
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 SELF=$ROOT/tools/mutate.sh
@@ -169,14 +169,22 @@ LIST=${1:-$ROOT/tests/mutations.txt}
 case $LIST in /*) ;; *) LIST=$PWD/$LIST ;; esac
 T0=$(date +%s)
 P=$(mktemp -d) || exit 2
-PIDS=
+# killtree SIG PID: PID and every descendant (children first), by id.
+killtree() {
+  for c in $(ps -o pid= --ppid "$2" 2>/dev/null); do killtree "$1" "$c"; done
+  kill "-$1" "$2" 2>/dev/null
+}
 stop() {
-  for p in $PIDS; do kill -TERM -- "-$p" 2>/dev/null; done
+  for c in $(ps -o pid= --ppid $$); do killtree TERM "$c"; done
   sleep 1
-  for p in $PIDS; do kill -KILL -- "-$p" 2>/dev/null; done
+  for c in $(ps -o pid= --ppid $$); do killtree KILL "$c"; done
   wait 2>/dev/null
   rm -rf "$P"
 }
+# in_bg CMD...: run CMD in the background and wait for it, so that a trapped
+# INT/TERM interrupts the wait at once (a foreground command would finish
+# first); returns its status.
+in_bg() { "$@" & _p=$!; wait "$_p"; }
 trap 'echo "mutate: interrupted"; stop; exit 130' INT TERM
 trap 'rm -rf "$P"' EXIT
 
@@ -190,7 +198,7 @@ mkdir "$W1" || exit 2
 (cd "$ROOT" && tar --exclude=./build --exclude=./build-asan --exclude=./seislide --exclude=./.git \
   --exclude=./output -cf - .) | (cd "$W1" && tar -xf -) || exit 2
 echo "mutate: building the scratch copy"
-(cd "$W1" && make -s -j2 all >"$P/build.log" 2>&1) || {
+in_bg sh -c 'cd "$1" && exec make -s -j2 all' sh "$W1" >"$P/build.log" 2>&1 || {
   echo "mutate: the unmutated tree does not build:"; tail -20 "$P/build.log"; exit 2; }
 
 # The map: FILE -> suites that can see it (rule in the header).
@@ -203,9 +211,9 @@ if [ "${SEISLIDE_MUTATE_BASELINE:-1}" = 0 ]; then
   : >"$P/times"
 else
   echo "mutate: baseline: the whole make test on the unmutated copy"
-  (cd "$W1" && SEISLIDE_BIN="$W1/seislide" SEISLIDE_TESTBIN="$W1/build/tests" \
+  in_bg sh -c 'cd "$1" && SEISLIDE_BIN="$1/seislide" SEISLIDE_TESTBIN="$1/build/tests" \
     SEISLIDE_MAKEVARS="BUILD=build PROG=seislide" SEISLIDE_LDFLAGS="" \
-    SEISLIDE_TEST_TIMES="$P/times" sh tests/run.sh >"$P/baseline.log" 2>&1) || {
+    SEISLIDE_TEST_TIMES="$2/times" exec sh tests/run.sh' sh "$W1" "$P" >"$P/baseline.log" 2>&1 || {
     echo "mutate: the unmutated tree fails its tests:"
     grep -E 'FAIL|failed, [1-9]' "$P/baseline.log" | head -20; exit 2; }
   echo "mutate: baseline $(tail -1 "$P/baseline.log") ($(($(date +%s) - T0)) s since the start)"
@@ -240,8 +248,7 @@ k=1
 while [ $k -le "$SEISLIDE_MUTATE_JOBS" ]; do
   W=$P/w$k
   [ -d "$W" ] || cp -a "$W1" "$W" || exit 2
-  setsid sh "$SELF" --worker "$W" "$P" &
-  PIDS="$PIDS $!"
+  sh "$SELF" --worker "$W" "$P" &
   k=$((k + 1))
 done
 wait
