@@ -229,18 +229,21 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Plant");
     lxw_format *num = top_format(wb, NULL, 0), *mm = top_format(wb, "0.0", 0),
                *g = top_format(wb, "0.000", 0), *head_mu = top_format(wb, NULL, 1);
-    size_t lb = 0, lf = 0;
+    size_t lb = 0, lf = 0, ln = 0;
     for (size_t i = 0; i < b->n; i++) {
-        lb = strlen(b->rows[i].building) > lb ? strlen(b->rows[i].building) : lb;
-        lf = strlen(b->rows[i].id) > lf ? strlen(b->rows[i].id) : lf;
+        const sl_plant_book_row *r = &b->rows[i];
+        lb = strlen(r->building) > lb ? strlen(r->building) : lb;
+        lf = strlen(r->id) > lf ? strlen(r->id) : lf;
+        ln = strlen(r->name) > ln ? strlen(r->name) : ln;
     }
     /* about 125 units: a landscape A4 page at about 75 %, the scale of the
-     * building workbook's tables; headings wrap between words only */
-    double width[PL_COLS] = {text_width(lb, 10, 16), text_width(lf, 10, 16), 18, 9.5, 9.5, 6.5,
-                             12};
+     * building workbook's tables. Ids have no blanks: their columns grow
+     * to 24 units (longer ids wrap inside); headings wrap between words. */
+    double width[PL_COLS] = {text_width(lb, 9, 24), text_width(lf, 9, 24), text_width(ln, 12, 20),
+                             9.5, 9.5, 6.5, 12};
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
-        width[PL_CLEAR + k] = 6.5;
-    width[PL_GOV] = 14;
+        width[PL_CLEAR + k] = 6;
+    width[PL_GOV] = 13;
     double w_all = 0;
     for (lxw_col_t c = 0; c < PL_COLS; c++) {
         worksheet_set_column(ws, c, c, width[c], NULL);
