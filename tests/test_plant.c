@@ -283,10 +283,41 @@ static void test_plant_lookup_libreoffice(void)
     if (!d[0] || !d[1] || !d[2] || !d[3])
         return;
     const sl_plant_book_row rows[4] = {
-        {"Aux", "ground", "Aux ground", 0, 0.3 * SL_G, 2, "fixed", d[0]},
-        {"Aux", "el12", "Aux el. 12 m", 12, 0.39 * SL_G, 2, "fixed", d[1]},
-        {"Reactor", "ground", "Reactor ground", 0, 0.3 * SL_G, 2, "fixed", d[2]},
-        {"Reactor", "roof", "Reactor roof", 36, 0.63 * SL_G, 2, "fixed", d[3]}};
+        {"Aux", "ground", "Aux ground", 0, 0.3 * SL_G, 2, "fixed", d[0], "p/Aux/ground.ini",
+         0x1a2b3c4dUL, 1001},
+        {"Aux", "el12", "Aux el. 12 m", 12, 0.39 * SL_G, 2, "fixed", d[1], "p/Aux/el12.ini",
+         0xdeadbeefUL, 1002},
+        {"Reactor", "ground", "Reactor ground", 0, 0.3 * SL_G, 2, "fixed", d[2],
+         "p/Reactor/ground.ini", 0x0000beefUL, 1003},
+        {"Reactor", "roof", "Reactor roof", 36, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0}};
+    /* plant.csv: the building CSVs' trace lines, # program: first, a CRC
+     * line per floor named building/id (a floor without a path: "-") */
+    {
+        sl_plant_book b = {.version = "seislide test", .command_line = "seislide run p -o o",
+                           .seed = "7", .created = 86400, .n = 4, .rows = rows};
+        sl_error e;
+        CHECK(sl_plant_book_write_csv(&b, dir, &e) == SL_OK, "plant.csv: %s", e.msg);
+        static const char *const want[] = {
+            "# program: seislide test\r\n", "# content: ", "# command: seislide run p -o o\r\n",
+            "# created: 1970-01-02T00:00:00Z\r\n", "# seed: 7\r\n",
+            "# floor_file_crc32: 1a2b3c4d Aux/ground (p/Aux/ground.ini, 1001 bytes)\r\n",
+            "# floor_file_crc32: deadbeef Aux/el12 (p/Aux/el12.ini, 1002 bytes)\r\n",
+            "# floor_file_crc32: 0000beef Reactor/ground (p/Reactor/ground.ini, 1003 bytes)\r\n",
+            "# floor_file_crc32: 00000000 Reactor/roof (-, 0 bytes)\r\n", "# project: -\r\n",
+            "# document: -\r\n", "# revision: -\r\n", "# units: ", "building,floor,"};
+        char path[300], line[2000];
+        snprintf(path, sizeof path, "%s/plant.csv", dir);
+        FILE *pf = fopen(path, "rb");
+        CHECK(pf != NULL, "%s", path);
+        for (size_t k = 0; pf && k < sizeof want / sizeof want[0]; k++) {
+            int got = fgets(line, sizeof line, pf) != NULL;
+            CHECK(got && !strncmp(line, want[k], strlen(want[k])), "plant.csv line %zu: '%s', "
+                  "expected '%s'", k + 1, got ? line : "(end)", want[k]);
+        }
+        if (pf)
+            fclose(pf);
+        remove(path);
+    }
     snprintf(prof, sizeof prof, "%s/profile/user", dir);
     snprintf(cmd, sizeof cmd, "mkdir -p '%s'", prof);
     CHECK(system(cmd) == 0, "profile folder");

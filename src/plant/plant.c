@@ -277,9 +277,12 @@ sl_status sl_plant_deliver(const sl_plant *p, const char *dir, const sl_deliver_
                                       .name = f->name, .elevation_m = f->elevation_m,
                                       .zpa_h_ms2 = f->an->zpa_h_ms2, .n_sets = f->an->n_sets,
                                       .stop = sl_analysis_stop_name(f->an->stop),
-                                      .design = f->an->design};
+                                      .design = f->an->design, .path = f->path,
+                                      .crc32 = f->crc32, .size_bytes = f->size_bytes};
     }
-    sl_plant_book book = {.version = o->version, .command_line = o->command_line,
+    char seed[32]; /* as the building CSVs record it (deliver.c) */
+    snprintf(seed, sizeof seed, "%llu", (unsigned long long)o->seed);
+    sl_plant_book book = {.version = o->version, .command_line = o->command_line, .seed = seed,
                           .created = o->created, .project = o->project, .n = p->n,
                           .rows = rows, .lookup_mu = SL_REPORT_LOOKUP_MU};
     sl_status st = sl_plant_book_write_csv(&book, dir, err);

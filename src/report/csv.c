@@ -74,6 +74,13 @@ static void csv_head(FILE *f, const sl_report *r, const sl_report_floor *fl, con
     csv_comment(f, "revision", sl_rpt_or_dash(r->project.revision));
 }
 
+/* The same lines and fields for the plant index (plant_book.c): one writer. */
+void sl_rpt_csv_head(FILE *f, const sl_report *r, const char *what) { csv_head(f, r, NULL, what); }
+
+void sl_rpt_csv_comment(FILE *f, const char *key, const char *value) { csv_comment(f, key, value); }
+
+void sl_rpt_csv_field(FILE *f, const char *s) { csv_field(f, s); }
+
 static sl_status csv_open(const char *dir, const char *name, sl_atomic **a, sl_error *err)
 {
     char path[4096];

@@ -4,12 +4,14 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <xlsxwriter.h>
 
 #include "core/units.h"
 #include "io/atomic.h"
+#include "report/sheets.h"
 
 const double SL_PLANT_BOOK_MU[SL_PLANT_BOOK_NMU] = {0.05, 0.1, 0.2, 0.3, 0.4, 0.5};
 
@@ -32,28 +34,38 @@ const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n)
     return buf;
 }
 
-/* A CSV field: quoted when it holds a comma, quote or line break (RFC 4180). */
-static void csv_field(FILE *f, const char *s)
+/* The report the shared writers (csv.c, layout.c) read: the run's record
+ * and title block, and one "floor" per row named BUILDING/ID for the
+ * floor_file_crc32 lines (ids[i], SL_PLANT_ID_MAX each, or NULL). */
+#define SL_PLANT_ID_MAX (2 * SL_RPT_ID_MAX + 2)
+static sl_status shared_report(const sl_plant_book *b, sl_report *r, sl_report_floor **floors,
+                               char (**ids)[SL_PLANT_ID_MAX], const char *path, sl_error *err)
 {
-    if (!strpbrk(s, ",\"\r\n")) {
-        fputs(s, f);
-        return;
+    sl_report_init(r);
+    r->version = b->version;
+    r->command_line = b->command_line;
+    r->seed = b->seed;
+    r->created = b->created;
+    r->project = b->project;
+    if (!floors || !ids)
+        return SL_OK;
+    *floors = calloc(b->n ? b->n : 1, sizeof **floors);
+    *ids = calloc(b->n ? b->n : 1, sizeof **ids);
+    if (!*floors || !*ids) {
+        free(*floors);
+        free(*ids);
+        return sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
     }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
+    for (size_t i = 0; i < b->n; i++) {
+        const sl_plant_book_row *w = &b->rows[i];
+        snprintf((*ids)[i], SL_PLANT_ID_MAX, "%s/%s", w->building, w->id);
+        (*floors)[i] = (sl_report_floor){.id = (*ids)[i], .name = w->name,
+                                         .path = w->path ? w->path : "-", .crc32 = w->crc32,
+                                         .size_bytes = w->size_bytes};
     }
-    fputc('"', f);
-}
-
-static void csv_comment(FILE *f, const char *key, const char *value)
-{
-    fprintf(f, "# %s: ", key);
-    for (const char *p = value && *value ? value : "-"; *p; p++)
-        fputc(*p == '\r' || *p == '\n' ? ' ' : *p, f);
-    fputs("\r\n", f);
+    r->n_floors = b->n;
+    r->floors = *floors;
+    return SL_OK;
 }
 
 sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_error *err)
@@ -64,29 +76,35 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
         if (!isfinite(b->rows[i].zpa_h_ms2))
             return sl_error_set(err, SL_EINVAL, path, 0, "floor '%s/%s': ZPA not finite",
                                 b->rows[i].building, b->rows[i].id);
+    sl_report rep;
+    sl_report_floor *floors;
+    char (*ids)[SL_PLANT_ID_MAX];
+    if (shared_report(b, &rep, &floors, &ids, path, err))
+        return err ? err->code : SL_ENOMEM;
     sl_atomic *a = sl_atomic_open(path, err);
-    if (!a)
+    if (!a) {
+        free(floors);
+        free(ids);
         return err ? err->code : SL_EIO;
+    }
     FILE *f = sl_atomic_file(a);
-    csv_comment(f, "program", b->version);
-    csv_comment(f, "content", "the plant index: one row per floor of every building; the "
-                "required clearance at six friction values (linear interpolation in mu on "
-                "each floor's grid, empty outside it)");
-    csv_comment(f, "project", b->project.project);
-    csv_comment(f, "document", b->project.document);
-    csv_comment(f, "revision", b->project.revision);
-    csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm");
+    sl_rpt_csv_head(f, &rep, "the plant index: one row per floor of every building; the "
+                    "required clearance at six friction values (linear interpolation in mu on "
+                    "each floor's grid, empty outside it)");
+    free(floors);
+    free(ids);
+    sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm");
     fputs("building,floor,floor_name,elevation_m,zpa_g,sets,convergence", f);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         fprintf(f, ",clearance_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
     fputs(",governing\r\n", f);
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
-        csv_field(f, r->building);
+        sl_rpt_csv_field(f, r->building);
         fputc(',', f);
-        csv_field(f, r->id);
+        sl_rpt_csv_field(f, r->id);
         fputc(',', f);
-        csv_field(f, r->name);
+        sl_rpt_csv_field(f, r->name);
         fputc(',', f);
         if (isfinite(r->elevation_m))
             fprintf(f, "%.3f", r->elevation_m);
@@ -102,24 +120,23 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
     return sl_atomic_commit(a, err);
 }
 
-/* Lookup cells (0-based rows, column B). */
-enum { LK_BUILDING = 9, LK_FLOOR, LK_MU, LK_RESULT = 13, LK_CHECK, LK_NOTE, LK_HOW = 17, LK_ROW,
-       LK_K, LK_MU0, LK_MU1, LK_C0, LK_C1 };
+/* Lookup cells (0-based rows; values in column B): the title block above
+ * (rows 0-7, layout.c), the range of mu under its input. tests/test_plant.c
+ * reads B14 (the clearance) and B15 (the input check). */
+enum { LK_BUILDING = SL_RPT_TB_ROWS + 1, LK_FLOOR, LK_MU, LK_RANGE, LK_RESULT, LK_CHECK, LK_NOTE,
+       LK_HOW = LK_NOTE + 2, LK_ROW, LK_K, LK_MU0, LK_MU1, LK_C0, LK_C1 };
+/* Lookup columns: labels, values; 64 units in all, a portrait A4 page at
+ * 100 % (as the building Lookup, sheet_lookup.c). */
+#define LK_W_A 36.0
+#define LK_W_B 28.0
 
-static void col_name(size_t c, char *buf)
-{
-    char t[8];
-    int k = 0;
-    c++;
-    while (c && k < 7) {
-        t[k++] = (char)('A' + (c - 1) % 26);
-        c = (c - 1) / 26;
-    }
-    for (int i = 0; i < k; i++)
-        buf[i] = t[k - 1 - i];
-    buf[k] = '\0';
-}
+/* Plant sheet: the title, a note, two header rows (the clearance columns
+ * under one heading), one row per floor. */
+enum { PL_NOTE = 1, PL_HEAD = 3, PL_SUBHEAD, PL_FIRST, PL_CLEAR = 7,
+       PL_GOV = PL_CLEAR + SL_PLANT_BOOK_NMU, PL_COLS };
 
+/* Write a formula in column B with its cached value (a number, or text
+ * when s is given); zero: 0 (tests/test_plant.c). */
 static void formula(lxw_worksheet *ws, int zero, lxw_row_t row, const char *f, double v,
                     const char *s, lxw_format *fmt)
 {
@@ -131,35 +148,23 @@ static void formula(lxw_worksheet *ws, int zero, lxw_row_t row, const char *f, d
         worksheet_write_formula_num(ws, row, 1, f, fmt, v);
 }
 
-static void protect(lxw_worksheet *ws)
-{
-    lxw_protection p;
-    memset(&p, 0, sizeof p);
-    worksheet_protect(ws, NULL, &p);
-}
-
-static const char *or_dash(const char *s) { return s && *s ? s : "-"; }
-
-typedef struct fmts {
-    lxw_format *title, *bold, *input, *mm, *mu, *g, *wrap;
-} fmts;
-
 /* Data: A building, B floor, C building|floor, D.. clearance on the grid
- * (row 1: the grid); the building list in the column after the grid. */
-static void data_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b, size_t *bcol,
-                       size_t *nb)
+ * (row 1: the grid); the building list in the column after the grid.
+ * Hidden: not printed (the Plant sheet and each building's workbook hold
+ * the same numbers), as the building workbook's Data (sheet_data.c). */
+static void data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_book *b,
+                       const sl_report *rep)
 {
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Data");
     const sl_design *d0 = b->rows[0].design;
     char key[400];
-    worksheet_write_string(ws, 0, 0, "building", F->bold);
-    worksheet_write_string(ws, 0, 1, "floor", F->bold);
-    worksheet_write_string(ws, 0, 2, "building|floor", F->bold);
+    worksheet_write_string(ws, 0, 0, "building", F->header);
+    worksheet_write_string(ws, 0, 1, "floor", F->header);
+    worksheet_write_string(ws, 0, 2, "building|floor", F->header);
     for (size_t k = 0; k < d0->n; k++)
-        worksheet_write_number(ws, 0, (lxw_col_t)(3 + k), d0->rows[k].mu, F->mu);
-    *bcol = 3 + d0->n + 1;
-    *nb = 0;
-    worksheet_write_string(ws, 0, (lxw_col_t)*bcol, "buildings", F->bold);
+        worksheet_write_number(ws, 0, (lxw_col_t)(3 + k), d0->rows[k].mu, F->ratio);
+    size_t bcol = 3 + d0->n + 1, nb = 0;
+    worksheet_write_string(ws, 0, (lxw_col_t)bcol, "buildings", F->header);
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
         lxw_row_t row = (lxw_row_t)(i + 1);
@@ -168,15 +173,14 @@ static void data_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b, 
         snprintf(key, sizeof key, "%s|%s", r->building, r->id);
         worksheet_write_string(ws, row, 2, key, NULL);
         for (size_t k = 0; k < r->design->n; k++)
-            worksheet_write_number(ws, row, (lxw_col_t)(3 + k), 1e3 * r->design->rows[k].clearance_m,
-                                   F->mm);
+            worksheet_write_number(ws, row, (lxw_col_t)(3 + k),
+                                   SL_RPT_MM_PER_M * r->design->rows[k].clearance_m, F->mm);
         if (i == 0 || strcmp(r->building, b->rows[i - 1].building))
-            worksheet_write_string(ws, (lxw_row_t)(1 + (*nb)++), (lxw_col_t)*bcol, r->building,
-                                   NULL);
+            worksheet_write_string(ws, (lxw_row_t)(1 + nb++), (lxw_col_t)bcol, r->building, NULL);
     }
     char c0[8], c1[8], def[200];
-    col_name(3, c0);
-    col_name(3 + d0->n - 1, c1);
+    sl_rpt_col_name(3, c0);
+    sl_rpt_col_name(3 + d0->n - 1, c1);
     snprintf(def, sizeof def, "=Data!$%s$1:$%s$1", c0, c1);
     workbook_define_name(wb, "plant_mu_grid", def);
     snprintf(def, sizeof def, "=Data!$%s$2:$%s$%zu", c0, c1, b->n + 1);
@@ -185,55 +189,129 @@ static void data_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b, 
     workbook_define_name(wb, "plant_floor_keys", def);
     snprintf(def, sizeof def, "=Data!$A$2:$A$%zu", b->n + 1);
     workbook_define_name(wb, "plant_floor_buildings", def);
-    col_name(*bcol, c0);
-    snprintf(def, sizeof def, "=Data!$%s$2:$%s$%zu", c0, c0, *nb + 1);
+    sl_rpt_col_name(bcol, c0);
+    snprintf(def, sizeof def, "=Data!$%s$2:$%s$%zu", c0, c0, nb + 1);
     workbook_define_name(wb, "plant_buildings", def);
     worksheet_set_column(ws, 0, 2, 24, NULL);
-    protect(ws);
+    sl_rpt_page_setup(ws, rep, 1, "");
+    worksheet_hide(ws); /* not printed: LibreOffice and Excel print visible sheets only */
+    sl_rpt_protect(ws);
 }
 
-static void plant_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b)
+/* Width of a column holding texts of at most `len` characters, in [lo, hi]
+ * (wrapped beyond hi). */
+static double text_width(size_t len, double lo, double hi)
+{
+    double w = 0.9 * (double)len + 1.5;
+    return w < lo ? lo : w > hi ? hi : w;
+}
+
+/* A format for the Plant sheet's cells: numbers at the top of a row whose
+ * wrapped texts make it taller (number format nf, NULL: general), aligned
+ * right (a heading over numbers) when head. */
+static lxw_format *top_format(lxw_workbook *wb, const char *nf, int head)
+{
+    lxw_format *f = workbook_add_format(wb);
+    format_set_align(f, LXW_ALIGN_VERTICAL_TOP);
+    if (nf)
+        format_set_num_format(f, nf);
+    if (head) {
+        format_set_bold(f);
+        format_set_align(f, LXW_ALIGN_RIGHT);
+        format_set_bottom(f, LXW_BORDER_THIN);
+    }
+    return f;
+}
+
+static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_book *b,
+                        const sl_report *rep)
 {
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Plant");
-    static const char *const head[] = {"Building", "Floor", "Floor name", "Elevation, m",
-                                       "Horizontal ZPA, g", "Motion sets", "Convergence"};
-    char h[64], gov[64];
-    for (lxw_col_t c = 0; c < 7; c++)
-        worksheet_write_string(ws, 0, c, head[c], F->bold);
-    for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {
-        snprintf(h, sizeof h, "Clearance at mu %g, mm", SL_PLANT_BOOK_MU[k]);
-        worksheet_write_string(ws, 0, (lxw_col_t)(7 + k), h, F->bold);
-    }
-    worksheet_write_string(ws, 0, 7 + SL_PLANT_BOOK_NMU, "Governing", F->bold);
+    lxw_format *num = top_format(wb, NULL, 0), *mm = top_format(wb, "0.0", 0),
+               *g = top_format(wb, "0.000", 0), *head_mu = top_format(wb, NULL, 1);
+    size_t lb = 0, lf = 0, ln = 0;
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
-        lxw_row_t row = (lxw_row_t)(i + 1);
-        worksheet_write_string(ws, row, 0, r->building, NULL);
-        worksheet_write_string(ws, row, 1, r->id, NULL);
-        worksheet_write_string(ws, row, 2, r->name, NULL);
-        if (isfinite(r->elevation_m))
-            worksheet_write_number(ws, row, 3, r->elevation_m, NULL);
-        worksheet_write_number(ws, row, 4, r->zpa_h_ms2 / SL_G, F->g);
-        worksheet_write_number(ws, row, 5, (double)r->n_sets, NULL);
-        worksheet_write_string(ws, row, 6, r->stop, NULL);
-        for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {
-            double c = sl_design_clearance_at(r->design, SL_PLANT_BOOK_MU[k]);
-            if (isfinite(c))
-                worksheet_write_number(ws, row, (lxw_col_t)(7 + k), 1e3 * c, F->mm);
-        }
-        worksheet_write_string(ws, row, 7 + SL_PLANT_BOOK_NMU,
-                               sl_plant_book_governing(r->design, gov, sizeof gov), NULL);
+        lb = strlen(r->building) > lb ? strlen(r->building) : lb;
+        lf = strlen(r->id) > lf ? strlen(r->id) : lf;
+        ln = strlen(r->name) > ln ? strlen(r->name) : ln;
     }
-    worksheet_set_column(ws, 0, 2, 22, NULL);
-    worksheet_set_column(ws, 3, 7 + SL_PLANT_BOOK_NMU, 14, F->wrap);
-    worksheet_freeze_panes(ws, 1, 2);
-    worksheet_set_landscape(ws);
+    /* about 125 units: a landscape A4 page at about 75 %, the scale of the
+     * building workbook's tables. Ids have no blanks: their columns grow
+     * to 24 units (longer ids wrap inside); headings wrap between words. */
+    double width[PL_COLS] = {text_width(lb, 9, 24), text_width(lf, 9, 24), text_width(ln, 12, 20),
+                             9.5, 9.5, 6.5, 12};
+    for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
+        width[PL_CLEAR + k] = 6;
+    width[PL_GOV] = 13;
+    double w_all = 0;
+    for (lxw_col_t c = 0; c < PL_COLS; c++) {
+        worksheet_set_column(ws, c, c, width[c], NULL);
+        w_all += width[c];
+    }
+    char h[64], gov[64], note[600];
+    worksheet_write_string(ws, 0, 0, "Plant index: the required clearance of every floor",
+                           F->title);
+    snprintf(note, sizeof note, "One row per floor of every building. Clearance in mm at six "
+             "friction values, by linear interpolation in mu on the floor's grid (empty outside "
+             "it); Governing: the design curve that gives it (clearance policy %s), \"(capped)\" "
+             "where the cap governs. Each building's workbook (<building>/"
+             "seislide-clearance.xlsx) shows every floor's curves, standard errors and flags; "
+             "the Lookup sheet interpolates at any mu.",
+             sl_clearance_policy_name(b->rows[0].design->policy));
+    worksheet_merge_range(ws, PL_NOTE, 0, PL_NOTE, PL_COLS - 1, note, F->note);
+    worksheet_set_row(ws, PL_NOTE, sl_rpt_text_height(note, w_all, 0), NULL);
+    static const char *const head[PL_CLEAR] = {"Building", "Floor", "Floor name",
+                                               "Elevation, m", "Horizontal ZPA, g",
+                                               "Motion sets", "Convergence"};
+    double need = 0;
+    for (lxw_col_t c = 0; c < PL_CLEAR; c++) {
+        worksheet_merge_range(ws, PL_HEAD, c, PL_SUBHEAD, c, head[c], F->header);
+        need = fmax(need, sl_rpt_text_height(head[c], width[c], 1));
+    }
+    worksheet_merge_range(ws, PL_HEAD, PL_GOV, PL_SUBHEAD, PL_GOV, "Governing", F->header);
+    worksheet_merge_range(ws, PL_HEAD, PL_CLEAR, PL_HEAD, PL_GOV - 1,
+                          "Required clearance, mm, at mu =", F->header);
+    for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {
+        snprintf(h, sizeof h, "%g", SL_PLANT_BOOK_MU[k]);
+        worksheet_write_string(ws, PL_SUBHEAD, (lxw_col_t)(PL_CLEAR + k), h, head_mu);
+    }
+    double h_head = sl_rpt_text_height("Required clearance, mm, at mu =",
+                                       SL_PLANT_BOOK_NMU * width[PL_CLEAR], 1);
+    worksheet_set_row(ws, PL_HEAD, h_head, NULL);
+    worksheet_set_row(ws, PL_SUBHEAD, fmax(16, need - h_head), NULL);
+    for (size_t i = 0; i < b->n; i++) {
+        const sl_plant_book_row *r = &b->rows[i];
+        lxw_row_t row = (lxw_row_t)(PL_FIRST + i);
+        sl_plant_book_governing(r->design, gov, sizeof gov);
+        worksheet_write_string(ws, row, 0, r->building, F->wrap);
+        worksheet_write_string(ws, row, 1, r->id, F->wrap);
+        worksheet_write_string(ws, row, 2, r->name, F->wrap);
+        sl_rpt_num_or_blank(ws, row, 3, r->elevation_m, num);
+        worksheet_write_number(ws, row, 4, r->zpa_h_ms2 / SL_G, g);
+        worksheet_write_number(ws, row, 5, (double)r->n_sets, num);
+        worksheet_write_string(ws, row, 6, r->stop, F->indent);
+        for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
+            sl_rpt_num_or_blank(ws, row, (lxw_col_t)(PL_CLEAR + k),
+                                SL_RPT_MM_PER_M * sl_design_clearance_at(r->design,
+                                                                         SL_PLANT_BOOK_MU[k]),
+                                mm);
+        worksheet_write_string(ws, row, PL_GOV, gov, F->indent);
+        double rh = fmax(sl_rpt_text_height(r->building, width[0], 0),
+                         sl_rpt_text_height(r->id, width[1], 0));
+        rh = fmax(rh, sl_rpt_text_height(r->name, width[2], 0));
+        rh = fmax(rh, sl_rpt_text_height(gov, width[PL_GOV] - 1, 0)); /* indented */
+        worksheet_set_row(ws, row, rh, NULL);
+    }
+    worksheet_freeze_panes(ws, PL_FIRST, 2);
+    sl_rpt_page_setup(ws, rep, 1, "");
     worksheet_fit_to_pages(ws, 1, 0);
-    worksheet_repeat_rows(ws, 0, 0);
-    protect(ws);
+    worksheet_repeat_rows(ws, PL_HEAD, PL_SUBHEAD);
+    sl_rpt_protect(ws);
 }
 
-static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b, size_t nb)
+static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_book *b,
+                         const sl_report *rep, size_t nb)
 {
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Lookup");
     const sl_design *d0 = b->rows[0].design;
@@ -241,24 +319,21 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b
     double mu_min = d0->rows[0].mu, mu_max = d0->rows[n - 1].mu;
     char f[1600], msg[160];
     int z = b->lookup_zero_cache;
-    worksheet_set_column(ws, 0, 1, 46, F->wrap);
-    worksheet_write_string(ws, 0, 0, "Required clearance around an unanchored component, "
-                           "whole plant", F->title);
-    const char *const label[] = {"Project", "Document no.", "Revision", "Prepared by",
-                                 "Checked by", "Date", "Program"};
-    const char *const value[] = {b->project.project, b->project.document, b->project.revision,
-                                 b->project.prepared, b->project.checked, b->project.date,
-                                 b->version};
-    for (lxw_row_t i = 0; i < 7; i++) {
-        worksheet_write_string(ws, i + 1, 0, label[i], F->bold);
-        worksheet_write_string(ws, i + 1, 1, or_dash(value[i]), NULL);
-    }
+    worksheet_set_column(ws, 0, 0, LK_W_A, NULL);
+    worksheet_set_column(ws, 1, 1, LK_W_B, NULL);
+    sl_rpt_title_block(ws, F, rep, "Required clearance around a component: whole plant", 0, 1,
+                       LK_W_B);
     const char *b0 = b->lookup_building ? b->lookup_building : b->rows[0].building;
     const char *f0 = b->lookup_floor ? b->lookup_floor : b->rows[0].id;
     double mu0 = b->lookup_mu;
-    worksheet_write_string(ws, LK_BUILDING, 0, "Building (choose from the list)", F->bold);
-    worksheet_write_string(ws, LK_FLOOR, 0, "Floor (choose from the building's list)", F->bold);
-    worksheet_write_string(ws, LK_MU, 0, "Friction coefficient mu (type it)", F->bold);
+    static const char *const in_label[3] = {"Building (choose from the list)",
+                                            "Floor (choose from the list)",
+                                            "Friction coefficient mu (type it)"};
+    for (int k = 0; k < 3; k++) {
+        worksheet_write_string(ws, (lxw_row_t)(LK_BUILDING + k), 0, in_label[k], F->bold);
+        worksheet_set_row(ws, (lxw_row_t)(LK_BUILDING + k),
+                          sl_rpt_text_height(in_label[k], LK_W_A, 1), NULL);
+    }
     if (*b0)
         worksheet_write_string(ws, LK_BUILDING, 1, b0, F->input);
     else
@@ -271,6 +346,8 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b
         worksheet_write_number(ws, LK_MU, 1, mu0, F->input);
     else
         worksheet_write_blank(ws, LK_MU, 1, F->input);
+    snprintf(msg, sizeof msg, "the table covers mu %.2f to %.2f", mu_min, mu_max);
+    worksheet_write_string(ws, LK_RANGE, 1, msg, F->note);
     lxw_data_validation dv;
     memset(&dv, 0, sizeof dv);
     dv.validate = LXW_VALIDATION_TYPE_LIST_FORMULA;
@@ -326,13 +403,13 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b
         k0++;
     size_t k1 = k0 + 1 < n ? k0 + 1 : k0;
     const sl_design *ds = ok ? b->rows[fi].design : d0;
-    double res = ok ? 1e3 * sl_design_clearance_at(ds, mu0) : NAN;
+    double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(ds, mu0) : NAN;
 
     worksheet_write_string(ws, LK_RESULT, 0, "Required clearance, mm", F->title);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
              LK_CHECK + 1, LK_MU1 + 1, LK_MU0 + 1, LK_C0 + 1, LK_C0 + 1, LK_MU + 1, LK_MU0 + 1,
              LK_C1 + 1, LK_C0 + 1, LK_MU1 + 1, LK_MU0 + 1);
-    formula(ws, z, LK_RESULT, f, res, ok ? NULL : "-", F->mm);
+    formula(ws, z, LK_RESULT, f, res, ok ? NULL : "-", F->result);
     worksheet_write_string(ws, LK_CHECK, 0, "Input check", F->bold);
     snprintf(f, sizeof f,
              "=IF(B%d=\"\",\"choose a building from the list\",IF(ISNA(MATCH(B%d,plant_buildings,0)),"
@@ -344,49 +421,55 @@ static void lookup_sheet(lxw_workbook *wb, const fmts *F, const sl_plant_book *b
              LK_BUILDING + 1, LK_BUILDING + 1, LK_FLOOR + 1, LK_BUILDING + 1, LK_FLOOR + 1,
              LK_MU + 1, LK_MU + 1, LK_MU + 1, mu_min, LK_MU + 1, mu_max);
     formula(ws, z, LK_CHECK, f, 0, check, F->bold);
-    snprintf(msg, sizeof msg, "the table covers mu %.2f to %.2f", mu_min, mu_max);
-    worksheet_write_string(ws, LK_CHECK, 2, msg, NULL);
+    /* the longest check text wraps to two lines in column B */
+    worksheet_set_row(ws, LK_CHECK, sl_rpt_text_height("unknown floor in this building: choose "
+                                                       "one from the list", LK_W_B, 1), NULL);
     worksheet_write_string(ws, LK_NOTE, 0, "Note", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"no sliding predicted: mu g is at or "
              "above what every motion demands\",\"\"))", LK_CHECK + 1, LK_RESULT + 1);
     formula(ws, z, LK_NOTE, f, 0, ok && res == 0 ? "no sliding predicted: mu g is at or above "
-            "what every motion demands" : "", NULL);
+            "what every motion demands" : "", F->wrap);
+    worksheet_set_row(ws, LK_NOTE, sl_rpt_text_height("no sliding predicted: mu g is at or above "
+                                                      "what every motion demands", LK_W_B, 0),
+                      NULL);
 
-    worksheet_write_string(ws, LK_HOW, 0, "How it is computed (linear interpolation in mu, as "
-                           "sl_design_clearance_at in the program):", F->bold);
-    worksheet_write_string(ws, LK_ROW, 0, "row of the floor in Data", NULL);
+    const char *how = "How it is computed (linear interpolation in mu, as "
+                      "sl_design_clearance_at in the program):";
+    worksheet_merge_range(ws, LK_HOW, 0, LK_HOW, 1, how, F->bold);
+    worksheet_set_row(ws, LK_HOW, sl_rpt_text_height(how, LK_W_A + LK_W_B, 1), NULL);
+    static const char *const step[] = {"row of the floor in Data", "column of the mu at or below",
+                                       "mu at or below", "mu above",
+                                       "clearance at the mu at or below, mm",
+                                       "clearance at the mu above, mm"};
+    for (int k = 0; k < 6; k++)
+        worksheet_write_string(ws, (lxw_row_t)(LK_ROW + k), 0, step[k], NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d&\"|\"&B%d,plant_floor_keys,0))",
              LK_CHECK + 1, LK_BUILDING + 1, LK_FLOOR + 1);
     formula(ws, z, LK_ROW, f, (double)(fi + 1), ok ? NULL : "", NULL);
-    worksheet_write_string(ws, LK_K, 0, "column of the mu at or below", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,plant_mu_grid,1))", LK_CHECK + 1,
              LK_MU + 1);
     formula(ws, z, LK_K, f, (double)(k0 + 1), ok ? NULL : "", NULL);
-    worksheet_write_string(ws, LK_MU0, 0, "mu at or below", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_mu_grid,1,B%d))", LK_CHECK + 1, LK_K + 1);
-    formula(ws, z, LK_MU0, f, ds->rows[k0].mu, ok ? NULL : "", F->mu);
-    worksheet_write_string(ws, LK_MU1, 0, "mu above", NULL);
+    formula(ws, z, LK_MU0, f, ds->rows[k0].mu, ok ? NULL : "", F->ratio);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_mu_grid,1,MIN(B%d+1,%zu)))",
              LK_CHECK + 1, LK_K + 1, n);
-    formula(ws, z, LK_MU1, f, ds->rows[k1].mu, ok ? NULL : "", F->mu);
-    worksheet_write_string(ws, LK_C0, 0, "clearance at the mu at or below, mm", NULL);
+    formula(ws, z, LK_MU1, f, ds->rows[k1].mu, ok ? NULL : "", F->ratio);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_clearance_mm,B%d,B%d))", LK_CHECK + 1,
              LK_ROW + 1, LK_K + 1);
-    formula(ws, z, LK_C0, f, 1e3 * ds->rows[k0].clearance_m, ok ? NULL : "", F->mm);
-    worksheet_write_string(ws, LK_C1, 0, "clearance at the mu above, mm", NULL);
+    formula(ws, z, LK_C0, f, SL_RPT_MM_PER_M * ds->rows[k0].clearance_m, ok ? NULL : "", F->mm);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_clearance_mm,B%d,MIN(B%d+1,%zu)))",
              LK_CHECK + 1, LK_ROW + 1, LK_K + 1, n);
-    formula(ws, z, LK_C1, f, 1e3 * ds->rows[k1].clearance_m, ok ? NULL : "", F->mm);
+    formula(ws, z, LK_C1, f, SL_RPT_MM_PER_M * ds->rows[k1].clearance_m, ok ? NULL : "", F->mm);
     snprintf(f, sizeof f, "%zu buildings, %zu floors; clearance policy %s. Each building's own "
              "workbook (<building>/seislide-clearance.xlsx) shows every floor's curves, their "
-             "standard errors, flags and the assumptions.", nb, b->n,
-             sl_clearance_policy_name(d0->policy));
-    worksheet_merge_range(ws, LK_C1 + 2, 0, LK_C1 + 2, 1, f, F->wrap);
-    worksheet_set_row(ws, LK_C1 + 2, 45, NULL);
-    worksheet_set_portrait(ws);
-    worksheet_fit_to_pages(ws, 1, 1);
+             "standard errors, flags and the assumptions; the Plant sheet lists every floor.",
+             nb, b->n, sl_clearance_policy_name(d0->policy));
+    worksheet_merge_range(ws, LK_C1 + 2, 0, LK_C1 + 2, 1, f, F->note);
+    worksheet_set_row(ws, LK_C1 + 2, sl_rpt_text_height(f, LK_W_A + LK_W_B, 0), NULL);
+    sl_rpt_page_setup(ws, rep, 0, "");
+    worksheet_fit_to_pages(ws, 1, 1); /* 64 units fit: 100 % */
     worksheet_activate(ws);
-    protect(ws);
+    sl_rpt_protect(ws);
 }
 
 sl_status sl_plant_book_write_xlsx(const sl_plant_book *b, const char *dir, sl_error *err)
@@ -421,32 +504,17 @@ sl_status sl_plant_book_write_xlsx(const sl_plant_book *b, const char *dir, sl_e
     props.keywords = (char *)(uintptr_t)b->project.document;
     props.created = b->created > 0 ? b->created : 1; /* 0 would mean "now" */
     workbook_set_properties(wb, &props);
-    fmts F;
-    F.title = workbook_add_format(wb);
-    format_set_bold(F.title);
-    format_set_font_size(F.title, 13);
-    F.bold = workbook_add_format(wb);
-    format_set_bold(F.bold);
-    format_set_text_wrap(F.bold);
-    F.input = workbook_add_format(wb);
-    format_set_unlocked(F.input);
-    format_set_bg_color(F.input, 0xFFF2CC);
-    format_set_border(F.input, LXW_BORDER_THIN);
-    F.mm = workbook_add_format(wb);
-    format_set_num_format(F.mm, "0.0");
-    F.mu = workbook_add_format(wb);
-    format_set_num_format(F.mu, "0.000");
-    F.g = workbook_add_format(wb);
-    format_set_num_format(F.g, "0.000");
-    F.wrap = workbook_add_format(wb);
-    format_set_text_wrap(F.wrap);
-    size_t bcol, nb = 0;
+    sl_rpt_fmts F;
+    sl_rpt_formats(wb, &F);
+    sl_report rep; /* the title block and the record the page header and footer show */
+    shared_report(b, &rep, NULL, NULL, path, err);
+    size_t nb = 0;
     for (size_t i = 0; i < b->n; i++)
         nb += i == 0 || strcmp(b->rows[i].building, b->rows[i - 1].building) != 0;
     /* Lookup first (the sheet that opens), then the tables */
-    lookup_sheet(wb, &F, b, nb);
-    plant_sheet(wb, &F, b);
-    data_sheet(wb, &F, b, &bcol, &nb);
+    lookup_sheet(wb, &F, b, &rep, nb);
+    plant_sheet(wb, &F, b, &rep);
+    data_sheet(wb, &F, b, &rep);
     lxw_error le = workbook_close(wb);
     if (le != LXW_NO_ERROR) {
         sl_atomic_abort(a);

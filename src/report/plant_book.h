@@ -10,13 +10,22 @@
  * and ASCE" under the envelope policy), " (capped)" when the cap governs at
  * any of them.
  *
+ * plant.csv starts with the comment lines of every building CSV (report.h,
+ * sl_report_write_csv): program, content, command, created, seed, a
+ * "# floor_file_crc32: CRC BUILDING/ID (PATH, N bytes)" line per floor, the
+ * title block, then the units; one writer for both (csv.c).
+ *
  * plant.xlsx: "Lookup" (building from a drop-down list, floor from a list of
  * that building's floors, mu typed; the clearance in mm by linear
  * interpolation in mu with every step visible, the same formula and input
  * checks as the building workbook's Lookup, report.h; only the three inputs
  * editable), "Plant" (the rows above) and "Data" (the tables the Lookup
- * reads: every floor's clearance on the whole friction grid). Every sheet is
- * protected (no password: a guard against typing over).
+ * reads: every floor's clearance on the whole friction grid; hidden, not
+ * printed). Printed, every page is A4 with the building workbook's page
+ * header and footer (layout.c): the Lookup one portrait page at 100 %, the
+ * Plant sheet landscape, fitted to the page width, its header repeated on
+ * every page. Every sheet is protected (no password: a guard against typing
+ * over).
  */
 #ifndef SL_PLANT_BOOK_H
 #define SL_PLANT_BOOK_H
@@ -39,10 +48,14 @@ typedef struct sl_plant_book_row {
     size_t n_sets;
     const char *stop;
     const sl_design *design;  /* every row the same friction grid */
+    const char *path;         /* the floor file, for the record (NULL: "-") */
+    unsigned long crc32;      /* of the file's bytes */
+    long size_bytes;
 } sl_plant_book_row;
 
 typedef struct sl_plant_book {
     const char *version, *command_line;
+    const char *seed;         /* the run's seed as text (NULL: "-") */
     time_t created;
     sl_report_project project;
     size_t n;

@@ -9,6 +9,7 @@
 #define SL_REPORT_SHEETS_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include <xlsxwriter.h>
 
 #include "report/report.h"
@@ -71,6 +72,17 @@ const char *sl_rpt_sa10_text(const sl_report_floor *fl);
 /* "FLOOR: N sets; FLOOR: N sets; ..." (every floor's own count). */
 char *sl_rpt_sets_text(const sl_report *r, const char *fmt, char *buf, size_t n);
 const char *sl_rpt_or_dash(const char *s);
+
+/* ---- csv.c: what the plant index (plant_book.c) shares ------------------ */
+/* The comment lines every CSV of the run starts with (report.h,
+ * sl_report_write_csv): "# WARNING:" per floor whose motions failed, then
+ * program, content (`what`), command, created, seed, "# floor_file_crc32:"
+ * per floor of r, project, document, revision. */
+void sl_rpt_csv_head(FILE *f, const sl_report *r, const char *what);
+/* "# key: value" (line breaks in value made blanks), CRLF. */
+void sl_rpt_csv_comment(FILE *f, const char *key, const char *value);
+/* One RFC 4180 field, quoted when needed. */
+void sl_rpt_csv_field(FILE *f, const char *s);
 
 /* ---- layout.c ---------------------------------------------------------- */
 void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F);

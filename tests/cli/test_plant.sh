@@ -44,6 +44,95 @@ t_expect_err progress-per-floor "floor 4/4 'bldB/04-roof36' computed; 4/4 floors
 grep -v '^#' "$D/out1/plant.csv" | head -1 | grep -q '^building,floor,floor_name,elevation_m,zpa_g,sets,convergence,clearance_mm_mu_0.05,clearance_mm_mu_0.1,clearance_mm_mu_0.2,clearance_mm_mu_0.3,clearance_mm_mu_0.4,clearance_mm_mu_0.5,governing' && t_pass || t_fail "plant.csv header"
 head -1 "$D/out1/plant.csv" | od -c | grep -q '\\r  \\n' && t_pass || t_fail "plant.csv: CRLF line ends"
 
+# plant.csv traces its run as every building CSV does (issue 25): # program:
+# first, then command, created, seed, and each floor file's CRC-32 line, the
+# building's own line with the floor named building/id
+head -1 "$D/out1/plant.csv" | grep -q '^# program: seislide ' && t_pass || t_fail "plant.csv: '# program:' not first"
+for l in '# command: seislide run .*-o [^ ]*/out1 .*/plant' '# created: 2023-11-14T22:13:20Z' '# seed: 1' '# project: -'; do
+  grep -q "^$l" "$D/out1/plant.csv" && t_pass || t_fail "plant.csv lacks /$l/"
+done
+[ "$(grep -c '^# floor_file_crc32: ' "$D/out1/plant.csv")" -eq 4 ] && t_pass || t_fail "plant.csv: 4 floor_file_crc32 lines expected"
+for b in bldA bldB; do
+  grep '^# floor_file_crc32: ' "$D/out1/$b/summary.csv" | sed "s|^\(# floor_file_crc32: [0-9a-f]*\) |\1 $b/|" |
+    while IFS= read -r l; do grep -qxF "$l" "$D/out1/plant.csv" || echo "$l"; done > "$D/crc_missing"
+  [ -s "$D/crc_missing" ] && t_fail "plant.csv lacks $(head -1 "$D/crc_missing")" || t_pass
+done
+
+# plant.xlsx as printed (issue 25), through LibreOffice and pdftotext -bbox:
+# Data hidden; the Lookup one portrait page at 100 %, the range of mu under
+# its input; the Plant sheet one landscape page; every word inside the
+# margins, at a readable size, none overprinting another; the page header
+# and footer of the building workbook on each page
+if command -v python3 >/dev/null 2>&1; then
+python3 - "$D/out1/plant.xlsx" > "$D/hidden.txt" 2>&1 <<'PY'
+import sys, zipfile, re
+w = zipfile.ZipFile(sys.argv[1]).read('xl/workbook.xml').decode()
+s = {m.group(1): m.group(0) for m in re.finditer(r'<sheet name="([^"]*)"[^>]*>', w)}
+print('ok' if 'state="hidden"' in s.get('Data', '') and not any('hidden' in v for k, v in s.items() if k != 'Data') else 'FAIL %s' % s)
+PY
+[ "$(cat "$D/hidden.txt")" = ok ] && t_pass || t_fail "plant.xlsx: Data must be the one hidden sheet: $(cat "$D/hidden.txt")"
+fi
+if command -v soffice >/dev/null 2>&1 && command -v pdftotext >/dev/null 2>&1 && command -v python3 >/dev/null 2>&1; then
+  (cd "$D" && timeout 180 soffice -env:UserInstallation=file://$D/lo --headless --convert-to pdf \
+    --outdir pdf out1/plant.xlsx >/dev/null 2>&1)
+  pdftotext -bbox "$D/pdf/plant.pdf" "$D/plant_words.html" 2>/dev/null
+  python3 - "$D/plant_words.html" > "$D/plant_pdf.txt" 2>&1 <<'PY'
+import sys, re, html, collections
+def ok(cond, what):
+    print(('ok ' if cond else 'FAIL ') + what)
+MARGIN, SLACK = 36.0, 1.5   # 0.5 in left and right (layout.c), points
+pages = []
+for m in re.finditer(r'<page width="([\d.]+)" height="([\d.]+)">(.*?)</page>', open(sys.argv[1]).read(), re.S):
+    w = [(float(a), float(b), float(c), float(e), html.unescape(t)) for a, b, c, e, t in
+         re.findall(r'<word xMin="([\d.]+)" yMin="([\d.]+)" xMax="([\d.]+)" yMax="([\d.]+)">(.*?)</word>', m.group(3))]
+    pages.append((float(m.group(1)), float(m.group(2)), w))
+# Lookup 1 page, Plant 1 page (4 floors); Data hidden (it printed 12 of 14)
+ok(len(pages) == 2, 'pages %d, expected 2' % len(pages))
+for p, (pw, ph, ws) in enumerate(pages, 1):
+    text = [t for *_, t in ws]
+    out = [t for x0, y0, x1, y1, t in ws if x0 < MARGIN - SLACK or x1 > pw - MARGIN + SLACK or y0 < 0 or y1 > ph]
+    ok(not out, 'page %d: words beyond the margins: %s' % (p, out[:5]))
+    # a word box is about 1.3 x the font size: 7 pt is a 5.4 pt font printed
+    small = [t for x0, y0, x1, y1, t in ws if y1 - y0 < 7.0]
+    ok(not small, 'page %d: words under 7 pt: %s' % (p, small[:5]))
+    top = [t for x0, y0, x1, y1, t in ws if y1 < 60]
+    bottom = ' '.join(t for x0, y0, x1, y1, t in ws if y0 > ph - 60)
+    ok('Document' in top and 'revision' in top, 'page %d: header without the title block: %s' % (p, top[:8]))
+    ok(re.search(r'seislide .*plant\.xlsx Page %d of %d' % (p, len(pages)), bottom) is not None,
+       'page %d: footer "%s"' % (p, bottom))
+    ok('building|floor' not in text, 'page %d: the Data sheet printed' % p)
+    bad = set()
+    for i, A in enumerate(ws):
+        for B in ws[i + 1:]:
+            ix = min(A[2], B[2]) - max(A[0], B[0]); iy = min(A[3], B[3]) - max(A[1], B[1])
+            if ix > 0 and iy > 0 and ix * iy > 0.25 * min((A[2] - A[0]) * (A[3] - A[1]), (B[2] - B[0]) * (B[3] - B[1])):
+                bad.add('%s/%s' % (A[4], B[4]))
+    ok(not bad, 'page %d: overprinted words: %s' % (p, sorted(bad)[:6]))
+def body(ws):   # the most common word height: the 11-point text as printed
+    return collections.Counter(round(y1 - y0, 1) for x0, y0, x1, y1, t in ws).most_common(1)[0][0]
+if len(pages) >= 2:
+    (w1, h1, l), (w2, h2, pl) = pages[0], pages[1]
+    ok(w1 < h1 and 'Lookup' in [t for *_, t in l], 'page 1: the Lookup, portrait')
+    ok(body(l) >= 13.5, 'Lookup printed at about 100 %%: words %.1f pt high, 14.3 at 100 %%' % body(l))
+    ok(w2 > h2 and 'Plant' in [t for *_, t in pl], 'page 2: the Plant sheet, landscape')
+    ok(body(pl) >= 10.0, 'Plant sheet readable: words %.1f pt high (14.3 at 100 %%)' % body(pl))
+    # the range of mu under its input: between the mu row and the result, in column B
+    y = {t: (x0, y0) for x0, y0, x1, y1, t in l}
+    if all(k in y for k in ('Friction', 'covers', 'Required', 'Input')):
+        ok(y['Friction'][1] < y['covers'][1] < y['Input'][1] and y['covers'][0] > y['Friction'][0] + 100,
+           'Lookup: the range note under the mu input: %s' % {k: y[k] for k in ('Friction', 'covers', 'Input')})
+    else:
+        ok(False, 'Lookup: words Friction, covers, Required, Input not all printed')
+    rows = sum(1 for *_, t in pl if t in ('bldA', 'bldB'))
+    ok(rows == 4, 'Plant sheet: %d floor rows printed, 4 expected' % rows)
+PY
+  grep "^FAIL" "$D/plant_pdf.txt" | while read -r l; do echo "  FAIL cli_plant: $l" >&2; done
+  np=$(grep -c '^ok ' "$D/plant_pdf.txt"); nf=$(grep -c '^FAIL' "$D/plant_pdf.txt")
+  [ "$np" -eq 19 ] && [ "$nf" -eq 0 ] && t_pass || t_fail "printed plant.xlsx: $np ok, $nf failed ($(grep -v '^ok ' "$D/plant_pdf.txt" | head -3))"
+else
+  t_skip "soffice, pdftotext or python3 absent: plant.xlsx as printed not checked (apt-get install libreoffice-calc-nogui poppler-utils)"
+fi
+
 # per-building runs (no cache): the same files, byte for byte
 for b in bldA bldB; do
   t_run run "$D/plant/$b" -o "$D/single-$b" $OPTS --no-cache -q; t_expect_rc "run $b" 0
