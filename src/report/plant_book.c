@@ -135,19 +135,6 @@ enum { LK_BUILDING = SL_RPT_TB_ROWS + 1, LK_FLOOR, LK_MU, LK_RANGE, LK_RESULT, L
 enum { PL_NOTE = 1, PL_HEAD = 3, PL_SUBHEAD, PL_FIRST, PL_CLEAR = 7,
        PL_GOV = PL_CLEAR + SL_PLANT_BOOK_NMU, PL_COLS };
 
-/* Write a formula in column B with its cached value (a number, or text
- * when s is given); zero: 0 (tests/test_plant.c). */
-static void formula(lxw_worksheet *ws, int zero, lxw_row_t row, const char *f, double v,
-                    const char *s, lxw_format *fmt)
-{
-    if (zero)
-        worksheet_write_formula_num(ws, row, 1, f, fmt, 0);
-    else if (s)
-        worksheet_write_formula_str(ws, row, 1, f, fmt, s);
-    else
-        worksheet_write_formula_num(ws, row, 1, f, fmt, v);
-}
-
 /* Data: A building, B floor, C building|floor, D.. clearance on the grid
  * (row 1: the grid); the building list in the column after the grid.
  * Hidden: not printed (the Plant sheet and each building's workbook hold
@@ -405,11 +392,10 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
     const sl_design *ds = ok ? b->rows[fi].design : d0;
     double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(ds, mu0) : NAN;
 
-    worksheet_write_string(ws, LK_RESULT, 0, "Required clearance, mm", F->title);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
-             LK_CHECK + 1, LK_MU1 + 1, LK_MU0 + 1, LK_C0 + 1, LK_C0 + 1, LK_MU + 1, LK_MU0 + 1,
-             LK_C1 + 1, LK_C0 + 1, LK_MU1 + 1, LK_MU0 + 1);
-    formula(ws, z, LK_RESULT, f, res, ok ? NULL : "-", F->result);
+    const sl_rpt_lookup_cells cells = {.mu = LK_MU, .result = LK_RESULT, .check = LK_CHECK,
+                                       .note = LK_NOTE, .mu0 = LK_MU0, .mu1 = LK_MU1,
+                                       .c0 = LK_C0, .c1 = LK_C1};
+    sl_rpt_lookup_result(ws, F, z, &cells, res, ok);
     worksheet_write_string(ws, LK_CHECK, 0, "Input check", F->bold);
     snprintf(f, sizeof f,
              "=IF(B%d=\"\",\"choose a building from the list\",IF(ISNA(MATCH(B%d,plant_buildings,0)),"
@@ -420,23 +406,14 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
              "\"ok\")))))))",
              LK_BUILDING + 1, LK_BUILDING + 1, LK_FLOOR + 1, LK_BUILDING + 1, LK_FLOOR + 1,
              LK_MU + 1, LK_MU + 1, LK_MU + 1, mu_min, LK_MU + 1, mu_max);
-    formula(ws, z, LK_CHECK, f, 0, check, F->bold);
+    sl_rpt_lookup_formula(ws, z, LK_CHECK, f, 0, check, F->bold);
     /* the longest check text wraps to two lines in column B */
     worksheet_set_row(ws, LK_CHECK, sl_rpt_text_height("unknown floor in this building: choose "
                                                        "one from the list", LK_W_B, 1), NULL);
-    worksheet_write_string(ws, LK_NOTE, 0, "Note", F->bold);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"no sliding predicted: mu g is at or "
-             "above what every motion demands\",\"\"))", LK_CHECK + 1, LK_RESULT + 1);
-    formula(ws, z, LK_NOTE, f, 0, ok && res == 0 ? "no sliding predicted: mu g is at or above "
-            "what every motion demands" : "", F->wrap);
-    worksheet_set_row(ws, LK_NOTE, sl_rpt_text_height("no sliding predicted: mu g is at or above "
-                                                      "what every motion demands", LK_W_B, 0),
-                      NULL);
+    sl_rpt_lookup_note(ws, F, z, &cells, res, ok);
+    worksheet_set_row(ws, LK_NOTE, sl_rpt_text_height(SL_RPT_LOOKUP_NO_SLIDING, LK_W_B, 0), NULL);
 
-    const char *how = "How it is computed (linear interpolation in mu, as "
-                      "sl_design_clearance_at in the program):";
-    worksheet_merge_range(ws, LK_HOW, 0, LK_HOW, 1, how, F->bold);
-    worksheet_set_row(ws, LK_HOW, sl_rpt_text_height(how, LK_W_A + LK_W_B, 1), NULL);
+    sl_rpt_lookup_how(ws, F, LK_HOW, LK_W_A + LK_W_B);
     static const char *const step[] = {"row of the floor in Data", "column of the mu at or below",
                                        "mu at or below", "mu above",
                                        "clearance at the mu at or below, mm",
@@ -445,21 +422,23 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
         worksheet_write_string(ws, (lxw_row_t)(LK_ROW + k), 0, step[k], NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d&\"|\"&B%d,plant_floor_keys,0))",
              LK_CHECK + 1, LK_BUILDING + 1, LK_FLOOR + 1);
-    formula(ws, z, LK_ROW, f, (double)(fi + 1), ok ? NULL : "", NULL);
+    sl_rpt_lookup_formula(ws, z, LK_ROW, f, (double)(fi + 1), ok ? NULL : "", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,plant_mu_grid,1))", LK_CHECK + 1,
              LK_MU + 1);
-    formula(ws, z, LK_K, f, (double)(k0 + 1), ok ? NULL : "", NULL);
+    sl_rpt_lookup_formula(ws, z, LK_K, f, (double)(k0 + 1), ok ? NULL : "", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_mu_grid,1,B%d))", LK_CHECK + 1, LK_K + 1);
-    formula(ws, z, LK_MU0, f, ds->rows[k0].mu, ok ? NULL : "", F->ratio);
+    sl_rpt_lookup_formula(ws, z, LK_MU0, f, ds->rows[k0].mu, ok ? NULL : "", F->ratio);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_mu_grid,1,MIN(B%d+1,%zu)))",
              LK_CHECK + 1, LK_K + 1, n);
-    formula(ws, z, LK_MU1, f, ds->rows[k1].mu, ok ? NULL : "", F->ratio);
+    sl_rpt_lookup_formula(ws, z, LK_MU1, f, ds->rows[k1].mu, ok ? NULL : "", F->ratio);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_clearance_mm,B%d,B%d))", LK_CHECK + 1,
              LK_ROW + 1, LK_K + 1);
-    formula(ws, z, LK_C0, f, SL_RPT_MM_PER_M * ds->rows[k0].clearance_m, ok ? NULL : "", F->mm);
+    sl_rpt_lookup_formula(ws, z, LK_C0, f, SL_RPT_MM_PER_M * ds->rows[k0].clearance_m,
+                          ok ? NULL : "", F->mm);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_clearance_mm,B%d,MIN(B%d+1,%zu)))",
              LK_CHECK + 1, LK_ROW + 1, LK_K + 1, n);
-    formula(ws, z, LK_C1, f, SL_RPT_MM_PER_M * ds->rows[k1].clearance_m, ok ? NULL : "", F->mm);
+    sl_rpt_lookup_formula(ws, z, LK_C1, f, SL_RPT_MM_PER_M * ds->rows[k1].clearance_m,
+                          ok ? NULL : "", F->mm);
     snprintf(f, sizeof f, "%zu buildings, %zu floors; clearance policy %s. Each building's own "
              "workbook (<building>/seislide-clearance.xlsx) shows every floor's curves, their "
              "standard errors, flags and the assumptions; the Plant sheet lists every floor.",
@@ -487,23 +466,12 @@ sl_status sl_plant_book_write_xlsx(const sl_plant_book *b, const char *dir, sl_e
             return sl_error_set(err, SL_EINVAL, path, 0, "floor '%s/%s': another friction grid",
                                 b->rows[i].building, b->rows[i].id);
     }
-    sl_atomic *a = sl_atomic_open(path, err);
-    if (!a)
+    sl_atomic *a;
+    lxw_workbook *wb = sl_rpt_workbook_open(
+        path, "Required clearance around unanchored components, whole plant", NULL, &b->project,
+        b->created, &a, err);
+    if (!wb)
         return err ? err->code : SL_EIO;
-    lxw_workbook_options wo = {.constant_memory = LXW_FALSE, .tmpdir = NULL, .use_zip64 = LXW_FALSE};
-    lxw_workbook *wb = workbook_new_opt(sl_atomic_tmpname(a), &wo);
-    if (!wb) {
-        sl_atomic_abort(a);
-        return sl_error_set(err, SL_EIO, path, 0, "cannot create the workbook");
-    }
-    lxw_doc_properties props;
-    memset(&props, 0, sizeof props);
-    props.title = "Required clearance around unanchored components, whole plant";
-    props.author = "seislide";
-    props.company = (char *)(uintptr_t)b->project.project;
-    props.keywords = (char *)(uintptr_t)b->project.document;
-    props.created = b->created > 0 ? b->created : 1; /* 0 would mean "now" */
-    workbook_set_properties(wb, &props);
     sl_rpt_fmts F;
     sl_rpt_formats(wb, &F);
     sl_report rep; /* the title block and the record the page header and footer show */
@@ -515,11 +483,5 @@ sl_status sl_plant_book_write_xlsx(const sl_plant_book *b, const char *dir, sl_e
     lookup_sheet(wb, &F, b, &rep, nb);
     plant_sheet(wb, &F, b, &rep);
     data_sheet(wb, &F, b, &rep);
-    lxw_error le = workbook_close(wb);
-    if (le != LXW_NO_ERROR) {
-        sl_atomic_abort(a);
-        return sl_error_set(err, SL_EIO, path, 0, "cannot write the workbook: %s",
-                            lxw_strerror(le));
-    }
-    return sl_atomic_commit(a, err);
+    return sl_rpt_workbook_close(wb, a, path, err);
 }

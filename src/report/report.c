@@ -155,26 +155,13 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
 {
     if (sl_rpt_check_finite(r, err))
         return err ? err->code : SL_EINVAL;
-    sl_atomic *a = sl_atomic_open(path, err);
-    if (!a)
+    sl_atomic *a;
+    lxw_workbook *wb = sl_rpt_workbook_open(
+        path, "Required clearance around unanchored components",
+        "Design sliding spectra per floor (NLTHA and ASCE/SEI 43-05)", &r->project, r->created,
+        &a, err);
+    if (!wb)
         return err ? err->code : SL_EIO;
-    lxw_workbook_options wo = {.constant_memory = LXW_FALSE, .tmpdir = NULL, .use_zip64 = LXW_FALSE};
-    lxw_workbook *wb = workbook_new_opt(sl_atomic_tmpname(a), &wo);
-    if (!wb) {
-        sl_atomic_abort(a);
-        return sl_error_set(err, SL_EIO, path, 0, "cannot create the workbook");
-    }
-    lxw_doc_properties props;
-    memset(&props, 0, sizeof props);
-    props.title = "Required clearance around unanchored components";
-    props.subject = "Design sliding spectra per floor (NLTHA and ASCE/SEI 43-05)";
-    props.author = "seislide";
-    props.company = (char *)(uintptr_t)r->project.project;
-    props.keywords = (char *)(uintptr_t)r->project.document;
-    /* libxlsxwriter reads created = 0 as "now": the epoch itself is written
-     * as one second after it, so --created 0 still gives identical files */
-    props.created = r->created > 0 ? r->created : 1;
-    workbook_set_properties(wb, &props);
     char (*names)[SL_RPT_SHEET_NAME_MAX + 1] = calloc(r->n_floors, sizeof *names);
     if (!names) {
         workbook_close(wb);
@@ -194,10 +181,5 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
     sl_rpt_inputs_sheet(wb, &F, r);
     sl_rpt_data_sheet(wb, &F, r, &ax);
     free(names);
-    lxw_error le = workbook_close(wb);
-    if (le != LXW_NO_ERROR) {
-        sl_atomic_abort(a);
-        return sl_error_set(err, SL_EIO, path, 0, "cannot write the workbook: %s", lxw_strerror(le));
-    }
-    return sl_atomic_commit(a, err);
+    return sl_rpt_workbook_close(wb, a, path, err);
 }

@@ -21,19 +21,6 @@ enum {
 /* Excel's longest text constant in a formula is 255 characters. */
 #define LITERAL_MAX 200
 
-/* Write a formula in column B with its cached value (a number, or text
- * when s is given); zero_cache: 0 (tests/test_lookup.c). */
-static void formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, const char *f, double v,
-                    const char *s, lxw_format *fmt)
-{
-    if (zero_cache)
-        worksheet_write_formula_num(ws, row, 1, f, fmt, 0);
-    else if (s)
-        worksheet_write_formula_str(ws, row, 1, f, fmt, s);
-    else
-        worksheet_write_formula_num(ws, row, 1, f, fmt, v);
-}
-
 /* Append text s to a formula as "..."&"..." pieces of at most LITERAL_MAX. */
 static void literal(char *f, size_t n, const char *s)
 {
@@ -147,11 +134,10 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(dsel, mu0) : NAN;
     const int B_CHECK = LK_CHECK + 1, B_COL = LK_COL + 1, B_ROW = LK_ROW + 1;
 
-    worksheet_write_string(ws, LK_RESULT, 0, "Required clearance, mm", F->title);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
-             B_CHECK, LK_MU1 + 1, LK_MU0 + 1, LK_C0 + 1, LK_C0 + 1, LK_MU + 1, LK_MU0 + 1,
-             LK_C1 + 1, LK_C0 + 1, LK_MU1 + 1, LK_MU0 + 1);
-    formula(ws, zc, LK_RESULT, f, res, ok ? NULL : "-", F->result);
+    const sl_rpt_lookup_cells cells = {.mu = LK_MU, .result = LK_RESULT, .check = LK_CHECK,
+                                       .note = LK_NOTE, .mu0 = LK_MU0, .mu1 = LK_MU1,
+                                       .c0 = LK_C0, .c1 = LK_C1};
+    sl_rpt_lookup_result(ws, F, zc, &cells, res, ok);
     worksheet_write_string(ws, LK_CHECK, 0, "Input check", F->bold);
     snprintf(f, sizeof f,
              "=IF(B%d=\"\",\"choose a floor from the list\",IF(ISNA(MATCH(B%d,floor_names,0)),"
@@ -159,20 +145,17 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
              "IF(NOT(ISNUMBER(B%d)),\"mu must be a number\",IF(OR(B%d<%.10g,B%d>%.10g),"
              "\"mu outside the table\",\"ok\")))))",
              LK_FLOOR + 1, LK_FLOOR + 1, LK_MU + 1, LK_MU + 1, LK_MU + 1, mu_min, LK_MU + 1, mu_max);
-    formula(ws, zc, LK_CHECK, f, 0, check, F->bold);
-    worksheet_write_string(ws, LK_NOTE, 0, "Note", F->bold);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"no sliding predicted: mu g is at or "
-             "above what every motion demands\",\"\"))", B_CHECK, LK_RESULT + 1);
-    formula(ws, zc, LK_NOTE, f, 0, ok && res == 0 ? "no sliding predicted: mu g is at or above "
-            "what every motion demands" : "", F->wrap);
+    sl_rpt_lookup_formula(ws, zc, LK_CHECK, f, 0, check, F->bold);
+    sl_rpt_lookup_note(ws, F, zc, &cells, res, ok);
     worksheet_set_row(ws, LK_NOTE, 2 * 15.0 + 1, NULL);
     worksheet_write_string(ws, LK_ZPA, 0, "Floor's horizontal ZPA, g", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(floor_zpa_g,1,B%d))", B_CHECK, B_COL);
-    formula(ws, zc, LK_ZPA, f, ok ? r->floors[fi].zpa_h_ms2 / SL_G : 0, ok ? NULL : "", F->ratio);
+    sl_rpt_lookup_formula(ws, zc, LK_ZPA, f, ok ? r->floors[fi].zpa_h_ms2 / SL_G : 0,
+                          ok ? NULL : "", F->ratio);
     worksheet_write_string(ws, LK_X, 0, "mu g / ZPA", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",B%d/B%d)", B_CHECK, LK_MU + 1, LK_ZPA + 1);
-    formula(ws, zc, LK_X, f, ok ? mu0 * SL_G / r->floors[fi].zpa_h_ms2 : 0, ok ? NULL : "",
-            F->ratio);
+    sl_rpt_lookup_formula(ws, zc, LK_X, f, ok ? mu0 * SL_G / r->floors[fi].zpa_h_ms2 : 0,
+                          ok ? NULL : "", F->ratio);
     /* the standard error, interpolated as the clearance is */
     char c_from[8], c_to[8], se_rng[64], fl_rng[64];
     sl_rpt_col_name(sl_rpt_data_col_se(nf, 0), c_from);
@@ -195,7 +178,7 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
         double m0 = dsel->rows[k0].mu, m1 = dsel->rows[k1].mu;
         se = SL_RPT_MM_PER_M * (s0 + (m1 == m0 ? 0 : (mu0 - m0) * (s1 - s0) / (m1 - m0)));
     }
-    formula(ws, zc, LK_SE, f, se, ok ? NULL : "", F->mm);
+    sl_rpt_lookup_formula(ws, zc, LK_SE, f, se, ok ? NULL : "", F->mm);
     worksheet_set_row(ws, LK_SE, sl_rpt_text_height("Standard error of the NLTHA design value, mm",
                                                     W_A, 1), NULL);
     worksheet_write_string(ws, LK_FLAGS, 0, "Flags at the grid rows around mu", F->bold);
@@ -207,16 +190,13 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
         sl_report_flags(dsel->rows[k1].flags, fl1, sizeof fl1);
         snprintf(flc, sizeof flc, "%s | %s", fl0[0] ? fl0 : "-", fl1[0] ? fl1 : "-");
     }
-    formula(ws, zc, LK_FLAGS, f, 0, flc, F->wrap);
+    sl_rpt_lookup_formula(ws, zc, LK_FLAGS, f, 0, flc, F->wrap);
     /* room for the longest flags of two rows */
     worksheet_set_row(ws, LK_FLAGS, sl_rpt_text_height("nltha_capped asce_capped "
                       "asce_below_nltha | nltha_capped asce_capped asce_below_nltha", W_B, 0),
                       NULL);
 
-    const char *how = "How it is computed (linear interpolation in mu, as "
-                      "sl_design_clearance_at in the program):";
-    worksheet_merge_range(ws, LK_HOW, 0, LK_HOW, 1, how, F->bold);
-    worksheet_set_row(ws, LK_HOW, sl_rpt_text_height(how, W_A + W_B, 1), NULL);
+    sl_rpt_lookup_how(ws, F, LK_HOW, W_A + W_B);
     static const char *const step[] = {"column of the floor in Summary", "row of the mu at or below",
                                        "mu at or below", "mu above",
                                        "clearance at the mu at or below, mm",
@@ -225,21 +205,23 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     for (int s = 0; s < 7; s++)
         worksheet_write_string(ws, (lxw_row_t)(LK_COL + s), 0, step[s], NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,floor_names,0))", B_CHECK, LK_FLOOR + 1);
-    formula(ws, zc, LK_COL, f, (double)(fi + 1), ok ? NULL : "", NULL);
+    sl_rpt_lookup_formula(ws, zc, LK_COL, f, (double)(fi + 1), ok ? NULL : "", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,mu_grid,1))", B_CHECK, LK_MU + 1);
-    formula(ws, zc, LK_ROW, f, (double)(k0 + 1), ok ? NULL : "", NULL);
+    sl_rpt_lookup_formula(ws, zc, LK_ROW, f, (double)(k0 + 1), ok ? NULL : "", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(mu_grid,B%d))", B_CHECK, B_ROW);
-    formula(ws, zc, LK_MU0, f, dsel->rows[k0].mu, ok ? NULL : "", F->mu);
+    sl_rpt_lookup_formula(ws, zc, LK_MU0, f, dsel->rows[k0].mu, ok ? NULL : "", F->mu);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(mu_grid,MIN(B%d+1,%zu)))", B_CHECK, B_ROW, n);
-    formula(ws, zc, LK_MU1, f, dsel->rows[k1].mu, ok ? NULL : "", F->mu);
+    sl_rpt_lookup_formula(ws, zc, LK_MU1, f, dsel->rows[k1].mu, ok ? NULL : "", F->mu);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(clearance_mm,B%d,B%d))", B_CHECK, B_ROW,
              B_COL);
-    formula(ws, zc, LK_C0, f, SL_RPT_MM_PER_M * dsel->rows[k0].clearance_m, ok ? NULL : "", F->mm);
+    sl_rpt_lookup_formula(ws, zc, LK_C0, f, SL_RPT_MM_PER_M * dsel->rows[k0].clearance_m,
+                          ok ? NULL : "", F->mm);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(clearance_mm,MIN(B%d+1,%zu),B%d))", B_CHECK,
              B_ROW, n, B_COL);
-    formula(ws, zc, LK_C1, f, SL_RPT_MM_PER_M * dsel->rows[k1].clearance_m, ok ? NULL : "", F->mm);
+    sl_rpt_lookup_formula(ws, zc, LK_C1, f, SL_RPT_MM_PER_M * dsel->rows[k1].clearance_m,
+                          ok ? NULL : "", F->mm);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(floor_sets,1,B%d))", B_CHECK, B_COL);
-    formula(ws, zc, LK_SETS, f, ok ? (double)dsel->n_sets : 0, ok ? NULL : "", NULL);
+    sl_rpt_lookup_formula(ws, zc, LK_SETS, f, ok ? (double)dsel->n_sets : 0, ok ? NULL : "", NULL);
 
     /* the policy, with the chosen floor's own number of sets */
     worksheet_write_string(ws, LK_POLICY, 0, "Clearance policy", F->bold);

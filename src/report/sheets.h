@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <xlsxwriter.h>
 
+#include "io/atomic.h"
 #include "report/report.h"
 
 #define SL_RPT_MM_PER_M 1000.0
@@ -83,6 +84,40 @@ void sl_rpt_csv_head(FILE *f, const sl_report *r, const char *what);
 void sl_rpt_csv_comment(FILE *f, const char *key, const char *value);
 /* One RFC 4180 field, quoted when needed. */
 void sl_rpt_csv_field(FILE *f, const char *s);
+
+/* ---- workbook.c -------------------------------------------------------- */
+/* A new workbook at `path`, written through sl_atomic (*a), with its
+ * document properties (subject may be NULL; created <= 0 is written as one
+ * second after the epoch: libxlsxwriter reads 0 as "now"). NULL on error,
+ * err set and nothing left behind. */
+lxw_workbook *sl_rpt_workbook_open(const char *path, const char *title, const char *subject,
+                                   const sl_report_project *project, time_t created,
+                                   sl_atomic **a, sl_error *err);
+/* Close wb and rename it over `path` (or remove it on error). */
+sl_status sl_rpt_workbook_close(lxw_workbook *wb, sl_atomic *a, const char *path, sl_error *err);
+
+/* ---- lookup_formula.c -------------------------------------------------- */
+/* The rows (0-based) of a Lookup's cells in column B: the mu input, the
+ * result, the input check, the note, and the grid rows around mu (mu0,
+ * mu1) with their clearances (c0, c1). */
+typedef struct sl_rpt_lookup_cells {
+    int mu, result, check, note, mu0, mu1, c0, c1;
+} sl_rpt_lookup_cells;
+#define SL_RPT_LOOKUP_NO_SLIDING \
+    "no sliding predicted: mu g is at or above what every motion demands"
+/* A formula in column B with its cached value (a number v, or the text s
+ * when given); zero_cache: 0 (tests/test_lookup.c, tests/test_plant.c). */
+void sl_rpt_lookup_formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, const char *f,
+                           double v, const char *s, lxw_format *fmt);
+/* "Required clearance, mm" and its interpolation formula (res: its value). */
+void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
+                          const sl_rpt_lookup_cells *c, double res, int ok);
+/* "Note" and its formula (no sliding where the result is 0); the row
+ * height is the sheet's. */
+void sl_rpt_lookup_note(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
+                        const sl_rpt_lookup_cells *c, double res, int ok);
+/* The heading of the visible steps, merged over columns A:B (`width`). */
+void sl_rpt_lookup_how(lxw_worksheet *ws, const sl_rpt_fmts *F, lxw_row_t row, double width);
 
 /* ---- layout.c ---------------------------------------------------------- */
 void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F);
