@@ -13,30 +13,14 @@
 #define SL_MOTION_HUSID_LO 0.05
 #define SL_MOTION_HUSID_HI 0.75
 
-static char *dup_mem(const char *s, size_t n)
-{
-    char *d = malloc(n + 1);
-    if (d) {
-        if (n)
-            memcpy(d, s, n);
-        d[n] = '\0';
-    }
-    return d;
-}
-
-static char *dup_str(const char *s)
-{
-    return dup_mem(s ? s : "", s ? strlen(s) : 0);
-}
-
 sl_motion *sl_motion_new_owned(const char *path, const char *label, size_t label_len,
                                double *acc_owned, size_t n, double dt_s)
 {
     sl_motion *m = calloc(1, sizeof *m);
     if (!m)
         return NULL;
-    m->path = dup_str(path);
-    m->label = label ? dup_mem(label, label_len) : dup_str("");
+    m->path = strdup(path ? path : "");
+    m->label = label ? strndup(label, label_len) : strdup("");
     if (!m->path || !m->label) {
         free(m->path);
         free(m->label);
@@ -71,7 +55,7 @@ sl_motion *sl_motion_copy(const sl_motion *m)
     sl_motion *c = sl_motion_from_array(m->acc_ms2, m->n, m->dt_s, m->label);
     if (!c)
         return NULL;
-    char *p = dup_str(m->path);
+    char *p = strdup(m->path ? m->path : "");
     if (!p) {
         sl_motion_free(c);
         return NULL;

@@ -11,7 +11,6 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #define MAGIC "SLENTRY1"
 
@@ -109,9 +108,7 @@ static sl_cache_read_result parse(const unsigned char *b, size_t n, const sl_ent
         snprintf(why, nwhy, "not an entry (no %s header)", MAGIC);
         return SL_CACHE_DAMAGED;
     }
-    uLong want = crc32(crc32(0L, Z_NULL, 0), b, (uInt)(n - 4));
-    uLong have = (uLong)b[n - 4] | (uLong)b[n - 3] << 8 | (uLong)b[n - 2] << 16 |
-                 (uLong)b[n - 1] << 24;
+    unsigned long have, want = sl_pbuf_crc32_check(b, n, &have);
     if (want != have) {
         snprintf(why, nwhy, "checksum mismatch (CRC-32 %08lx, stored %08lx)", want, have);
         return SL_CACHE_DAMAGED;
@@ -195,10 +192,7 @@ sl_status sl_cache_write(const char *dir, const sl_entry_key *k, const sl_analys
     sl_pbuf_bytes(&w, k->text, k->len);
     sl_pbuf_u64(&w, p.n);
     sl_pbuf_bytes(&w, p.b, p.n);
-    uLong c = crc32(crc32(0L, Z_NULL, 0), w.b, (uInt)w.n);
-    unsigned char le[4] = {(unsigned char)c, (unsigned char)(c >> 8), (unsigned char)(c >> 16),
-                           (unsigned char)(c >> 24)};
-    sl_pbuf_bytes(&w, le, 4);
+    sl_pbuf_crc32(&w);
     char host[128], tmp[4400], path[4400];
     host_name(host, sizeof host);
     snprintf(path, sizeof path, "%s/%s" SL_CACHE_SUFFIX, dir, k->hash);

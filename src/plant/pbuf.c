@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 void sl_pbuf_bytes(sl_pbuf *w, const void *p, size_t n)
 {
@@ -135,4 +136,19 @@ uint64_t sl_fnv64(uint64_t h, const void *p, size_t n)
         h *= 0x100000001b3ULL;
     }
     return h;
+}
+
+void sl_pbuf_crc32(sl_pbuf *w)
+{
+    uLong c = crc32(crc32(0L, Z_NULL, 0), w->b, (uInt)w->n);
+    unsigned char le[4] = {(unsigned char)c, (unsigned char)(c >> 8), (unsigned char)(c >> 16),
+                           (unsigned char)(c >> 24)};
+    sl_pbuf_bytes(w, le, 4);
+}
+
+unsigned long sl_pbuf_crc32_check(const unsigned char *b, size_t n, unsigned long *stored)
+{
+    *stored = (uLong)b[n - 4] | (uLong)b[n - 3] << 8 | (uLong)b[n - 2] << 16 |
+              (uLong)b[n - 1] << 24;
+    return crc32(crc32(0L, Z_NULL, 0), b, (uInt)(n - 4));
 }

@@ -28,6 +28,12 @@ void sl_pbuf_u64(sl_pbuf *w, uint64_t v);
 void sl_pbuf_f64(sl_pbuf *w, double v);
 void sl_pbuf_str(sl_pbuf *w, const char *s); /* NULL: written as "" */
 void sl_pbuf_free(sl_pbuf *w);
+/* The trailer of a result file: append the CRC-32 (zlib) of every byte
+ * written so far, 4 bytes little-endian. */
+void sl_pbuf_crc32(sl_pbuf *w);
+/* The CRC-32 of b[0, n-4) (returned) and the trailer stored in its last 4
+ * bytes (*stored); n >= 4. */
+unsigned long sl_pbuf_crc32_check(const unsigned char *b, size_t n, unsigned long *stored);
 
 typedef struct sl_preader {
     const unsigned char *b;

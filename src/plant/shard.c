@@ -6,7 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <zlib.h>
 
 #include "io/atomic.h"
 
@@ -61,10 +60,7 @@ sl_status sl_shard_write_manifest(const char *dir, unsigned k, unsigned n, const
     sl_pbuf_u64(&w, n);
     sl_pbuf_u64(&w, body.n);
     sl_pbuf_bytes(&w, body.b, body.n);
-    uLong c = crc32(crc32(0L, Z_NULL, 0), w.b, (uInt)w.n);
-    unsigned char le[4] = {(unsigned char)c, (unsigned char)(c >> 8), (unsigned char)(c >> 16),
-                           (unsigned char)(c >> 24)};
-    sl_pbuf_bytes(&w, le, 4);
+    sl_pbuf_crc32(&w);
     sl_status st = SL_OK;
     if (w.oom || body.oom) {
         st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
@@ -174,9 +170,7 @@ sl_status sl_shard_read(const char *dir, sl_shard *sh, sl_error *err)
         s = bad(err, path, "no " MAGIC " header");
         goto done;
     }
-    uLong want = crc32(crc32(0L, Z_NULL, 0), b, (uInt)(n - 4));
-    uLong have = (uLong)b[n - 4] | (uLong)b[n - 3] << 8 | (uLong)b[n - 2] << 16 |
-                 (uLong)b[n - 1] << 24;
+    unsigned long have, want = sl_pbuf_crc32_check(b, n, &have);
     if (want != have) {
         s = bad(err, path, "checksum mismatch");
         goto done;
