@@ -16,6 +16,7 @@
 #include "oracle.h"
 #include "method/design.h"
 #include "report/report.h"
+#include "report/sheets.h"
 
 #define N_MU 16
 #define N_SETS 2
@@ -198,8 +199,37 @@ static void test_lookup_libreoffice(void)
     sl_design_free(d[1]);
 }
 
+/* The grid rows around mu that the Lookup's cached step values use must be
+ * the ones its formulas find: MATCH(mu, grid, 1), the last grid mu at or
+ * below mu (counted here directly), and the row after it (the last row at
+ * the grid's end); row 0 when the inputs are not ok. */
+static void test_lookup_bracket(void)
+{
+    sl_design *d = make_design(1.0, 0.3);
+    CHECK(d != NULL, "design");
+    if (!d)
+        return;
+    for (size_t k = 0; k < d->n; k++) {
+        const double probe[] = {d->rows[k].mu, k + 1 < d->n ? 0.5 * (d->rows[k].mu +
+                                d->rows[k + 1].mu) : d->rows[k].mu};
+        for (int p = 0; p < 2; p++) {
+            size_t at_or_below = 0;
+            for (size_t j = 0; j < d->n; j++)
+                at_or_below += d->rows[j].mu <= probe[p];
+            size_t k1, k0 = sl_rpt_lookup_bracket(d, 1, probe[p], &k1);
+            CHECK(k0 == at_or_below - 1, "mu %g: row %zu, MATCH gives %zu", probe[p], k0,
+                  at_or_below - 1);
+            CHECK(k1 == (k0 + 1 < d->n ? k0 + 1 : k0), "mu %g: next row %zu", probe[p], k1);
+        }
+    }
+    size_t k1, k0 = sl_rpt_lookup_bracket(d, 0, d->rows[d->n - 1].mu, &k1);
+    CHECK(k0 == 0 && k1 == 1, "inputs not ok: rows %zu, %zu", k0, k1);
+    sl_design_free(d);
+}
+
 int main(void)
 {
+    RUN(test_lookup_bracket);
     RUN(test_lookup_libreoffice);
     return HARNESS_END("lookup");
 }

@@ -18,6 +18,15 @@ void sl_rpt_lookup_formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, con
         worksheet_write_formula_num(ws, row, 1, f, fmt, v);
 }
 
+size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1)
+{
+    size_t k0 = 0;
+    while (ok && k0 + 1 < d->n && d->rows[k0 + 1].mu <= mu)
+        k0++;
+    *k1 = k0 + 1 < d->n ? k0 + 1 : k0;
+    return k0;
+}
+
 void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
                           const sl_rpt_lookup_cells *c, double res, int ok)
 {

@@ -385,10 +385,7 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
                         : !isfinite(mu0) ? "type mu"
                         : (mu0 < mu_min || mu0 > mu_max) ? "mu outside the table" : "ok";
     int ok = !strcmp(check, "ok");
-    size_t k0 = 0;
-    while (ok && k0 + 1 < n && d0->rows[k0 + 1].mu <= mu0)
-        k0++;
-    size_t k1 = k0 + 1 < n ? k0 + 1 : k0;
+    size_t k1, k0 = sl_rpt_lookup_bracket(d0, ok, mu0, &k1);
     const sl_design *ds = ok ? b->rows[fi].design : d0;
     double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(ds, mu0) : NAN;
 

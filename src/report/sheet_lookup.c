@@ -125,11 +125,7 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     else if (mu0 < mu_min || mu0 > mu_max)
         check = "mu outside the table";
     int ok = !strcmp(check, "ok");
-    size_t k0 = 0;
-    if (ok)
-        while (k0 + 1 < n && d0->rows[k0 + 1].mu <= mu0)
-            k0++;
-    size_t k1 = k0 + 1 < n ? k0 + 1 : k0;
+    size_t k1, k0 = sl_rpt_lookup_bracket(d0, ok, mu0, &k1);
     const sl_design *dsel = ok ? r->floors[fi].design : d0;
     double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(dsel, mu0) : NAN;
     const int B_CHECK = LK_CHECK + 1, B_COL = LK_COL + 1, B_ROW = LK_ROW + 1;

@@ -109,6 +109,10 @@ typedef struct sl_rpt_lookup_cells {
  * when given); zero_cache: 0 (tests/test_lookup.c, tests/test_plant.c). */
 void sl_rpt_lookup_formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, const char *f,
                            double v, const char *s, lxw_format *fmt);
+/* The grid rows of d around mu, as the formulas find them (MATCH(mu,
+ * grid,1) and the next): returns k0, the last row whose mu is at or below
+ * mu (0 when !ok), and sets *k1 to the row after it (k0 at the grid's end). */
+size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1);
 /* "Required clearance, mm" and its interpolation formula (res: its value). */
 void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
                           const sl_rpt_lookup_cells *c, double res, int ok);
