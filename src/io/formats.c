@@ -35,17 +35,16 @@ static sl_status lines_read(const char *path, lines *t, sl_error *err)
     sl_status st = sl_text_load(path, &to, &tx, err);
     if (st != SL_OK)
         return st;
-    t->buf = tx.mem;
-    size_t sz = tx.len + (size_t)(tx.buf - tx.mem);
+    t->buf = tx.mem; /* freed by lines_free; the lines start after the byte-order mark */
     size_t nl = 1;
-    for (size_t i = 0; i < sz; i++)
-        nl += t->buf[i] == '\n';
+    for (size_t i = 0; i < tx.len; i++)
+        nl += tx.buf[i] == '\n';
     t->l = malloc(nl * sizeof *t->l);
     if (!t->l) {
         lines_free(t);
         return sl_error_set(err, SL_ENOMEM, path, 0, "out of memory reading the file");
     }
-    char *p = t->buf;
+    char *p = tx.mem + (tx.buf - tx.mem);
     while (*p) {
         char *nlp = strchr(p, '\n');
         t->l[t->n++] = p;

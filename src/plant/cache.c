@@ -2,6 +2,7 @@
 #include "plant/cache.h"
 
 #include <dirent.h>
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -31,6 +32,23 @@ static int pid_alive(long pid)
 
 static int lock_stale(const char *path);
 
+/* After ".tmp-HOST-" or ".lock.stale-HOST-": this host's process id, then
+ * (temporary entries, tmp = 1) "-" and mkstemp's 6 characters, or (locks put
+ * aside) the end of the name. 1 when it is exactly that and the process is
+ * gone. The strict form keeps another host whose name only starts with ours
+ * ("node-b" for "node") from being read as a dead process of this one. */
+static int owner_gone(const char *rest, int tmp)
+{
+    char *end;
+    errno = 0;
+    long pid = strtol(rest, &end, 10);
+    if (end == rest || !isdigit((unsigned char)*rest) || errno || pid <= 0)
+        return 0;
+    if (tmp ? (end[0] != '-' || strlen(end + 1) != 6) : *end != '\0')
+        return 0;
+    return !pid_alive(pid);
+}
+
 sl_status sl_cache_open(const char *dir, sl_error *err)
 {
     if (mkdir(dir, 0777) != 0 && errno != EEXIST)
@@ -55,7 +73,7 @@ sl_status sl_cache_open(const char *dir, sl_error *err)
         const char *a = strstr(e->d_name, aside);
         snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
         if (t || a) { /* a temporary entry, or a lock put aside, of a dead process */
-            if (!pid_alive(strtol((t ? t + strlen(prefix) : a + strlen(aside)), NULL, 10)))
+            if (owner_gone(t ? t + strlen(prefix) : a + strlen(aside), t != NULL))
                 unlink(path);
         } else if (len > 5 && !strcmp(e->d_name + len - 5, ".lock") && lock_stale(path)) {
             /* the lock of a run killed after its entry was written: broken as sl_cache_lock does */

@@ -177,6 +177,15 @@ sed -e 's/^name = .*/name = Renamed floor/' -e 's/^description = .*/description 
     -e 's/^elevation_m = .*/elevation_m = 99/' floors/02-el12.ini > "$D/plant3/other/x.ini"
 t_run run "$D/plant3/other" -o "$D/out3" $OPTS --cache "$D/out1/.seislide-cache"; t_expect_rc renamed 0
 t_expect_err renamed-reused "reused 1 of 1 floors"
+# opening a cache removes the temporary entries of this host's dead processes, never
+# those of another host whose name starts with this one's ("node-b" beside "node")
+H=$(hostname)
+mkdir -p "$D/hostcache"
+: > "$D/hostcache/.0123456789abcdef.tmp-$H-b-1-AbCdEf"   # host "$H-b", its pid 1
+: > "$D/hostcache/.0123456789abcdef.tmp-$H-999999-AbCdEf" # this host, no such process
+t_run run "$D/plant3/other" -o "$D/out3h" $OPTS -q --cache "$D/hostcache"; t_expect_rc hostcache 0
+[ -e "$D/hostcache/.0123456789abcdef.tmp-$H-b-1-AbCdEf" ] && t_pass || t_fail "another host's temporary entry removed"
+[ ! -e "$D/hostcache/.0123456789abcdef.tmp-$H-999999-AbCdEf" ] && t_pass || t_fail "a dead process's temporary entry kept"
 
 # one number of one floor changed: exactly that floor recomputed
 cp -r "$D/plant" "$D/plant2"

@@ -32,20 +32,34 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
         }                                                                                \
     } while (0)
 
+static char fuzz_dir[256], fuzz_last[512];
+
+/* Remove the last file written and the folder (at exit). */
+static void fuzz_cleanup(void)
+{
+    if (fuzz_last[0])
+        remove(fuzz_last);
+    if (fuzz_dir[0])
+        rmdir(fuzz_dir);
+}
+
 /* Write data to DIR/name, DIR a folder made once per process; returns the
  * path (static buffer) or NULL when the file cannot be written. */
 static inline const char *fuzz_write(const char *name, const uint8_t *data, size_t size)
 {
-    static char dir[256], path[512];
+    char *dir = fuzz_dir, *path = fuzz_last;
     if (!dir[0]) {
         const char *t = getenv("TMPDIR");
-        snprintf(dir, sizeof dir, "%s/seislide-fuzz-XXXXXX", t && *t ? t : "/tmp");
+        snprintf(dir, sizeof fuzz_dir, "%s/seislide-fuzz-XXXXXX", t && *t ? t : "/tmp");
         if (!mkdtemp(dir)) {
             dir[0] = '\0';
             return NULL;
         }
+        atexit(fuzz_cleanup);
     }
-    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (path[0] && strcmp(strrchr(path, '/') + 1, name) != 0)
+        remove(path); /* one file at a time in the folder, so that it can be removed at exit */
+    snprintf(path, sizeof fuzz_last, "%s/%s", dir, name);
     FILE *f = fopen(path, "wb");
     if (!f)
         return NULL;
