@@ -1,5 +1,5 @@
 #!/bin/bash
-# bench-plant.sh - `make bench-plant` (docs/performance.md, "Plant runs"):
+# bench-plant.sh - `make bench-plant` (docs/plant.md, "Speed: make bench-plant"):
 # N floors of tools/benchplant.c's building model run as one plant at 1 and
 # 2 OpenMP threads and as 2 shards of 1 thread each (GNU parallel) plus
 # merge; prints a markdown table: wall time, CPU time, sets, CPU per set,

@@ -1,6 +1,6 @@
 /*
- * benchplant.c - the plant of `make bench-plant` (docs/performance.md,
- * "Plant runs"): N floor files from a simple building model.
+ * benchplant.c - the plant of `make bench-plant` (docs/plant.md,
+ * "Speed: make bench-plant"): N floor files from a simple building model.
  *
  *   build/tools/benchplant GROUND_DIR N OUT
  *
