@@ -45,7 +45,7 @@ int cmd_slide(int argc, char **argv)
     if (a.csv)
         slide_print_csv(res, a.mu.n);
     else
-        slide_print_table(&set, a.path, a.so.up_ratio, sl_set_pga_h(&set),
+        slide_print_table(&set, a.path, &a.so, sl_set_pga_h(&set),
                           sl_slide_mu_threshold(&set, &a.so), res, a.mu.n);
     rc = CLI_EXIT_OK;
 done:

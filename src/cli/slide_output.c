@@ -70,15 +70,31 @@ void slide_print_csv(const sl_slide_result *res, size_t n)
     }
 }
 
-void slide_print_table(const sl_set *set, const char *const path[3], double up_ratio,
+/* What the table was computed with: the engine (exact in 1-D), or a reference model. */
+static const char *model_words(const char *const path[3], const sl_slide_opts *so)
+{
+    const int two_d = path[1] != NULL;
+    switch (so->model) {
+    case SL_MODEL_SMOOTH:
+        return two_d ? "2-D coupled, smoothed hysteretic reference model"
+                     : "1-D, smoothed hysteretic reference model";
+    case SL_MODEL_PLASTIC:
+        return two_d ? "2-D coupled, elastic-plastic reference model"
+                     : "1-D, elastic-plastic reference model";
+    case SL_MODEL_EXACT:
+    default:
+        return two_d ? "2-D coupled" : (so->up_ratio != 1.0 ? "1-D asymmetric" : "1-D exact");
+    }
+}
+
+void slide_print_table(const sl_set *set, const char *const path[3], const sl_slide_opts *so,
                        double pga_ms2, double mu_thr, const sl_slide_result *res, size_t n)
 {
     printf("# seislide slide: %s%s%s%s%s, %zu samples at dt = %g s\n", path[0],
            path[1] ? " + " : "", path[1] ? path[1] : "", path[2] ? " + V " : "",
            path[2] ? path[2] : "", set->h1->n, set->h1->dt_s);
     printf("# %s, peak horizontal acceleration %.4f g, no sliding for mu >= %.4f\n",
-           path[1] ? "2-D coupled" : (up_ratio != 1.0 ? "1-D asymmetric" : "1-D exact"),
-           pga_ms2 / SL_G, mu_thr);
+           model_words(path, so), pga_ms2 / SL_G, mu_thr);
     printf("%8s %12s %12s %10s %9s %8s  %s\n", "mu", "peak_mm", "residual_mm", "t_peak_s",
            "path_mm", "episodes", "status");
     for (size_t k = 0; k < n; k++) {

@@ -21,7 +21,7 @@ void slide_print_csv(const sl_slide_result *res, size_t n);
 /* The aligned table, after two comment lines naming the input (path[],
  * the set's peak horizontal acceleration pga_ms2 and the no-sliding
  * threshold mu_thr). */
-void slide_print_table(const sl_set *set, const char *const path[3], double up_ratio,
+void slide_print_table(const sl_set *set, const char *const path[3], const sl_slide_opts *so,
                        double pga_ms2, double mu_thr, const sl_slide_result *res, size_t n);
 
 #endif

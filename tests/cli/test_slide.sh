@@ -41,6 +41,11 @@ t_run slide --h1 "$D/pulse.txt" --units g --mu 0.1 --model smooth --solver rkf45
 t_run slide --h1 "$D/pulse.txt" --units g --mu 0.1 --model plastic --csv; t_expect_rc plastic 0
 pp=$(awk -F, 'NR == 2 { print $2 }' "$T_OUT")
 awk -v a="$p1" -v b="$pp" 'BEGIN { r = b / a - 1; if (r < 0) r = -r; exit !(r > 1e-9 && r < 0.05) }' && t_pass || t_fail "plastic $pp vs exact $p1"
+# the table's header names the model that computed it (not "1-D exact" for a reference model)
+t_run slide --h1 "$D/pulse.txt" --units g --mu 0.1 --model smooth; t_expect_rc smooth-table 0
+t_expect_out smooth-header "^# 1-D, smoothed hysteretic reference model"
+t_run slide --h1 "$D/pulse.txt" --units g --mu 0.1 --model plastic; t_expect_out plastic-header "^# 1-D, elastic-plastic reference model"
+t_run slide --h1 "$D/pulse.txt" --units g --mu 0.1; t_expect_out exact-header "^# 1-D exact,"
 
 # history: one mu only; written atomically; header names units
 t_run slide --h1 "$D/pulse.txt" --units g --mu 0.1,0.2 --history "$D/h.csv"; t_expect_rc history-two-mu 2
