@@ -41,8 +41,14 @@ static sl_status list_subdirs(const char *dir, char **sub, size_t *n, size_t max
             st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
     }
     closedir(d);
+    if (st) { /* nothing half-listed goes back to the caller */
+        for (size_t i = 0; i < *n; i++)
+            free(sub[i]);
+        *n = 0;
+        return st;
+    }
     qsort(sub, *n, sizeof *sub, cmp_str);
-    return st;
+    return SL_OK;
 }
 
 /* Does the folder hold floor files of its own (sl_floor_list finds some)? */

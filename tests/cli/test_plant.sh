@@ -187,6 +187,12 @@ t_run run "$D/plant3/other" -o "$D/out3h" $OPTS -q --cache "$D/hostcache"; t_exp
 [ -e "$D/hostcache/.0123456789abcdef.tmp-$H-b-1-AbCdEf" ] && t_pass || t_fail "another host's temporary entry removed"
 [ ! -e "$D/hostcache/.0123456789abcdef.tmp-$H-999999-AbCdEf" ] && t_pass || t_fail "a dead process's temporary entry kept"
 
+# more buildings than a plant may hold: refused, naming the folder and the limit, nothing written
+mkdir -p "$D/many"
+i=0; while [ $i -le 256 ]; do mkdir -p "$D/many/b$i"; i=$((i + 1)); done
+t_run run "$D/many" -o "$D/out-many" $OPTS -q; t_expect_rc too-many-buildings 1
+t_expect_err too-many-msg "many: more than 256 buildings"
+[ ! -e "$D/out-many" ] && t_pass || t_fail "too many buildings: output written"
 # one number of one floor changed: exactly that floor recomputed
 cp -r "$D/plant" "$D/plant2"
 sed -i '0,/0.0226/s//0.0227/' "$D/plant2/bldB/04-roof36.ini"
