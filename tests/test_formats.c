@@ -241,6 +241,17 @@ static void test_bad_input(void)
     CHECK(sl_channels_read(p, &c, &err) == SL_EPARSE && err.line == 30 &&
               strstr(err.msg, "x") != NULL,
           "bad value: %ld %s", err.line, err.msg);
+    /* the same file behind a UTF-8 byte-order mark: read the same, the same line named */
+    size_t nb = strlen(buf);
+    char *bom = malloc(nb + 4);
+    memcpy(bom, "\xef\xbb\xbf", 3);
+    memcpy(bom + 3, buf, nb + 1);
+    p = harness_tmpfile("bom.V2A", bom);
+    sl_error_clear(&err);
+    CHECK(sl_channels_read(p, &c, &err) == SL_EPARSE && err.line == 30 &&
+              strstr(err.msg, "x") != NULL,
+          "bad value behind a BOM: %ld %s", err.line, err.msg);
+    free(bom);
     l30[5] = ' ';
     /* unit changed to cm/s/s */
     char *u = strstr(buf, "mm/s/s");
