@@ -284,12 +284,12 @@ static void test_plant_lookup_libreoffice(void)
         return;
     const sl_plant_book_row rows[4] = {
         {"Aux", "ground", "Aux ground", 0, 0.3 * SL_G, 2, "fixed", d[0], "p/Aux/ground.ini",
-         0x1a2b3c4dUL, 1001},
+         0x1a2b3c4dUL, 1001, 0},
         {"Aux", "el12", "Aux el. 12 m", 12, 0.39 * SL_G, 2, "fixed", d[1], "p/Aux/el12.ini",
-         0xdeadbeefUL, 1002},
+         0xdeadbeefUL, 1002, 0},
         {"Reactor", "ground", "Reactor ground", 0, 0.3 * SL_G, 2, "fixed", d[2],
-         "p/Reactor/ground.ini", 0x0000beefUL, 1003},
-        {"Reactor", "roof", "Reactor roof", 36, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0}};
+         "p/Reactor/ground.ini", 0x0000beefUL, 1003, 0},
+        {"Reactor", "roof", "Reactor roof", 36, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0, 0}};
     /* plant.csv: the building CSVs' trace lines, # program: first, a CRC
      * line per floor named building/id (a floor without a path: "-") */
     {

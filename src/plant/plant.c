@@ -284,7 +284,8 @@ sl_status sl_plant_deliver(const sl_plant *p, const char *dir, const sl_deliver_
                                       .zpa_h_ms2 = f->an->zpa_h_ms2, .n_sets = f->an->n_sets,
                                       .stop = sl_analysis_stop_name(f->an->stop),
                                       .design = f->an->design, .path = f->path,
-                                      .crc32 = f->crc32, .size_bytes = f->size_bytes};
+                                      .crc32 = f->crc32, .size_bytes = f->size_bytes,
+                                      .n_failed_motions = f->an->n_failed_motions};
     }
     char seed[32]; /* as the building CSVs record it (deliver.c) */
     snprintf(seed, sizeof seed, "%llu", (unsigned long long)o->seed);

@@ -34,6 +34,15 @@ const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n)
     return buf;
 }
 
+/* The motion checks of a row as text: "passed" or "FAILED n of m". */
+static const char *checks_text(const sl_plant_book_row *r, char *buf, size_t n)
+{
+    if (!r->n_failed_motions)
+        return "passed";
+    snprintf(buf, n, "FAILED %zu of %zu", r->n_failed_motions, 3 * r->n_sets);
+    return buf;
+}
+
 /* The report the shared writers (csv.c, layout.c) read: the run's record
  * and title block, and one "floor" per row named BUILDING/ID for the
  * floor_file_crc32 lines (ids[i], SL_PLANT_ID_MAX each, or NULL). */
@@ -88,6 +97,16 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
         return err ? err->code : SL_EIO;
     }
     FILE *f = sl_atomic_file(a);
+    char warn[600];
+    for (size_t i = 0; i < b->n; i++) /* failed checks: the first lines, as in a building CSV */
+        if (b->rows[i].n_failed_motions) {
+            snprintf(warn, sizeof warn, "CHECKS FAILED: %zu of %zu motion components of floor "
+                     "%s/%s failed their SRP 3.7.1 checks; its clearances were written only "
+                     "because of --accept-failed-checks (%s/motion_quality.csv says which)",
+                     b->rows[i].n_failed_motions, 3 * b->rows[i].n_sets, b->rows[i].building,
+                     b->rows[i].id, b->rows[i].building);
+            sl_rpt_csv_comment(f, "WARNING", warn);
+        }
     sl_rpt_csv_head(f, &rep, "the plant index: one row per floor of every building; the "
                     "required clearance at six friction values (linear interpolation in mu on "
                     "each floor's grid, empty outside it)");
@@ -97,7 +116,7 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
     fputs("building,floor,floor_name,elevation_m,zpa_g,sets,convergence", f);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         fprintf(f, ",clearance_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
-    fputs(",governing\r\n", f);
+    fputs(",governing,motion_checks\r\n", f);
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
         sl_rpt_csv_field(f, r->building);
@@ -115,7 +134,9 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
             if (isfinite(c))
                 fprintf(f, "%.3f", 1e3 * c);
         }
-        fprintf(f, ",%s\r\n", sl_plant_book_governing(r->design, gov, sizeof gov));
+        char chk[64];
+        fprintf(f, ",%s,%s\r\n", sl_plant_book_governing(r->design, gov, sizeof gov),
+                checks_text(r, chk, sizeof chk));
     }
     return sl_atomic_commit(a, err);
 }
@@ -133,7 +154,7 @@ enum { LK_BUILDING = SL_RPT_TB_ROWS + 1, LK_FLOOR, LK_MU, LK_RANGE, LK_RESULT, L
 /* Plant sheet: the title, a note, two header rows (the clearance columns
  * under one heading), one row per floor. */
 enum { PL_NOTE = 1, PL_HEAD = 3, PL_SUBHEAD, PL_FIRST, PL_CLEAR = 7,
-       PL_GOV = PL_CLEAR + SL_PLANT_BOOK_NMU, PL_COLS };
+       PL_GOV = PL_CLEAR + SL_PLANT_BOOK_NMU, PL_CHECKS, PL_COLS };
 
 /* Data: A building, B floor, C building|floor, D.. clearance on the grid
  * (row 1: the grid); the building list in the column after the grid.
@@ -231,18 +252,20 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         width[PL_CLEAR + k] = 6;
     width[PL_GOV] = 13;
+    width[PL_CHECKS] = 14;
     double w_all = 0;
     for (lxw_col_t c = 0; c < PL_COLS; c++) {
         worksheet_set_column(ws, c, c, width[c], NULL);
         w_all += width[c];
     }
-    char h[64], gov[64], note[600];
+    char h[64], gov[64], note[900];
     worksheet_write_string(ws, 0, 0, "Plant index: the required clearance of every floor",
                            F->title);
     snprintf(note, sizeof note, "One row per floor of every building. Clearance in mm at six "
              "friction values, by linear interpolation in mu on the floor's grid (empty outside "
              "it); Governing: the design curve that gives it (clearance policy %s), \"(capped)\" "
-             "where the cap governs. Each building's workbook (<building>/"
+             "where the cap governs; Motion checks: FAILED where the floor's motions failed "
+             "their SRP 3.7.1 checks and were accepted with --accept-failed-checks. Each building's workbook (<building>/"
              "seislide-clearance.xlsx) shows every floor's curves, standard errors and flags; "
              "the Lookup sheet interpolates at any mu.",
              sl_clearance_policy_name(b->rows[0].design->policy));
@@ -257,6 +280,8 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
         need = fmax(need, sl_rpt_text_height(head[c], width[c], 1));
     }
     worksheet_merge_range(ws, PL_HEAD, PL_GOV, PL_SUBHEAD, PL_GOV, "Governing", F->header);
+    worksheet_merge_range(ws, PL_HEAD, PL_CHECKS, PL_SUBHEAD, PL_CHECKS, "Motion checks",
+                          F->header);
     worksheet_merge_range(ws, PL_HEAD, PL_CLEAR, PL_HEAD, PL_GOV - 1,
                           "Required clearance, mm, at mu =", F->header);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {
@@ -284,10 +309,14 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
                                                                          SL_PLANT_BOOK_MU[k]),
                                 mm);
         worksheet_write_string(ws, row, PL_GOV, gov, F->indent);
+        char chk_buf[64];
+        const char *chk = checks_text(r, chk_buf, sizeof chk_buf);
+        worksheet_write_string(ws, row, PL_CHECKS, chk, r->n_failed_motions ? F->warn : F->indent);
         double rh = fmax(sl_rpt_text_height(r->building, width[0], 0),
                          sl_rpt_text_height(r->id, width[1], 0));
         rh = fmax(rh, sl_rpt_text_height(r->name, width[2], 0));
         rh = fmax(rh, sl_rpt_text_height(gov, width[PL_GOV] - 1, 0)); /* indented */
+        rh = fmax(rh, sl_rpt_text_height(chk, width[PL_CHECKS] - 1, r->n_failed_motions > 0));
         worksheet_set_row(ws, row, rh, NULL);
     }
     worksheet_freeze_panes(ws, PL_FIRST, 2);

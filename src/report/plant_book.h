@@ -8,9 +8,11 @@
  * the grid) and the governing method: which design curve gives the
  * clearance at the grid rows where it is not zero ("NLTHA", "ASCE", "NLTHA
  * and ASCE" under the envelope policy), " (capped)" when the cap governs at
- * any of them.
+ * any of them; the motion checks ("passed", or "FAILED n of m" motion
+ * components: a floor accepted with --accept-failed-checks).
  *
- * plant.csv starts with the comment lines of every building CSV (report.h,
+ * plant.csv starts with a "# WARNING: CHECKS FAILED: ..." line per floor whose
+ * motions failed their checks, then the comment lines of every building CSV (report.h,
  * sl_report_write_csv): program, content, command, created, seed, a
  * "# floor_file_crc32: CRC BUILDING/ID (PATH, N bytes)" line per floor, the
  * title block, then the units; one writer for both (csv.c).
@@ -51,6 +53,8 @@ typedef struct sl_plant_book_row {
     const char *path;         /* the floor file, for the record (NULL: "-") */
     unsigned long crc32;      /* of the file's bytes */
     long size_bytes;
+    size_t n_failed_motions;  /* motion components that failed their SRP 3.7.1 checks, of
+                                 3 n_sets (kept only by --accept-failed-checks) */
 } sl_plant_book_row;
 
 typedef struct sl_plant_book {

@@ -149,7 +149,7 @@ for b in bldA bldB; do
     res=$(grep -v '^#' "$fl" | awk -F, -v row="$row" '
       NR == 1 { for (i = 1; i <= NF; i++) if ($i == "clearance_mm") c = i; next }
       { v[$1 + 0] = $c }
-      END { nr = split(row, r, ","); n = split("0.05 0.1 0.2 0.3 0.5", m, " "); col[1] = nr - 6; col[2] = nr - 5; col[3] = nr - 4; col[4] = nr - 3; col[5] = nr - 1
+      END { nr = split(row, r, ","); n = split("0.05 0.1 0.2 0.3 0.5", m, " "); col[1] = nr - 7; col[2] = nr - 6; col[3] = nr - 5; col[4] = nr - 4; col[5] = nr - 2
             bad = 0; for (k = 1; k <= n; k++) { d = r[col[k]] - v[m[k] + 0]; if (d < 0) d = -d; if (d > 0.0015 || r[col[k]] == "") bad = 1 }
             print bad ? "bad" : "ok" }')
     [ "$res" = ok ] && t_pass || t_fail "plant.csv row of $b/$id disagrees with $fl: $row"
