@@ -1,10 +1,9 @@
 /* atomic.c - temporary file + rename, fresh folder + swap; see atomic.h. */
 #define _GNU_SOURCE /* renameat2 (Linux, glibc >= 2.28) */
 #include "io/atomic.h"
+#include "io/owner.h"
 
-#include <ctype.h>
 #include <dirent.h>
-#include <signal.h>
 #include <stdio.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -31,20 +30,6 @@ static mode_t current_umask(void)
     return m;
 }
 
-/* This host's name for temporary names: letters, digits, '.', '_' and '-'
- * kept, anything else '_'; at most 32 characters, so that a temporary name
- * stays well below NAME_MAX. */
-static void host_name(char *buf, size_t n)
-{
-    char h[256] = "";
-    if (gethostname(h, sizeof h - 1) != 0 || !h[0])
-        snprintf(h, sizeof h, "localhost");
-    size_t k = 0;
-    for (const char *p = h; *p && k + 1 < n && k < 32; p++)
-        buf[k++] = (isalnum((unsigned char)*p) || *p == '.' || *p == '_' || *p == '-') ? *p : '_';
-    buf[k] = '\0';
-}
-
 /* "DIR/.BASE.tmp-PID@HOST-XXXXXX" for path "DIR/BASE" (malloc'd): the owner
  * is in the name, so that a later run can tell a folder left by a killed
  * process from a live run's. A trailing '/' of a folder path is ignored. */
@@ -54,7 +39,7 @@ static char *hidden_sibling(const char *path)
     while (n > 1 && path[n - 1] == '/')
         n--;
     char host[80];
-    host_name(host, sizeof host);
+    sl_owner_host(host, sizeof host);
     size_t cap = n + strlen(host) + 64;
     char *t = malloc(cap);
     if (!t)
@@ -264,14 +249,12 @@ static sibling_owner owner_of(const char *rest, long *pid, char *owner, size_t n
         strlen(dash + 1) != 6 || *pid <= 0)
         return OWNER_UNKNOWN;
     snprintf(owner, nowner, "%.*s", (int)(dash - at - 1), at + 1);
-    host_name(host, sizeof host);
+    sl_owner_host(host, sizeof host);
     if (strcmp(owner, host) != 0)
         return OWNER_OTHER_HOST;
     if (*pid == (long)getpid())
         return OWNER_SELF;
-    if (kill((pid_t)*pid, 0) == 0 || errno != ESRCH)
-        return OWNER_LIVE;
-    return OWNER_GONE;
+    return sl_owner_pid_gone(*pid) ? OWNER_GONE : OWNER_LIVE;
 }
 
 /* The fresh folders of earlier runs into d->path, in its parent folder:

@@ -1,11 +1,11 @@
 /* cache.c - a folder of self-checking floor results; see cache.h. */
 #include "plant/cache.h"
+#include "io/owner.h"
 
 #include <dirent.h>
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,21 +14,6 @@
 #include <unistd.h>
 
 #define MAGIC "SLENTRY1"
-
-static void host_name(char *buf, size_t n)
-{
-    if (gethostname(buf, n) != 0)
-        snprintf(buf, n, "unknown");
-    buf[n - 1] = '\0';
-    for (char *p = buf; *p; p++) /* one word: the lock file and temp names hold it */
-        if (*p == ' ' || *p == '/' || *p == '\n')
-            *p = '_';
-}
-
-static int pid_alive(long pid)
-{
-    return pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM);
-}
 
 static int lock_stale(const char *path);
 
@@ -46,7 +31,7 @@ static int owner_gone(const char *rest, int tmp)
         return 0;
     if (tmp ? (end[0] != '-' || strlen(end + 1) != 6) : *end != '\0')
         return 0;
-    return !pid_alive(pid);
+    return sl_owner_pid_gone(pid);
 }
 
 sl_status sl_cache_open(const char *dir, sl_error *err)
@@ -63,7 +48,7 @@ sl_status sl_cache_open(const char *dir, sl_error *err)
         return sl_error_set(err, SL_EIO, dir, 0, "the cache folder is not writable");
     }
     char host[128], prefix[160], aside[160], path[4400];
-    host_name(host, sizeof host);
+    sl_owner_host(host, sizeof host);
     snprintf(prefix, sizeof prefix, ".tmp-%s-", host);
     snprintf(aside, sizeof aside, ".lock.stale-%s-", host);
     struct dirent *e;
@@ -212,7 +197,7 @@ sl_status sl_cache_write(const char *dir, const sl_entry_key *k, const sl_analys
     sl_pbuf_bytes(&w, p.b, p.n);
     sl_pbuf_crc32(&w);
     char host[128], tmp[4400], path[4400];
-    host_name(host, sizeof host);
+    sl_owner_host(host, sizeof host);
     snprintf(path, sizeof path, "%s/%s" SL_CACHE_SUFFIX, dir, k->hash);
     snprintf(tmp, sizeof tmp, "%s/.%s.tmp-%s-%ld-XXXXXX", dir, k->hash, host, (long)getpid());
     sl_status st = SL_OK;
@@ -268,18 +253,18 @@ static int lock_stale(const char *path)
     fclose(f);
     buf[k] = '\0';
     long pid = 0;
-    host_name(me, sizeof me);
+    sl_owner_host(me, sizeof me);
     if (sscanf(buf, "%127s %ld", host, &pid) != 2)
         /* being written this instant, or garbage: stale only when old */
         return difftime(time(NULL), st.st_mtime) > 10;
-    return !strcmp(host, me) && !pid_alive(pid);
+    return !strcmp(host, me) && sl_owner_pid_gone(pid);
 }
 
 sl_cache_lock_result sl_cache_lock(const char *dir, const char *hash, sl_error *err)
 {
     char path[4400], aside[4600], host[128], line[256];
     lock_path(path, sizeof path, dir, hash);
-    host_name(host, sizeof host);
+    sl_owner_host(host, sizeof host);
     for (int attempt = 0; attempt < 2; attempt++) {
         int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0666);
         if (fd >= 0) {
