@@ -19,6 +19,7 @@
 #define SL_SYNTH_INTERNAL_H
 
 #include <fftw3.h>
+#include <math.h>
 
 #include "synth/synth.h"
 
@@ -75,6 +76,8 @@ struct sl_synth {
      * sl_synth_set_*, its plans remade when the range or damping differ). */
     sl_synth_motion **pool;
     size_t npool, pool_cap;
+    double *bin_fade;    /* nbin: sl_synth_edge_fade of every bin for the whole
+                          * grid checked (the common case; no log2 per bin) */
 };
 
 struct sl_synth_motion {
@@ -123,6 +126,15 @@ typedef struct sl_synth_spec_check {
     double min_ratio, f_min, max_ratio, f_max;
     size_t run, n_below;
 } sl_synth_spec_check;
+
+/* The fade of the correction outside the checked range [f_lo, f_hi]: 1
+ * inside, falling linearly in log2 f to 0 at SL_SYNTH_EDGE_OCTAVES outside
+ * (sl_synth_iterate: ln r(f_k) is multiplied by it). */
+static inline double sl_synth_edge_fade(double f, double f_lo, double f_hi)
+{
+    double oct = f < f_lo ? log2(f_lo / f) : f > f_hi ? log2(f / f_hi) : 0.0;
+    return oct >= SL_SYNTH_EDGE_OCTAVES ? 0.0 : 1.0 - oct / SL_SYNTH_EDGE_OCTAVES;
+}
 
 /* ---- Steps shared by the stage files (library-internal) ---- */
 
