@@ -208,6 +208,42 @@ static void test_blocks_same_bits(void)
     free(a);
 }
 
+/* The AVX2 and the baseline instances of the oscillator bank give the same
+ * bits (PSA, SD, absolute SA; every block width; sub-steps 1 to 9; free
+ * vibration) on this data and on a 20 s motion at 200/s over the default
+ * grid. Skipped when the CPU runs the baseline only. */
+static void test_kernel_instances_same_bits(void)
+{
+    if (!sl_spectrum_kernel_avx2()) {
+        SKIP("the AVX2 instance does not run on this CPU");
+    }
+    size_t n = 4001;
+    double *a = malloc(n * sizeof *a);
+    for (size_t i = 0; i < n; i++)
+        a[i] = sin(0.031 * (double)(i * i % 1009)) + 0.3 * cos(0.7 * (double)i);
+    size_t nf;
+    double *f = sl_spectrum_grid(0.1, 50, 100, &nf);
+    double *out[2][3];
+    for (int k = 0; k < 2; k++)
+        for (int q = 0; q < 3; q++)
+            out[k][q] = malloc(nf * sizeof(double));
+    for (int k = 0; k < 2; k++) {
+        sl_spectrum_kernel_baseline(k);
+        CHECK(sl_spectrum_kernel_avx2() == !k, "instance %d", k);
+        CHECK(sl_spectrum_compute(a, n, 0.005, f, nf, 0.05, out[k][0], out[k][1], out[k][2],
+                                  NULL) == SL_OK, "ok");
+    }
+    sl_spectrum_kernel_baseline(0);
+    for (int q = 0; q < 3; q++)
+        CHECK(!memcmp(out[0][q], out[1][q], nf * sizeof(double)),
+              "output %d differs between the AVX2 and the baseline instance", q);
+    for (int k = 0; k < 2; k++)
+        for (int q = 0; q < 3; q++)
+            free(out[k][q]);
+    free(f);
+    free(a);
+}
+
 /* Rectangular pulse a0 for t_d < T/2 (the record ends at its last sample,
  * then a = 0), undamped: the peak comes after the record,
  * PSA = 2 a0 sin(pi t_d/T), at t = T/4 + t_d/2 (here a sample). */
@@ -610,6 +646,7 @@ int main(void)
     RUN(test_linearity);
     RUN(test_order_and_groups);
     RUN(test_blocks_same_bits);
+    RUN(test_kernel_instances_same_bits);
     RUN(test_peak_after_record);
     RUN(test_peak_after_record_block);
     RUN(test_sampled_peak_convergence);

@@ -297,8 +297,8 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
  * width or the instance the CPU runs. W and want_amax are constants after
  * inlining. KERNEL_DEFINE(NAME, VT, IT, L) defines the kernel NAME on the
  * vector type VT of L doubles (IT: the integer vector of its size). */
-#define KERNEL_DEFINE(NAME, VT, IT, L)                                                        \
-    static inline __attribute__((always_inline)) void NAME(                                   \
+#define KERNEL_DEFINE(NAME, VT, IT, L, MAXV, ATTR)                                                  \
+    static inline __attribute__((always_inline)) ATTR void NAME(                              \
         const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,          \
         size_t nfree, double *umax_out, double *amax_out, const size_t W,                     \
         const int want_amax)                                                                  \
@@ -331,7 +331,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         const double inv_m = 1.0 / (double)m;                                                 \
         if (m == 1) {                                                                         \
             for (size_t i = 0; i + 1 < n; i++)                                                \
-                KERNEL_STEP(VT, IT, L, acc[i], acc[i + 1]);                                   \
+                KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                                   \
         } else {                                                                              \
             for (size_t i = 0; i + 1 < n; i++) {                                              \
                 /* linear interpolation, endpoint exact */                                    \
@@ -339,13 +339,13 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
                 double as = a0;                                                               \
                 for (size_t s = 1; s <= m; s++) {                                             \
                     const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);   \
-                    KERNEL_STEP(VT, IT, L, as, as1);                                          \
+                    KERNEL_STEP(VT, IT, L, MAXV, as, as1);                                          \
                     as = as1;                                                                 \
                 }                                                                             \
             }                                                                                 \
         }                                                                                     \
         for (size_t k = 0; k < nfree; k++) /* free vibration after the record */              \
-            KERNEL_STEP(VT, IT, L, 0.0, 0.0);                                                 \
+            KERNEL_STEP(VT, IT, L, MAXV, 0.0, 0.0);                                                 \
         for (size_t b = 0; b < nb; b++) {                                                     \
             umax_out[p0 + b] = umax[b / (L)][b % (L)];                                        \
             if (want_amax)                                                                    \
@@ -355,7 +355,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
 
 /* One sub-step of every vector of the block with input as -> as1 (map (2)):
  * u, v, then max|u| and (want_amax) max|w^2 u + 2 zeta w v| by selects. */
-#define KERNEL_STEP(VT, IT, L, as, as1)                                                       \
+#define KERNEL_STEP(VT, IT, L, MAXV, as, as1)                                                       \
     do {                                                                                      \
         VT xa, xa1;                                                                           \
         for (size_t l = 0; l < (L); l++) {                                                    \
@@ -367,20 +367,27 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
             VT vn = c21[q] * u[q] + c22[q] * v[q] + bv0[q] * xa + bv1[q] * xa1;               \
             u[q] = un;                                                                        \
             v[q] = vn;                                                                        \
-            IT au = (IT)un & abs_mask;                                                        \
-            IT gt = (VT)au > umax[q];                                                         \
-            umax[q] = (VT)((au & gt) | ((IT)umax[q] & ~gt));                                  \
-            if (want_amax) {                                                                  \
-                IT aa = (IT)(w2[q] * un + tzw[q] * vn) & abs_mask;                            \
-                IT ga = (VT)aa > amax[q];                                                     \
-                amax[q] = (VT)((aa & ga) | ((IT)amax[q] & ~ga));                              \
-            }                                                                                 \
+            umax[q] = MAXV((VT)((IT)un & abs_mask), umax[q]);                                 \
+            if (want_amax)                                                                    \
+                amax[q] = MAXV((VT)((IT)(w2[q] * un + tzw[q] * vn) & abs_mask), amax[q]);     \
         }                                                                                     \
     } while (0)
 
 typedef double sl_v2d __attribute__((vector_size(16)));
 typedef long long sl_v2i __attribute__((vector_size(16)));
-KERNEL_DEFINE(kernel_v2, sl_v2d, sl_v2i, 2)
+/* Lane-wise a > b ? a : b: MAXPD on x86-64 (which is exactly this select,
+ * NaN and signed zeros included), else the select by masks. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define MAX_V2(a, b) __builtin_ia32_maxpd((a), (b))
+#else
+static inline sl_v2d max_v2(sl_v2d a, sl_v2d b)
+{
+    sl_v2i gt = a > b;
+    return (sl_v2d)(((sl_v2i)a & gt) | ((sl_v2i)b & ~gt));
+}
+#define MAX_V2(a, b) max_v2((a), (b))
+#endif
+KERNEL_DEFINE(kernel_v2, sl_v2d, sl_v2i, 2, MAX_V2, )
 
 /* The kernel's instances: wide and narrow blocks, with and without the
  * absolute acceleration. */
@@ -417,7 +424,8 @@ static void run_block_base(const work *wk, size_t p0, size_t nb, size_t m, const
 #define SL_KERNEL_AVX2 1
 typedef double sl_v4d __attribute__((vector_size(32)));
 typedef long long sl_v4i __attribute__((vector_size(32)));
-KERNEL_DEFINE(kernel_v4, sl_v4d, sl_v4i, 4)
+#define MAX_V4(a, b) __builtin_ia32_maxpd256((a), (b))
+KERNEL_DEFINE(kernel_v4, sl_v4d, sl_v4i, 4, MAX_V4, __attribute__((target("avx2"))))
 
 __attribute__((target("avx2"))) static void
 run_block_avx2(const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,
@@ -427,11 +435,31 @@ run_block_avx2(const work *wk, size_t p0, size_t nb, size_t m, const double *acc
 }
 #endif
 
+/* Set by sl_spectrum_kernel_baseline(): the baseline instance even on an
+ * AVX2 CPU (tests). */
+static int kernel_force_baseline;
+
+int sl_spectrum_kernel_baseline(int force)
+{
+    int was = kernel_force_baseline;
+    kernel_force_baseline = force != 0;
+    return was;
+}
+
+int sl_spectrum_kernel_avx2(void)
+{
+#ifdef SL_KERNEL_AVX2
+    return !kernel_force_baseline && __builtin_cpu_supports("avx2");
+#else
+    return 0;
+#endif
+}
+
 static void run_block(const work *wk, size_t p0, size_t nb, size_t m, const double *acc,
                       size_t n, size_t nfree, double *umax_out, double *amax_out)
 {
 #ifdef SL_KERNEL_AVX2
-    if (__builtin_cpu_supports("avx2")) {
+    if (!kernel_force_baseline && __builtin_cpu_supports("avx2")) {
         run_block_avx2(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
         return;
     }
