@@ -526,43 +526,6 @@ static void test_reproducible(void)
     sl_synth_free(s);
 }
 
-/* A plan keeps the workspaces of finished calls for the next (synth.h
- * sl_synth_make_sets; synth_internal.h pool): a set made by a plan whose
- * workspaces last made motions at another damping (other spectrum plans)
- * equals, to the bit, the set made by a fresh plan. */
-static void test_pool_reuse(void)
-{
-    sl_error e;
-    sl_synth *fresh = sl_synth_alloc(T_N, T_DT, NULL, &e);
-    sl_synth *used = sl_synth_alloc(T_N, T_DT, NULL, &e);
-    sl_spectrum *sp5[3], *sp2[3];
-    sl_synth_target t5[3], t2[3];
-    if (!fresh || !used || sl_synth_targets_rg160(0.3 * SL_G, 0.05, NULL, sp5, t5, &e) ||
-        sl_synth_targets_rg160(0.3 * SL_G, 0.02, NULL, sp2, t2, &e)) {
-        CHECK(0, "%s", e.msg);
-        return;
-    }
-    sl_synth_set ref, other, run;
-    CHECK(sl_synth_make_set(fresh, t5, 11, 1, &ref, &e) == SL_OK, "%s", e.msg);
-    CHECK(sl_synth_make_set(used, t2, 11, 0, &other, &e) == SL_OK, "%s", e.msg);
-    CHECK(sl_synth_make_set(used, t5, 11, 1, &run, &e) == SL_OK, "%s", e.msg);
-    for (int c = 0; c < 3; c++)
-        CHECK(!memcmp(sl_synth_set_motion(&ref, (sl_synth_comp)c)->acc_ms2,
-                      sl_synth_set_motion(&run, (sl_synth_comp)c)->acc_ms2,
-                      T_N * sizeof(double)),
-              "%s made by a plan used at 2 %% differs from a fresh plan's",
-              sl_synth_comp_name((sl_synth_comp)c));
-    sl_synth_set_clear(&ref);
-    sl_synth_set_clear(&other);
-    sl_synth_set_clear(&run);
-    for (int c = 0; c < 3; c++) {
-        sl_spectrum_free(sp5[c]);
-        sl_spectrum_free(sp2[c]);
-    }
-    sl_synth_free(fresh);
-    sl_synth_free(used);
-}
-
 /* The step API: set / iterate / test, the best iterate, the cap. */
 static void test_steps(void)
 {
@@ -1148,7 +1111,6 @@ int main(void)
     RUN(test_floor_template);
     RUN(test_floor_small);
     RUN(test_reproducible);
-    RUN(test_pool_reuse);
     RUN(test_steps);
     RUN(test_impossible);
     RUN(test_match_record);

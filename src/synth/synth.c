@@ -197,48 +197,10 @@ static size_t good_size(size_t n)
     }
     return 0;
 }
-sl_synth_motion *sl_synth_pool_take(const sl_synth *s, sl_error *err)
-{
-    sl_synth *w = (sl_synth *)s; /* the pool is a cache, not the plan's value */
-    sl_synth_motion *m = NULL;
-#pragma omp critical(sl_synth_pool)
-    if (w->npool > 0)
-        m = w->pool[--w->npool];
-    return m ? m : sl_synth_motion_alloc(s, err);
-}
-
-void sl_synth_pool_put(const sl_synth *s, sl_synth_motion *m)
-{
-    if (!m)
-        return;
-    sl_synth *w = (sl_synth *)s;
-    int kept = 0;
-#pragma omp critical(sl_synth_pool)
-    {
-        if (w->npool == w->pool_cap) {
-            size_t cap = w->pool_cap ? 2 * w->pool_cap : 4;
-            sl_synth_motion **p = realloc(w->pool, cap * sizeof *p);
-            if (p) {
-                w->pool = p;
-                w->pool_cap = cap;
-            }
-        }
-        if (w->npool < w->pool_cap) {
-            w->pool[w->npool++] = m;
-            kept = 1;
-        }
-    }
-    if (!kept)
-        sl_synth_motion_free(m);
-}
-
 void sl_synth_free(sl_synth *s)
 {
     if (!s)
         return;
-    for (size_t i = 0; i < s->npool; i++)
-        sl_synth_motion_free(s->pool[i]);
-    free(s->pool);
 #pragma omp critical(sl_fftw_planner)
     {
         if (s->r2c)

@@ -68,14 +68,6 @@ struct sl_synth {
     double *bl[2];       /* n: baseline shapes (t/T)(1 - t/T) (t/T)^i */
     double bl_inv[2][2]; /* inverse of the end-value matrix of the shapes */
     fftw_plan r2c, c2r;  /* on fftw_malloc'd arrays of N reals, N/2 + 1 complexes */
-    /* Motion workspaces left by finished sl_synth_make_sets/match_set calls,
-     * taken by the next call (their spectrum and FFTW plans are then made
-     * once per plan, not once per call: 3 % of the instructions of a set made
-     * one call at a time); only under omp critical(sl_synth_pool). A cache:
-     * what a motion computes does not depend on it (a workspace is reset by
-     * sl_synth_set_*, its plans remade when the range or damping differ). */
-    sl_synth_motion **pool;
-    size_t npool, pool_cap;
     double *bin_fade;    /* nbin: sl_synth_edge_fade of every bin for the whole
                           * grid checked (the common case; no log2 per bin) */
 };
@@ -172,12 +164,6 @@ void sl_synth_check_motion_psd(const sl_synth_motion *m, sl_synth_check *out, in
  * (synth_check.c). */
 void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectrum *ts,
                         double psd_frac, sl_synth_check *out);
-/* A workspace of the plan's pool, or a new one (NULL and err on failure);
- * give it back with sl_synth_pool_put (synth.c). Thread-safe. */
-sl_synth_motion *sl_synth_pool_take(const sl_synth *s, sl_error *err);
-/* Return m to the plan's pool (freed when the pool cannot grow); harmless
- * on NULL. Thread-safe (synth.c). */
-void sl_synth_pool_put(const sl_synth *s, sl_synth_motion *m);
 /* Leave the coarse phase: the best iterate at full accuracy (synth_iterate.c). */
 sl_status sl_synth_end_coarse(sl_synth_motion *m, sl_error *err);
 

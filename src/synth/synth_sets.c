@@ -96,17 +96,16 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
 }
 
 /* Per-thread motion workspaces kept across the rounds of one call (their
- * spectrum and FFTW plans are made once, not once per round), taken from
- * the plan's pool and given back to it at the end of the call. */
+ * spectrum and FFTW plans are made once, not once per round). */
 typedef struct workspaces {
     sl_synth_motion **m;
     size_t n;
 } workspaces;
 
-static void workspaces_free(const sl_synth *s, workspaces *w)
+static void workspaces_free(workspaces *w)
 {
     for (size_t i = 0; i < w->n; i++)
-        sl_synth_pool_put(s, w->m[i]);
+        sl_synth_motion_free(w->m[i]);
     free(w->m);
     w->m = NULL;
     w->n = 0;
@@ -127,7 +126,7 @@ static sl_status run_jobs(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_
         size_t tid = (size_t)omp_get_thread_num();
         sl_synth_motion *own = NULL, **slot = tid < ws->n ? &ws->m[tid] : &own;
         if (!*slot)
-            *slot = sl_synth_pool_take(s, &e);
+            *slot = sl_synth_motion_alloc(s, &e);
         sl_synth_motion *m = *slot;
 #pragma omp for schedule(dynamic, 1)
         for (long long q = 0; q < nj; q++) {
@@ -144,7 +143,7 @@ static sl_status run_jobs(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_
                     progress(ctx, *done, total);
             }
         }
-        sl_synth_pool_put(s, own);
+        sl_synth_motion_free(own);
     }
     for (size_t q = 0; q < nidx; q++) {
         job *jb = &jobs[idx[q]];
@@ -302,7 +301,7 @@ sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYN
         }
         total += nidx;
     }
-    workspaces_free(s, &ws);
+    workspaces_free(&ws);
     if (!st)
         st = collect(s, jobs, count, NULL, first_set, out, err);
     free_jobs(jobs, nj);
