@@ -284,19 +284,21 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
  * 2, one SSE2 register), so that a block's state u, v, max|u| (and
  * max|u''+a|) stays in registers across the time loop. (The former
  * scalar-lane loop, vectorised by GCC, became a loop over the block's
- * vectors that stored and reloaded the state at every sub-step: the
- * store-to-load forwarding sat in the recurrence's chain, 2.76 ms for a full
- * spectrum, 20 s at 200/s, 271 points, against 0.68 ms now; the baseline
- * 1.36 ms then, 1.2 ms now.) Positions [p0, p0 + nb) (nb <= W, one sub-step
- * count m) over the whole record and nfree free sub-steps; max|u| into
- * umax[p], max|u''+a| into amax[p] (when want_amax). Every lane does exactly
- * the arithmetic of map (2) in the same order as a one-at-a-time loop
- * (|x| by clearing the sign bit, as fabs; the maximum by the select
- * x > max ? x : max), and there is no FMA contraction (-std=c11 sets
- * -ffp-contract=off): the result does not depend on the blocking, the vector
- * width or the instance the CPU runs. W and want_amax are constants after
- * inlining. KERNEL_DEFINE(NAME, VT, IT, L) defines the kernel NAME on the
- * vector type VT of L doubles (IT: the integer vector of its size). */
+ * vectors that stored and reloaded the state at every sub-step, with the
+ * store-to-load forwarding in the recurrence's chain: a full spectrum, 20 s
+ * at 200/s, 271 points, took 0.96 ms, and up to 2.8 ms where its stack
+ * arrays fell badly; now 0.63 ms, the baseline instance 1.40 ms; CPU time,
+ * SEISLIDE_TEST_VERBOSE=1 build/tests/test_spectrum.) Positions
+ * [p0, p0 + nb) (nb <= W, one sub-step count m) over the whole record and
+ * nfree free sub-steps; max|u| into umax[p], max|u''+a| into amax[p] (when
+ * want_amax). Every lane does exactly the arithmetic of map (2) in the same
+ * order as a one-at-a-time loop (|x| by clearing the sign bit, as fabs; the
+ * maximum by MAXV(x, max) = x > max ? x : max), and there is no FMA
+ * contraction (-std=c11 sets -ffp-contract=off): the result does not depend
+ * on the blocking, the vector width or the instance the CPU runs. W and
+ * want_amax are constants after inlining. KERNEL_DEFINE(NAME, VT, IT, L,
+ * MAXV, ATTR) defines the kernel NAME on the vector type VT of L doubles
+ * (IT: the integer vector of its size), with function attributes ATTR. */
 #define KERNEL_DEFINE(NAME, VT, IT, L, MAXV, ATTR)                                                  \
     static inline __attribute__((always_inline)) ATTR void NAME(                              \
         const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,          \
