@@ -299,7 +299,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
  * want_amax are constants after inlining. KERNEL_DEFINE(NAME, VT, IT, L,
  * MAXV, ATTR) defines the kernel NAME on the vector type VT of L doubles
  * (IT: the integer vector of its size), with function attributes ATTR. */
-#define KERNEL_DEFINE(NAME, VT, IT, L, MAXV, ATTR)                                                  \
+#define KERNEL_DEFINE(NAME, VT, IT, L, MAXV, ATTR)                                            \
     static inline __attribute__((always_inline)) ATTR void NAME(                              \
         const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,          \
         size_t nfree, double *umax_out, double *amax_out, const size_t W,                     \
@@ -333,7 +333,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         const double inv_m = 1.0 / (double)m;                                                 \
         if (m == 1) {                                                                         \
             for (size_t i = 0; i + 1 < n; i++)                                                \
-                KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                                   \
+                KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                             \
         } else {                                                                              \
             for (size_t i = 0; i + 1 < n; i++) {                                              \
                 /* linear interpolation, endpoint exact */                                    \
@@ -341,13 +341,13 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
                 double as = a0;                                                               \
                 for (size_t s = 1; s <= m; s++) {                                             \
                     const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);   \
-                    KERNEL_STEP(VT, IT, L, MAXV, as, as1);                                          \
+                    KERNEL_STEP(VT, IT, L, MAXV, as, as1);                                    \
                     as = as1;                                                                 \
                 }                                                                             \
             }                                                                                 \
         }                                                                                     \
         for (size_t k = 0; k < nfree; k++) /* free vibration after the record */              \
-            KERNEL_STEP(VT, IT, L, MAXV, 0.0, 0.0);                                                 \
+            KERNEL_STEP(VT, IT, L, MAXV, 0.0, 0.0);                                           \
         for (size_t b = 0; b < nb; b++) {                                                     \
             umax_out[p0 + b] = umax[b / (L)][b % (L)];                                        \
             if (want_amax)                                                                    \
@@ -357,7 +357,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
 
 /* One sub-step of every vector of the block with input as -> as1 (map (2)):
  * u, v, then max|u| and (want_amax) max|w^2 u + 2 zeta w v| by selects. */
-#define KERNEL_STEP(VT, IT, L, MAXV, as, as1)                                                       \
+#define KERNEL_STEP(VT, IT, L, MAXV, as, as1)                                                 \
     do {                                                                                      \
         VT xa, xa1;                                                                           \
         for (size_t l = 0; l < (L); l++) {                                                    \
@@ -421,7 +421,7 @@ static void run_block_base(const work *wk, size_t p0, size_t nb, size_t m, const
  * doubles a vector, chosen at run time when the CPU has AVX2 (GCC's
  * target_clones cannot give the two instances different vector types). The
  * same bits as the baseline (see KERNEL_DEFINE). */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                        \
     !defined(SL_SPECTRUM_NO_CLONES)
 #define SL_KERNEL_AVX2 1
 typedef double sl_v4d __attribute__((vector_size(32)));
