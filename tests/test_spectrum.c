@@ -2,6 +2,8 @@
  * step input, harmonic steady state, rectangular-pulse shock spectrum,
  * convergence of the sampled peak, and the invariants. */
 
+#include <time.h>
+
 #include "harness.h"
 #include "core/clock.h"
 #include "io/motion.h"
@@ -205,6 +207,42 @@ static void test_blocks_same_bits(void)
                   "%zu frequencies, f %g: together %.17g alone %.17g", nf, f[j], psa[j], p1);
         }
     }
+    free(a);
+}
+
+/* The AVX2 and the baseline instances of the oscillator bank give the same
+ * bits (PSA, SD, absolute SA; every block width; sub-steps 1 to 9; free
+ * vibration) on this data and on a 20 s motion at 200/s over the default
+ * grid. Skipped when the CPU runs the baseline only. */
+static void test_kernel_instances_same_bits(void)
+{
+    if (!sl_spectrum_kernel_avx2()) {
+        SKIP("the AVX2 instance does not run on this CPU");
+    }
+    size_t n = 4001;
+    double *a = malloc(n * sizeof *a);
+    for (size_t i = 0; i < n; i++)
+        a[i] = sin(0.031 * (double)(i * i % 1009)) + 0.3 * cos(0.7 * (double)i);
+    size_t nf;
+    double *f = sl_spectrum_grid(0.1, 50, 100, &nf);
+    double *out[2][3];
+    for (int k = 0; k < 2; k++)
+        for (int q = 0; q < 3; q++)
+            out[k][q] = malloc(nf * sizeof(double));
+    for (int k = 0; k < 2; k++) {
+        sl_spectrum_kernel_baseline(k);
+        CHECK(sl_spectrum_kernel_avx2() == !k, "instance %d", k);
+        CHECK(sl_spectrum_compute(a, n, 0.005, f, nf, 0.05, out[k][0], out[k][1], out[k][2],
+                                  NULL) == SL_OK, "ok");
+    }
+    sl_spectrum_kernel_baseline(0);
+    for (int q = 0; q < 3; q++)
+        CHECK(!memcmp(out[0][q], out[1][q], nf * sizeof(double)),
+              "output %d differs between the AVX2 and the baseline instance", q);
+    for (int k = 0; k < 2; k++)
+        for (int q = 0; q < 3; q++)
+            free(out[k][q]);
+    free(f);
     free(a);
 }
 
@@ -429,21 +467,58 @@ static void test_against_rk4(void)
 
 /* Speed: a 4000-sample record on the default grid (shown with
  * SEISLIDE_TEST_VERBOSE; no pass/fail on time). */
+/* CPU seconds of this process (the machine may be shared). */
+static double cpu_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The synthesis case (docs/synthesis.md 3.7): 20 s at 200/s, the full-
+ * accuracy spectrum over the 271 points of 0.1-50 Hz, and the coarse one
+ * (every 3rd point, 6 sub-steps per period, no free vibration, multirate
+ * 20), by plans; CPU ms per spectrum with each instance of the kernel. */
 static void speed_info(void)
 {
-    size_t n = 4000, nf;
+    size_t n = 4001, nf, nc = 0;
     double *f = sl_spectrum_grid(0.1, 50, 100, &nf);
+    double *fc = malloc(nf * sizeof *fc);
     double *a = malloc(n * sizeof *a), *psa = malloc(nf * sizeof *psa);
     for (size_t i = 0; i < n; i++)
         a[i] = sin(0.37 * (double)i) + 0.5 * sin(0.011 * (double)(i * i % 1013));
-    int reps = 20;
-    double t0 = sl_clock_s();
-    for (int r = 0; r < reps; r++)
-        sl_spectrum_compute(a, n, 0.01, f, nf, 0.05, psa, NULL, NULL, NULL);
-    double ms = 1e3 * (sl_clock_s() - t0) / reps;
-    fprintf(stderr, "  speed: %zu samples x %zu frequencies at dt 0.01 s: %.2f ms per spectrum\n",
-            n, nf, ms);
+    for (size_t j = 0; j < nf; j += 3)
+        fc[nc++] = f[j];
+    if (fc[nc - 1] != f[nf - 1])
+        fc[nc++] = f[nf - 1];
+    sl_spectrum_opts o;
+    sl_spectrum_opts_default(&o);
+    sl_spectrum_plan *full = sl_spectrum_plan_alloc(n, 0.005, f, nf, 0.05, &o, 0.0, NULL);
+    o.steps_per_period = 6;
+    o.free_vibration = 0;
+    sl_spectrum_plan *coarse = sl_spectrum_plan_alloc(n, 0.005, fc, nc, 0.05, &o, 20.0, NULL);
+    for (int base = 0; base < 2 && full && coarse; base++) {
+        if (base && !sl_spectrum_kernel_avx2())
+            break; /* the baseline is all there is */
+        sl_spectrum_kernel_baseline(base);
+        const char *name = sl_spectrum_kernel_avx2() ? "AVX2" : "baseline";
+        double t0 = cpu_s();
+        for (int r = 0; r < 100; r++)
+            sl_spectrum_plan_compute(full, a, psa, NULL, NULL, NULL);
+        double t1 = cpu_s();
+        for (int r = 0; r < 500; r++)
+            sl_spectrum_plan_compute(coarse, a, psa, NULL, NULL, NULL);
+        double t2 = cpu_s();
+        fprintf(stderr,
+                "  speed (%s kernel): 20 s at 200/s, CPU ms per spectrum: full %zu points "
+                "%.3f, coarse %zu points %.3f\n",
+                name, nf, 10 * (t1 - t0), nc, 2 * (t2 - t1));
+    }
+    sl_spectrum_kernel_baseline(0);
+    sl_spectrum_plan_free(full);
+    sl_spectrum_plan_free(coarse);
     free(f);
+    free(fc);
     free(a);
     free(psa);
 }
@@ -610,6 +685,7 @@ int main(void)
     RUN(test_linearity);
     RUN(test_order_and_groups);
     RUN(test_blocks_same_bits);
+    RUN(test_kernel_instances_same_bits);
     RUN(test_peak_after_record);
     RUN(test_peak_after_record_block);
     RUN(test_sampled_peak_convergence);

@@ -225,6 +225,17 @@ static void test_plan(void)
     size_t nf;
     const double *g = sl_synth_grid(s, &nf);
     CHECK(nf == 271 && g[0] == 0.1 && fabs(g[nf - 1] - 50) < 1e-9, "grid %zu", nf);
+    /* The correction's fade outside the grid (bin table of the whole grid):
+     * 1 over [0.1, 50] Hz, 1 - log2(f/50) above (0 at 100 Hz, one octave),
+     * 1 - log2(0.1/f) below, 0 beyond an octave. */
+    double worst = 0;
+    for (size_t k = 1; k < s->nbin; k++) {
+        double f = s->df * (double)k;
+        double want = f > 50 ? 1 - log(f / 50) / log(2.0)
+                      : f < 0.1 ? fmax(0.0, 1 - log(0.1 / f) / log(2.0)) : 1.0;
+        worst = fmax(worst, fabs(s->bin_fade[k] - want));
+    }
+    CHECK(worst < 1e-12, "bin fade off by %g", worst);
     sl_synth_free(s);
     sl_synth_free(NULL);
     sl_synth_motion_free(NULL);

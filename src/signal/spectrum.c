@@ -6,6 +6,7 @@
 #include <fftw3.h>
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -279,114 +280,193 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
 #define BLOCK_MID 8
 #define BLOCK_NARROW 4
 
-/* Function multiversioning (GCC, x86-64): the kernel is compiled twice,
- * for AVX2 (4 doubles a vector) and for the baseline (SSE2, 2), and the
- * loader picks the one the CPU runs. Both do the same IEEE operations in the
- * same order (no FMA contraction: -std=c11 sets -ffp-contract=off), so the
- * results are the same bits on either. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-    !defined(SL_SPECTRUM_NO_CLONES)
-#define SL_KERNEL_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define SL_KERNEL_CLONES
-#endif
-
-/* Positions [p0, p0 + nb) (nb <= W, one sub-step count m) over the whole
- * record and nfree free sub-steps; max|u| into umax[p], max|u''+a| into
- * amax[p] (when want_amax). Time is the inner loop: the block's state stays
- * in vector registers and its oscillators are independent, so they run in
- * parallel lanes (W / 4 AVX2 vectors: independent chains that hide the
- * latency of the recurrence). Every oscillator does exactly the arithmetic
- * of map (2) in the same order as a one-at-a-time loop, so the result does
- * not depend on the blocking or the vector width. W and want_amax are
- * constants after inlining. */
-static inline __attribute__((always_inline)) void
-block_kernel(const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,
-             size_t nfree, double *umax_out, double *amax_out, const size_t W,
-             const int want_amax)
-{
-    double c11[BLOCK_WIDE], c12[BLOCK_WIDE], c21[BLOCK_WIDE], c22[BLOCK_WIDE];
-    double bu0[BLOCK_WIDE], bu1[BLOCK_WIDE], bv0[BLOCK_WIDE], bv1[BLOCK_WIDE];
-    double w2[BLOCK_WIDE], tzw[BLOCK_WIDE];
-    double u[BLOCK_WIDE], v[BLOCK_WIDE], umax[BLOCK_WIDE], amax[BLOCK_WIDE];
-    /* Unused lanes copy the first oscillator (results discarded). */
-    for (size_t b = 0; b < W; b++) {
-        size_t p = p0 + (b < nb ? b : 0);
-        c11[b] = wk->c[C11][p];
-        c12[b] = wk->c[C12][p];
-        c21[b] = wk->c[C21][p];
-        c22[b] = wk->c[C22][p];
-        bu0[b] = wk->c[BU0][p];
-        bu1[b] = wk->c[BU1][p];
-        bv0[b] = wk->c[BV0][p];
-        bv1[b] = wk->c[BV1][p];
-        w2[b] = wk->w2[p];
-        tzw[b] = wk->tzw[p];
-        u[b] = v[b] = umax[b] = amax[b] = 0.0;
-    }
-    const double inv_m = 1.0 / (double)m;
-    /* one sub-step of every lane with input as -> as1 (map (2)) */
-#define STEP_BLOCK(as, as1)                                                                   \
-    for (size_t b = 0; b < W; b++) {                                                          \
-        double un = c11[b] * u[b] + c12[b] * v[b] + bu0[b] * (as) + bu1[b] * (as1);           \
-        double vn = c21[b] * u[b] + c22[b] * v[b] + bv0[b] * (as) + bv1[b] * (as1);           \
-        u[b] = un;                                                                            \
-        v[b] = vn;                                                                            \
-        double au = fabs(un);                                                                 \
-        umax[b] = au > umax[b] ? au : umax[b];                                                \
-        if (want_amax) {                                                                      \
-            double aa = fabs(w2[b] * un + tzw[b] * vn);                                       \
-            amax[b] = aa > amax[b] ? aa : amax[b];                                            \
+/* The kernel on GCC vectors (vector_size: 4 doubles, one AVX2 register, or
+ * 2, one SSE2 register), so that a block's state u, v, max|u| (and
+ * max|u''+a|) stays in registers across the time loop. (The former
+ * scalar-lane loop, vectorised by GCC, became a loop over the block's
+ * vectors that stored and reloaded the state at every sub-step, with the
+ * store-to-load forwarding in the recurrence's chain: a full spectrum, 20 s
+ * at 200/s, 271 points, took 0.96 ms, and up to 2.8 ms where its stack
+ * arrays fell badly; now 0.63 ms, the baseline instance 1.40 ms; CPU time,
+ * SEISLIDE_TEST_VERBOSE=1 build/tests/test_spectrum.) Positions
+ * [p0, p0 + nb) (nb <= W, one sub-step count m) over the whole record and
+ * nfree free sub-steps; max|u| into umax[p], max|u''+a| into amax[p] (when
+ * want_amax). Every lane does exactly the arithmetic of map (2) in the same
+ * order as a one-at-a-time loop (|x| by clearing the sign bit, as fabs; the
+ * maximum by MAXV(x, max) = x > max ? x : max), and there is no FMA
+ * contraction (-std=c11 sets -ffp-contract=off): the result does not depend
+ * on the blocking, the vector width or the instance the CPU runs. W and
+ * want_amax are constants after inlining. KERNEL_DEFINE(NAME, VT, IT, L,
+ * MAXV, ATTR) defines the kernel NAME on the vector type VT of L doubles
+ * (IT: the integer vector of its size), with function attributes ATTR. */
+#define KERNEL_DEFINE(NAME, VT, IT, L, MAXV, ATTR)                                            \
+    static inline __attribute__((always_inline)) ATTR void NAME(                              \
+        const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,          \
+        size_t nfree, double *umax_out, double *amax_out, const size_t W,                     \
+        const int want_amax)                                                                  \
+    {                                                                                         \
+        enum { NVMAX = BLOCK_WIDE / (L) };                                                    \
+        const size_t nv = W / (L);                                                            \
+        VT c11[NVMAX], c12[NVMAX], c21[NVMAX], c22[NVMAX];                                    \
+        VT bu0[NVMAX], bu1[NVMAX], bv0[NVMAX], bv1[NVMAX], w2[NVMAX], tzw[NVMAX];             \
+        VT u[NVMAX], v[NVMAX], umax[NVMAX], amax[NVMAX];                                      \
+        /* Unused lanes copy the first oscillator (results discarded). */                     \
+        for (size_t q = 0; q < nv; q++) {                                                     \
+            for (size_t l = 0; l < (L); l++) {                                                \
+                size_t b = (L) * q + l, p = p0 + (b < nb ? b : 0);                            \
+                c11[q][l] = wk->c[C11][p];                                                    \
+                c12[q][l] = wk->c[C12][p];                                                    \
+                c21[q][l] = wk->c[C21][p];                                                    \
+                c22[q][l] = wk->c[C22][p];                                                    \
+                bu0[q][l] = wk->c[BU0][p];                                                    \
+                bu1[q][l] = wk->c[BU1][p];                                                    \
+                bv0[q][l] = wk->c[BV0][p];                                                    \
+                bv1[q][l] = wk->c[BV1][p];                                                    \
+                w2[q][l] = wk->w2[p];                                                         \
+                tzw[q][l] = wk->tzw[p];                                                       \
+                u[q][l] = v[q][l] = umax[q][l] = amax[q][l] = 0.0;                            \
+            }                                                                                 \
+        }                                                                                     \
+        IT abs_mask;                                                                          \
+        for (size_t l = 0; l < (L); l++)                                                      \
+            abs_mask[l] = INT64_MAX;                                                          \
+        const double inv_m = 1.0 / (double)m;                                                 \
+        if (m == 1) {                                                                         \
+            for (size_t i = 0; i + 1 < n; i++)                                                \
+                KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                             \
+        } else {                                                                              \
+            for (size_t i = 0; i + 1 < n; i++) {                                              \
+                /* linear interpolation, endpoint exact */                                    \
+                const double a0 = acc[i], da = acc[i + 1] - acc[i];                           \
+                double as = a0;                                                               \
+                for (size_t s = 1; s <= m; s++) {                                             \
+                    const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);   \
+                    KERNEL_STEP(VT, IT, L, MAXV, as, as1);                                    \
+                    as = as1;                                                                 \
+                }                                                                             \
+            }                                                                                 \
+        }                                                                                     \
+        for (size_t k = 0; k < nfree; k++) /* free vibration after the record */              \
+            KERNEL_STEP(VT, IT, L, MAXV, 0.0, 0.0);                                           \
+        for (size_t b = 0; b < nb; b++) {                                                     \
+            umax_out[p0 + b] = umax[b / (L)][b % (L)];                                        \
+            if (want_amax)                                                                    \
+                amax_out[p0 + b] = amax[b / (L)][b % (L)];                                    \
         }                                                                                     \
     }
-    if (m == 1) {
-        for (size_t i = 0; i + 1 < n; i++) {
-            const double as = acc[i], as1 = acc[i + 1];
-            STEP_BLOCK(as, as1)
-        }
-    } else {
-        for (size_t i = 0; i + 1 < n; i++) {
-            /* linear interpolation, endpoint exact */
-            const double a0 = acc[i], da = acc[i + 1] - acc[i];
-            double as = a0;
-            for (size_t s = 1; s <= m; s++) {
-                const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);
-                STEP_BLOCK(as, as1)
-                as = as1;
-            }
-        }
-    }
-    for (size_t k = 0; k < nfree; k++) { /* free vibration after the record */
-        STEP_BLOCK(0.0, 0.0)
-    }
-#undef STEP_BLOCK
-    for (size_t b = 0; b < nb; b++) {
-        umax_out[p0 + b] = umax[b];
-        if (want_amax)
-            amax_out[p0 + b] = amax[b];
-    }
+
+/* One sub-step of every vector of the block with input as -> as1 (map (2)):
+ * u, v, then max|u| and (want_amax) max|w^2 u + 2 zeta w v| by selects. */
+#define KERNEL_STEP(VT, IT, L, MAXV, as, as1)                                                 \
+    do {                                                                                      \
+        VT xa, xa1;                                                                           \
+        for (size_t l = 0; l < (L); l++) {                                                    \
+            xa[l] = (as);                                                                     \
+            xa1[l] = (as1);                                                                   \
+        }                                                                                     \
+        _Pragma("GCC unroll 8") for (size_t q = 0; q < nv; q++) {                             \
+            VT un = c11[q] * u[q] + c12[q] * v[q] + bu0[q] * xa + bu1[q] * xa1;               \
+            VT vn = c21[q] * u[q] + c22[q] * v[q] + bv0[q] * xa + bv1[q] * xa1;               \
+            u[q] = un;                                                                        \
+            v[q] = vn;                                                                        \
+            umax[q] = MAXV((VT)((IT)un & abs_mask), umax[q]);                                 \
+            if (want_amax)                                                                    \
+                amax[q] = MAXV((VT)((IT)(w2[q] * un + tzw[q] * vn) & abs_mask), amax[q]);     \
+        }                                                                                     \
+    } while (0)
+
+typedef double sl_v2d __attribute__((vector_size(16)));
+typedef long long sl_v2i __attribute__((vector_size(16)));
+/* Lane-wise a > b ? a : b: MAXPD on x86-64 (which is exactly this select,
+ * NaN and signed zeros included), else the select by masks. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define MAX_V2(a, b) __builtin_ia32_maxpd((a), (b))
+#else
+static inline sl_v2d max_v2(sl_v2d a, sl_v2d b)
+{
+    sl_v2i gt = a > b;
+    return (sl_v2d)(((sl_v2i)a & gt) | ((sl_v2i)b & ~gt));
 }
+#define MAX_V2(a, b) max_v2((a), (b))
+#endif
+KERNEL_DEFINE(kernel_v2, sl_v2d, sl_v2i, 2, MAX_V2, )
 
 /* The kernel's instances: wide and narrow blocks, with and without the
  * absolute acceleration. */
-SL_KERNEL_CLONES static void run_block(const work *wk, size_t p0, size_t nb, size_t m,
-                                       const double *acc, size_t n, size_t nfree,
-                                       double *umax_out, double *amax_out)
-{
-#define RUN_WIDTH(W)                                                                          \
+#define RUN_WIDTHS(KERNEL)                                                                    \
     do {                                                                                      \
-        if (amax_out)                                                                         \
-            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, W, 1);             \
+        size_t W_ = nb > BLOCK_MID ? BLOCK_WIDE : nb > BLOCK_NARROW ? BLOCK_MID : BLOCK_NARROW; \
+        if (W_ == BLOCK_WIDE && amax_out)                                                     \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);          \
+        else if (W_ == BLOCK_WIDE)                                                            \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);              \
+        else if (W_ == BLOCK_MID && amax_out)                                                 \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);           \
+        else if (W_ == BLOCK_MID)                                                             \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_MID, 0);               \
+        else if (amax_out)                                                                    \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);        \
         else                                                                                  \
-            block_kernel(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, W, 0);                 \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);            \
     } while (0)
-    if (nb > BLOCK_MID)
-        RUN_WIDTH(BLOCK_WIDE);
-    else if (nb > BLOCK_NARROW)
-        RUN_WIDTH(BLOCK_MID);
-    else
-        RUN_WIDTH(BLOCK_NARROW);
-#undef RUN_WIDTH
+
+/* Baseline instance (x86-64: SSE2, 2 doubles a vector; any other CPU). */
+static void run_block_base(const work *wk, size_t p0, size_t nb, size_t m, const double *acc,
+                           size_t n, size_t nfree, double *umax_out, double *amax_out)
+{
+    RUN_WIDTHS(kernel_v2);
+}
+
+/* Function multiversioning by hand (GCC, x86-64): an AVX2 instance on 4
+ * doubles a vector, chosen at run time when the CPU has AVX2 (GCC's
+ * target_clones cannot give the two instances different vector types). The
+ * same bits as the baseline (see KERNEL_DEFINE). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                        \
+    !defined(SL_SPECTRUM_NO_CLONES)
+#define SL_KERNEL_AVX2 1
+typedef double sl_v4d __attribute__((vector_size(32)));
+typedef long long sl_v4i __attribute__((vector_size(32)));
+#define MAX_V4(a, b) __builtin_ia32_maxpd256((a), (b))
+KERNEL_DEFINE(kernel_v4, sl_v4d, sl_v4i, 4, MAX_V4, __attribute__((target("avx2"))))
+
+__attribute__((target("avx2"))) static void
+run_block_avx2(const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,
+               size_t nfree, double *umax_out, double *amax_out)
+{
+    RUN_WIDTHS(kernel_v4);
+}
+#endif
+
+/* Set by sl_spectrum_kernel_baseline(): the baseline instance even on an
+ * AVX2 CPU (tests). */
+static int kernel_force_baseline;
+
+int sl_spectrum_kernel_baseline(int force)
+{
+    int was = kernel_force_baseline;
+    kernel_force_baseline = force != 0;
+    return was;
+}
+
+int sl_spectrum_kernel_avx2(void)
+{
+#ifdef SL_KERNEL_AVX2
+    return !kernel_force_baseline && __builtin_cpu_supports("avx2");
+#else
+    return 0;
+#endif
+}
+
+static void run_block(const work *wk, size_t p0, size_t nb, size_t m, const double *acc,
+                      size_t n, size_t nfree, double *umax_out, double *amax_out)
+{
+#ifdef SL_KERNEL_AVX2
+    if (!kernel_force_baseline && __builtin_cpu_supports("avx2")) {
+        run_block_avx2(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
+        return;
+    }
+#endif
+    run_block_base(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
 }
 
 /* Every group of equal m, in blocks: the record, then (free_vib) the free

@@ -213,6 +213,7 @@ void sl_synth_free(sl_synth *s)
     free(s->bin_w);
     free(s->bin_ja);
     free(s->bin_jb);
+    free(s->bin_fade);
     free(s->env);
     free(s->taper);
     free(s->bl[0]);
@@ -318,6 +319,14 @@ sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_err
         return NULL;
     }
     make_envelope(s);
+    s->bin_fade = malloc(s->nbin * sizeof *s->bin_fade);
+    if (!s->bin_fade) {
+        sl_synth_free(s);
+        sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        return NULL;
+    }
+    for (size_t k = 0; k < s->nbin; k++)
+        s->bin_fade[k] = sl_synth_edge_fade(s->df * (double)k, s->grid[0], s->grid[s->ngrid - 1]);
     /* End taper: w_j = (1 - cos(pi j/m))/2, j < m = taper_s/dt (at most n/2). */
     s->ntaper = (size_t)ceil(p->taper_s / dt_s);
     if (s->ntaper > n / 2)

@@ -19,6 +19,7 @@
 #define SL_SYNTH_INTERNAL_H
 
 #include <fftw3.h>
+#include <math.h>
 
 #include "synth/synth.h"
 
@@ -67,6 +68,8 @@ struct sl_synth {
     double *bl[2];       /* n: baseline shapes (t/T)(1 - t/T) (t/T)^i */
     double bl_inv[2][2]; /* inverse of the end-value matrix of the shapes */
     fftw_plan r2c, c2r;  /* on fftw_malloc'd arrays of N reals, N/2 + 1 complexes */
+    double *bin_fade;    /* nbin: sl_synth_edge_fade of every bin for the whole
+                          * grid checked (the common case; no log2 per bin) */
 };
 
 struct sl_synth_motion {
@@ -115,6 +118,15 @@ typedef struct sl_synth_spec_check {
     double min_ratio, f_min, max_ratio, f_max;
     size_t run, n_below;
 } sl_synth_spec_check;
+
+/* The fade of the correction outside the checked range [f_lo, f_hi]: 1
+ * inside, falling linearly in log2 f to 0 at SL_SYNTH_EDGE_OCTAVES outside
+ * (sl_synth_iterate: ln r(f_k) is multiplied by it). */
+static inline double sl_synth_edge_fade(double f, double f_lo, double f_hi)
+{
+    double oct = f < f_lo ? log2(f_lo / f) : f > f_hi ? log2(f / f_hi) : 0.0;
+    return oct >= SL_SYNTH_EDGE_OCTAVES ? 0.0 : 1.0 - oct / SL_SYNTH_EDGE_OCTAVES;
+}
 
 /* ---- Steps shared by the stage files (library-internal) ---- */
 

@@ -183,6 +183,7 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
      * out linearly in log2 f over SL_SYNTH_EDGE_OCTAVES: those bins have no
      * check of their own, and a full correction there drifts. */
     const double f_lo = s->grid[m->j_lo], f_hi = s->grid[m->j_hi - 1];
+    const double *fade_of = m->j_lo == 0 && m->j_hi == s->ngrid ? s->bin_fade : NULL;
     for (size_t k = 1; k < s->nbin; k++) {
         size_t j = s->bin_j[k];
         double w = s->bin_w[k], f = s->df * (double)k, x = 0;
@@ -193,8 +194,7 @@ sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err)
         } else {
             x = s->ngrid == 1 ? m->lnr[0] : (1 - w) * m->lnr[j] + w * m->lnr[j + 1];
         }
-        double oct = f < f_lo ? log2(f_lo / f) : f > f_hi ? log2(f / f_hi) : 0.0;
-        double fade = oct >= SL_SYNTH_EDGE_OCTAVES ? 0.0 : 1.0 - oct / SL_SYNTH_EDGE_OCTAVES;
+        double fade = fade_of ? fade_of[k] : sl_synth_edge_fade(f, f_lo, f_hi);
         double g = exp(fade * x) * m->hp[k]; /* correction, then the high-pass */
         m->cwork[k][0] *= g;
         m->cwork[k][1] *= g;
