@@ -152,6 +152,11 @@ void sl_synth_check_motion_psd(const sl_synth_motion *m, sl_synth_check *out, in
  * (synth_check.c). */
 void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectrum *ts,
                         double psd_frac, sl_synth_check *out);
+/* Crest reservation of very sharp targets (synth_sharp.c). */
+size_t sl_synth_reserve_crest(sl_synth_motion *m);
+int sl_synth_is_sharp(const sl_synth_motion *m);
+#include <gsl/gsl_rng.h>
+void sl_synth_add_mode_sweep(sl_synth_motion *m, gsl_rng *rng);
 /* Leave the coarse phase: the best iterate at full accuracy (synth_iterate.c). */
 sl_status sl_synth_end_coarse(sl_synth_motion *m, sl_error *err);
 
