@@ -9,6 +9,8 @@
  *     synth_iterate.c     the correction iteration (eq. 2-3), coarse phase
  *     synth_admissible.c  admissible motion: taper, soft peak compression
  *                         (eq. C2), baseline
+ *     synth_sharp.c       very sharp targets: mode sweep start (eq. S1),
+ *                         crest reservation (eq. S2)
  *     synth_check.c       the SRP 3.7.1 checks of a motion, other dampings
  *     synth_record.c      records: start from a record, resampling
  *     synth_sets.c        sets in parallel with retries, record matching
@@ -19,6 +21,7 @@
 #define SL_SYNTH_INTERNAL_H
 
 #include <fftw3.h>
+#include <gsl/gsl_rng.h>
 
 #include "synth/synth.h"
 
@@ -47,6 +50,12 @@
 /* A target is rigid at its end when its SA at the last frequency is within
  * this factor of its ZPA (set_target; compress_peaks eq. C2). */
 #define SYNTH_RIGID_RATIO 1.1
+/* A target is very sharp when its largest SA/ZPA over the checked range
+ * exceeds this (the example floors in floors/: at most 5.23, unchanged;
+ * templates/floor.ini: 7.0): its synthetic motions start with a mode sweep
+ * and every iterate gets a crest reservation (synth_sharp.c,
+ * docs/synthesis.md 4 "Limit: very sharp floors"). */
+#define SYNTH_SHARP_AMP 6.0
 
 struct sl_synth {
     size_t n;            /* motion samples */
@@ -81,6 +90,7 @@ struct sl_synth_motion {
     int record;            /* started from a record: dead-band correction */
     size_t j_lo, j_hi;     /* checked grid points [j_lo, j_hi) */
     int rigid_end;         /* the target's end SA within SYNTH_RIGID_RATIO of its ZPA */
+    int sharp;             /* largest SA/ZPA above SYNTH_SHARP_AMP (synth_sharp.c) */
     unsigned iter;         /* iterations since set_* */
     unsigned attempt;
     double *tgt;           /* grid: target (NAN outside) */
@@ -152,11 +162,13 @@ void sl_synth_check_motion_psd(const sl_synth_motion *m, sl_synth_check *out, in
  * (synth_check.c). */
 void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectrum *ts,
                         double psd_frac, sl_synth_check *out);
-/* Crest reservation of very sharp targets (synth_sharp.c). */
-size_t sl_synth_reserve_crest(sl_synth_motion *m);
-int sl_synth_is_sharp(const sl_synth_motion *m);
-#include <gsl/gsl_rng.h>
+/* The target's largest SA/ZPA on the checked range exceeds SYNTH_SHARP_AMP
+ * (synth_sharp.c). */
+int sl_synth_sharp_target(const sl_synth_motion *m);
+/* Very sharp targets: the mode sweep added to the start (eq. S1) and the
+ * crest reservation of an iterate (eq. S2; synth_sharp.c). */
 void sl_synth_add_mode_sweep(sl_synth_motion *m, gsl_rng *rng);
+size_t sl_synth_reserve_crest(sl_synth_motion *m);
 /* Leave the coarse phase: the best iterate at full accuracy (synth_iterate.c). */
 sl_status sl_synth_end_coarse(sl_synth_motion *m, sl_error *err);
 
