@@ -22,9 +22,11 @@
 /* The sweep covers the grid frequencies where the target is at least this
  * fraction of its largest SA. */
 #define SWEEP_BAND 0.75
-/* Its length (fraction of the duration) and its cosine rise and fall, s. */
+/* Its length (fraction of the duration), its cosine rise and fall, s, and
+ * the part of its length before the time drawn in the envelope's hold. */
 #define SWEEP_DURATION_FRAC 0.3
 #define SWEEP_RISE_S 1.0
+#define SWEEP_LEAD_FRAC 0.3
 /* Its amplitude, a fraction of the peak of the wavelet sum it is added to
  * (the start's one gain sets the level; 0.8 and 1.2 gave the same peak
  * counts and pass rates within their standard errors). */
@@ -47,7 +49,7 @@ int sl_synth_sharp_target(const sl_synth_motion *m)
  * t' = t - t_s in [0, D], w a cosine rise and fall of SWEEP_RISE_S s, D =
  * SWEEP_DURATION_FRAC T, [f_a, f_b] the band where the target is at least
  * SWEEP_BAND of its largest value (swept up or down at random), t_s such
- * that the sweep starts 0.3 D before a time drawn uniformly in the
+ * that the sweep starts SWEEP_LEAD_FRAC D before a time drawn uniformly in the
  * envelope's hold [rise_frac T, hold_frac T], phi uniform, A = SWEEP_AMP x
  * the peak of m->acc. A linear sweep at constant amplitude gives every
  * oscillator of the band about the same number of cycles near its
@@ -70,7 +72,7 @@ void sl_synth_add_mode_sweep(sl_synth_motion *m, gsl_rng *rng)
     const double T = s->dt * (double)(n - 1), D = SWEEP_DURATION_FRAC * T;
     const double rise = SWEEP_RISE_S < 0.5 * D ? SWEEP_RISE_S : 0.5 * D;
     const double t0 = s->p.rise_frac * T, t1 = s->p.hold_frac * T;
-    const double ts = t0 + gsl_rng_uniform(rng) * (t1 - t0) - 0.3 * D;
+    const double ts = t0 + gsl_rng_uniform(rng) * (t1 - t0) - SWEEP_LEAD_FRAC * D;
     const int up = gsl_rng_uniform(rng) < 0.5;
     const double phi = 2 * SL_PI * gsl_rng_uniform(rng), amp = SWEEP_AMP * pk;
     const double f0 = up ? fa : fb, f1 = up ? fb : fa;
