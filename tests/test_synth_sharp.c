@@ -1,6 +1,6 @@
 /*
- * test_synth_sharp.c - synthetic motions for very sharp floor spectra keep
- * few peaks (docs/synthesis.md 4, "Limit: very sharp floors";
+ * test_synth_sharp.c - synthetic motions for sharp floor spectra keep few
+ * peaks (docs/synthesis.md 4, "Limit: very sharp floors";
  * src/synth/synth_sharp.c).
  *
  * Physical floor motions of that sharpness (16 real records through a
@@ -8,15 +8,21 @@
  * peaks of |a| above 0.9 PGA per horizontal, median 2. The issue asks, for
  * floor spectra with SA/ZPA up to 8: at most 10 per horizontal and a mean of
  * at most 4. Asserted here on one set for each of NSEED seeds on
- * templates/floor.ini (SA/ZPA 7.0) and on tests/data/floors/sharp-8.ini
- * (the template raised to SA/ZPA 8.0 at 4.6-5.3 Hz), with every set passing
- * every check (spectral band, PGA/ZPA, D5-75, end values, correlation).
- * The peaks are counted here by the definition of REFERENCE.md 5 (sample
- * i with |a_i| > |a_i-1|, |a_i| >= |a_i+1| and |a_i| >= 0.9 PGA), not by the
- * library's counter, and the count must equal the one reported.
- * MEASURED before synth_sharp.c (build/tools/synthstat 20 5 FLOOR --no-slide):
- * template mean 12.5 and 14.7, at most 35; sharp-8 mean 23.9 and 23.3, at
- * most 86. Without the crest reservation (eq. S2) this test fails on both.
+ * templates/floor.ini (SA/ZPA 7.0), tests/data/floors/sharp-8.ini (the
+ * template raised to SA/ZPA 8.0 at 4.6-5.3 Hz), and two example floors with
+ * the crest reservation alone: floors/04-roof36.ini (5.23 and 4.89) and
+ * floors/02-el12.ini (4.58 and 4.24), with every set passing every check
+ * (spectral band, PGA/ZPA, D5-75, end values, correlation). The peaks are
+ * counted here by the definition of REFERENCE.md 5 (sample i with |a_i| >
+ * |a_i-1|, |a_i| >= |a_i+1| and |a_i| >= 0.9 PGA), not by the library's
+ * counter, and the count must equal the one reported. test_classes asserts
+ * which targets get which step.
+ * MEASURED before synth_sharp.c (build/tools/synthstat 20 5 FLOOR --no-slide,
+ * and 40 5 for the example floors): template mean 12.5 and 14.7, at most
+ * 35; sharp-8 mean 23.9 and 23.3, at most 86; roof 11.9 and 7.9, at most 21;
+ * el. 12 m 5.2 and 3.3, at most 10. Without the crest reservation (eq. S2)
+ * this test fails on all four; without the mode sweep (eq. S1) sets at
+ * SA/ZPA 8 fail their checks.
  * SEISLIDE_TEST_VERBOSE prints the means with their standard errors.
  */
 #include <math.h>
@@ -25,6 +31,7 @@
 #include "harness.h"
 #include "io/floor.h"
 #include "synth/synth.h"
+#include "synth/synth_internal.h"
 
 #define T_N 4001
 #define T_DT 0.005
@@ -108,12 +115,56 @@ static void sharp_floor(const char *path, double amp_min)
     sl_floor_free(fl);
 }
 
+/* Which targets get which step: the crest reservation above SA/ZPA
+ * SYNTH_CREST_AMP, the mode sweep also above SYNTH_SHARP_AMP, nothing at or
+ * below 4 (the ground: RG 1.60, 3.13; every vertical here: 2.8-3.99). */
+static void test_classes(void)
+{
+    static const struct {
+        const char *path;
+        int h, v; /* m->sharp of the horizontals and of the vertical */
+    } cases[] = {
+        {"floors/01-ground.ini", 0, 0},
+        {"floors/02-el12.ini", SYNTH_SHARP_CREST, 0},
+        {"floors/04-roof36.ini", SYNTH_SHARP_CREST, 0},
+        {"templates/floor.ini", SYNTH_SHARP_CREST | SYNTH_SHARP_SWEEP, 0},
+        {"tests/data/floors/sharp-8.ini", SYNTH_SHARP_CREST | SYNTH_SHARP_SWEEP, 0},
+    };
+    sl_error e;
+    sl_error_clear(&e);
+    sl_synth *s = sl_synth_alloc(T_N, T_DT, NULL, &e);
+    sl_synth_motion *m = s ? sl_synth_motion_alloc(s, &e) : NULL;
+    CHECK(s && m, "%s", e.msg);
+    for (size_t k = 0; m && k < sizeof cases / sizeof cases[0]; k++) {
+        sl_floor *fl = sl_floor_load(cases[k].path, &e);
+        sl_synth_target tgt[SL_SYNTH_NCOMP];
+        CHECK(fl && sl_synth_targets_floor(fl, 0, tgt, &e) == SL_OK, "%s", e.msg);
+        for (int c = 0; fl && c < SL_SYNTH_NCOMP; c++) {
+            CHECK(sl_synth_set_random(m, &tgt[c], 1, 0, (sl_synth_comp)c, 0, &e) == SL_OK, "%s",
+                  e.msg);
+            int want = c == SL_SYNTH_V ? cases[k].v : cases[k].h;
+            CHECK(m->sharp == want, "%s %s: sharp %d, expected %d", cases[k].path,
+                  sl_synth_comp_name((sl_synth_comp)c), m->sharp, want);
+        }
+        sl_floor_free(fl);
+    }
+    sl_synth_motion_free(m);
+    sl_synth_free(s);
+}
+
 static void test_template(void) { sharp_floor("templates/floor.ini", 7.0); }
 static void test_sa_zpa_8(void) { sharp_floor("tests/data/floors/sharp-8.ini", 8.0 - 1e-9); }
+/* Moderate floors, crest reservation alone: the example roof (SA/ZPA 5.23
+ * and 4.89) and el. 12 m (4.58 and 4.24, the nearest to the threshold). */
+static void test_roof(void) { sharp_floor("floors/04-roof36.ini", 4.85); }
+static void test_el12(void) { sharp_floor("floors/02-el12.ini", 4.2); }
 
 int main(void)
 {
+    RUN(test_classes);
     RUN(test_template);
     RUN(test_sa_zpa_8);
+    RUN(test_roof);
+    RUN(test_el12);
     return HARNESS_END("synth_sharp");
 }

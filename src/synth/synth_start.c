@@ -267,7 +267,7 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
             size_t j1 = jb >= (double)(s->n - 1) ? s->n - 1 : (size_t)jb;
             sl_synth_add_wavelet(m->acc, j0, j1, s->dt, tk, amp, sg, f, phi);
         }
-        if (m->sharp) /* very sharp targets: eq. S1 (synth_sharp.c) */
+        if (m->sharp & SYNTH_SHARP_SWEEP) /* very sharp targets: eq. S1 (synth_sharp.c) */
             sl_synth_add_mode_sweep(m, rng);
         m->level = peak_level(&s->p, rng);
         gsl_rng_free(rng);
