@@ -9,8 +9,8 @@
  *     synth_iterate.c     the correction iteration (eq. 2-3), coarse phase
  *     synth_admissible.c  admissible motion: taper, soft peak compression
  *                         (eq. C2), baseline
- *     synth_sharp.c       very sharp targets: mode sweep start (eq. S1),
- *                         crest reservation (eq. S2)
+ *     synth_sharp.c       sharp floor targets: crest reservation (eq. S2),
+ *                         mode sweep start (eq. S1)
  *     synth_check.c       the SRP 3.7.1 checks of a motion, other dampings
  *     synth_record.c      records: start from a record, resampling
  *     synth_sets.c        sets in parallel with retries, record matching
@@ -171,8 +171,9 @@ void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectru
  * exceeds SYNTH_CREST_AMP, | SYNTH_SHARP_SWEEP when it exceeds
  * SYNTH_SHARP_AMP, else 0 (synth_sharp.c). */
 int sl_synth_sharp_target(const sl_synth_motion *m);
-/* Very sharp targets: the mode sweep added to the start (eq. S1) and the
- * crest reservation of an iterate (eq. S2; synth_sharp.c). */
+/* Sharp targets: the mode sweep added to the start (eq. S1; SA/ZPA above
+ * SYNTH_SHARP_AMP) and the crest reservation of an iterate (eq. S2; above
+ * SYNTH_CREST_AMP), synth_sharp.c. */
 void sl_synth_add_mode_sweep(sl_synth_motion *m, gsl_rng *rng);
 size_t sl_synth_reserve_crest(sl_synth_motion *m);
 /* Leave the coarse phase: the best iterate at full accuracy (synth_iterate.c). */

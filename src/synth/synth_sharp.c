@@ -17,8 +17,8 @@
  * needs under that cap (at SA/ZPA 8, 5 of 40 sets failed), and a
  * constant-amplitude sweep across the target's peak band gives the spectrum
  * its flat top from one coherent burst. A ring-down envelope for the sweep
- * (exp(-2 pi f zeta t), zeta 2-5 %) gave the same peak counts and sliding
- * at 1.5 times the cost (docs/synthesis.md 4). */
+ * (exp(-2 pi f zeta t), zeta 2-5 %) gave the same peak counts and no less
+ * sliding at 1.1-2.3 times the CPU (docs/synthesis.md 4). */
 #include "synth/synth_internal.h"
 
 #include <math.h>
