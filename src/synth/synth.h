@@ -118,8 +118,9 @@
  * percentile 3, maximum 7). */
 #define SL_SYNTH_MAX_PEAKS 5
 /* The peak count is a check only for targets whose largest SA/ZPA is at
- * most this (ground-like; RG 1.60 at 5 %: 3.13); narrow-band floor targets
- * (SA/ZPA up to 7) are quasi-harmonic near their mode and are reported. */
+ * most this (ground-like; RG 1.60 at 5 %: 3.13). Above it the count is
+ * reported, and the crest reservation of synth_sharp.c holds it at 2-3 on
+ * average, at most 4-5 (docs/synthesis.md 4, "Limit: very sharp floors"). */
 #define SL_SYNTH_PEAKS_MAX_AMP 4.0
 
 /* ---- Defaults of the method ---- */

@@ -97,6 +97,8 @@ sl_status sl_synth_finish(sl_synth_motion *m, sl_error *err)
         m->acc[n - 1 - j] *= s->taper[j];
     }
     sl_synth_compress_peaks(m, m->level * m->zpa, m->knee);
+    if ((m->sharp & SYNTH_SHARP_CREST) && !m->record) /* sharp targets: eq. S2 (synth_sharp.c) */
+        sl_synth_reserve_crest(m);
     /* Baseline: subtract c0 bl0 + c1 bl1 so that v(T) = d(T) = 0. */
     double ve, de;
     sl_synth_end_values(m->acc, n, s->dt, &ve, &de);

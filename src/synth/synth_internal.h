@@ -9,6 +9,8 @@
  *     synth_iterate.c     the correction iteration (eq. 2-3), coarse phase
  *     synth_admissible.c  admissible motion: taper, soft peak compression
  *                         (eq. C2), baseline
+ *     synth_sharp.c       sharp floor targets: crest reservation (eq. S2),
+ *                         mode sweep start (eq. S1)
  *     synth_check.c       the SRP 3.7.1 checks of a motion, other dampings
  *     synth_record.c      records: start from a record, resampling
  *     synth_sets.c        sets in parallel with retries, record matching
@@ -20,6 +22,7 @@
 
 #include <fftw3.h>
 #include <math.h>
+#include <gsl/gsl_rng.h>
 
 #include "synth/synth.h"
 
@@ -48,6 +51,17 @@
 /* A target is rigid at its end when its SA at the last frequency is within
  * this factor of its ZPA (set_target; compress_peaks eq. C2). */
 #define SYNTH_RIGID_RATIO 1.1
+/* Sharp floor targets (synth_sharp.c, docs/synthesis.md 4 "Limit: very
+ * sharp floors"), by the largest SA/ZPA over the checked range. Above
+ * SYNTH_CREST_AMP, where the peak count stops being a check (synth.h), every
+ * iterate of a synthetic motion gets the crest reservation (eq. S2; the
+ * example floors 02-04 in floors/: 4.24-5.23); above SYNTH_SHARP_AMP its
+ * start also gets the mode sweep (eq. S1; templates/floor.ini: 7.05). */
+#define SYNTH_CREST_AMP SL_SYNTH_PEAKS_MAX_AMP
+#define SYNTH_SHARP_AMP 6.0
+/* m->sharp: which of the two. */
+#define SYNTH_SHARP_CREST 1
+#define SYNTH_SHARP_SWEEP 2
 
 struct sl_synth {
     size_t n;            /* motion samples */
@@ -84,6 +98,7 @@ struct sl_synth_motion {
     int record;            /* started from a record: dead-band correction */
     size_t j_lo, j_hi;     /* checked grid points [j_lo, j_hi) */
     int rigid_end;         /* the target's end SA within SYNTH_RIGID_RATIO of its ZPA */
+    int sharp;             /* SYNTH_SHARP_CREST | SYNTH_SHARP_SWEEP or 0 (synth_sharp.c) */
     unsigned iter;         /* iterations since set_* */
     unsigned attempt;
     double *tgt;           /* grid: target (NAN outside) */
@@ -164,6 +179,15 @@ void sl_synth_check_motion_psd(const sl_synth_motion *m, sl_synth_check *out, in
  * (synth_check.c). */
 void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectrum *ts,
                         double psd_frac, sl_synth_check *out);
+/* SYNTH_SHARP_CREST when the target's largest SA/ZPA on the checked range
+ * exceeds SYNTH_CREST_AMP, | SYNTH_SHARP_SWEEP when it exceeds
+ * SYNTH_SHARP_AMP, else 0 (synth_sharp.c). */
+int sl_synth_sharp_target(const sl_synth_motion *m);
+/* Sharp targets: the mode sweep added to the start (eq. S1; SA/ZPA above
+ * SYNTH_SHARP_AMP) and the crest reservation of an iterate (eq. S2; above
+ * SYNTH_CREST_AMP), synth_sharp.c. */
+void sl_synth_add_mode_sweep(sl_synth_motion *m, gsl_rng *rng);
+size_t sl_synth_reserve_crest(sl_synth_motion *m);
 /* Leave the coarse phase: the best iterate at full accuracy (synth_iterate.c). */
 sl_status sl_synth_end_coarse(sl_synth_motion *m, sl_error *err);
 

@@ -104,6 +104,7 @@ sl_status sl_synth_set_target(sl_synth_motion *m, const sl_synth_target *t, sl_e
      * forced. */
     const double tend = t->spec->sa_ms2[t->spec->n - 1];
     m->rigid_end = tend <= SYNTH_RIGID_RATIO * m->zpa && tend * SYNTH_RIGID_RATIO >= m->zpa;
+    m->sharp = sl_synth_sharp_target(m);
     if (m->j_lo >= m->j_hi)
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "synth: the target (%g-%g Hz) does not overlap the check grid "
@@ -266,6 +267,8 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
             size_t j1 = jb >= (double)(s->n - 1) ? s->n - 1 : (size_t)jb;
             sl_synth_add_wavelet(m->acc, j0, j1, s->dt, tk, amp, sg, f, phi);
         }
+        if (m->sharp & SYNTH_SHARP_SWEEP) /* very sharp targets: eq. S1 (synth_sharp.c) */
+            sl_synth_add_mode_sweep(m, rng);
         m->level = peak_level(&s->p, rng);
         gsl_rng_free(rng);
         m->attempt = attempt;
