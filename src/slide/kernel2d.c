@@ -262,13 +262,11 @@ static double onset(const sample *s, double mu, double lo_x)
     return 1.0;
 }
 
-/* Sub-steps of width (1 - x0)/n over the part [x0, 1] of one sample from
- * b; a block at rest stays held until the exact onset instant. */
-static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
+/* Sub-steps of width w from fraction x of one sample to its end, at most
+ * jmax of them; a block at rest stays held until the exact onset instant. */
+static blk run_from(blk b, const sample *s, double mu, double w, double x, unsigned jmax)
 {
-    const double w = (1.0 - x0) / n;
-    double x = x0;
-    for (unsigned j = 0; j < 4u * n + 8u && x < 1.0; j++) {
+    for (unsigned j = 0; j < jmax && x < 1.0; j++) {
         if (b.vx == 0.0 && b.vy == 0.0) {
             x = onset(s, mu, x);
             if (!(x < 1.0))
@@ -280,6 +278,13 @@ static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
         x = used < 1.0 ? x + (x1 - x) * used : x1;
     }
     return b;
+}
+
+/* Sub-steps of width (1 - x0)/n over the part [x0, 1] of one sample from
+ * b (run_from). */
+static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
+{
+    return run_from(b, s, mu, (1.0 - x0) / n, x0, 4u * n + 8u);
 }
 
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
@@ -411,13 +416,34 @@ static void err_add(errv *e, double dux, double duy, double dvx, double dvy, dou
 
 /* The working state of one run: every block, its error estimate, and the
  * packed arrays of the live blocks of the current sample (P_N rows of m). */
+/* The rows of the packed state of a level (level_vector): the blk fields
+ * but the episodes. */
+enum { S_UX, S_UY, S_VX, S_VY, S_SP, S_PK2, S_TPK, S_PX, S_PY, S_PATH, S_VM2, S_TSL, S_TST, S_N };
+
+/* Packed rows of the blocks one level of sub-steps advances together
+ * (level_vector): friction, the flag of a block whose sub-step needs the
+ * split step (5), then two banks of S_N state rows (each sub-step reads one
+ * and writes the other). */
+enum { Q_MU, Q_BAD, Q_BANK, Q_N = Q_BANK + 2 * S_N };
+
+/* A sliding block being refined: packed index j, block k, the sub-step
+ * count of its next level (0 when done), and the previous level's answer. */
+typedef struct rq {
+    size_t j, k;
+    unsigned lev;
+    int has_a;
+    double ax, ay, avx, avy;
+} rq;
+
 typedef struct k2_work {
     size_t m;
     blk *B;
     errv *E;
-    double *P;
-    size_t *live, *redo;
+    double *P, *Q;
+    size_t *live, *redo, *qk, *qs;
     long *refined;
+    blk *C;  /* the answers of one level, by refinement entry */
+    rq *R;   /* the sliding blocks being refined in this sample */
 } k2_work;
 
 static void work_free(k2_work *w)
@@ -425,9 +451,14 @@ static void work_free(k2_work *w)
     free(w->B);
     free(w->E);
     free(w->P);
+    free(w->Q);
     free(w->live);
     free(w->redo);
+    free(w->qk);
+    free(w->qs);
     free(w->refined);
+    free(w->C);
+    free(w->R);
 }
 
 static int work_alloc(k2_work *w, size_t m)
@@ -440,7 +471,13 @@ static int work_alloc(k2_work *w, size_t m)
     w->live = malloc(m1 * sizeof *w->live);
     w->redo = malloc(m1 * sizeof *w->redo);
     w->refined = calloc(m1, sizeof *w->refined);
-    if (!w->B || !w->E || !w->P || !w->live || !w->redo || !w->refined) {
+    w->Q = malloc((size_t)Q_N * m1 * sizeof *w->Q);
+    w->qk = malloc(m1 * sizeof *w->qk);
+    w->qs = malloc(m1 * sizeof *w->qs);
+    w->C = malloc(m1 * sizeof *w->C);
+    w->R = malloc(m1 * sizeof *w->R);
+    if (!w->B || !w->E || !w->P || !w->live || !w->redo || !w->refined || !w->Q || !w->qk ||
+        !w->qs || !w->C || !w->R) {
         work_free(w);
         return -1;
     }
@@ -565,6 +602,189 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
     return nr;
 }
 
+/* One sub-step (3)-(4) of every packed block with the forcing F, ending at
+ * tu, from the state rows I to the rows O: the arithmetic of fstep and
+ * track_peak on the path without the split step, every value computed and
+ * selected (vector code). bad = 1 marks a block whose step needs the split
+ * (5) (its O is then meaningless). */
+VECTOR_PASS static void substep_pass(
+    size_t nq, const force *F, double tu, const double *restrict mu, double *restrict bad,
+    const double *restrict iux, const double *restrict iuy, const double *restrict ivx,
+    const double *restrict ivy, const double *restrict isp, const double *restrict ipk2,
+    const double *restrict itpk, const double *restrict ipx, const double *restrict ipy,
+    const double *restrict ipath, const double *restrict ivm2, const double *restrict itsl,
+    const double *restrict itst, double *restrict oux, double *restrict ouy,
+    double *restrict ovx, double *restrict ovy, double *restrict osp, double *restrict opk2,
+    double *restrict otpk, double *restrict opx, double *restrict opy, double *restrict opath,
+    double *restrict ovm2, double *restrict otsl, double *restrict otst)
+{
+    const double hax = F->hax, hay = F->hay, hN = F->hN, cx = F->cx, cy = F->cy, h = F->h;
+    for (size_t j = 0; j < nq; j++) {
+        const double vx0 = ivx[j], vy0 = ivy[j], ux0 = iux[j], uy0 = iuy[j];
+        const double f = hN * mu[j];
+        const double yx = 2.0 * vx0 - hax, yy = 2.0 * vy0 - hay; /* (3) */
+        const double yn = sqrt(yx * yx + yy * yy);
+        const double s1 = 1.0 - f / (yn > 1e-300 ? yn : 1e-300);
+        const double sm = yn > f ? s1 : 0.0;
+        const double mx = yx * sm - vx0, my = yy * sm - vy0;
+        const double v2 = vx0 * vx0 + vy0 * vy0, L = v2 - (hax * vx0 + hay * vy0);
+        const double ok = (yn > f ? 1.0 : 0.0) * ((mx * vx0 + my * vy0) > 0.0 ? 1.0 : 0.0) *
+                          (L > 0.0 ? 1.0 : 0.0) * (L * L > f * f * v2 ? 1.0 : 0.0);
+        const double nux = ux0 + (0.5 * h * (vx0 + mx) + cx); /* (4) */
+        const double nuy = uy0 + (0.5 * h * (vy0 + my) + cy);
+        const double sp2 = mx * mx + my * my, spn = sqrt(sp2);
+        /* track_peak: the end, and the parabola when u.v turns inward */
+        const double r2 = nux * nux + nuy * nuy;
+        const double p0 = ux0 * vx0 + uy0 * vy0, p1 = nux * mx + nuy * my;
+        const double turn = (p0 > 0.0 ? 1.0 : 0.0) * (p1 < 0.0 ? 1.0 : 0.0);
+        const double par = ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (turn != 0.0 ? p0 - p1 : 1.0);
+        const double c = turn != 0.0 ? max2(r2, par) : r2;
+        /* times blended by 0/1 weights (exact for the finite times >= 0):
+         * a select would load them conditionally and block the vector code */
+        const double pk2 = ipk2[j], up = c > pk2 ? 1.0 : 0.0, zs = sp2 == 0.0 ? 1.0 : 0.0;
+        opk2[j] = up != 0.0 ? c : pk2;
+        otpk[j] = up * tu + (1.0 - up) * itpk[j];
+        opx[j] = max2(ipx[j], fabs(nux));
+        opy[j] = max2(ipy[j], fabs(nuy));
+        opath[j] = ipath[j] + 0.5 * h * (isp[j] + spn);
+        otsl[j] = itsl[j] + h;
+        ovm2[j] = max2(ivm2[j], sp2);
+        otst[j] = zs * tu + (1.0 - zs) * itst[j];
+        osp[j] = spn;
+        oux[j] = nux;
+        ouy[j] = nuy;
+        ovx[j] = mx;
+        ovy[j] = my;
+        bad[j] = 1.0 - ok;
+    }
+}
+
+/* Row r of state bank `bank` of w->Q. */
+static double *q_row(const k2_work *w, int bank, int r)
+{
+    return w->Q + (size_t)(Q_BANK + bank * S_N + r) * w->m;
+}
+
+/* Pack blocks w->qk[0..nq) (all sliding) into w->Q, state bank 0. */
+static void q_pack(k2_work *w, size_t nq, const double *mu)
+{
+    double *S[S_N];
+    for (int r = 0; r < S_N; r++)
+        S[r] = q_row(w, 0, r);
+    for (size_t i = 0; i < nq; i++) {
+        const size_t k = w->qk[i];
+        const blk *b = &w->B[k];
+        w->Q[Q_MU * w->m + i] = mu[k];
+        S[S_UX][i] = b->ux;
+        S[S_UY][i] = b->uy;
+        S[S_VX][i] = b->vx;
+        S[S_VY][i] = b->vy;
+        S[S_SP][i] = b->sp;
+        S[S_PK2][i] = b->peak2;
+        S[S_TPK][i] = b->tpeak;
+        S[S_PX][i] = b->px;
+        S[S_PY][i] = b->py;
+        S[S_PATH][i] = b->path;
+        S[S_VM2][i] = b->vmax2;
+        S[S_TSL][i] = b->tslide;
+        S[S_TST][i] = b->tstop;
+    }
+}
+
+/* Packed block i of state bank `bank` as a blk (its episodes from the
+ * block's start state: a pass never starts a block from rest). */
+static blk q_unpack(const k2_work *w, int bank, size_t i)
+{
+    blk b;
+    b.ux = q_row(w, bank, S_UX)[i];
+    b.uy = q_row(w, bank, S_UY)[i];
+    b.vx = q_row(w, bank, S_VX)[i];
+    b.vy = q_row(w, bank, S_VY)[i];
+    b.sp = q_row(w, bank, S_SP)[i];
+    b.peak2 = q_row(w, bank, S_PK2)[i];
+    b.tpeak = q_row(w, bank, S_TPK)[i];
+    b.px = q_row(w, bank, S_PX)[i];
+    b.py = q_row(w, bank, S_PY)[i];
+    b.path = q_row(w, bank, S_PATH)[i];
+    b.vmax2 = q_row(w, bank, S_VM2)[i];
+    b.tslide = q_row(w, bank, S_TSL)[i];
+    b.tstop = q_row(w, bank, S_TST)[i];
+    b.episodes = w->B[w->qk[i]].episodes;
+    return b;
+}
+
+/* Move packed block `last` into slot i (friction and state bank `bank`). */
+static void q_move(k2_work *w, int bank, size_t i, size_t last)
+{
+    double *mu = w->Q + Q_MU * w->m;
+    mu[i] = mu[last];
+    for (int r = 0; r < S_N; r++) {
+        double *row = q_row(w, bank, r);
+        row[i] = row[last];
+    }
+    w->qk[i] = w->qk[last];
+    w->qs[i] = w->qs[last];
+}
+
+/* run_level(B[k], s, mu, n, 0) of the nq sliding blocks packed in w->Q,
+ * all together: the n sub-steps share their forcing and run as vector code
+ * (substep_pass); a block whose sub-step needs the split step (5) leaves
+ * the pack and finishes the level alone (run_from, the same steps from
+ * there). Block i's answer goes to res[w->qs[i]]. */
+static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk *res)
+{
+    const double *mu = w->Q + Q_MU * w->m, *bad = w->Q + Q_BAD * w->m;
+    const double wd = (1.0 - 0.0) / n; /* as run_level */
+    const unsigned jmax = 4u * n + 8u;
+    double x = 0.0;
+    int cur = 0;
+    for (unsigned j = 0; j < jmax && x < 1.0 && nq > 0; j++) {
+        const double x1 = 1.0 - (x + wd) < 1e-12 ? 1.0 : x + wd;
+        const force F = force_of(s, x, x1);
+        const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
+        const int o = 1 - cur;
+        substep_pass(nq, &F, tu, mu, w->Q + Q_BAD * w->m, q_row(w, cur, S_UX),
+                     q_row(w, cur, S_UY), q_row(w, cur, S_VX), q_row(w, cur, S_VY),
+                     q_row(w, cur, S_SP), q_row(w, cur, S_PK2), q_row(w, cur, S_TPK),
+                     q_row(w, cur, S_PX), q_row(w, cur, S_PY), q_row(w, cur, S_PATH),
+                     q_row(w, cur, S_VM2), q_row(w, cur, S_TSL), q_row(w, cur, S_TST),
+                     q_row(w, o, S_UX), q_row(w, o, S_UY), q_row(w, o, S_VX), q_row(w, o, S_VY),
+                     q_row(w, o, S_SP), q_row(w, o, S_PK2), q_row(w, o, S_TPK),
+                     q_row(w, o, S_PX), q_row(w, o, S_PY), q_row(w, o, S_PATH),
+                     q_row(w, o, S_VM2), q_row(w, o, S_TSL), q_row(w, o, S_TST));
+        /* from the top, so the block moved into a freed slot is done */
+        for (size_t i = nq; i-- > 0;) {
+            if (bad[i] == 0.0)
+                continue;
+            res[w->qs[i]] = run_from(q_unpack(w, cur, i), s, mu[i], wd, x, jmax - j);
+            q_move(w, 1 - cur, i, --nq);
+        }
+        cur = 1 - cur;
+        x = x1;
+    }
+    for (size_t i = 0; i < nq; i++)
+        res[w->qs[i]] = q_unpack(w, cur, i);
+}
+
+/* The end of the refinement of entry e: block k takes the answer C of n
+ * sub-steps, and the difference from the level before (e->a*) goes to its
+ * error estimate (as refine). */
+static void finish_refined(k2_work *w, const rq *e, const blk *C, unsigned n, double dt)
+{
+    const size_t m = w->m, k = e->k;
+    const double ns = w->P[P_NS * m + e->j], bad = w->P[P_BAD * m + e->j];
+    w->refined[k] += (n > 2);
+    const int raised = C->peak2 > w->B[k].peak2;
+    const blk B0 = w->B[k];
+    w->B[k] = *C;
+    const double rf = (ns == 0.0 && bad == 0.0 && C->episodes == B0.episodes &&
+                       C->tstop == B0.tstop)
+                          ? SL_K2_RICHARDSON
+                          : 1.0;
+    err_add(&w->E[k], (C->ux - e->ax) / rf, (C->uy - e->ay) / rf, (C->vx - e->avx) / rf,
+            (C->vy - e->avy) / rf, dt, raised);
+}
+
 /* Redo packed block j of sample s alone: from rest held until the exact
  * onset instant; then 1, 2, 4, ... sub-steps with the full step (2)-(5)
  * (a slow block starts at SL_K2_NEAR_STOP_SUB: a stop and restart inside
@@ -618,6 +838,90 @@ static void refine(k2_work *w, size_t j, const sample *s, const double *mu)
                           : 1.0;
     err_add(&w->E[k], (C.ux - A.ux) / rf, (C.uy - A.uy) / rf, (C.vx - A.vx) / rf,
             (C.vy - A.vy) / rf, s->dt, raised);
+}
+
+/* Refine the nr blocks of sample s in w->redo: a block at rest alone
+ * (refine: its onset sets its own sub-step grid); the sliding ones level by
+ * level, every block due at n sub-steps advanced together (level_vector),
+ * with the levels and the test of refine: a slow block from
+ * SL_K2_NEAR_STOP_SUB, a block sent by the tolerance alone from the vector
+ * pass's two half steps (level 2), any other from 1. */
+static void refine_all(k2_work *w, size_t nr, const sample *s, const double *mu)
+{
+    const size_t m = w->m;
+    const double *P = w->P;
+    size_t nv = 0;
+    for (size_t r = 0; r < nr; r++) {
+        const size_t j = w->redo[r], k = w->live[j];
+        if (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) {
+            refine(w, j, s, mu);
+            continue;
+        }
+        rq *e = &w->R[nv++];
+        const double ns = P[P_NS * m + j], bad = P[P_BAD * m + j];
+        e->j = j;
+        e->k = k;
+        e->has_a = ns == 0.0 && bad == 0.0;
+        e->lev = e->has_a ? 4u : ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+        e->ax = P[P_UX * m + j];
+        e->ay = P[P_UY * m + j];
+        e->avx = P[P_VX * m + j];
+        e->avy = P[P_VY * m + j];
+    }
+    size_t pending = nv;
+    for (unsigned n = 1; pending > 0 && n <= NSUB_MAX; n *= 2) {
+        size_t nq = 0;
+        for (size_t i = 0; i < nv; i++)
+            if (w->R[i].lev == n) {
+                w->qk[nq] = w->R[i].k;
+                w->qs[nq++] = i;
+            }
+        if (nq == 0)
+            continue;
+        q_pack(w, nq, mu);
+        level_vector(w, nq, s, n, w->C);
+        for (size_t i = 0; i < nv; i++) {
+            rq *e = &w->R[i];
+            if (e->lev != n)
+                continue;
+            const blk *C = &w->C[i];
+            const double eu = sqrt((C->ux - e->ax) * (C->ux - e->ax) + (C->uy - e->ay) * (C->uy - e->ay));
+            const double ev =
+                sqrt((C->vx - e->avx) * (C->vx - e->avx) + (C->vy - e->avy) * (C->vy - e->avy));
+            if (e->has_a && (eu + SL_K2_TV * ev <= P[P_TOL * m + e->j] || n >= NSUB_MAX)) {
+                finish_refined(w, e, C, n, s->dt);
+                e->lev = 0;
+                pending--;
+                continue;
+            }
+            e->has_a = 1;
+            e->ax = C->ux;
+            e->ay = C->uy;
+            e->avx = C->vx;
+            e->avy = C->vy;
+            e->lev = 2 * n;
+        }
+    }
+}
+
+/* Fixed sub-steps: n of them per sample for every live block, the sliding
+ * ones together (level_vector), a block at rest alone from its onset. */
+static void fixed_level(k2_work *w, size_t na, const sample *s, const double *mu, unsigned n)
+{
+    size_t nq = 0;
+    for (size_t li = 0; li < na; li++) {
+        const size_t k = w->live[li];
+        if (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) {
+            w->B[k] = run_level(w->B[k], s, mu[k], n, 0.0);
+        } else {
+            w->qk[nq] = k;
+            w->qs[nq++] = k;
+        }
+    }
+    if (nq > 0) {
+        q_pack(w, nq, mu);
+        level_vector(w, nq, s, n, w->B);
+    }
 }
 
 /* The history of block 0 at the end of sample s: F/W = the absolute block
@@ -674,16 +978,11 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
         const sample s = sample_at(in, i);
         const size_t na = find_live(&w, &s, mu);
         if (!adaptive) {
-            for (size_t li = 0; li < na; li++) {
-                const size_t k = w.live[li];
-                w.B[k] = run_level(w.B[k], &s, mu[k], o->substeps, 0.0);
-            }
+            fixed_level(&w, na, &s, mu, o->substeps);
         } else if (na > 0) {
             pack(&w, na, mu, eta, scale_m, o);
             step(&w, na, &s);
-            const size_t nr = accept(&w, na, s.dt, s.t0 + s.dt);
-            for (size_t r = 0; r < nr; r++)
-                refine(&w, w.redo[r], &s, mu);
+            refine_all(&w, accept(&w, na, s.dt, s.t0 + s.dt), &s, mu);
         }
         for (size_t li = 0; li < na; li++) { /* a block at rest forgets its velocity error */
             const size_t k = w.live[li];
