@@ -46,6 +46,7 @@
 #include "slide/kernel2d.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -444,6 +445,9 @@ typedef struct k2_work {
     long *refined;
     blk *C;  /* the answers of one level, by refinement entry */
     rq *R;   /* the sliding blocks being refined in this sample */
+    /* find_live: the blocks by increasing mu (rank[k] = position of k), and
+     * the set of sliding blocks (slpos[k] its slot in sl, or SIZE_MAX) */
+    size_t *order, *rank, *sl, *slpos, nsl;
 } k2_work;
 
 static void work_free(k2_work *w)
@@ -459,6 +463,10 @@ static void work_free(k2_work *w)
     free(w->refined);
     free(w->C);
     free(w->R);
+    free(w->order);
+    free(w->rank);
+    free(w->sl);
+    free(w->slpos);
 }
 
 static int work_alloc(k2_work *w, size_t m)
@@ -476,8 +484,13 @@ static int work_alloc(k2_work *w, size_t m)
     w->qs = malloc(m1 * sizeof *w->qs);
     w->C = malloc(m1 * sizeof *w->C);
     w->R = malloc(m1 * sizeof *w->R);
+    w->order = malloc(m1 * sizeof *w->order);
+    w->rank = malloc(m1 * sizeof *w->rank);
+    w->sl = malloc(m1 * sizeof *w->sl);
+    w->slpos = malloc(m1 * sizeof *w->slpos);
+    w->nsl = 0;
     if (!w->B || !w->E || !w->P || !w->live || !w->redo || !w->refined || !w->Q || !w->qk ||
-        !w->qs || !w->C || !w->R) {
+        !w->qs || !w->C || !w->R || !w->order || !w->rank || !w->sl || !w->slpos) {
         work_free(w);
         return -1;
     }
@@ -499,20 +512,87 @@ static sample sample_at(const sl_k2_motion *in, size_t i)
     return s;
 }
 
+/* One block and its mu, for sorting by mu. */
+typedef struct mu_key {
+    double mu;
+    size_t k;
+} mu_key;
+
+static int cmp_mu_key(const void *a, const void *b)
+{
+    const mu_key *x = a, *y = b;
+    return x->mu < y->mu ? -1 : x->mu > y->mu ? 1 : (x->k > y->k) - (x->k < y->k);
+}
+
+/* Order the blocks by mu (w->order, w->rank), all at rest. Returns 0 or -1
+ * (out of memory). */
+static int work_order(k2_work *w, const double *mu)
+{
+    mu_key *key = malloc((w->m ? w->m : 1) * sizeof *key);
+    if (!key)
+        return -1;
+    for (size_t k = 0; k < w->m; k++) {
+        key[k].mu = mu[k];
+        key[k].k = k;
+        w->slpos[k] = SIZE_MAX;
+    }
+    qsort(key, w->m, sizeof *key, cmp_mu_key);
+    for (size_t i = 0; i < w->m; i++) {
+        w->order[i] = key[i].k;
+        w->rank[key[i].k] = i;
+    }
+    free(key);
+    return 0;
+}
+
 /* The blocks that may move in sample s into w->live; returns how many. A
  * block held at both ends of the sample is held throughout, since |a| is
- * convex and mu N linear (one test per sample). */
+ * convex and mu N linear (one test per sample). Held at both ends is
+ * monotone in mu, so the blocks that would be held at rest are those from
+ * the first such in mu order (a bisection); the live blocks are those
+ * before it and the sliding ones after it. */
 static size_t find_live(k2_work *w, const sample *s, const double *mu)
 {
     const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
     const double p0 = fmax(s->n0, 0.0), p1 = fmax(s->n1, 0.0);
-    size_t na = 0;
-    for (size_t k = 0; k < w->m; k++) {
-        const blk *b = &w->B[k];
-        if (!(b->vx == 0.0 && b->vy == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
-            w->live[na++] = k;
+    size_t lo = 0, hi = w->m; /* first position in order whose block is held */
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        const double mk = mu[w->order[mid]];
+        if (a0m <= mk * p0 && a1m <= mk * p1)
+            hi = mid;
+        else
+            lo = mid + 1;
     }
+    size_t na = 0;
+    for (size_t i = 0; i < lo; i++)
+        w->live[na++] = w->order[i];
+    for (size_t i = 0; i < w->nsl; i++)
+        if (w->rank[w->sl[i]] >= lo)
+            w->live[na++] = w->sl[i];
     return na;
+}
+
+/* After a sample: the live blocks now at rest leave the sliding set (and
+ * forget their velocity error), those sliding join it. */
+static void update_sliding(k2_work *w, size_t na)
+{
+    for (size_t li = 0; li < na; li++) {
+        const size_t k = w->live[li];
+        const int rest = w->B[k].vx == 0.0 && w->B[k].vy == 0.0;
+        if (rest) {
+            w->E[k].wx = w->E[k].wy = 0.0;
+            if (w->slpos[k] != SIZE_MAX) { /* leaves: the last takes its slot */
+                const size_t last = w->sl[--w->nsl];
+                w->sl[w->slpos[k]] = last;
+                w->slpos[last] = w->slpos[k];
+                w->slpos[k] = SIZE_MAX;
+            }
+        } else if (w->slpos[k] == SIZE_MAX) {
+            w->slpos[k] = w->nsl;
+            w->sl[w->nsl++] = k;
+        }
+    }
 }
 
 /* Pack the na live blocks: friction, tolerance share eta max(rtol peak,
@@ -691,37 +771,35 @@ static void q_pack(k2_work *w, size_t nq, const double *mu)
     }
 }
 
-/* Packed block i of state bank `bank` as a blk (its episodes from the
+/* Packed block i of the state rows S as a blk (its episodes from the
  * block's start state: a pass never starts a block from rest). */
-static blk q_unpack(const k2_work *w, int bank, size_t i)
+static blk q_unpack(const k2_work *w, double *const S[S_N], size_t i)
 {
     blk b;
-    b.ux = q_row(w, bank, S_UX)[i];
-    b.uy = q_row(w, bank, S_UY)[i];
-    b.vx = q_row(w, bank, S_VX)[i];
-    b.vy = q_row(w, bank, S_VY)[i];
-    b.sp = q_row(w, bank, S_SP)[i];
-    b.peak2 = q_row(w, bank, S_PK2)[i];
-    b.tpeak = q_row(w, bank, S_TPK)[i];
-    b.px = q_row(w, bank, S_PX)[i];
-    b.py = q_row(w, bank, S_PY)[i];
-    b.path = q_row(w, bank, S_PATH)[i];
-    b.vmax2 = q_row(w, bank, S_VM2)[i];
-    b.tslide = q_row(w, bank, S_TSL)[i];
-    b.tstop = q_row(w, bank, S_TST)[i];
+    b.ux = S[S_UX][i];
+    b.uy = S[S_UY][i];
+    b.vx = S[S_VX][i];
+    b.vy = S[S_VY][i];
+    b.sp = S[S_SP][i];
+    b.peak2 = S[S_PK2][i];
+    b.tpeak = S[S_TPK][i];
+    b.px = S[S_PX][i];
+    b.py = S[S_PY][i];
+    b.path = S[S_PATH][i];
+    b.vmax2 = S[S_VM2][i];
+    b.tslide = S[S_TSL][i];
+    b.tstop = S[S_TST][i];
     b.episodes = w->B[w->qk[i]].episodes;
     return b;
 }
 
-/* Move packed block `last` into slot i (friction and state bank `bank`). */
-static void q_move(k2_work *w, int bank, size_t i, size_t last)
+/* Move packed block `last` into slot i (friction, state rows S). */
+static void q_move(k2_work *w, double *const S[S_N], size_t i, size_t last)
 {
     double *mu = w->Q + Q_MU * w->m;
     mu[i] = mu[last];
-    for (int r = 0; r < S_N; r++) {
-        double *row = q_row(w, bank, r);
-        row[i] = row[last];
-    }
+    for (int r = 0; r < S_N; r++)
+        S[r][i] = S[r][last];
     w->qk[i] = w->qk[last];
     w->qs[i] = w->qs[last];
 }
@@ -733,7 +811,13 @@ static void q_move(k2_work *w, int bank, size_t i, size_t last)
  * there). Block i's answer goes to res[w->qs[i]]. */
 static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk *res)
 {
-    const double *mu = w->Q + Q_MU * w->m, *bad = w->Q + Q_BAD * w->m;
+    const double *mu = w->Q + Q_MU * w->m;
+    double *bad = w->Q + Q_BAD * w->m;
+    double *S[2][S_N];
+    for (int r = 0; r < S_N; r++) {
+        S[0][r] = q_row(w, 0, r);
+        S[1][r] = q_row(w, 1, r);
+    }
     const double wd = (1.0 - 0.0) / n; /* as run_level */
     const unsigned jmax = 4u * n + 8u;
     double x = 0.0;
@@ -742,28 +826,23 @@ static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk
         const double x1 = 1.0 - (x + wd) < 1e-12 ? 1.0 : x + wd;
         const force F = force_of(s, x, x1);
         const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
-        const int o = 1 - cur;
-        substep_pass(nq, &F, tu, mu, w->Q + Q_BAD * w->m, q_row(w, cur, S_UX),
-                     q_row(w, cur, S_UY), q_row(w, cur, S_VX), q_row(w, cur, S_VY),
-                     q_row(w, cur, S_SP), q_row(w, cur, S_PK2), q_row(w, cur, S_TPK),
-                     q_row(w, cur, S_PX), q_row(w, cur, S_PY), q_row(w, cur, S_PATH),
-                     q_row(w, cur, S_VM2), q_row(w, cur, S_TSL), q_row(w, cur, S_TST),
-                     q_row(w, o, S_UX), q_row(w, o, S_UY), q_row(w, o, S_VX), q_row(w, o, S_VY),
-                     q_row(w, o, S_SP), q_row(w, o, S_PK2), q_row(w, o, S_TPK),
-                     q_row(w, o, S_PX), q_row(w, o, S_PY), q_row(w, o, S_PATH),
-                     q_row(w, o, S_VM2), q_row(w, o, S_TSL), q_row(w, o, S_TST));
+        double *const *I = S[cur], *const *O = S[1 - cur];
+        substep_pass(nq, &F, tu, mu, bad, I[S_UX], I[S_UY], I[S_VX], I[S_VY], I[S_SP],
+                     I[S_PK2], I[S_TPK], I[S_PX], I[S_PY], I[S_PATH], I[S_VM2], I[S_TSL],
+                     I[S_TST], O[S_UX], O[S_UY], O[S_VX], O[S_VY], O[S_SP], O[S_PK2],
+                     O[S_TPK], O[S_PX], O[S_PY], O[S_PATH], O[S_VM2], O[S_TSL], O[S_TST]);
         /* from the top, so the block moved into a freed slot is done */
         for (size_t i = nq; i-- > 0;) {
             if (bad[i] == 0.0)
                 continue;
-            res[w->qs[i]] = run_from(q_unpack(w, cur, i), s, mu[i], wd, x, jmax - j);
-            q_move(w, 1 - cur, i, --nq);
+            res[w->qs[i]] = run_from(q_unpack(w, I, i), s, mu[i], wd, x, jmax - j);
+            q_move(w, O, i, --nq);
         }
         cur = 1 - cur;
         x = x1;
     }
     for (size_t i = 0; i < nq; i++)
-        res[w->qs[i]] = q_unpack(w, cur, i);
+        res[w->qs[i]] = q_unpack(w, S[cur], i);
 }
 
 /* The end of the refinement of entry e: block k takes the answer C of n
@@ -973,6 +1052,10 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
     k2_work w;
     if (work_alloc(&w, m))
         return -1;
+    if (work_order(&w, mu)) {
+        work_free(&w);
+        return -1;
+    }
     const int adaptive = (o->substeps == 0);
     for (size_t i = 0; i + 1 < in->n; i++) {
         const sample s = sample_at(in, i);
@@ -984,11 +1067,7 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
             step(&w, na, &s);
             refine_all(&w, accept(&w, na, s.dt, s.t0 + s.dt), &s, mu);
         }
-        for (size_t li = 0; li < na; li++) { /* a block at rest forgets its velocity error */
-            const size_t k = w.live[li];
-            if (w.B[k].vx == 0.0 && w.B[k].vy == 0.0)
-                w.E[k].wx = w.E[k].wy = 0.0;
-        }
+        update_sliding(&w, na);
         if (hist)
             push_history(hist, &w.B[0], &s, mu[0], in->g_ms2);
     }
