@@ -864,65 +864,42 @@ static void finish_refined(k2_work *w, const rq *e, const blk *C, unsigned n, do
             (C->vy - e->avy) / rf, dt, raised);
 }
 
-/* Redo packed block j of sample s alone: from rest held until the exact
- * onset instant; then 1, 2, 4, ... sub-steps with the full step (2)-(5)
- * (a slow block starts at SL_K2_NEAR_STOP_SUB: a stop and restart inside
- * one step can look alike at 1 and 2 sub-steps) until two successive
- * levels agree within its tolerance. */
-static void refine(k2_work *w, size_t j, const sample *s, const double *mu)
+/* Redo packed block j of sample s, at rest at its start, alone: held until
+ * the exact onset instant x0, then 1, 2, 4, ... sub-steps of [x0, 1] with the
+ * full step (2)-(5) (a slow block from SL_K2_NEAR_STOP_SUB: a stop and
+ * restart inside one step can look alike at 1 and 2 sub-steps) until two
+ * successive levels agree within its tolerance. An onset counts in full in
+ * the error estimate (no Richardson factor). */
+static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu)
 {
     const size_t m = w->m, k = w->live[j];
     const double *P = w->P;
-    const double tol = P[P_TOL * m + j], ns = P[P_NS * m + j], bad = P[P_BAD * m + j];
-    const double x0 = (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) ? onset(s, mu[k], 0.0) : 0.0;
+    const double tol = P[P_TOL * m + j], ns = P[P_NS * m + j];
+    const double x0 = onset(s, mu[k], 0.0);
     if (!(x0 < 1.0))
         return;
-    const unsigned n0 = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
-    /* sent here by the tolerance alone (sliding, no split, not slow): the
-     * vector pass's two half steps are level 2 already (the same steps
-     * (3)-(4)), and level 1 against them failed */
-    const int tol_only = x0 == 0.0 && ns == 0.0 && bad == 0.0;
-    blk A, C;
-    unsigned n;
-    if (tol_only) {
-        A = w->B[k];
-        A.ux = P[P_UX * m + j];
-        A.uy = P[P_UY * m + j];
-        A.vx = P[P_VX * m + j];
-        A.vy = P[P_VY * m + j];
-        n = 4;
-    } else {
-        A = run_level(w->B[k], s, mu[k], n0, x0);
-        n = 2 * n0;
-    }
-    C = run_level(w->B[k], s, mu[k], n, x0);
+    unsigned n = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+    blk A = run_level(w->B[k], s, mu[k], n, x0), C;
     for (;;) {
+        n *= 2;
+        C = run_level(w->B[k], s, mu[k], n, x0);
         const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
         const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
         if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
             break;
         A = C;
-        n *= 2;
-        C = run_level(w->B[k], s, mu[k], n, x0);
     }
     w->refined[k] += (n > 2);
     const int raised = C.peak2 > w->B[k].peak2;
-    const blk B0 = w->B[k];
     w->B[k] = C;
-    /* a smooth sample (sent here by the tolerance alone) keeps the
-     * Richardson factor; a stop, onset or turn counts in full */
-    const double rf = (x0 == 0.0 && ns == 0.0 && bad == 0.0 && C.episodes == B0.episodes &&
-                       C.tstop == B0.tstop)
-                          ? SL_K2_RICHARDSON
-                          : 1.0;
-    err_add(&w->E[k], (C.ux - A.ux) / rf, (C.uy - A.uy) / rf, (C.vx - A.vx) / rf,
-            (C.vy - A.vy) / rf, s->dt, raised);
+    err_add(&w->E[k], C.ux - A.ux, C.uy - A.uy, C.vx - A.vx, C.vy - A.vy, s->dt, raised);
 }
 
 /* Refine the nr blocks of sample s in w->redo: a block at rest alone
- * (refine: its onset sets its own sub-step grid); the sliding ones level by
- * level, every block due at n sub-steps advanced together (level_vector),
- * with the levels and the test of refine: a slow block from
+ * (refine_onset: its onset sets its own sub-step grid); the sliding ones
+ * level by level, every block due at n sub-steps advanced together
+ * (level_vector), 1, 2, 4, ... sub-steps until two successive levels agree
+ * within the block's tolerance: a slow block from
  * SL_K2_NEAR_STOP_SUB, a block sent by the tolerance alone from the vector
  * pass's two half steps (level 2), any other from 1. */
 static void refine_all(k2_work *w, size_t nr, const sample *s, const double *mu)
@@ -933,7 +910,7 @@ static void refine_all(k2_work *w, size_t nr, const sample *s, const double *mu)
     for (size_t r = 0; r < nr; r++) {
         const size_t j = w->redo[r], k = w->live[j];
         if (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) {
-            refine(w, j, s, mu);
+            refine_onset(w, j, s, mu);
             continue;
         }
         rq *e = &w->R[nv++];
