@@ -687,11 +687,12 @@ static void test_stop_heavy(void)
               r2[k].peak_m, r1[k].peak_m, err, tol);
         CHECK(fabs(r2[k].residual_m - r1[k].residual_m) <= tol, "mu %.4g: residual %.9g vs %.9g",
               mus[k], r2[k].residual_m, r1[k].residual_m);
-        CHECK(err <= fmax(r2[k].err_est_m, 0.1 * tol), "mu %.4g: estimate %.3g below the error %.3g",
-              mus[k], r2[k].err_est_m, err);
+        CHECK(err <= fmax(r2[k].err_est_m, 0.1 * tol),
+              "mu %.4g: estimate %.3g below the error %.3g", mus[k], r2[k].err_est_m, err);
         episodes += r1[k].episodes;
         if (getenv("SEISLIDE_TEST_VERBOSE"))
-            fprintf(stderr, "  mu %.4f peak %.6g err %.3g est %.3g tol %.3g episodes %ld\n", mus[k], r1[k].peak_m, err, r2[k].err_est_m, tol, r1[k].episodes);
+            fprintf(stderr, "  mu %.4f peak %.6g err %.3g est %.3g tol %.3g episodes %ld\n",
+                    mus[k], r1[k].peak_m, err, r2[k].err_est_m, tol, r1[k].episodes);
     }
     CHECK(episodes >= 20 * NM, "stop-heavy: %ld episodes over %d mu", episodes, NM);
     free(a);

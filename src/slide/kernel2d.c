@@ -32,261 +32,34 @@
  * the solution is smooth, equal to it at a stop). Blocks whose difference
  * |du| + T_V |dv| exceeds their share eta max(rtol peak, atol), whose
  * step needs (5), or whose speed could reach zero within the sample
- * (SL_K2_NEAR_STOP), are redone alone (refine) with 1, 2, 4, ... sub-steps
+ * (SL_K2_NEAR_STOP), are redone (refine_all) with 1, 2, 4, ... sub-steps
  * (a slow block from SL_K2_NEAR_STOP_SUB; a block sent by the tolerance
- * alone from the vector pass's two half steps, level 2) and the full step
- * (2)-(5) until two successive levels agree. Per sample, sl_kernel2d_run
- * finds the blocks that can move (find_live), packs them (pack), takes the
- * vector pass (step), unpacks the accepted (accept), refines the rest
- * (refine) and records block 0's history (push_history). The accepted differences
+ * alone from the vector pass's two half steps, level 2) until two
+ * successive levels agree: the sliding ones level by level, every block
+ * due at one sub-step count advanced together in one vector pass per
+ * sub-step (level_vector, substep_pass: (3)-(4) with the bookkeeping of
+ * fstep), a block whose sub-step needs (5) finishing that level alone with
+ * the full step (2)-(5) (run_from); a block at rest alone from its exact
+ * onset (refine_onset). Fixed sub-steps take the same level passes. Per
+ * sample, sl_kernel2d_run finds the blocks that can move (find_live: one
+ * bisection in mu order and the set of sliding blocks), packs them (pack),
+ * takes the vector pass (step), unpacks the accepted (accept), refines the
+ * rest (refine_all), updates the sliding set (update_sliding) and records
+ * block 0's history (push_history). The accepted differences
  * accumulate into the error estimate of the peak: position differences add,
  * and a velocity difference adds dt per sample until the block stops
  * (friction is monotone, so velocity differences do not grow).
  */
 #include "slide/kernel2d.h"
+#include "slide/kernel2d_step.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* The vector pass (doubling_pass and what it inlines) computes every value
- * on every path and only selects; with GCC it is compiled without
- * -ftrapping-math (no FP exception flags are used anywhere) so those selects
- * become vector code. */
-#if defined(__GNUC__) && !defined(__clang__)
-#define VECTOR_PASS __attribute__((optimize("no-trapping-math")))
-#else
-#define VECTOR_PASS
-#endif
-
 /* Most sub-steps one sample is cut into by the refinement. */
 #define NSUB_MAX 4096u
-
-/* max and min of finite values as selects (fmax/fmin may be calls) */
-VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
-VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
-
-/* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
-static double mean_positive(double n0, double n1)
-{
-    if (n0 >= 0.0 && n1 >= 0.0)
-        return 0.5 * (n0 + n1);
-    if (n0 <= 0.0 && n1 <= 0.0)
-        return 0.0;
-    double p = n0 > 0.0 ? n0 : n1, q = n0 > 0.0 ? n1 : n0;
-    return 0.5 * p * p / (p - q);
-}
-
-/* One sample: the linear forcing between its ends. */
-typedef struct sample {
-    double ax0, ax1, ay0, ay1, n0, n1, dt, t0;
-} sample;
-
-/* The forcing integrals of the sub-step [x0, x1] (fractions of the sample):
- * h a*, h N*, the correction h^2/12 (a(x1) - a(x0)) of (4), h, end time. */
-typedef struct force {
-    double hax, hay, hN, cx, cy, h, t;
-    double ax0, ay0, dax, day, n0, dn; /* a and N at the start, their changes over the step */
-} force;
-
-static force force_of(const sample *s, double x0, double x1)
-{
-    const double h = (x1 - x0) * s->dt, xm = 0.5 * (x0 + x1), c = h * h / 12.0 * (x1 - x0);
-    force F;
-    F.h = h;
-    F.hax = h * (s->ax0 + (s->ax1 - s->ax0) * xm);
-    F.hay = h * (s->ay0 + (s->ay1 - s->ay0) * xm);
-    F.hN = h * mean_positive(s->n0 + (s->n1 - s->n0) * x0, s->n0 + (s->n1 - s->n0) * x1);
-    F.cx = c * (s->ax1 - s->ax0);
-    F.cy = c * (s->ay1 - s->ay0);
-    F.t = s->t0 + x1 * s->dt;
-    F.ax0 = s->ax0 + (s->ax1 - s->ax0) * x0;
-    F.ay0 = s->ay0 + (s->ay1 - s->ay0) * x0;
-    F.n0 = s->n0 + (s->n1 - s->n0) * x0;
-    F.dax = (s->ax1 - s->ax0) * (x1 - x0);
-    F.day = (s->ay1 - s->ay0) * (x1 - x0);
-    F.dn = (s->n1 - s->n0) * (x1 - x0);
-    return F;
-}
-
-/* The state of one block and its running statistics. */
-typedef struct blk {
-    double ux, uy, vx, vy, sp;
-    double peak2, tpeak, px, py, path, vmax2, tstop, tslide;
-    long episodes;
-} blk;
-
-/* Peak bookkeeping after a step from (u0, v0) to the block's new state over
- * h ending at t: |u|^2 at the end, and inside the step when the radial
- * speed u.v turns from outward to inward, the maximum of the parabola with
- * the end slopes d|u|^2/dt = 2 u.v (third-order accurate). */
-static void track_peak(blk *b, double ux0, double uy0, double vx0, double vy0, double h, double t)
-{
-    const double r2 = b->ux * b->ux + b->uy * b->uy;
-    const double p0 = ux0 * vx0 + uy0 * vy0, p1 = b->ux * b->vx + b->uy * b->vy;
-    double c = r2;
-    if (p0 > 0.0 && p1 < 0.0)
-        c = max2(c, ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (p0 - p1));
-    if (c > b->peak2) {
-        b->peak2 = c;
-        b->tpeak = t;
-    }
-    b->px = max2(b->px, fabs(b->ux));
-    b->py = max2(b->py, fabs(b->uy));
-}
-
-/* The full step (2)-(5) of one block. Returns the fraction of the step
- * used: 1, or tau/h when the block stopped at tau and friction holds it
- * there (|a(tau)| <= mu N(tau)); the caller then finds the next onset. */
-static double fstep(blk *b, const force *F, double mu)
-{
-    double used = 1.0;
-    const double h = F->h, f = F->hN * mu, hax = F->hax, hay = F->hay;
-    const double vx0 = b->vx, vy0 = b->vy, ux0 = b->ux, uy0 = b->uy;
-    double nvx, nvy, dux, duy;
-    if (vx0 == 0.0 && vy0 == 0.0) {
-        const double w2 = hax * hax + hay * hay;
-        if (w2 <= f * f)
-            return 1.0; /* (2): stays stuck, nothing moves */
-        const double sc = 1.0 - f / sqrt(w2);
-        nvx = -hax * sc;
-        nvy = -hay * sc;
-        dux = 0.5 * h * nvx + F->cx;
-        duy = 0.5 * h * nvy + F->cy;
-        b->episodes++;
-    } else {
-        const double yx = 2.0 * vx0 - hax, yy = 2.0 * vy0 - hay; /* (3) */
-        const double yn = sqrt(yx * yx + yy * yy);
-        const double sm = yn > f ? 1.0 - f / yn : 0.0;
-        const double mx = yx * sm - vx0, my = yy * sm - vy0;
-        /* sliding on only if, with friction held along e = v_n/|v_n|, the
-         * speed along e stays positive over the step: |v_n| > h a*.e + f */
-        const double v2 = vx0 * vx0 + vy0 * vy0, L = v2 - (hax * vx0 + hay * vy0);
-        if (yn > f && mx * vx0 + my * vy0 > 0.0 && L > 0.0 && L * L > f * f * v2) {
-            nvx = mx;
-            nvy = my;
-            dux = 0.5 * h * (vx0 + nvx) + F->cx; /* (4) */
-            duy = 0.5 * h * (vy0 + nvy) + F->cy;
-        } else { /* (5) */
-            const double vn = sqrt(vx0 * vx0 + vy0 * vy0);
-            const double ex = vx0 / vn, ey = vy0 / vn;
-            const double dec = (hax * ex + hay * ey + f) / h;
-            const double tau = dec > 0.0 ? min2(vn / dec, h) : h;
-            const double q = tau / h, rest = 1.0 - q;
-            const double tx = vx0 - q * (hax + f * ex), ty = vy0 - q * (hay + f * ey);
-            const double atx = F->ax0 + F->dax * q, aty = F->ay0 + F->day * q;
-            const double Nt = F->n0 + F->dn * q;
-            /* a stop, not a turn: the speed across e left at tau is small */
-            if (q < 1.0 && atx * atx + aty * aty <= mu * mu * max2(Nt, 0.0) * max2(Nt, 0.0) &&
-                tx * tx + ty * ty <= SL_K2_STOP_REMNANT * SL_K2_STOP_REMNANT * vn * vn) {
-                /* stopped at tau and held there: at rest until the next onset */
-                nvx = nvy = 0.0;
-                dux = 0.5 * tau * (vx0 + tx);
-                duy = 0.5 * tau * (vy0 + ty);
-                used = q;
-            } else {
-                const double w2x = tx - rest * hax, w2y = ty - rest * hay;
-                const double w2n = sqrt(w2x * w2x + w2y * w2y);
-                const double s2 = w2n > rest * f ? 1.0 - rest * f / w2n : 0.0;
-                nvx = w2x * s2;
-                nvy = w2y * s2;
-                dux = 0.5 * (tau * (vx0 + tx) + (h - tau) * (tx + nvx));
-                duy = 0.5 * (tau * (vy0 + ty) + (h - tau) * (ty + nvy));
-            }
-        }
-    }
-    b->ux += dux;
-    b->uy += duy;
-    b->vx = nvx;
-    b->vy = nvy;
-    const double sp2 = nvx * nvx + nvy * nvy, sp = sqrt(sp2);
-    const double hu = h * used, tu = F->t - h + hu;
-    b->path += 0.5 * hu * (b->sp + sp);
-    b->sp = sp;
-    b->tslide += hu;
-    b->vmax2 = max2(b->vmax2, sp2);
-    if (sp2 == 0.0)
-        b->tstop = tu;
-    track_peak(b, ux0, uy0, vx0, vy0, hu, tu);
-    return used;
-}
-
-/* Does a block at rest slip at fraction x of the sample: |a(x)| > mu N(x)
- * (any |a| > 0 when N <= 0)? */
-static int slips_at(const sample *s, double mu, double x)
-{
-    const double ax = s->ax0 + (s->ax1 - s->ax0) * x, ay = s->ay0 + (s->ay1 - s->ay0) * x;
-    const double N = s->n0 + (s->n1 - s->n0) * x;
-    return ax * ax + ay * ay > mu * mu * max2(N, 0.0) * max2(N, 0.0);
-}
-
-/* The first fraction x in [lo, 1) after which a block at rest slips, or 1
- * if it stays held. With a and N linear in x, |a|^2 - (mu N)^2 is a quadratic
- * q2 x^2 + q1 x + q0; the slip condition keeps its truth value between its
- * roots and the zero of N, so testing one point between consecutive
- * candidates is exact. */
-static double onset(const sample *s, double mu, double lo_x)
-{
-    const double dax = s->ax1 - s->ax0, day = s->ay1 - s->ay0, dn = s->n1 - s->n0;
-    const double q2 = dax * dax + day * day - mu * mu * dn * dn;
-    const double q1 = 2.0 * (s->ax0 * dax + s->ay0 * day - mu * mu * s->n0 * dn);
-    const double q0 = s->ax0 * s->ax0 + s->ay0 * s->ay0 - mu * mu * s->n0 * s->n0;
-    double c[5] = {lo_x, 1.0, 1.0, 1.0, 1.0};
-    int nc = 1;
-    if (q2 != 0.0) {
-        const double disc = q1 * q1 - 4.0 * q2 * q0;
-        if (disc >= 0.0) {
-            const double qq = -0.5 * (q1 + copysign(sqrt(disc), q1));
-            if (qq != 0.0)
-                c[nc++] = q0 / qq;
-            c[nc++] = qq / q2;
-        }
-    } else if (q1 != 0.0) {
-        c[nc++] = -q0 / q1;
-    }
-    if (dn != 0.0)
-        c[nc++] = -s->n0 / dn;
-    for (int i = 1; i < nc; i++) /* sort the few candidates */
-        for (int j = i; j > 0 && c[j] < c[j - 1]; j--) {
-            const double t = c[j];
-            c[j] = c[j - 1];
-            c[j - 1] = t;
-        }
-    for (int i = 0; i < nc; i++) {
-        const double lo = fmax(c[i], lo_x), hi = i + 1 < nc ? fmin(c[i + 1], 1.0) : 1.0;
-        if (!(lo < 1.0) || !(hi > lo))
-            continue;
-        if (slips_at(s, mu, 0.5 * (lo + hi)))
-            return lo;
-    }
-    return 1.0;
-}
-
-/* Sub-steps of width w from fraction x of one sample to its end, at most
- * jmax of them; a block at rest stays held until the exact onset instant. */
-static blk run_from(blk b, const sample *s, double mu, double w, double x, unsigned jmax)
-{
-    for (unsigned j = 0; j < jmax && x < 1.0; j++) {
-        if (b.vx == 0.0 && b.vy == 0.0) {
-            x = onset(s, mu, x);
-            if (!(x < 1.0))
-                break;
-        }
-        const double x1 = 1.0 - (x + w) < 1e-12 ? 1.0 : x + w;
-        force F = force_of(s, x, x1);
-        const double used = fstep(&b, &F, mu);
-        x = used < 1.0 ? x + (x1 - x) * used : x1;
-    }
-    return b;
-}
-
-/* Sub-steps of width (1 - x0)/n over the part [x0, 1] of one sample from
- * b (run_from). */
-static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
-{
-    return run_from(b, s, mu, (1.0 - x0) / n, x0, 4u * n + 8u);
-}
 
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
  * when the step needs the split (5). Inlined into the vector loops. */
@@ -623,7 +396,8 @@ static void step(k2_work *w, size_t na, const sample *s)
 {
     const size_t m = w->m;
     double *P = w->P;
-    const force Fc = force_of(s, 0.0, 1.0), Fa = force_of(s, 0.0, 0.5), Fb = force_of(s, 0.5, 1.0);
+    const force Fc = sl_k2_force_of(s, 0.0, 1.0), Fa = sl_k2_force_of(s, 0.0, 0.5),
+                Fb = sl_k2_force_of(s, 0.5, 1.0);
     const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
     const double hv = s->dt * fmax(a0m, a1m); /* most the floor changes v in a sample */
     /* friction may hold a block somewhere in the sample only if the smallest
@@ -804,8 +578,8 @@ static void q_move(k2_work *w, double *const S[S_N], size_t i, size_t last)
     w->qs[i] = w->qs[last];
 }
 
-/* run_level(B[k], s, mu, n, 0) of the nq sliding blocks packed in w->Q,
- * all together: the n sub-steps share their forcing and run as vector code
+/* sl_k2_run_level(B[k], s, mu, n, 0) of the nq sliding blocks packed in
+ * w->Q, all together: the n sub-steps share their forcing and run as vector code
  * (substep_pass); a block whose sub-step needs the split step (5) leaves
  * the pack and finishes the level alone (run_from, the same steps from
  * there). Block i's answer goes to res[w->qs[i]]. */
@@ -824,7 +598,7 @@ static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk
     int cur = 0;
     for (unsigned j = 0; j < jmax && x < 1.0 && nq > 0; j++) {
         const double x1 = 1.0 - (x + wd) < 1e-12 ? 1.0 : x + wd;
-        const force F = force_of(s, x, x1);
+        const force F = sl_k2_force_of(s, x, x1);
         const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
         double *const *I = S[cur], *const *O = S[1 - cur];
         substep_pass(nq, &F, tu, mu, bad, I[S_UX], I[S_UY], I[S_VX], I[S_VY], I[S_SP],
@@ -835,7 +609,7 @@ static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk
         for (size_t i = nq; i-- > 0;) {
             if (bad[i] == 0.0)
                 continue;
-            res[w->qs[i]] = run_from(q_unpack(w, I, i), s, mu[i], wd, x, jmax - j);
+            res[w->qs[i]] = sl_k2_run_from(q_unpack(w, I, i), s, mu[i], wd, x, jmax - j);
             q_move(w, O, i, --nq);
         }
         cur = 1 - cur;
@@ -875,14 +649,14 @@ static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu
     const size_t m = w->m, k = w->live[j];
     const double *P = w->P;
     const double tol = P[P_TOL * m + j], ns = P[P_NS * m + j];
-    const double x0 = onset(s, mu[k], 0.0);
+    const double x0 = sl_k2_onset(s, mu[k], 0.0);
     if (!(x0 < 1.0))
         return;
     unsigned n = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
-    blk A = run_level(w->B[k], s, mu[k], n, x0), C;
+    blk A = sl_k2_run_level(w->B[k], s, mu[k], n, x0), C;
     for (;;) {
         n *= 2;
-        C = run_level(w->B[k], s, mu[k], n, x0);
+        C = sl_k2_run_level(w->B[k], s, mu[k], n, x0);
         const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
         const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
         if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
@@ -941,7 +715,8 @@ static void refine_all(k2_work *w, size_t nr, const sample *s, const double *mu)
             if (e->lev != n)
                 continue;
             const blk *C = &w->C[i];
-            const double eu = sqrt((C->ux - e->ax) * (C->ux - e->ax) + (C->uy - e->ay) * (C->uy - e->ay));
+            const double eu =
+                sqrt((C->ux - e->ax) * (C->ux - e->ax) + (C->uy - e->ay) * (C->uy - e->ay));
             const double ev =
                 sqrt((C->vx - e->avx) * (C->vx - e->avx) + (C->vy - e->avy) * (C->vy - e->avy));
             if (e->has_a && (eu + SL_K2_TV * ev <= P[P_TOL * m + e->j] || n >= NSUB_MAX)) {
@@ -968,7 +743,7 @@ static void fixed_level(k2_work *w, size_t na, const sample *s, const double *mu
     for (size_t li = 0; li < na; li++) {
         const size_t k = w->live[li];
         if (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) {
-            w->B[k] = run_level(w->B[k], s, mu[k], n, 0.0);
+            w->B[k] = sl_k2_run_level(w->B[k], s, mu[k], n, 0.0);
         } else {
             w->qk[nq] = k;
             w->qs[nq++] = k;
