@@ -651,6 +651,56 @@ static void test_error_control(void)
     }
 }
 
+/* Stop-heavy sliding: a 1-D record with a vertical along 20 degrees, at mu
+ * from 0.1 to 0.55 of the threshold (short slides, many stops and
+ * restarts inside samples). The default 2-D run against the exact 1-D
+ * kernel (an independent method): every peak and residual within
+ * max(rtol peak, atol), the estimate bounding any error above a tenth of
+ * that. */
+static void test_stop_heavy(void)
+{
+    const size_t n = 3000;
+    const double dt = 0.01, th = 20.0 * M_PI / 180.0;
+    double *a = noise_record(n, dt, 6.0, 31u), *av = noise_record(n, dt, 4.0, 32u);
+    double *ax = alloc_n(n), *ay = alloc_n(n);
+    for (size_t i = 0; i < n; i++) {
+        ax[i] = a[i] * cos(th);
+        ay[i] = a[i] * sin(th);
+    }
+    sl_motion m1 = oracle_motion(a, n, dt), mx = oracle_motion(ax, n, dt),
+              my = oracle_motion(ay, n, dt), mv = oracle_motion(av, n, dt);
+    sl_set s1 = {&m1, NULL, &mv}, s2 = {&mx, &my, &mv};
+    sl_slide_opts o = opts_default();
+    const double thr = sl_slide_mu_threshold(&s1, &o);
+    enum { NM = 10 };
+    double mus[NM];
+    for (int k = 0; k < NM; k++)
+        mus[k] = thr * (0.1 + 0.05 * k);
+    sl_slide_result r1[NM], r2[NM];
+    CHECK(sl_slide_run(&s1, mus, NM, &o, r1, NULL) == SL_OK, "exact 1-D");
+    CHECK(sl_slide_run(&s2, mus, NM, &o, r2, NULL) == SL_OK, "2-D along 20 degrees");
+    long episodes = 0;
+    for (int k = 0; k < NM; k++) {
+        const double tol = fmax(o.rtol * r1[k].peak_m, o.atol_m);
+        const double err = fabs(r2[k].peak_m - r1[k].peak_m);
+        CHECK(err <= tol, "mu %.4g: peak %.9g vs exact %.9g (error %.3g > %.3g)", mus[k],
+              r2[k].peak_m, r1[k].peak_m, err, tol);
+        CHECK(fabs(r2[k].residual_m - r1[k].residual_m) <= tol, "mu %.4g: residual %.9g vs %.9g",
+              mus[k], r2[k].residual_m, r1[k].residual_m);
+        CHECK(err <= fmax(r2[k].err_est_m, 0.1 * tol),
+              "mu %.4g: estimate %.3g below the error %.3g", mus[k], r2[k].err_est_m, err);
+        episodes += r1[k].episodes;
+        if (getenv("SEISLIDE_TEST_VERBOSE"))
+            fprintf(stderr, "  mu %.4f peak %.6g err %.3g est %.3g tol %.3g episodes %ld\n",
+                    mus[k], r1[k].peak_m, err, r2[k].err_est_m, tol, r1[k].episodes);
+    }
+    CHECK(episodes >= 20 * NM, "stop-heavy: %ld episodes over %d mu", episodes, NM);
+    free(a);
+    free(av);
+    free(ax);
+    free(ay);
+}
+
 /* Bad options are errors, never silent. */
 static void test_bad_options(void)
 {
@@ -718,6 +768,7 @@ int main(void)
     RUN(test_threshold_vector);
     RUN(test_ramp_position);
     RUN(test_error_control);
+    RUN(test_stop_heavy);
     RUN(test_bad_options);
     RUN(test_set_tol);
     return HARNESS_END("slide");

@@ -32,255 +32,34 @@
  * the solution is smooth, equal to it at a stop). Blocks whose difference
  * |du| + T_V |dv| exceeds their share eta max(rtol peak, atol), whose
  * step needs (5), or whose speed could reach zero within the sample
- * (SL_K2_NEAR_STOP), are redone alone (refine) with 1, 2, 4, ... sub-steps
+ * (SL_K2_NEAR_STOP), are redone (refine_all) with 1, 2, 4, ... sub-steps
  * (a slow block from SL_K2_NEAR_STOP_SUB; a block sent by the tolerance
- * alone from the vector pass's two half steps, level 2) and the full step
- * (2)-(5) until two successive levels agree. Per sample, sl_kernel2d_run
- * finds the blocks that can move (find_live), packs them (pack), takes the
- * vector pass (step), unpacks the accepted (accept), refines the rest
- * (refine) and records block 0's history (push_history). The accepted differences
+ * alone from the vector pass's two half steps, level 2) until two
+ * successive levels agree: the sliding ones level by level, every block
+ * due at one sub-step count advanced together in one vector pass per
+ * sub-step (level_vector, substep_pass: (3)-(4) with the bookkeeping of
+ * fstep), a block whose sub-step needs (5) finishing that level alone with
+ * the full step (2)-(5) (run_from); a block at rest alone from its exact
+ * onset (refine_onset). Fixed sub-steps take the same level passes. Per
+ * sample, sl_kernel2d_run finds the blocks that can move (find_live: one
+ * bisection in mu order and the set of sliding blocks), packs them (pack),
+ * takes the vector pass (step), unpacks the accepted (accept), refines the
+ * rest (refine_all), updates the sliding set (update_sliding) and records
+ * block 0's history (push_history). The accepted differences
  * accumulate into the error estimate of the peak: position differences add,
  * and a velocity difference adds dt per sample until the block stops
  * (friction is monotone, so velocity differences do not grow).
  */
 #include "slide/kernel2d.h"
+#include "slide/kernel2d_step.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* The vector pass (doubling_pass and what it inlines) computes every value
- * on every path and only selects; with GCC it is compiled without
- * -ftrapping-math (no FP exception flags are used anywhere) so those selects
- * become vector code. */
-#if defined(__GNUC__) && !defined(__clang__)
-#define VECTOR_PASS __attribute__((optimize("no-trapping-math")))
-#else
-#define VECTOR_PASS
-#endif
-
 /* Most sub-steps one sample is cut into by the refinement. */
 #define NSUB_MAX 4096u
-
-/* max and min of finite values as selects (fmax/fmin may be calls) */
-VECTOR_PASS static inline double max2(double a, double b) { return a > b ? a : b; }
-VECTOR_PASS static inline double min2(double a, double b) { return a < b ? a : b; }
-
-/* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
-static double mean_positive(double n0, double n1)
-{
-    if (n0 >= 0.0 && n1 >= 0.0)
-        return 0.5 * (n0 + n1);
-    if (n0 <= 0.0 && n1 <= 0.0)
-        return 0.0;
-    double p = n0 > 0.0 ? n0 : n1, q = n0 > 0.0 ? n1 : n0;
-    return 0.5 * p * p / (p - q);
-}
-
-/* One sample: the linear forcing between its ends. */
-typedef struct sample {
-    double ax0, ax1, ay0, ay1, n0, n1, dt, t0;
-} sample;
-
-/* The forcing integrals of the sub-step [x0, x1] (fractions of the sample):
- * h a*, h N*, the correction h^2/12 (a(x1) - a(x0)) of (4), h, end time. */
-typedef struct force {
-    double hax, hay, hN, cx, cy, h, t;
-    double ax0, ay0, dax, day, n0, dn; /* a and N at the start, their changes over the step */
-} force;
-
-static force force_of(const sample *s, double x0, double x1)
-{
-    const double h = (x1 - x0) * s->dt, xm = 0.5 * (x0 + x1), c = h * h / 12.0 * (x1 - x0);
-    force F;
-    F.h = h;
-    F.hax = h * (s->ax0 + (s->ax1 - s->ax0) * xm);
-    F.hay = h * (s->ay0 + (s->ay1 - s->ay0) * xm);
-    F.hN = h * mean_positive(s->n0 + (s->n1 - s->n0) * x0, s->n0 + (s->n1 - s->n0) * x1);
-    F.cx = c * (s->ax1 - s->ax0);
-    F.cy = c * (s->ay1 - s->ay0);
-    F.t = s->t0 + x1 * s->dt;
-    F.ax0 = s->ax0 + (s->ax1 - s->ax0) * x0;
-    F.ay0 = s->ay0 + (s->ay1 - s->ay0) * x0;
-    F.n0 = s->n0 + (s->n1 - s->n0) * x0;
-    F.dax = (s->ax1 - s->ax0) * (x1 - x0);
-    F.day = (s->ay1 - s->ay0) * (x1 - x0);
-    F.dn = (s->n1 - s->n0) * (x1 - x0);
-    return F;
-}
-
-/* The state of one block and its running statistics. */
-typedef struct blk {
-    double ux, uy, vx, vy, sp;
-    double peak2, tpeak, px, py, path, vmax2, tstop, tslide;
-    long episodes;
-} blk;
-
-/* Peak bookkeeping after a step from (u0, v0) to the block's new state over
- * h ending at t: |u|^2 at the end, and inside the step when the radial
- * speed u.v turns from outward to inward, the maximum of the parabola with
- * the end slopes d|u|^2/dt = 2 u.v (third-order accurate). */
-static void track_peak(blk *b, double ux0, double uy0, double vx0, double vy0, double h, double t)
-{
-    const double r2 = b->ux * b->ux + b->uy * b->uy;
-    const double p0 = ux0 * vx0 + uy0 * vy0, p1 = b->ux * b->vx + b->uy * b->vy;
-    double c = r2;
-    if (p0 > 0.0 && p1 < 0.0)
-        c = max2(c, ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (p0 - p1));
-    if (c > b->peak2) {
-        b->peak2 = c;
-        b->tpeak = t;
-    }
-    b->px = max2(b->px, fabs(b->ux));
-    b->py = max2(b->py, fabs(b->uy));
-}
-
-/* The full step (2)-(5) of one block. Returns the fraction of the step
- * used: 1, or tau/h when the block stopped at tau and friction holds it
- * there (|a(tau)| <= mu N(tau)); the caller then finds the next onset. */
-static double fstep(blk *b, const force *F, double mu)
-{
-    double used = 1.0;
-    const double h = F->h, f = F->hN * mu, hax = F->hax, hay = F->hay;
-    const double vx0 = b->vx, vy0 = b->vy, ux0 = b->ux, uy0 = b->uy;
-    double nvx, nvy, dux, duy;
-    if (vx0 == 0.0 && vy0 == 0.0) {
-        const double w2 = hax * hax + hay * hay;
-        if (w2 <= f * f)
-            return 1.0; /* (2): stays stuck, nothing moves */
-        const double sc = 1.0 - f / sqrt(w2);
-        nvx = -hax * sc;
-        nvy = -hay * sc;
-        dux = 0.5 * h * nvx + F->cx;
-        duy = 0.5 * h * nvy + F->cy;
-        b->episodes++;
-    } else {
-        const double yx = 2.0 * vx0 - hax, yy = 2.0 * vy0 - hay; /* (3) */
-        const double yn = sqrt(yx * yx + yy * yy);
-        const double sm = yn > f ? 1.0 - f / yn : 0.0;
-        const double mx = yx * sm - vx0, my = yy * sm - vy0;
-        /* sliding on only if, with friction held along e = v_n/|v_n|, the
-         * speed along e stays positive over the step: |v_n| > h a*.e + f */
-        const double v2 = vx0 * vx0 + vy0 * vy0, L = v2 - (hax * vx0 + hay * vy0);
-        if (yn > f && mx * vx0 + my * vy0 > 0.0 && L > 0.0 && L * L > f * f * v2) {
-            nvx = mx;
-            nvy = my;
-            dux = 0.5 * h * (vx0 + nvx) + F->cx; /* (4) */
-            duy = 0.5 * h * (vy0 + nvy) + F->cy;
-        } else { /* (5) */
-            const double vn = sqrt(vx0 * vx0 + vy0 * vy0);
-            const double ex = vx0 / vn, ey = vy0 / vn;
-            const double dec = (hax * ex + hay * ey + f) / h;
-            const double tau = dec > 0.0 ? min2(vn / dec, h) : h;
-            const double q = tau / h, rest = 1.0 - q;
-            const double tx = vx0 - q * (hax + f * ex), ty = vy0 - q * (hay + f * ey);
-            const double atx = F->ax0 + F->dax * q, aty = F->ay0 + F->day * q;
-            const double Nt = F->n0 + F->dn * q;
-            /* a stop, not a turn: the speed across e left at tau is small */
-            if (q < 1.0 && atx * atx + aty * aty <= mu * mu * max2(Nt, 0.0) * max2(Nt, 0.0) &&
-                tx * tx + ty * ty <= SL_K2_STOP_REMNANT * SL_K2_STOP_REMNANT * vn * vn) {
-                /* stopped at tau and held there: at rest until the next onset */
-                nvx = nvy = 0.0;
-                dux = 0.5 * tau * (vx0 + tx);
-                duy = 0.5 * tau * (vy0 + ty);
-                used = q;
-            } else {
-                const double w2x = tx - rest * hax, w2y = ty - rest * hay;
-                const double w2n = sqrt(w2x * w2x + w2y * w2y);
-                const double s2 = w2n > rest * f ? 1.0 - rest * f / w2n : 0.0;
-                nvx = w2x * s2;
-                nvy = w2y * s2;
-                dux = 0.5 * (tau * (vx0 + tx) + (h - tau) * (tx + nvx));
-                duy = 0.5 * (tau * (vy0 + ty) + (h - tau) * (ty + nvy));
-            }
-        }
-    }
-    b->ux += dux;
-    b->uy += duy;
-    b->vx = nvx;
-    b->vy = nvy;
-    const double sp2 = nvx * nvx + nvy * nvy, sp = sqrt(sp2);
-    const double hu = h * used, tu = F->t - h + hu;
-    b->path += 0.5 * hu * (b->sp + sp);
-    b->sp = sp;
-    b->tslide += hu;
-    b->vmax2 = max2(b->vmax2, sp2);
-    if (sp2 == 0.0)
-        b->tstop = tu;
-    track_peak(b, ux0, uy0, vx0, vy0, hu, tu);
-    return used;
-}
-
-/* Does a block at rest slip at fraction x of the sample: |a(x)| > mu N(x)
- * (any |a| > 0 when N <= 0)? */
-static int slips_at(const sample *s, double mu, double x)
-{
-    const double ax = s->ax0 + (s->ax1 - s->ax0) * x, ay = s->ay0 + (s->ay1 - s->ay0) * x;
-    const double N = s->n0 + (s->n1 - s->n0) * x;
-    return ax * ax + ay * ay > mu * mu * max2(N, 0.0) * max2(N, 0.0);
-}
-
-/* The first fraction x in [lo, 1) after which a block at rest slips, or 1
- * if it stays held. With a and N linear in x, |a|^2 - (mu N)^2 is a quadratic
- * q2 x^2 + q1 x + q0; the slip condition keeps its truth value between its
- * roots and the zero of N, so testing one point between consecutive
- * candidates is exact. */
-static double onset(const sample *s, double mu, double lo_x)
-{
-    const double dax = s->ax1 - s->ax0, day = s->ay1 - s->ay0, dn = s->n1 - s->n0;
-    const double q2 = dax * dax + day * day - mu * mu * dn * dn;
-    const double q1 = 2.0 * (s->ax0 * dax + s->ay0 * day - mu * mu * s->n0 * dn);
-    const double q0 = s->ax0 * s->ax0 + s->ay0 * s->ay0 - mu * mu * s->n0 * s->n0;
-    double c[5] = {lo_x, 1.0, 1.0, 1.0, 1.0};
-    int nc = 1;
-    if (q2 != 0.0) {
-        const double disc = q1 * q1 - 4.0 * q2 * q0;
-        if (disc >= 0.0) {
-            const double qq = -0.5 * (q1 + copysign(sqrt(disc), q1));
-            if (qq != 0.0)
-                c[nc++] = q0 / qq;
-            c[nc++] = qq / q2;
-        }
-    } else if (q1 != 0.0) {
-        c[nc++] = -q0 / q1;
-    }
-    if (dn != 0.0)
-        c[nc++] = -s->n0 / dn;
-    for (int i = 1; i < nc; i++) /* sort the few candidates */
-        for (int j = i; j > 0 && c[j] < c[j - 1]; j--) {
-            const double t = c[j];
-            c[j] = c[j - 1];
-            c[j - 1] = t;
-        }
-    for (int i = 0; i < nc; i++) {
-        const double lo = fmax(c[i], lo_x), hi = i + 1 < nc ? fmin(c[i + 1], 1.0) : 1.0;
-        if (!(lo < 1.0) || !(hi > lo))
-            continue;
-        if (slips_at(s, mu, 0.5 * (lo + hi)))
-            return lo;
-    }
-    return 1.0;
-}
-
-/* Sub-steps of width (1 - x0)/n over the part [x0, 1] of one sample from
- * b; a block at rest stays held until the exact onset instant. */
-static blk run_level(blk b, const sample *s, double mu, unsigned n, double x0)
-{
-    const double w = (1.0 - x0) / n;
-    double x = x0;
-    for (unsigned j = 0; j < 4u * n + 8u && x < 1.0; j++) {
-        if (b.vx == 0.0 && b.vy == 0.0) {
-            x = onset(s, mu, x);
-            if (!(x < 1.0))
-                break;
-        }
-        const double x1 = 1.0 - (x + w) < 1e-12 ? 1.0 : x + w;
-        force F = force_of(s, x, x1);
-        const double used = fstep(&b, &F, mu);
-        x = used < 1.0 ? x + (x1 - x) * used : x1;
-    }
-    return b;
-}
 
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
  * when the step needs the split (5). Inlined into the vector loops. */
@@ -411,13 +190,37 @@ static void err_add(errv *e, double dux, double duy, double dvx, double dvy, dou
 
 /* The working state of one run: every block, its error estimate, and the
  * packed arrays of the live blocks of the current sample (P_N rows of m). */
+/* The rows of the packed state of a level (level_vector): the blk fields
+ * but the episodes. */
+enum { S_UX, S_UY, S_VX, S_VY, S_SP, S_PK2, S_TPK, S_PX, S_PY, S_PATH, S_VM2, S_TSL, S_TST, S_N };
+
+/* Packed rows of the blocks one level of sub-steps advances together
+ * (level_vector): friction, the flag of a block whose sub-step needs the
+ * split step (5), then two banks of S_N state rows (each sub-step reads one
+ * and writes the other). */
+enum { Q_MU, Q_BAD, Q_BANK, Q_N = Q_BANK + 2 * S_N };
+
+/* A sliding block being refined: packed index j, block k, the sub-step
+ * count of its next level (0 when done), and the previous level's answer. */
+typedef struct rq {
+    size_t j, k;
+    unsigned lev;
+    int has_a;
+    double ax, ay, avx, avy;
+} rq;
+
 typedef struct k2_work {
     size_t m;
     blk *B;
     errv *E;
-    double *P;
-    size_t *live, *redo;
+    double *P, *Q;
+    size_t *live, *redo, *qk, *qs;
     long *refined;
+    blk *C;  /* the answers of one level, by refinement entry */
+    rq *R;   /* the sliding blocks being refined in this sample */
+    /* find_live: the blocks by increasing mu (rank[k] = position of k), and
+     * the set of sliding blocks (slpos[k] its slot in sl, or SIZE_MAX) */
+    size_t *order, *rank, *sl, *slpos, nsl;
 } k2_work;
 
 static void work_free(k2_work *w)
@@ -425,9 +228,18 @@ static void work_free(k2_work *w)
     free(w->B);
     free(w->E);
     free(w->P);
+    free(w->Q);
     free(w->live);
     free(w->redo);
+    free(w->qk);
+    free(w->qs);
     free(w->refined);
+    free(w->C);
+    free(w->R);
+    free(w->order);
+    free(w->rank);
+    free(w->sl);
+    free(w->slpos);
 }
 
 static int work_alloc(k2_work *w, size_t m)
@@ -440,7 +252,18 @@ static int work_alloc(k2_work *w, size_t m)
     w->live = malloc(m1 * sizeof *w->live);
     w->redo = malloc(m1 * sizeof *w->redo);
     w->refined = calloc(m1, sizeof *w->refined);
-    if (!w->B || !w->E || !w->P || !w->live || !w->redo || !w->refined) {
+    w->Q = malloc((size_t)Q_N * m1 * sizeof *w->Q);
+    w->qk = malloc(m1 * sizeof *w->qk);
+    w->qs = malloc(m1 * sizeof *w->qs);
+    w->C = malloc(m1 * sizeof *w->C);
+    w->R = malloc(m1 * sizeof *w->R);
+    w->order = malloc(m1 * sizeof *w->order);
+    w->rank = malloc(m1 * sizeof *w->rank);
+    w->sl = malloc(m1 * sizeof *w->sl);
+    w->slpos = malloc(m1 * sizeof *w->slpos);
+    w->nsl = 0;
+    if (!w->B || !w->E || !w->P || !w->live || !w->redo || !w->refined || !w->Q || !w->qk ||
+        !w->qs || !w->C || !w->R || !w->order || !w->rank || !w->sl || !w->slpos) {
         work_free(w);
         return -1;
     }
@@ -462,20 +285,87 @@ static sample sample_at(const sl_k2_motion *in, size_t i)
     return s;
 }
 
+/* One block and its mu, for sorting by mu. */
+typedef struct mu_key {
+    double mu;
+    size_t k;
+} mu_key;
+
+static int cmp_mu_key(const void *a, const void *b)
+{
+    const mu_key *x = a, *y = b;
+    return x->mu < y->mu ? -1 : x->mu > y->mu ? 1 : (x->k > y->k) - (x->k < y->k);
+}
+
+/* Order the blocks by mu (w->order, w->rank), all at rest. Returns 0 or -1
+ * (out of memory). */
+static int work_order(k2_work *w, const double *mu)
+{
+    mu_key *key = malloc((w->m ? w->m : 1) * sizeof *key);
+    if (!key)
+        return -1;
+    for (size_t k = 0; k < w->m; k++) {
+        key[k].mu = mu[k];
+        key[k].k = k;
+        w->slpos[k] = SIZE_MAX;
+    }
+    qsort(key, w->m, sizeof *key, cmp_mu_key);
+    for (size_t i = 0; i < w->m; i++) {
+        w->order[i] = key[i].k;
+        w->rank[key[i].k] = i;
+    }
+    free(key);
+    return 0;
+}
+
 /* The blocks that may move in sample s into w->live; returns how many. A
  * block held at both ends of the sample is held throughout, since |a| is
- * convex and mu N linear (one test per sample). */
+ * convex and mu N linear (one test per sample). Held at both ends is
+ * monotone in mu, so the blocks that would be held at rest are those from
+ * the first such in mu order (a bisection); the live blocks are those
+ * before it and the sliding ones after it. */
 static size_t find_live(k2_work *w, const sample *s, const double *mu)
 {
     const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
     const double p0 = fmax(s->n0, 0.0), p1 = fmax(s->n1, 0.0);
-    size_t na = 0;
-    for (size_t k = 0; k < w->m; k++) {
-        const blk *b = &w->B[k];
-        if (!(b->vx == 0.0 && b->vy == 0.0 && a0m <= mu[k] * p0 && a1m <= mu[k] * p1))
-            w->live[na++] = k;
+    size_t lo = 0, hi = w->m; /* first position in order whose block is held */
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        const double mk = mu[w->order[mid]];
+        if (a0m <= mk * p0 && a1m <= mk * p1)
+            hi = mid;
+        else
+            lo = mid + 1;
     }
+    size_t na = 0;
+    for (size_t i = 0; i < lo; i++)
+        w->live[na++] = w->order[i];
+    for (size_t i = 0; i < w->nsl; i++)
+        if (w->rank[w->sl[i]] >= lo)
+            w->live[na++] = w->sl[i];
     return na;
+}
+
+/* After a sample: the live blocks now at rest leave the sliding set (and
+ * forget their velocity error), those sliding join it. */
+static void update_sliding(k2_work *w, size_t na)
+{
+    for (size_t li = 0; li < na; li++) {
+        const size_t k = w->live[li];
+        const int rest = w->B[k].vx == 0.0 && w->B[k].vy == 0.0;
+        if (rest) {
+            w->E[k].wx = w->E[k].wy = 0.0;
+            if (w->slpos[k] != SIZE_MAX) { /* leaves: the last takes its slot */
+                const size_t last = w->sl[--w->nsl];
+                w->sl[w->slpos[k]] = last;
+                w->slpos[last] = w->slpos[k];
+                w->slpos[k] = SIZE_MAX;
+            }
+        } else if (w->slpos[k] == SIZE_MAX) {
+            w->slpos[k] = w->nsl;
+            w->sl[w->nsl++] = k;
+        }
+    }
 }
 
 /* Pack the na live blocks: friction, tolerance share eta max(rtol peak,
@@ -506,7 +396,8 @@ static void step(k2_work *w, size_t na, const sample *s)
 {
     const size_t m = w->m;
     double *P = w->P;
-    const force Fc = force_of(s, 0.0, 1.0), Fa = force_of(s, 0.0, 0.5), Fb = force_of(s, 0.5, 1.0);
+    const force Fc = sl_k2_force_of(s, 0.0, 1.0), Fa = sl_k2_force_of(s, 0.0, 0.5),
+                Fb = sl_k2_force_of(s, 0.5, 1.0);
     const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
     const double hv = s->dt * fmax(a0m, a1m); /* most the floor changes v in a sample */
     /* friction may hold a block somewhere in the sample only if the smallest
@@ -565,59 +456,303 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
     return nr;
 }
 
-/* Redo packed block j of sample s alone: from rest held until the exact
- * onset instant; then 1, 2, 4, ... sub-steps with the full step (2)-(5)
- * (a slow block starts at SL_K2_NEAR_STOP_SUB: a stop and restart inside
- * one step can look alike at 1 and 2 sub-steps) until two successive
- * levels agree within its tolerance. */
-static void refine(k2_work *w, size_t j, const sample *s, const double *mu)
+/* One sub-step (3)-(4) of every packed block with the forcing F, ending at
+ * tu, from the state rows I to the rows O: the arithmetic of fstep and
+ * track_peak on the path without the split step, every value computed and
+ * selected (vector code). bad = 1 marks a block whose step needs the split
+ * (5) (its O is then meaningless). */
+VECTOR_PASS static void substep_pass(
+    size_t nq, const force *F, double tu, const double *restrict mu, double *restrict bad,
+    const double *restrict iux, const double *restrict iuy, const double *restrict ivx,
+    const double *restrict ivy, const double *restrict isp, const double *restrict ipk2,
+    const double *restrict itpk, const double *restrict ipx, const double *restrict ipy,
+    const double *restrict ipath, const double *restrict ivm2, const double *restrict itsl,
+    const double *restrict itst, double *restrict oux, double *restrict ouy,
+    double *restrict ovx, double *restrict ovy, double *restrict osp, double *restrict opk2,
+    double *restrict otpk, double *restrict opx, double *restrict opy, double *restrict opath,
+    double *restrict ovm2, double *restrict otsl, double *restrict otst)
+{
+    const double hax = F->hax, hay = F->hay, hN = F->hN, cx = F->cx, cy = F->cy, h = F->h;
+    for (size_t j = 0; j < nq; j++) {
+        const double vx0 = ivx[j], vy0 = ivy[j], ux0 = iux[j], uy0 = iuy[j];
+        const double f = hN * mu[j];
+        const double yx = 2.0 * vx0 - hax, yy = 2.0 * vy0 - hay; /* (3) */
+        const double yn = sqrt(yx * yx + yy * yy);
+        const double s1 = 1.0 - f / (yn > 1e-300 ? yn : 1e-300);
+        const double sm = yn > f ? s1 : 0.0;
+        const double mx = yx * sm - vx0, my = yy * sm - vy0;
+        const double v2 = vx0 * vx0 + vy0 * vy0, L = v2 - (hax * vx0 + hay * vy0);
+        const double ok = (yn > f ? 1.0 : 0.0) * ((mx * vx0 + my * vy0) > 0.0 ? 1.0 : 0.0) *
+                          (L > 0.0 ? 1.0 : 0.0) * (L * L > f * f * v2 ? 1.0 : 0.0);
+        const double nux = ux0 + (0.5 * h * (vx0 + mx) + cx); /* (4) */
+        const double nuy = uy0 + (0.5 * h * (vy0 + my) + cy);
+        const double sp2 = mx * mx + my * my, spn = sqrt(sp2);
+        /* track_peak: the end, and the parabola when u.v turns inward */
+        const double r2 = nux * nux + nuy * nuy;
+        const double p0 = ux0 * vx0 + uy0 * vy0, p1 = nux * mx + nuy * my;
+        const double turn = (p0 > 0.0 ? 1.0 : 0.0) * (p1 < 0.0 ? 1.0 : 0.0);
+        const double par = ux0 * ux0 + uy0 * uy0 + p0 * h * p0 / (turn != 0.0 ? p0 - p1 : 1.0);
+        const double c = turn != 0.0 ? max2(r2, par) : r2;
+        /* times blended by 0/1 weights (exact for the finite times >= 0):
+         * a select would load them conditionally and block the vector code */
+        const double pk2 = ipk2[j], up = c > pk2 ? 1.0 : 0.0, zs = sp2 == 0.0 ? 1.0 : 0.0;
+        opk2[j] = up != 0.0 ? c : pk2;
+        otpk[j] = up * tu + (1.0 - up) * itpk[j];
+        opx[j] = max2(ipx[j], fabs(nux));
+        opy[j] = max2(ipy[j], fabs(nuy));
+        opath[j] = ipath[j] + 0.5 * h * (isp[j] + spn);
+        otsl[j] = itsl[j] + h;
+        ovm2[j] = max2(ivm2[j], sp2);
+        otst[j] = zs * tu + (1.0 - zs) * itst[j];
+        osp[j] = spn;
+        oux[j] = nux;
+        ouy[j] = nuy;
+        ovx[j] = mx;
+        ovy[j] = my;
+        bad[j] = 1.0 - ok;
+    }
+}
+
+/* Row r of state bank `bank` of w->Q. */
+static double *q_row(const k2_work *w, int bank, int r)
+{
+    return w->Q + (size_t)(Q_BANK + bank * S_N + r) * w->m;
+}
+
+/* Pack blocks w->qk[0..nq) (all sliding) into w->Q, state bank 0. */
+static void q_pack(k2_work *w, size_t nq, const double *mu)
+{
+    double *S[S_N];
+    for (int r = 0; r < S_N; r++)
+        S[r] = q_row(w, 0, r);
+    for (size_t i = 0; i < nq; i++) {
+        const size_t k = w->qk[i];
+        const blk *b = &w->B[k];
+        w->Q[Q_MU * w->m + i] = mu[k];
+        S[S_UX][i] = b->ux;
+        S[S_UY][i] = b->uy;
+        S[S_VX][i] = b->vx;
+        S[S_VY][i] = b->vy;
+        S[S_SP][i] = b->sp;
+        S[S_PK2][i] = b->peak2;
+        S[S_TPK][i] = b->tpeak;
+        S[S_PX][i] = b->px;
+        S[S_PY][i] = b->py;
+        S[S_PATH][i] = b->path;
+        S[S_VM2][i] = b->vmax2;
+        S[S_TSL][i] = b->tslide;
+        S[S_TST][i] = b->tstop;
+    }
+}
+
+/* Packed block i of the state rows S as a blk (its episodes from the
+ * block's start state: a pass never starts a block from rest). */
+static blk q_unpack(const k2_work *w, double *const S[S_N], size_t i)
+{
+    blk b;
+    b.ux = S[S_UX][i];
+    b.uy = S[S_UY][i];
+    b.vx = S[S_VX][i];
+    b.vy = S[S_VY][i];
+    b.sp = S[S_SP][i];
+    b.peak2 = S[S_PK2][i];
+    b.tpeak = S[S_TPK][i];
+    b.px = S[S_PX][i];
+    b.py = S[S_PY][i];
+    b.path = S[S_PATH][i];
+    b.vmax2 = S[S_VM2][i];
+    b.tslide = S[S_TSL][i];
+    b.tstop = S[S_TST][i];
+    b.episodes = w->B[w->qk[i]].episodes;
+    return b;
+}
+
+/* Move packed block `last` into slot i (friction, state rows S). */
+static void q_move(k2_work *w, double *const S[S_N], size_t i, size_t last)
+{
+    double *mu = w->Q + Q_MU * w->m;
+    mu[i] = mu[last];
+    for (int r = 0; r < S_N; r++)
+        S[r][i] = S[r][last];
+    w->qk[i] = w->qk[last];
+    w->qs[i] = w->qs[last];
+}
+
+/* sl_k2_run_level(B[k], s, mu, n, 0) of the nq sliding blocks packed in
+ * w->Q, all together: the n sub-steps share their forcing and run as vector code
+ * (substep_pass); a block whose sub-step needs the split step (5) leaves
+ * the pack and finishes the level alone (run_from, the same steps from
+ * there). Block i's answer goes to res[w->qs[i]]. */
+static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk *res)
+{
+    const double *mu = w->Q + Q_MU * w->m;
+    double *bad = w->Q + Q_BAD * w->m;
+    double *S[2][S_N];
+    for (int r = 0; r < S_N; r++) {
+        S[0][r] = q_row(w, 0, r);
+        S[1][r] = q_row(w, 1, r);
+    }
+    const double wd = (1.0 - 0.0) / n; /* as run_level */
+    const unsigned jmax = 4u * n + 8u;
+    double x = 0.0;
+    int cur = 0;
+    for (unsigned j = 0; j < jmax && x < 1.0 && nq > 0; j++) {
+        const double x1 = 1.0 - (x + wd) < 1e-12 ? 1.0 : x + wd;
+        const force F = sl_k2_force_of(s, x, x1);
+        const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
+        double *const *I = S[cur], *const *O = S[1 - cur];
+        substep_pass(nq, &F, tu, mu, bad, I[S_UX], I[S_UY], I[S_VX], I[S_VY], I[S_SP],
+                     I[S_PK2], I[S_TPK], I[S_PX], I[S_PY], I[S_PATH], I[S_VM2], I[S_TSL],
+                     I[S_TST], O[S_UX], O[S_UY], O[S_VX], O[S_VY], O[S_SP], O[S_PK2],
+                     O[S_TPK], O[S_PX], O[S_PY], O[S_PATH], O[S_VM2], O[S_TSL], O[S_TST]);
+        /* from the top, so the block moved into a freed slot is done */
+        for (size_t i = nq; i-- > 0;) {
+            if (bad[i] == 0.0)
+                continue;
+            res[w->qs[i]] = sl_k2_run_from(q_unpack(w, I, i), s, mu[i], wd, x, jmax - j);
+            q_move(w, O, i, --nq);
+        }
+        cur = 1 - cur;
+        x = x1;
+    }
+    for (size_t i = 0; i < nq; i++)
+        res[w->qs[i]] = q_unpack(w, S[cur], i);
+}
+
+/* The end of the refinement of entry e: block k takes the answer C of n
+ * sub-steps, and the difference from the level before (e->a*) goes to its
+ * error estimate (as refine). */
+static void finish_refined(k2_work *w, const rq *e, const blk *C, unsigned n, double dt)
+{
+    const size_t m = w->m, k = e->k;
+    const double ns = w->P[P_NS * m + e->j], bad = w->P[P_BAD * m + e->j];
+    w->refined[k] += (n > 2);
+    const int raised = C->peak2 > w->B[k].peak2;
+    const blk B0 = w->B[k];
+    w->B[k] = *C;
+    const double rf = (ns == 0.0 && bad == 0.0 && C->episodes == B0.episodes &&
+                       C->tstop == B0.tstop)
+                          ? SL_K2_RICHARDSON
+                          : 1.0;
+    err_add(&w->E[k], (C->ux - e->ax) / rf, (C->uy - e->ay) / rf, (C->vx - e->avx) / rf,
+            (C->vy - e->avy) / rf, dt, raised);
+}
+
+/* Redo packed block j of sample s, at rest at its start, alone: held until
+ * the exact onset instant x0, then 1, 2, 4, ... sub-steps of [x0, 1] with the
+ * full step (2)-(5) (a slow block from SL_K2_NEAR_STOP_SUB: a stop and
+ * restart inside one step can look alike at 1 and 2 sub-steps) until two
+ * successive levels agree within its tolerance. An onset counts in full in
+ * the error estimate (no Richardson factor). */
+static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu)
 {
     const size_t m = w->m, k = w->live[j];
     const double *P = w->P;
-    const double tol = P[P_TOL * m + j], ns = P[P_NS * m + j], bad = P[P_BAD * m + j];
-    const double x0 = (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) ? onset(s, mu[k], 0.0) : 0.0;
+    const double tol = P[P_TOL * m + j], ns = P[P_NS * m + j];
+    const double x0 = sl_k2_onset(s, mu[k], 0.0);
     if (!(x0 < 1.0))
         return;
-    const unsigned n0 = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
-    /* sent here by the tolerance alone (sliding, no split, not slow): the
-     * vector pass's two half steps are level 2 already (the same steps
-     * (3)-(4)), and level 1 against them failed */
-    const int tol_only = x0 == 0.0 && ns == 0.0 && bad == 0.0;
-    blk A, C;
-    unsigned n;
-    if (tol_only) {
-        A = w->B[k];
-        A.ux = P[P_UX * m + j];
-        A.uy = P[P_UY * m + j];
-        A.vx = P[P_VX * m + j];
-        A.vy = P[P_VY * m + j];
-        n = 4;
-    } else {
-        A = run_level(w->B[k], s, mu[k], n0, x0);
-        n = 2 * n0;
-    }
-    C = run_level(w->B[k], s, mu[k], n, x0);
+    unsigned n = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+    blk A = sl_k2_run_level(w->B[k], s, mu[k], n, x0), C;
     for (;;) {
+        n *= 2;
+        C = sl_k2_run_level(w->B[k], s, mu[k], n, x0);
         const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
         const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
         if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)
             break;
         A = C;
-        n *= 2;
-        C = run_level(w->B[k], s, mu[k], n, x0);
     }
     w->refined[k] += (n > 2);
     const int raised = C.peak2 > w->B[k].peak2;
-    const blk B0 = w->B[k];
     w->B[k] = C;
-    /* a smooth sample (sent here by the tolerance alone) keeps the
-     * Richardson factor; a stop, onset or turn counts in full */
-    const double rf = (x0 == 0.0 && ns == 0.0 && bad == 0.0 && C.episodes == B0.episodes &&
-                       C.tstop == B0.tstop)
-                          ? SL_K2_RICHARDSON
-                          : 1.0;
-    err_add(&w->E[k], (C.ux - A.ux) / rf, (C.uy - A.uy) / rf, (C.vx - A.vx) / rf,
-            (C.vy - A.vy) / rf, s->dt, raised);
+    err_add(&w->E[k], C.ux - A.ux, C.uy - A.uy, C.vx - A.vx, C.vy - A.vy, s->dt, raised);
+}
+
+/* Refine the nr blocks of sample s in w->redo: a block at rest alone
+ * (refine_onset: its onset sets its own sub-step grid); the sliding ones
+ * level by level, every block due at n sub-steps advanced together
+ * (level_vector), 1, 2, 4, ... sub-steps until two successive levels agree
+ * within the block's tolerance: a slow block from
+ * SL_K2_NEAR_STOP_SUB, a block sent by the tolerance alone from the vector
+ * pass's two half steps (level 2), any other from 1. */
+static void refine_all(k2_work *w, size_t nr, const sample *s, const double *mu)
+{
+    const size_t m = w->m;
+    const double *P = w->P;
+    size_t nv = 0;
+    for (size_t r = 0; r < nr; r++) {
+        const size_t j = w->redo[r], k = w->live[j];
+        if (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) {
+            refine_onset(w, j, s, mu);
+            continue;
+        }
+        rq *e = &w->R[nv++];
+        const double ns = P[P_NS * m + j], bad = P[P_BAD * m + j];
+        e->j = j;
+        e->k = k;
+        e->has_a = ns == 0.0 && bad == 0.0;
+        e->lev = e->has_a ? 4u : ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+        e->ax = P[P_UX * m + j];
+        e->ay = P[P_UY * m + j];
+        e->avx = P[P_VX * m + j];
+        e->avy = P[P_VY * m + j];
+    }
+    size_t pending = nv;
+    for (unsigned n = 1; pending > 0 && n <= NSUB_MAX; n *= 2) {
+        size_t nq = 0;
+        for (size_t i = 0; i < nv; i++)
+            if (w->R[i].lev == n) {
+                w->qk[nq] = w->R[i].k;
+                w->qs[nq++] = i;
+            }
+        if (nq == 0)
+            continue;
+        q_pack(w, nq, mu);
+        level_vector(w, nq, s, n, w->C);
+        for (size_t i = 0; i < nv; i++) {
+            rq *e = &w->R[i];
+            if (e->lev != n)
+                continue;
+            const blk *C = &w->C[i];
+            const double eu =
+                sqrt((C->ux - e->ax) * (C->ux - e->ax) + (C->uy - e->ay) * (C->uy - e->ay));
+            const double ev =
+                sqrt((C->vx - e->avx) * (C->vx - e->avx) + (C->vy - e->avy) * (C->vy - e->avy));
+            if (e->has_a && (eu + SL_K2_TV * ev <= P[P_TOL * m + e->j] || n >= NSUB_MAX)) {
+                finish_refined(w, e, C, n, s->dt);
+                e->lev = 0;
+                pending--;
+                continue;
+            }
+            e->has_a = 1;
+            e->ax = C->ux;
+            e->ay = C->uy;
+            e->avx = C->vx;
+            e->avy = C->vy;
+            e->lev = 2 * n;
+        }
+    }
+}
+
+/* Fixed sub-steps: n of them per sample for every live block, the sliding
+ * ones together (level_vector), a block at rest alone from its onset. */
+static void fixed_level(k2_work *w, size_t na, const sample *s, const double *mu, unsigned n)
+{
+    size_t nq = 0;
+    for (size_t li = 0; li < na; li++) {
+        const size_t k = w->live[li];
+        if (w->B[k].vx == 0.0 && w->B[k].vy == 0.0) {
+            w->B[k] = sl_k2_run_level(w->B[k], s, mu[k], n, 0.0);
+        } else {
+            w->qk[nq] = k;
+            w->qs[nq++] = k;
+        }
+    }
+    if (nq > 0) {
+        q_pack(w, nq, mu);
+        level_vector(w, nq, s, n, w->B);
+    }
 }
 
 /* The history of block 0 at the end of sample s: F/W = the absolute block
@@ -669,27 +804,22 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
     k2_work w;
     if (work_alloc(&w, m))
         return -1;
+    if (work_order(&w, mu)) {
+        work_free(&w);
+        return -1;
+    }
     const int adaptive = (o->substeps == 0);
     for (size_t i = 0; i + 1 < in->n; i++) {
         const sample s = sample_at(in, i);
         const size_t na = find_live(&w, &s, mu);
         if (!adaptive) {
-            for (size_t li = 0; li < na; li++) {
-                const size_t k = w.live[li];
-                w.B[k] = run_level(w.B[k], &s, mu[k], o->substeps, 0.0);
-            }
+            fixed_level(&w, na, &s, mu, o->substeps);
         } else if (na > 0) {
             pack(&w, na, mu, eta, scale_m, o);
             step(&w, na, &s);
-            const size_t nr = accept(&w, na, s.dt, s.t0 + s.dt);
-            for (size_t r = 0; r < nr; r++)
-                refine(&w, w.redo[r], &s, mu);
+            refine_all(&w, accept(&w, na, s.dt, s.t0 + s.dt), &s, mu);
         }
-        for (size_t li = 0; li < na; li++) { /* a block at rest forgets its velocity error */
-            const size_t k = w.live[li];
-            if (w.B[k].vx == 0.0 && w.B[k].vy == 0.0)
-                w.E[k].wx = w.E[k].wy = 0.0;
-        }
+        update_sliding(&w, na);
         if (hist)
             push_history(hist, &w.B[0], &s, mu[0], in->g_ms2);
     }
