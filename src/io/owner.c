@@ -15,7 +15,7 @@ void sl_owner_host(char *buf, size_t n)
     if (gethostname(h, sizeof h - 1) != 0 || !h[0])
         snprintf(h, sizeof h, "localhost");
     size_t k = 0;
-    for (const char *p = h; *p && k + 1 < n && k < 32; p++)
+    for (const char *p = h; *p && k + 1 < n; p++)
         buf[k++] = (isalnum((unsigned char)*p) || *p == '.' || *p == '_' || *p == '-') ? *p : '_';
     buf[k] = '\0';
 }
@@ -23,6 +23,6 @@ void sl_owner_host(char *buf, size_t n)
 int sl_owner_pid_gone(long pid)
 {
     if (pid <= 0 || (long)(pid_t)pid != pid)
-        return 0;
+        return 1;
     return kill((pid_t)pid, 0) != 0 && errno == ESRCH;
 }

@@ -10,14 +10,16 @@
 
 #include <stddef.h>
 
-/* This host's name as one word for file names and lock files: letters,
- * digits, '.', '_' and '-' kept, anything else '_'; "localhost" when it has
- * none; at most 32 characters (and n - 1), so that a name holding it stays
- * well below NAME_MAX. */
+/* This host's name as one word for file names and lock files: the whole
+ * name gethostname gives (at most HOST_NAME_MAX, 64 on Linux, and n - 1
+ * characters), letters, digits, '.', '_' and '-' kept, anything else '_';
+ * "localhost" when it has none. Never shortened further, so that two hosts
+ * of one shared cache whose names share a long prefix stay apart. */
 void sl_owner_host(char *buf, size_t n);
 
-/* 1 when process pid of this host is gone (kill(pid, 0) fails with ESRCH);
- * 0 when it lives, belongs to another user, or pid is not a process id. */
+/* 1 when process pid of this host is gone (kill(pid, 0) fails with ESRCH)
+ * or pid is no process id (<= 0, or out of range: no process holds it);
+ * 0 when it lives or belongs to another user. */
 int sl_owner_pid_gone(long pid);
 
 #endif

@@ -186,6 +186,21 @@ mkdir -p "$D/hostcache"
 t_run run "$D/plant3/other" -o "$D/out3h" $OPTS -q --cache "$D/hostcache"; t_expect_rc hostcache 0
 [ -e "$D/hostcache/.0123456789abcdef.tmp-$H-b-1-AbCdEf" ] && t_pass || t_fail "another host's temporary entry removed"
 [ ! -e "$D/hostcache/.0123456789abcdef.tmp-$H-999999-AbCdEf" ] && t_pass || t_fail "a dead process's temporary entry kept"
+# the same on a host with a long name (40 characters), beside a host whose name differs only
+# in its last character: the whole names are compared (in a user and UTS namespace of its own)
+LA=seislide-plant-analysis-worker-node-000a; LB=seislide-plant-analysis-worker-node-000b
+if unshare -Ur --uts true 2>/dev/null; then
+  mkdir -p "$D/hostcache2"
+  : > "$D/hostcache2/.0123456789abcdef.tmp-$LB-1-AbCdEf"      # the other host, its pid 1
+  : > "$D/hostcache2/.0123456789abcdef.tmp-$LA-999999-AbCdEf" # this host, no such process
+  unshare -Ur --uts sh -c 'hostname "$1" && shift && exec "$@"' sh "$LA" \
+    "$SEISLIDE_BIN" run "$D/plant3/other" -o "$D/out3l" $OPTS -q --cache "$D/hostcache2" \
+    > /dev/null 2>&1 && t_pass || t_fail "run under a long host name"
+  [ -e "$D/hostcache2/.0123456789abcdef.tmp-$LB-1-AbCdEf" ] && t_pass || t_fail "long host name: another host's temporary entry removed"
+  [ ! -e "$D/hostcache2/.0123456789abcdef.tmp-$LA-999999-AbCdEf" ] && t_pass || t_fail "long host name: a dead process's temporary entry kept"
+else
+  t_skip "unshare -Ur --uts not permitted here: long host names not checked"
+fi
 
 # more buildings than a plant may hold: refused, naming the folder and the limit, nothing written
 mkdir -p "$D/many"
