@@ -701,6 +701,45 @@ static void test_stop_heavy(void)
     free(ay);
 }
 
+/* Lift-off inside a sample: N = g + a_v goes from -g to +g over the first
+ * sample while a rises from 0 to 1 m/s^2, so max(N, 0) has a kink inside it
+ * and the block, held (|a| <= mu N) at both ends of that sample, slips in
+ * between while N is still small (8.5 um). Neither the friction threshold
+ * (engine.c) nor the 2-D engine's held test (kernel2d.c find_live) may take
+ * the ends of that sample for the whole of it: the exact 1-D kernel must
+ * slide, and the 2-D engine along 30 degrees must agree with it. */
+static void test_liftoff_inside_sample(void)
+{
+    const size_t n = 40;
+    const double dt = 0.01, th = 30.0 * M_PI / 180.0, mu = 0.2;
+    double *a = alloc_n(n), *ax = alloc_n(n), *ay = alloc_n(n), *av = alloc_n(n);
+    for (size_t i = 0; i < n; i++) {
+        a[i] = i <= 10 ? 0.0 : 1.0;
+        av[i] = i == 10 ? -2.0 * SL_G : 0.0;
+        ax[i] = a[i] * cos(th);
+        ay[i] = a[i] * sin(th);
+    }
+    sl_motion m1 = oracle_motion(a, n, dt), mx = oracle_motion(ax, n, dt),
+              my = oracle_motion(ay, n, dt), mv = oracle_motion(av, n, dt);
+    sl_set s1 = {&m1, NULL, &mv}, s2 = {&mx, &my, &mv};
+    sl_slide_opts o = opts_default();
+    sl_slide_result r1, r2;
+    CHECK(sl_slide_run(&s1, &mu, 1, &o, &r1, NULL) == SL_OK, "exact 1-D");
+    CHECK(sl_slide_run(&s2, &mu, 1, &o, &r2, NULL) == SL_OK, "2-D along 30 degrees");
+    if (getenv("SEISLIDE_TEST_VERBOSE"))
+        fprintf(stderr, "  1-D %.9g m (%ld episodes), 2-D %.9g m (%ld)\n", r1.peak_m, r1.episodes,
+                r2.peak_m, r2.episodes);
+    CHECK(r1.peak_m > 0 && r1.episodes >= 1, "1-D: the block slips while N is small: peak %g m, %ld episodes",
+          r1.peak_m, r1.episodes);
+    const double tol = fmax(o.rtol * r1.peak_m, o.atol_m);
+    CHECK(fabs(r2.peak_m - r1.peak_m) <= tol, "2-D peak %.9g vs exact 1-D %.9g (tolerance %.3g)",
+          r2.peak_m, r1.peak_m, tol);
+    free(a);
+    free(ax);
+    free(ay);
+    free(av);
+}
+
 /* Bad options are errors, never silent. */
 static void test_bad_options(void)
 {
@@ -769,6 +808,7 @@ int main(void)
     RUN(test_ramp_position);
     RUN(test_error_control);
     RUN(test_stop_heavy);
+    RUN(test_liftoff_inside_sample);
     RUN(test_bad_options);
     RUN(test_set_tol);
     return HARNESS_END("slide");

@@ -135,21 +135,29 @@ static int history_tail(sl_history *h, double t0, double dt, double ux, double u
 
 /* ---- threshold ------------------------------------------------------- */
 
+/* The friction force per unit mass sample i needs to hold the block. */
+static double demand_at(const input *in, size_t i, double up_ratio)
+{
+    const double ax = in_ax(in, i);
+    return in->ay ? hypot(ax, in_ay(in, i)) : fmax(ax, -ax / up_ratio);
+}
+
+/* The smallest mu that holds the block throughout. Between two samples with
+ * N > 0 the largest demand / N is at a sample (|a| convex, N linear); a
+ * sample with N <= 0 holds nothing, and nor does the interval on either side
+ * of it unless the demand is 0 at both of its ends (then a = 0 there). */
 static double threshold(const input *in, double up_ratio)
 {
     double thr = 0.0;
     for (size_t i = 0; i < in->n; i++) {
-        double ax = in_ax(in, i), ay = in_ay(in, i), N = in_n(in, i);
-        double demand; /* the friction coefficient this sample needs to hold */
-        if (in->ay)
-            demand = hypot(ax, ay);
-        else
-            demand = fmax(ax, -ax / up_ratio);
-        if (demand <= 0.0)
+        const double demand = demand_at(in, i, up_ratio), N = in_n(in, i);
+        if (N <= 0.0) {
+            if (demand > 0.0 || (i > 0 && demand_at(in, i - 1, up_ratio) > 0.0) ||
+                (i + 1 < in->n && demand_at(in, i + 1, up_ratio) > 0.0))
+                return INFINITY;
             continue;
-        if (N <= 0.0)
-            return INFINITY;
-        double r = demand / N;
+        }
+        const double r = demand / N;
         if (r > thr)
             thr = r;
     }

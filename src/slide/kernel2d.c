@@ -60,6 +60,10 @@
 
 /* Most sub-steps one sample is cut into by the refinement. */
 #define NSUB_MAX 4096u
+/* refine_all steps through the levels 1, 2, 4, ... NSUB_MAX: a block must start at one of them */
+_Static_assert((SL_K2_NEAR_STOP_SUB & (SL_K2_NEAR_STOP_SUB - 1u)) == 0 &&
+                   SL_K2_NEAR_STOP_SUB <= NSUB_MAX,
+               "SL_K2_NEAR_STOP_SUB must be a power of two, at most NSUB_MAX");
 
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
  * when the step needs the split (5). Inlined into the vector loops. */
@@ -319,16 +323,19 @@ static int work_order(k2_work *w, const double *mu)
 }
 
 /* The blocks that may move in sample s into w->live; returns how many. A
- * block held at both ends of the sample is held throughout, since |a| is
- * convex and mu N linear (one test per sample). Held at both ends is
- * monotone in mu, so the blocks that would be held at rest are those from
- * the first such in mu order (a bisection); the live blocks are those
- * before it and the sliding ones after it. */
+ * block held at both ends of the sample is held throughout when N > 0 at
+ * both ends, since |a| is convex and mu N linear then (one test per sample);
+ * when N <= 0 at an end, max(N, 0) has a kink inside the sample and nothing
+ * is held by the ends alone unless a = 0 at both (then a = 0 throughout).
+ * Held at both ends is monotone in mu, so the blocks that would be held at
+ * rest are those from the first such in mu order (a bisection); the live
+ * blocks are those before it and the sliding ones after it. */
 static size_t find_live(k2_work *w, const sample *s, const double *mu)
 {
     const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
     const double p0 = fmax(s->n0, 0.0), p1 = fmax(s->n1, 0.0);
-    size_t lo = 0, hi = w->m; /* first position in order whose block is held */
+    const int ends_decide = (s->n0 > 0.0 && s->n1 > 0.0) || (a0m == 0.0 && a1m == 0.0);
+    size_t lo = ends_decide ? 0 : w->m, hi = w->m; /* first position in order whose block is held */
     while (lo < hi) {
         const size_t mid = lo + (hi - lo) / 2;
         const double mk = mu[w->order[mid]];
