@@ -339,6 +339,21 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
     worksheet_set_column(ws, 1, 1, LK_W_B, NULL);
     sl_rpt_title_block(ws, F, rep, "Required clearance around a component: whole plant", 0, 1,
                        LK_W_B);
+    char failed[600] = "", warn[800];
+    size_t used = 0;
+    for (size_t i = 0; i < b->n && used + 1 < sizeof failed; i++)
+        if (b->rows[i].n_failed_motions) {
+            int w = snprintf(failed + used, sizeof failed - used, "%s%s/%s", used ? ", " : "",
+                             b->rows[i].building, b->rows[i].id);
+            used = w > 0 && used + (size_t)w < sizeof failed ? used + (size_t)w : sizeof failed - 1;
+        }
+    if (failed[0]) { /* as the building Lookup says it (sheet_lookup.c) */
+        snprintf(warn, sizeof warn, "CHECKS FAILED: motions of floor(s) %s failed their SRP "
+                 "3.7.1 checks; their results were kept by --accept-failed-checks (sheet Plant, "
+                 "column Motion checks; each building's Motion quality sheet)", failed);
+        worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, 1, warn, F->warn);
+        worksheet_set_row(ws, SL_RPT_WARN_ROW, sl_rpt_text_height(warn, LK_W_A + LK_W_B, 1), NULL);
+    }
     const char *b0 = b->lookup_building ? b->lookup_building : b->rows[0].building;
     const char *f0 = b->lookup_floor ? b->lookup_floor : b->rows[0].id;
     double mu0 = b->lookup_mu;

@@ -130,6 +130,10 @@ head -1 "$D/plo/plant.csv" | grep -q "^# WARNING: CHECKS FAILED: $nf of 15 motio
   && t_pass || t_fail "plant.csv: first line '$(head -1 "$D/plo/plant.csv")'"
 tr -d '\r' < "$D/plo/plant.csv" | awk -F, '$1 == "bldA" { a = $NF } $1 == "bldB" { b = $NF } END { exit !(a == "FAILED '"$nf"' of 15" && b == "passed") }' \
   && t_pass || t_fail "plant.csv: motion_checks column"
+# and plant.xlsx says it on the sheet that opens, the Lookup, as a building workbook does
+python3 -c 'import sys, zipfile; sys.stdout.write(zipfile.ZipFile(sys.argv[1]).read("xl/sharedStrings.xml").decode())' "$D/plo/plant.xlsx" \
+  | grep -q "CHECKS FAILED: motions of floor(s) bldA/spike failed" \
+  && t_pass || t_fail "plant.xlsx: no CHECKS FAILED line naming bldA/spike"
 
 # ---- an ordinary floor whose first set needs more than ten attempts ---------
 # (docs/synthesis.md 3.4): with the roof's own seed 11, H1 of set 1 fails ten
