@@ -195,7 +195,7 @@ bad=$((n_all - N))
 
 W1=$P/w1
 mkdir "$W1" || exit 2
-(cd "$ROOT" && tar --exclude=./build --exclude=./build-asan --exclude=./seislide --exclude=./.git \
+(cd "$ROOT" && tar --exclude=./build --exclude=./build-asan --exclude=./build-fuzz --exclude=./seislide --exclude=./.git \
   --exclude=./output -cf - .) | (cd "$W1" && tar -xf -) || exit 2
 echo "mutate: building the scratch copy"
 in_bg sh -c 'cd "$1" && exec make -s -j2 all' sh "$W1" >"$P/build.log" 2>&1 || {
