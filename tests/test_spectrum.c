@@ -211,9 +211,10 @@ static void test_blocks_same_bits(void)
 }
 
 /* The AVX2 and the baseline instances of the oscillator bank give the same
- * bits (PSA, SD, absolute SA; every block width; sub-steps 1 to 9; free
- * vibration) on this data and on a 20 s motion at 200/s over the default
- * grid. Skipped when the CPU runs the baseline only. */
+ * bits, with and without SD and absolute SA (synthesis asks for PSA only),
+ * for 1 to all of 100 grid frequencies together (every block width and
+ * remainder) and at three time steps (different sub-step counts). Skipped
+ * when the CPU runs the baseline only. */
 static void test_kernel_instances_same_bits(void)
 {
     if (!sl_spectrum_kernel_avx2()) {
@@ -229,16 +230,25 @@ static void test_kernel_instances_same_bits(void)
     for (int k = 0; k < 2; k++)
         for (int q = 0; q < 3; q++)
             out[k][q] = malloc(nf * sizeof(double));
-    for (int k = 0; k < 2; k++) {
-        sl_spectrum_kernel_baseline(k);
-        CHECK(sl_spectrum_kernel_avx2() == !k, "instance %d", k);
-        CHECK(sl_spectrum_compute(a, n, 0.005, f, nf, 0.05, out[k][0], out[k][1], out[k][2],
-                                  NULL) == SL_OK, "ok");
-    }
+    static const double dts[3] = {0.005, 0.01, 0.02};
+    const size_t widths[6] = {1, 3, 7, 16, 41, nf};
+    for (int t = 0; t < 3; t++)
+        for (int w = 0; w < 6; w++)
+            for (int full = 0; full < 2; full++) {
+                const size_t m = widths[w], f0 = nf - m; /* the highest frequencies: most sub-steps */
+                for (int k = 0; k < 2; k++) {
+                    sl_spectrum_kernel_baseline(k);
+                    CHECK(sl_spectrum_kernel_avx2() == !k, "instance %d", k);
+                    CHECK(sl_spectrum_compute(a, n, dts[t], f + f0, m, 0.05, out[k][0],
+                                              full ? out[k][1] : NULL, full ? out[k][2] : NULL,
+                                              NULL) == SL_OK, "ok");
+                }
+                for (int q = 0; q < (full ? 3 : 1); q++)
+                    CHECK(!memcmp(out[0][q], out[1][q], m * sizeof(double)),
+                          "dt %g, %zu frequencies, output %d%s: the AVX2 and the baseline "
+                          "instance differ", dts[t], m, q, full ? "" : " (PSA only)");
+            }
     sl_spectrum_kernel_baseline(0);
-    for (int q = 0; q < 3; q++)
-        CHECK(!memcmp(out[0][q], out[1][q], nf * sizeof(double)),
-              "output %d differs between the AVX2 and the baseline instance", q);
     for (int k = 0; k < 2; k++)
         for (int q = 0; q < 3; q++)
             free(out[k][q]);
