@@ -1,7 +1,10 @@
 /* synth_sharp.c - motions for sharp floor targets (docs/synthesis.md 4,
  * "Limit: very sharp floors"): a crest reservation of every iterate (eq. S2)
- * when the target's largest 5 % SA/ZPA is above SYNTH_CREST_AMP (4), and
- * also a mode sweep added to the start (eq. S1) above SYNTH_SHARP_AMP (6).
+ * when the target's largest SA/ZPA is above SYNTH_CREST_AMP (4), and also a
+ * mode sweep added to the start (eq. S1) above SYNTH_SHARP_AMP (6). The
+ * target is the spectrum the motions match: the 5 % table when the floor
+ * gives one, else the damping synth.c picks (as for the peak-count check,
+ * SL_SYNTH_PEAKS_MAX_AMP); a floor given at 2 % only reads sharper there.
  *
  * Why. A 5 %-damped oscillator reaches SA/PGA = 5-8 only from many cycles
  * near its frequency at nearly the full amplitude (steady state: SA = A/(2
