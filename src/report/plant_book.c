@@ -244,7 +244,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
         lf = strlen(r->id) > lf ? strlen(r->id) : lf;
         ln = strlen(r->name) > ln ? strlen(r->name) : ln;
     }
-    /* about 125 units: a landscape A4 page at about 75 %, the scale of the
+    /* about 140 units: a landscape A4 page at about 70 %, the scale of the
      * building workbook's tables. Ids have no blanks: their columns grow
      * to 24 units (longer ids wrap inside); headings wrap between words. */
     double width[PL_COLS] = {text_width(lb, 9, 24), text_width(lf, 9, 24), text_width(ln, 12, 20),

@@ -84,10 +84,12 @@ size_t sl_synth_compress_peaks(sl_synth_motion *m, double level, double knee)
     return count;
 }
 
-/* Make m->acc (any level) an admissible iterate: end taper and baseline
- * correction (no peak limiting, no peak scaling: the PGA is what the
- * spectral matching of the high-frequency end makes it); then its spectrum,
- * and keep it if it is the best so far. */
+/* Make m->acc (any level) an admissible iterate: end taper, the soft peak
+ * compression of §3.3 above its knee (sl_synth_compress_peaks), for sharp
+ * targets the crest reservation (eq. S2, synth_sharp.c), and the baseline
+ * correction (no peak scaling: the PGA is what the spectral matching of the
+ * high-frequency end makes it); then its spectrum, and keep it if it is the
+ * best so far. */
 sl_status sl_synth_finish(sl_synth_motion *m, sl_error *err)
 {
     const sl_synth *s = m->s;
