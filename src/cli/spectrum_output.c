@@ -35,7 +35,7 @@ static char (*column_names(size_t nm, char *const *label, const double *damp, si
     for (size_t i = 0; name && i < nm; i++)
         for (size_t k = 0; k < nd; k++)
             for (size_t q = 0; q < nq; q++) {
-                char zs[40] = "", fs[300] = "";
+                char zs[24] = "", fs[287] = ""; /* 8 + 23 + 286 < 320 */
                 if (nd > 1)
                     snprintf(zs, sizeof zs, "_z%g", damp[k]);
                 if (nm > 1)
