@@ -657,19 +657,34 @@ static void test_error_control(void)
  * kernel (an independent method): every peak and residual within
  * max(rtol peak, atol), the estimate bounding any error above a tenth of
  * that. */
+/* The 1-D record a (with vertical av) and the same record along th from the
+ * x axis as two horizontals: s1 the 1-D set, s2 the 2-D one. The motions
+ * point into a, av and the freshly allocated *ax, *ay (freed by the caller). */
+static void along_direction(double *a, double *av, size_t n, double dt, double th, double **ax,
+                            double **ay, sl_motion m[4], sl_set *s1, sl_set *s2)
+{
+    *ax = alloc_n(n);
+    *ay = alloc_n(n);
+    for (size_t i = 0; i < n; i++) {
+        (*ax)[i] = a[i] * cos(th);
+        (*ay)[i] = a[i] * sin(th);
+    }
+    m[0] = oracle_motion(a, n, dt);
+    m[1] = oracle_motion(*ax, n, dt);
+    m[2] = oracle_motion(*ay, n, dt);
+    m[3] = oracle_motion(av, n, dt);
+    *s1 = (sl_set){&m[0], NULL, &m[3]};
+    *s2 = (sl_set){&m[1], &m[2], &m[3]};
+}
+
 static void test_stop_heavy(void)
 {
     const size_t n = 3000;
     const double dt = 0.01, th = 20.0 * M_PI / 180.0;
-    double *a = noise_record(n, dt, 6.0, 31u), *av = noise_record(n, dt, 4.0, 32u);
-    double *ax = alloc_n(n), *ay = alloc_n(n);
-    for (size_t i = 0; i < n; i++) {
-        ax[i] = a[i] * cos(th);
-        ay[i] = a[i] * sin(th);
-    }
-    sl_motion m1 = oracle_motion(a, n, dt), mx = oracle_motion(ax, n, dt),
-              my = oracle_motion(ay, n, dt), mv = oracle_motion(av, n, dt);
-    sl_set s1 = {&m1, NULL, &mv}, s2 = {&mx, &my, &mv};
+    double *a = noise_record(n, dt, 6.0, 31u), *av = noise_record(n, dt, 4.0, 32u), *ax, *ay;
+    sl_motion m[4];
+    sl_set s1, s2;
+    along_direction(a, av, n, dt, th, &ax, &ay, m, &s1, &s2);
     sl_slide_opts o = opts_default();
     const double thr = sl_slide_mu_threshold(&s1, &o);
     enum { NM = 10 };
@@ -712,16 +727,14 @@ static void test_liftoff_inside_sample(void)
 {
     const size_t n = 40;
     const double dt = 0.01, th = 30.0 * M_PI / 180.0, mu = 0.2;
-    double *a = alloc_n(n), *ax = alloc_n(n), *ay = alloc_n(n), *av = alloc_n(n);
+    double *a = alloc_n(n), *av = alloc_n(n), *ax, *ay;
     for (size_t i = 0; i < n; i++) {
         a[i] = i <= 10 ? 0.0 : 1.0;
         av[i] = i == 10 ? -2.0 * SL_G : 0.0;
-        ax[i] = a[i] * cos(th);
-        ay[i] = a[i] * sin(th);
     }
-    sl_motion m1 = oracle_motion(a, n, dt), mx = oracle_motion(ax, n, dt),
-              my = oracle_motion(ay, n, dt), mv = oracle_motion(av, n, dt);
-    sl_set s1 = {&m1, NULL, &mv}, s2 = {&mx, &my, &mv};
+    sl_motion m[4];
+    sl_set s1, s2;
+    along_direction(a, av, n, dt, th, &ax, &ay, m, &s1, &s2);
     sl_slide_opts o = opts_default();
     sl_slide_result r1, r2;
     CHECK(sl_slide_run(&s1, &mu, 1, &o, &r1, NULL) == SL_OK, "exact 1-D");
