@@ -40,9 +40,21 @@ static void say_stale(const char *dir, const char *text)
 
 sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
 {
+    /* INT, TERM and HUP held back from before the fresh folder exists until
+     * the handler that removes it is in place (a shell starts a background
+     * command with SIGINT ignored: one arriving in between was lost, and the
+     * run went on to replace the outputs) */
+    sigset_t hold, before;
+    sigemptyset(&hold);
+    sigaddset(&hold, SIGINT);
+    sigaddset(&hold, SIGTERM);
+    sigaddset(&hold, SIGHUP);
+    sigprocmask(SIG_BLOCK, &hold, &before);
     sl_atomic_dir *d = sl_atomic_dir_open(dir, owns, err);
-    if (!d)
+    if (!d) {
+        sigprocmask(SIG_SETMASK, &before, NULL);
         return NULL;
+    }
     say_stale(dir, sl_atomic_dir_stale(d));
     snprintf(final_dir, sizeof final_dir, "%s", dir);
     snprintf(fresh, sizeof fresh, "%s", sl_atomic_dir_path(d));
@@ -53,6 +65,7 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
     signal(SIGHUP, on_signal);
+    sigprocmask(SIG_SETMASK, &before, NULL); /* one that came meanwhile is handled now */
     return d;
 }
 

@@ -167,7 +167,7 @@ grep -qx "seislide: interrupted; the outputs in $D/keep were left as they were" 
 ls -a "$D" | grep -q "^\.keep\.tmp-" && t_fail "SIGINT left a fresh folder" || t_pass
 
 # synth: the line says what the folder holds (nothing of this run before the writing)
-"$SEISLIDE_BIN" synth --rg160 0.3 --count 50 --seed 1 -o "$D/sint" -q 2> "$D/sint.err" &
+"$SEISLIDE_BIN" synth --rg160 0.3 --count 500 --seed 1 -o "$D/sint" -q 2> "$D/sint.err" & # some seconds of work
 pid=$!
 i=0; while [ $i -lt 200 ] && [ ! -d "$D/sint" ]; do sleep 0.1; i=$((i + 1)); done
 sleep 0.5 # the handlers are installed right after the folder is made
