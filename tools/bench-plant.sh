@@ -3,7 +3,8 @@
 # N floors of tools/benchplant.c's building model run as one plant at 1 and
 # 2 OpenMP threads and as 2 shards of 1 thread each (GNU parallel) plus
 # merge; prints a markdown table: wall time, CPU time, sets, CPU per set,
-# sets per floor, speed-up and efficiency against 1 thread.
+# sets per floor, speed-up and efficiency against 1 thread; then a run with
+# a fresh cache and an unchanged rerun that reads every floor from it.
 #   BENCH_PLANT_FLOORS=N (default 12), BENCH_PLANT_OPTS="run options"
 #   (default: the program's defaults, converged sets), BENCH_PLANT_DIR (scratch folder).
 set -eu
@@ -13,7 +14,7 @@ N=${BENCH_PLANT_FLOORS:-12}
 OPTS=${BENCH_PLANT_OPTS:-}
 W=${BENCH_PLANT_DIR:-$(mktemp -d)}
 mkdir -p "$W"
-rm -rf "$W/ground" "$W/plant" "$W/out1" "$W/out2" "$W/parts" "$W/merged"
+rm -rf "$W/ground" "$W/plant" "$W/out1" "$W/out2" "$W/parts" "$W/merged" "$W/outc"
 "$BIN" synth --rg160 1 --count 3 --seed 1 -o "$W/ground" -q >/dev/null
 "$GEN" "$W/ground" "$N" "$W/plant" >/dev/null
 TIMEFORMAT='%R %U %S'
@@ -31,6 +32,9 @@ rm_=$(run "$BIN" merge "$W"/parts/1 "$W"/parts/2 -o "$W/merged" -q)
 # each shard alone (CPU time: the balance, whatever the machine's load)
 c1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" --shard 1/2 -o "$W/parts/1" --no-cache -q $OPTS)
 c2=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" --shard 2/2 -o "$W/parts/2" --no-cache -q $OPTS)
+# a run that fills a cache, then the unchanged rerun that reuses it
+k1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" -o "$W/outc" -q $OPTS)
+k2=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" -o "$W/outc" -q $OPTS)
 S=$(sets "$W/out1")
 same=yes
 for f in $(cd "$W/out1" && find . -name '*.csv'); do
@@ -50,3 +54,4 @@ echo
 echo "$c1 $c2 ${r1#* }" | awk '{ m = $2 > $4 ? $2 : $4; printf "shards alone: CPU %.1f s and %.1f s (balance, largest / mean: %.3f); ideal 2-machine efficiency, CPU of 1 thread / (2 x largest shard CPU): %.0f %%\n", $2, $4, 2 * m / ($2 + $4), 100 * $5 / (2 * m) }'
 echo "CPU of 2 threads / CPU of 1 thread: $(echo "${r2#* } ${r1#* }" | awk '{ printf "%.3f", $1 / $2 }') (threading overhead); load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "merge of the 2 shards: $(echo "$rm_" | awk '{ printf "%.2f s wall", $1 }'); CSV outputs of all three runs identical: $same"
+echo "cache: the first run $(echo "$k1" | awk '{ printf "%.2f s wall", $1 }'), the unchanged rerun (every floor reused) $(echo "$k2 $k1" | awk '{ printf "%.3f s wall, %.0f x less", $1, $3 / ($1 > 0 ? $1 : 0.001) }')"

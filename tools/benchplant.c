@@ -11,7 +11,9 @@
  * frequencies H1/H2/V 3.0/3.5/14 Hz and 5.0/5.8/16 Hz), each a 3-storey uniform
  * shear building of 5 %-damped modes (study/building.h, (B1)-(B5)); floor j
  * of a building is the mean 2, 5 and 10 % spectra of the ground sets through
- * the building, on 80 log-spaced frequencies 0.1-50 Hz, broadened +-15 %
+ * the building, on 80 log-spaced frequencies 0.1-100 Hz (to the Nyquist frequency of the
+ * 200 samples/s ground sets, so that the 2 % spectrum reaches the ZPA the floor
+ * file states), broadened +-15 %
  * (study/physfloor.h, sl_pf_write_floor). Written as
  * OUT/L<l>-B<b>/floor<j>.ini (one folder per building and ground level), the
  * first N floors in that order. Exit 0, or 1 with a message.
@@ -86,7 +88,7 @@ int main(int argc, char **argv)
     }
     double f[NF];
     for (size_t j = 0; j < NF; j++)
-        f[j] = 0.1 * pow(500.0, (double)j / (NF - 1));
+        f[j] = 0.1 * pow(1000.0, (double)j / (NF - 1));
     static const double f1[2][3] = {{3.0, 3.5, 14.0}, {5.0, 5.8, 16.0}};
     if (mkdir(out, 0777) != 0) {
         fprintf(stderr, "benchplant: cannot create %s (it must be new)\n", out);

@@ -12,7 +12,6 @@ cp floors/01-ground.ini floors/02-el12.ini "$D/plant/bldA/"
 # the same floor file name in two buildings is fine; so is the same floor
 cp floors/01-ground.ini floors/04-roof36.ini "$D/plant/bldB/"
 OPTS="--sets 2 --mu 0.05,0.1,0.2,0.3,0.5 --created 1700000000"
-now_ms() { date +%s%N | cut -c1-13; }
 # the same CSV file apart from the recorded command line (which names the
 # output folder and the options; issue 23: byte-identical apart from it)
 csv_same() {
@@ -28,9 +27,7 @@ same_out() {
   for f in $(cd "$2" && find . -name '*.csv'); do csv_same "$1/$f" "$2/$f" || return 1; done
 }
 
-t0=$(now_ms)
 t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc plant-run 0
-t1=$(now_ms)
 for f in plant.csv plant.xlsx bldA/seislide-clearance.xlsx bldA/summary.csv \
          bldA/floor_01-ground.csv bldA/floor_02-el12.csv bldB/floor_01-ground.csv \
          bldB/floor_04-roof36.csv bldB/motion_quality.csv; do
@@ -160,16 +157,13 @@ grep -v '^# floor' "$D/out1/bldA/floor_01-ground.csv" > "$D/ga"
 grep -v '^# floor' "$D/out1/bldB/floor_01-ground.csv" > "$D/gb"
 cmp -s "$D/ga" "$D/gb" && t_pass || t_fail "the same floor in two buildings gives different tables"
 
-# cache: an unchanged rerun reuses every floor, >= 10 x faster, same outputs
+# cache: an unchanged rerun reuses every floor (computes none) and writes the same outputs;
+# its speed is measured by make bench-plant, not here
 cp -r "$D/out1" "$D/ref"
-t2=$(now_ms)
 t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc rerun 0
-t3=$(now_ms)
 t_expect_err rerun-reused "reused 4 of 4 floors"
 grep -q "computed;" "$T_ERR" && t_fail "rerun computed a floor" || t_pass
 same_out "$D/out1" "$D/ref" && t_pass || t_fail "rerun outputs differ from the first run"
-cold=$((t1 - t0)); warm=$((t3 - t2)); [ "$warm" -lt 1 ] && warm=1
-[ $((cold / warm)) -ge 10 ] && t_pass || t_fail "rerun not 10 x faster: ${cold} ms, then ${warm} ms"
 
 # the key holds the numbers, not the file name, floor name, description or elevation
 mkdir -p "$D/plant3/other"
@@ -238,14 +232,19 @@ same_out "$D/out1" "$D/ref" && t_pass || t_fail "outputs after a truncated entry
 # SIGKILL in the middle, then the same command: identical outputs, finished floors reused
 ( "$B" run "$D/plant" -o "$D/outk" $OPTS -q & echo $! > "$D/pid"; wait ) 2>/dev/null &
 i=0
-while [ $i -lt 600 ] && [ "$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c '\.slr$')" -lt 2 ]; do
+while [ $i -lt 600 ] && [ "$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c '\.slr$')" -lt 1 ]; do
   sleep 0.1; i=$((i + 1))
 done
 kill -9 "$(cat "$D/pid")" 2>/dev/null; wait
 n_done=$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c '\.slr$')
 [ "$n_done" -ge 1 ] && [ ! -e "$D/outk/plant.csv" ] && t_pass || t_fail "kill: expected finished entries and no outputs yet ($n_done entries)"
 t_run run "$D/plant" -o "$D/outk" $OPTS; t_expect_rc resumed 0
-t_expect_err resumed-reused "reused [1-3] of 4 floors"
+# every entry finished before the kill is reused: the 4 floors hold 3 distinct ones (01-ground
+# twice), so n_done entries serve at least n_done floors, all 4 exactly when all 3 were done
+# (a kill after the last floor and before the outputs: the race with a fast run decides)
+R=$(sed -n 's/.*reused \([0-9]*\) of 4 floors.*/\1/p' "$T_ERR" | tail -1)
+[ -n "$R" ] && [ "$R" -ge "$n_done" ] && { { [ "$R" -eq 4 ] && [ "$n_done" -eq 3 ]; } || { [ "$R" -lt 4 ] && [ "$n_done" -lt 3 ]; }; } &&
+  t_pass || t_fail "resumed: $n_done entries before the kill, then ${R:-no} floors reused"
 same_out "$D/outk" "$D/ref" && t_pass || t_fail "resumed outputs differ from an uninterrupted run"
 
 # two runs sharing one cache at once: every floor computed once, both outputs right
@@ -303,4 +302,17 @@ fi
 # -q: no progress on stderr (warnings stay: here the one about fewer than 5 sets)
 t_run run "$D/plant" -o "$D/out1" $OPTS -q; t_expect_rc quiet 0
 [ -z "$(grep -v 'warning' "$T_ERR")" ] && t_pass || t_fail "-q must silence the progress: $(head -c 300 "$T_ERR")"
+# make bench-plant's generator (tools/benchplant.c) writes floors the reader accepts
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+BUILDDIR=$(echo "$SEISLIDE_MAKEVARS" | tr ' ' '\n' | sed -n 's/^BUILD=//p'); BUILDDIR=${BUILDDIR:-build}
+# shellcheck disable=SC2086
+if make -s -C "$ROOT" $SEISLIDE_MAKEVARS LDFLAGS="$SEISLIDE_LDFLAGS" "$BUILDDIR/tools/benchplant" > "$D/bp.make" 2>&1; then
+  "$B" synth --rg160 0.3 --count 3 --seed 1 -o "$D/bpground" -q > /dev/null 2>&1
+  (cd "$ROOT" && "$BUILDDIR/tools/benchplant" "$D/bpground" 4 "$D/bpplant") > /dev/null 2>&1 ||
+    t_fail "benchplant failed"
+  t_run run "$D/bpplant" -o "$D/bpout" --sets 2 --mu 0.1,0.3 --no-cache -q
+  [ "$T_RC" -eq 0 ] && t_pass || t_fail "a bench-plant floor refused: $(head -c 400 "$T_ERR")"
+else
+  t_fail "make $BUILDDIR/tools/benchplant: $(head -c 400 "$D/bp.make")"
+fi
 t_end
