@@ -23,6 +23,11 @@
  *   (|a(tau)| <= mu N(tau)), it is at rest until the
  *   exact onset instant (the root of |a|^2 = (mu N)^2, a quadratic), else
  *   (2) over the rest of the step                                       (5)
+ *   a block can stop in a sample only if the lower bound of its speed
+ *     g(t) = s0 - int_0^t (a(s).e0 + mu max(N(s), 0)) ds <= |v(t)|
+ *   (s0, e0 its speed and direction at the start) reaches 0 on [0, dt]:
+ *   friction acts along v, so the speed along e0 falls at most at that
+ *   rate; with a linear and max(N, 0) under its chord, g is a quadratic (6)
  *
  * Error control (substeps == 0): on every sample, each sliding block takes
  * one step of dt and two of dt/2 with (3)-(4), all blocks together in
@@ -31,9 +36,9 @@
  * Richardson: the error of the two half steps is about a third of it where
  * the solution is smooth, equal to it at a stop). Blocks whose difference
  * |du| + T_V |dv| exceeds their share eta max(rtol peak, atol), whose
- * step needs (5), or whose speed could reach zero within the sample
- * (SL_K2_NEAR_STOP), are redone (refine_all) with 1, 2, 4, ... sub-steps
- * (a slow block from SL_K2_NEAR_STOP_SUB; a block sent by the tolerance
+ * step needs (5), or that can stop within the sample (6), are redone
+ * (refine_all) with 1, 2, 4, ... sub-steps (a block that can stop from
+ * SL_K2_NEAR_STOP_SUB; a block sent by the tolerance
  * alone from the vector pass's two half steps, level 2) until two
  * successive levels agree: the sliding ones level by level, every block
  * due at one sub-step count advanced together in one vector pass per
@@ -96,8 +101,8 @@ VECTOR_PASS static inline void ustep(double *vx, double *vy, double *ux, double 
  * (3)-(4) of dt (Fc) against two of dt/2 (Fa, Fb), the local differences,
  * the in-sample peak, and the flag pd (1: redo alone). Separate arrays
  * declared restrict here, so the compiler vectorises both loops. */
-VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *Fa, const force *Fb, double hv,
-                          double amin, double pmax,
+VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *Fa, const force *Fb,
+                          const sample *smp,
                           const double *restrict pmu, const double *restrict ptol,
                           double *restrict pux, double *restrict puy, double *restrict pvx,
                           double *restrict pvy, double *restrict cux, double *restrict cuy,
@@ -113,6 +118,8 @@ VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *F
                  a_h = Fa->h;
     const double b_ax = Fb->hax, b_ay = Fb->hay, b_n = Fb->hN, b_cx = Fb->cx, b_cy = Fb->cy,
                  b_h = Fb->h;
+    const double dt = smp->dt, p0 = smp->n0 > 0.0 ? smp->n0 : 0.0, p1 = smp->n1 > 0.0 ? smp->n1 : 0.0;
+    const double ax0 = smp->ax0, ay0 = smp->ay0, ax1 = smp->ax1, ay1 = smp->ay1;
     for (size_t j = 0; j < na; j++) {
         double vx = pvx[j], vy = pvy[j], ux = pux[j], uy = puy[j], bad = 0.0;
         ustep(&vx, &vy, &ux, &uy, &bad, c_ax, c_ay, c_n * pmu[j], c_cx, c_cy, c_h);
@@ -145,17 +152,26 @@ VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *F
         pduy[j] = duy;
         pdvx[j] = dvx;
         pdvy[j] = dvy;
-        /* near a stop: the speed is within one sample's change of
-         * zero while friction can hold the block (|a| < mu N somewhere
-         * in the sample); (5) and the halving then find the stop */
+        /* can the block stop in the sample (6)? Its speed along its start
+         * direction e0 falls at most at the rate c(t) = a(t).e0 + mu max(N, 0)
+         * (friction along v, |v^.e0| <= 1), so |v(t)| >= v(t).e0 >= g(t) =
+         * s0 - int_0^t c; c is at most linear in t (max(N, 0) lies under the
+         * chord of its end values), g is then quadratic, and a stop or a
+         * pass through zero speed needs min g <= 0 on [0, dt] ((5) and the
+         * halving then find it). From rest (s0 = 0) it is always possible. */
         const double s0 = sqrt(pvx[j] * pvx[j] + pvy[j] * pvy[j]);
-        const double sm = sqrt(vxm * vxm + vym * vym), s1 = sqrt(vx * vx + vy * vy);
-        /* |v| changes at most at the rate |a| + mu N: over a half step of h/2
-         * between speeds s0 and sm it stays above (s0 + sm - rate h/2) / 2 */
-        const double dv_half = 0.5 * (hv + c_h * pmu[j] * pmax);
-        const double can_hold = amin < pmu[j] * pmax ? 1.0 : SL_K2_TURN;
-        const double near_stop =
-            can_hold * (min2(s0 + sm, sm + s1) < SL_K2_NEAR_STOP * dv_half ? 1.0 : 0.0);
+        const double is0 = 1.0 / (s0 > 1e-300 ? s0 : 1e-300);
+        const double c0 = (ax0 * pvx[j] + ay0 * pvy[j]) * is0 + pmu[j] * p0;
+        const double c1 = (ax1 * pvx[j] + ay1 * pvy[j]) * is0 + pmu[j] * p1;
+        const double dc = c1 - c0;
+        const double g_end = s0 - 0.5 * dt * (c0 + c1);
+        /* g falls while c > 0 (g' = -c): its least value on [0, dt] is at
+         * the end, or at tv where c falls through 0 inside the sample (else
+         * tv = 0 and g(tv) = s0) */
+        const double dip = c0 > 0.0 && c1 < 0.0 ? 1.0 : 0.0;
+        const double tv = dip * c0 * dt / (c0 - c1 > 1e-300 ? c0 - c1 : 1e-300);
+        const double g_v = s0 - c0 * tv - dc * tv * tv / (2.0 * dt);
+        const double near_stop = min2(g_v, g_end) <= 0.0 ? 1.0 : 0.0;
         const double within = eu + SL_K2_TV * ev <= ptol[j] ? 1.0 : 0.0;
         pd[j] = within * (near_stop == 0.0 ? 1.0 : 0.0) > 0.0 ? bad : 1.0;
         pns[j] = near_stop;
@@ -405,16 +421,7 @@ static void step(k2_work *w, size_t na, const sample *s)
     double *P = w->P;
     const force Fc = sl_k2_force_of(s, 0.0, 1.0), Fa = sl_k2_force_of(s, 0.0, 0.5),
                 Fb = sl_k2_force_of(s, 0.5, 1.0);
-    const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
-    const double hv = s->dt * fmax(a0m, a1m); /* most the floor changes v in a sample */
-    /* friction may hold a block somewhere in the sample only if the smallest
-     * |a| on the sample (the distance from 0 to the segment a0-a1) is below
-     * the largest mu N */
-    const double dax = s->ax1 - s->ax0, day = s->ay1 - s->ay0, dd = dax * dax + day * day;
-    const double tc = dd > 0.0 ? fmin(fmax(-(s->ax0 * dax + s->ay0 * day) / dd, 0.0), 1.0) : 0.0;
-    const double amin = hypot(s->ax0 + tc * dax, s->ay0 + tc * day);
-    const double pmax = fmax(fmax(s->n0, 0.0), fmax(s->n1, 0.0));
-    doubling_pass(na, &Fc, &Fa, &Fb, hv, amin, pmax, P + P_MU * m, P + P_TOL * m, P + P_UX * m,
+    doubling_pass(na, &Fc, &Fa, &Fb, s, P + P_MU * m, P + P_TOL * m, P + P_UX * m,
                   P + P_UY * m, P + P_VX * m, P + P_VY * m, P + P_CUX * m, P + P_CUY * m,
                   P + P_CVX * m, P + P_CVY * m, P + P_BAD * m, P + P_PK2 * m, P + P_D * m,
                   P + P_DUX * m, P + P_DUY * m, P + P_DVX * m, P + P_DVY * m, P + P_NS * m);
@@ -647,7 +654,7 @@ static void finish_refined(k2_work *w, const rq *e, const blk *C, unsigned n, do
 
 /* Redo packed block j of sample s, at rest at its start, alone: held until
  * the exact onset instant x0, then 1, 2, 4, ... sub-steps of [x0, 1] with the
- * full step (2)-(5) (a slow block from SL_K2_NEAR_STOP_SUB: a stop and
+ * full step (2)-(5) (a block that can stop from SL_K2_NEAR_STOP_SUB: a stop and
  * restart inside one step can look alike at 1 and 2 sub-steps) until two
  * successive levels agree within its tolerance. An onset counts in full in
  * the error estimate (no Richardson factor). */
@@ -659,7 +666,9 @@ static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu
     const double x0 = sl_k2_onset(s, mu[k], 0.0);
     if (!(x0 < 1.0))
         return;
-    unsigned n = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+    /* from the onset it slides; it can stop again only where friction can
+     * hold it later in the sample */
+    unsigned n = ns != 0.0 && sl_k2_holds_after(s, mu[k], x0) ? SL_K2_NEAR_STOP_SUB : 1u;
     blk A = sl_k2_run_level(w->B[k], s, mu[k], n, x0), C;
     for (;;) {
         n *= 2;
@@ -680,7 +689,7 @@ static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu
  * (refine_onset: its onset sets its own sub-step grid); the sliding ones
  * level by level, every block due at n sub-steps advanced together
  * (level_vector), 1, 2, 4, ... sub-steps until two successive levels agree
- * within the block's tolerance: a slow block from
+ * within the block's tolerance: a block that can stop from
  * SL_K2_NEAR_STOP_SUB, a block sent by the tolerance alone from the vector
  * pass's two half steps (level 2), any other from 1. */
 static void refine_all(k2_work *w, size_t nr, const sample *s, const double *mu)

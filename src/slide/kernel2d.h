@@ -61,17 +61,12 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
 /* Step doubling on a smooth step of local order 3: the error of the two
  * half steps is the difference from the full step over 2^3/2 - 1 = 3. */
 #define SL_K2_RICHARDSON 3.0
-/* A sliding block is refined alone when its speed could reach zero within
- * the sample and friction could hold it there (a stop is possible): |v|
- * changes at most at the rate max|a| + mu max N, so between two points h/2
- * apart with speeds s0 and s1 it reaches zero only if s0 + s1 <= that rate
- * times h/2; the test is s0 + sm or sm + s1 (sm at mid-sample, from the
- * vector pass) below this many times (max|a| + mu max N) dt/2. */
-#define SL_K2_NEAR_STOP 1.0
-/* 1: the same for a slow block that friction cannot hold (it turns through
- * a near-zero speed, and the friction direction flips within the sample). */
-#define SL_K2_TURN 1.0
-/* Sub-steps a slow block starts its refinement with (against twice as many). */
+/* A sliding block is refined when it can stop inside the sample: a
+ * lower bound of its speed, from its speed and direction at the start and
+ * the largest deceleration along that direction, reaches zero (kernel2d.c
+ * (6)); a block at rest always. */
+/* Sub-steps a block that can stop starts its refinement with (against twice
+ * as many): a stop and restart inside one step can look alike at 1 and 2. */
 #define SL_K2_NEAR_STOP_SUB 8u
 /* In the split step (5) the block is taken to stop at tau only when the
  * speed left across the old direction is at most this fraction of the speed
