@@ -9,7 +9,6 @@
 #include "harness.h"
 #include "oracle.h"
 #include "slide/slide.h"
-#include "slide/kernel2d_step.h"
 
 static const double g = SL_G;
 
@@ -755,65 +754,6 @@ static void test_liftoff_inside_sample(void)
 }
 
 /* Bad options are errors, never silent. */
-/* sl_k2_holds_after (can friction hold a block somewhere in (x0, 1] of a
- * sample?) and sl_k2_onset against a dense scan of |a(x)| <= mu max(N(x), 0)
- * on random samples (lift-off, N < 0 at an end, in a third of them), and
- * three cases by hand: N constant and |a| rising through mu N (an onset;
- * held never again), |a| falling to 0 (held later), lift-off ending (held
- * once N has grown). A block that slides from an onset can stop inside the
- * sample only where this holds (kernel2d.c refine_onset). */
-static int held_at(const sample *s, double mu, double x)
-{
-    const double ax = s->ax0 + (s->ax1 - s->ax0) * x, ay = s->ay0 + (s->ay1 - s->ay0) * x;
-    const double N = fmax(s->n0 + (s->n1 - s->n0) * x, 0.0);
-    return ax * ax + ay * ay <= mu * mu * N * N;
-}
-
-static void test_hold_after(void)
-{
-    const double gg = SL_G;
-    const sample rising = {0.0, 4.0, 0.0, 0.0, gg, gg, 0.01, 0.0};
-    const sample falling = {4.0, 0.0, 0.0, 0.0, gg, gg, 0.01, 0.0};
-    const sample liftoff = {0.5, 0.5, 0.5, 0.5, -gg, gg, 0.01, 0.0};
-    const double x_on = sl_k2_onset(&rising, 0.2, 0.0);
-    CHECK(fabs(x_on - 0.2 * g / 4.0) < 1e-12, "onset at |a| = mu N: %.15g", x_on);
-    CHECK(!sl_k2_holds_after(&rising, 0.2, x_on), "rising |a|: held again after the onset");
-    CHECK(sl_k2_holds_after(&falling, 0.2, 0.0), "falling |a|: never held again");
-    CHECK(sl_k2_holds_after(&liftoff, 0.2, 0.0), "lift-off ending: never held again");
-    unsigned st = 7u;
-    int bad_h = 0, bad_o = 0, held_later = 0;
-    for (int r = 0; r < 3000; r++) {
-        double u[7];
-        for (int i = 0; i < 7; i++) {
-            st = st * 1103515245u + 12345u;
-            u[i] = (double)((st >> 8) & 0xffff) / 65535.0;
-        }
-        const sample s = {8.0 * (u[0] - 0.5), 8.0 * (u[1] - 0.5), 8.0 * (u[2] - 0.5),
-                          8.0 * (u[3] - 0.5), gg * (1.0 + 3.0 * (u[4] - 0.65)),
-                          gg * (1.0 + 3.0 * (u[5] - 0.65)), 0.01, 0.0};
-        const double mu = 0.05 + 0.6 * u[6], x0 = 0.8 * u[(r % 6)];
-        int scan = 0, first = -1;
-        enum { NS = 20000 };
-        for (int i = 0; i <= NS; i++) {
-            const double x = x0 + (1.0 - x0) * (double)i / NS;
-            if (i > 0 && held_at(&s, mu, x))
-                scan = 1;
-            if (first < 0 && !held_at(&s, mu, x))
-                first = i;
-        }
-        held_later += scan;
-        bad_h += sl_k2_holds_after(&s, mu, x0) != scan;
-        /* the onset: the scan's first slipping point, to its spacing */
-        const double xo = sl_k2_onset(&s, mu, x0);
-        const double xs = first < 0 ? 1.0 : x0 + (1.0 - x0) * (double)first / NS;
-        bad_o += first < 0 ? !(xo >= 1.0 - 1e-4) : !(xo <= xs + 1e-12 && xo >= xs - 2e-4);
-    }
-    CHECK(bad_h == 0, "holds_after disagrees with the scan on %d of 3000 samples", bad_h);
-    CHECK(bad_o == 0, "onset disagrees with the scan on %d of 3000 samples", bad_o);
-    CHECK(held_later > 300 && held_later < 2700, "a spread of cases: held later in %d of 3000",
-          held_later);
-}
-
 static void test_bad_options(void)
 {
     double a[4] = {0, 1, 2, 0};
@@ -882,7 +822,6 @@ int main(void)
     RUN(test_error_control);
     RUN(test_stop_heavy);
     RUN(test_liftoff_inside_sample);
-    RUN(test_hold_after);
     RUN(test_bad_options);
     RUN(test_set_tol);
     return HARNESS_END("slide");

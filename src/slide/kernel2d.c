@@ -654,8 +654,9 @@ static void finish_refined(k2_work *w, const rq *e, const blk *C, unsigned n, do
 
 /* Redo packed block j of sample s, at rest at its start, alone: held until
  * the exact onset instant x0, then 1, 2, 4, ... sub-steps of [x0, 1] with the
- * full step (2)-(5) (a block that can stop from SL_K2_NEAR_STOP_SUB: a stop and
- * restart inside one step can look alike at 1 and 2 sub-steps) until two
+ * full step (2)-(5) (from SL_K2_NEAR_STOP_SUB when it can stop, as (6)
+ * says of every block at rest: a stop and restart inside one step can look
+ * alike at 1 and 2 sub-steps) until two
  * successive levels agree within its tolerance. An onset counts in full in
  * the error estimate (no Richardson factor). */
 static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu)
@@ -666,9 +667,7 @@ static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu
     const double x0 = sl_k2_onset(s, mu[k], 0.0);
     if (!(x0 < 1.0))
         return;
-    /* from the onset it slides; it can stop again only where friction can
-     * hold it later in the sample */
-    unsigned n = ns != 0.0 && sl_k2_holds_after(s, mu[k], x0) ? SL_K2_NEAR_STOP_SUB : 1u;
+    unsigned n = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
     blk A = sl_k2_run_level(w->B[k], s, mu[k], n, x0), C;
     for (;;) {
         n *= 2;

@@ -147,18 +147,19 @@ static int slips_at(const sample *s, double mu, double x)
     return ax * ax + ay * ay > mu * mu * max2(N, 0.0) * max2(N, 0.0);
 }
 
-/* The points of one sample where "a block at rest slips" may change its
- * truth value, sorted, after c[0] = lo_x: with a and N linear in x, |a|^2 -
- * (mu N)^2 is a quadratic q2 x^2 + q1 x + q0, so its roots and the zero of
- * N. Returns how many (c holds 5). */
-static int slip_changes(const sample *s, double mu, double lo_x, double c[5])
+/* The first fraction x in [lo, 1) after which a block at rest slips, or 1
+ * if it stays held. With a and N linear in x, |a|^2 - (mu N)^2 is a quadratic
+ * q2 x^2 + q1 x + q0; the slip condition keeps its truth value between its
+ * roots and the zero of N, so testing one point between consecutive
+ * candidates is exact. */
+double sl_k2_onset(const sample *s, double mu, double lo_x)
 {
     const double dax = s->ax1 - s->ax0, day = s->ay1 - s->ay0, dn = s->n1 - s->n0;
     const double q2 = dax * dax + day * day - mu * mu * dn * dn;
     const double q1 = 2.0 * (s->ax0 * dax + s->ay0 * day - mu * mu * s->n0 * dn);
     const double q0 = s->ax0 * s->ax0 + s->ay0 * s->ay0 - mu * mu * s->n0 * s->n0;
+    double c[5] = {lo_x, 1.0, 1.0, 1.0, 1.0};
     int nc = 1;
-    c[0] = lo_x;
     if (q2 != 0.0) {
         const double disc = q1 * q1 - 4.0 * q2 * q0;
         if (disc >= 0.0) {
@@ -178,17 +179,6 @@ static int slip_changes(const sample *s, double mu, double lo_x, double c[5])
             c[j] = c[j - 1];
             c[j - 1] = t;
         }
-    return nc;
-}
-
-/* The first fraction x in [lo, 1) after which a block at rest slips, or 1
- * if it stays held. The slip condition keeps its truth value between the
- * points of slip_changes, so testing one point between consecutive ones is
- * exact. */
-double sl_k2_onset(const sample *s, double mu, double lo_x)
-{
-    double c[5];
-    const int nc = slip_changes(s, mu, lo_x, c);
     for (int i = 0; i < nc; i++) {
         const double lo = fmax(c[i], lo_x), hi = i + 1 < nc ? fmin(c[i + 1], 1.0) : 1.0;
         if (!(lo < 1.0) || !(hi > lo))
@@ -197,18 +187,6 @@ double sl_k2_onset(const sample *s, double mu, double lo_x)
             return lo;
     }
     return 1.0;
-}
-
-int sl_k2_holds_after(const sample *s, double mu, double lo_x)
-{
-    double c[5];
-    const int nc = slip_changes(s, mu, lo_x, c);
-    for (int i = 0; i < nc; i++) { /* held on a whole interval, or not at all */
-        const double lo = fmax(c[i], lo_x), hi = i + 1 < nc ? fmin(c[i + 1], 1.0) : 1.0;
-        if (hi > lo && !slips_at(s, mu, 0.5 * (lo + hi)))
-            return 1;
-    }
-    return 0;
 }
 
 /* Sub-steps of width w from fraction x of one sample to its end, at most

@@ -46,10 +46,6 @@ force sl_k2_force_of(const sample *s, double x0, double x1);
 /* The first fraction x in [lo_x, 1) after which a block at rest slips, or
  * 1 if it stays held (exact). */
 double sl_k2_onset(const sample *s, double mu, double lo_x);
-/* Can friction hold a block at rest at some fraction x in (lo_x, 1] of the
- * sample (|a(x)| <= mu max(N(x), 0))? A block that slides from lo_x can
- * stop inside the sample only then. 1 or 0. */
-int sl_k2_holds_after(const sample *s, double mu, double lo_x);
 
 /* Sub-steps of width w from fraction x of sample s to its end, at most
  * jmax of them, with the full step (2)-(5); a block at rest stays held
