@@ -69,6 +69,8 @@
 _Static_assert((SL_K2_NEAR_STOP_SUB & (SL_K2_NEAR_STOP_SUB - 1u)) == 0 &&
                    SL_K2_NEAR_STOP_SUB <= NSUB_MAX,
                "SL_K2_NEAR_STOP_SUB must be a power of two, at most NSUB_MAX");
+_Static_assert(SL_K2_ONSET_SUB >= 1u && SL_K2_ONSET_SUB <= NSUB_MAX,
+               "SL_K2_ONSET_SUB must lie in 1..NSUB_MAX");
 
 /* The unified step (3)-(4), branch-free: from rest it is (2). bad is set
  * when the step needs the split (5). Inlined into the vector loops. */
@@ -654,8 +656,8 @@ static void finish_refined(k2_work *w, const rq *e, const blk *C, unsigned n, do
 
 /* Redo packed block j of sample s, at rest at its start, alone: held until
  * the exact onset instant x0, then 1, 2, 4, ... sub-steps of [x0, 1] with the
- * full step (2)-(5) (from SL_K2_NEAR_STOP_SUB when it can stop, as (6)
- * says of every block at rest: a stop and restart inside one step can look
+ * full step (2)-(5) (from SL_K2_ONSET_SUB: it can stop again, as (6) says
+ * of every block at rest, and a stop and restart inside one step can look
  * alike at 1 and 2 sub-steps) until two
  * successive levels agree within its tolerance. An onset counts in full in
  * the error estimate (no Richardson factor). */
@@ -663,11 +665,11 @@ static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu
 {
     const size_t m = w->m, k = w->live[j];
     const double *P = w->P;
-    const double tol = P[P_TOL * m + j], ns = P[P_NS * m + j];
+    const double tol = P[P_TOL * m + j];
     const double x0 = sl_k2_onset(s, mu[k], 0.0);
     if (!(x0 < 1.0))
         return;
-    unsigned n = ns != 0.0 ? SL_K2_NEAR_STOP_SUB : 1u;
+    unsigned n = SL_K2_ONSET_SUB;
     blk A = sl_k2_run_level(w->B[k], s, mu[k], n, x0), C;
     for (;;) {
         n *= 2;
