@@ -207,7 +207,7 @@ static void err_add(errv *e, double dux, double duy, double dvx, double dvy, dou
     e->ex += dux + e->wx * dt;
     e->ey += duy + e->wy * dt;
     if (raised_peak)
-        e->at_peak = hypot(e->ex, e->ey);
+        e->at_peak = sqrt(e->ex * e->ex + e->ey * e->ey);
 }
 
 /* The working state of one run: every block, its error estimate, and the
@@ -405,8 +405,8 @@ static void pack(k2_work *w, size_t na, const double *mu, const double *eta,
     for (size_t li = 0; li < na; li++) {
         const size_t k = w->live[li];
         const blk *b = &w->B[k];
-        const double pk = scale_m ? fmax(scale_m[k], sqrt(b->peak2)) : sqrt(b->peak2);
-        const double sc = fmax(o->rtol * pk, o->atol_m);
+        const double pk = scale_m ? max2(scale_m[k], sqrt(b->peak2)) : sqrt(b->peak2);
+        const double sc = max2(o->rtol * pk, o->atol_m);
         pmu[li] = mu[k];
         ptol[li] = (eta ? eta[k] : SL_K2_ETA) * sc;
         pux[li] = b->ux;
@@ -453,7 +453,7 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
         const double sp2 = pvx[j] * pvx[j] + pvy[j] * pvy[j], sp = sqrt(sp2);
         b->path += 0.25 * dt * (b->sp + 2.0 * spm + sp);
         b->tslide += dt;
-        b->vmax2 = fmax(b->vmax2, fmax(sp2, spm * spm));
+        b->vmax2 = max2(b->vmax2, max2(sp2, spm * spm));
         b->sp = sp;
         b->ux = pux[j];
         b->uy = puy[j];
@@ -464,8 +464,8 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
             b->peak2 = ppk2[j];
             b->tpeak = t1;
         }
-        b->px = fmax(b->px, fabs(b->ux));
-        b->py = fmax(b->py, fabs(b->uy));
+        b->px = max2(b->px, fabs(b->ux));
+        b->py = max2(b->py, fabs(b->uy));
         err_add(&w->E[k], pdux[j] / SL_K2_RICHARDSON, pduy[j] / SL_K2_RICHARDSON,
                 pdvx[j] / SL_K2_RICHARDSON, pdvy[j] / SL_K2_RICHARDSON, dt, raised);
     }
