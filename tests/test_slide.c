@@ -8,6 +8,7 @@
 
 #include "harness.h"
 #include "oracle.h"
+#include "slide/kernel2d.h"
 #include "slide/slide.h"
 
 static const double g = SL_G;
@@ -753,6 +754,66 @@ static void test_liftoff_inside_sample(void)
     free(av);
 }
 
+/* The AVX2 and baseline instances of the engine's vector passes
+ * (kernel2d.c) give the same bits: every field of every result on
+ * independent 2-D + vertical noise (stops, onsets, turns, lift-off-free) at
+ * 40 mu, error-controlled and at 8 fixed sub-steps, and along 20 degrees.
+ * Skipped when the CPU runs the baseline only. */
+static void same_results(const sl_slide_result *a, const sl_slide_result *b, size_t n,
+                         const char *what)
+{
+    size_t bad = 0;
+    for (size_t k = 0; k < n; k++) {
+        const double x[] = {a[k].peak_m, a[k].peak_x_m, a[k].peak_y_m, a[k].t_peak_s,
+                            a[k].residual_m, a[k].residual_x_m, a[k].residual_y_m,
+                            a[k].path_m, a[k].max_speed_ms, a[k].t_rest_s, a[k].err_est_m,
+                            a[k].slide_time_s};
+        const double y[] = {b[k].peak_m, b[k].peak_x_m, b[k].peak_y_m, b[k].t_peak_s,
+                            b[k].residual_m, b[k].residual_x_m, b[k].residual_y_m,
+                            b[k].path_m, b[k].max_speed_ms, b[k].t_rest_s, b[k].err_est_m,
+                            b[k].slide_time_s};
+        bad += memcmp(x, y, sizeof x) != 0 || a[k].episodes != b[k].episodes ||
+               a[k].flags != b[k].flags;
+    }
+    CHECK(bad == 0, "%s: %zu of %zu results differ between the instances", what, bad, n);
+}
+
+static void test_engine_instances_same_bits(void)
+{
+    if (!sl_kernel2d_avx2()) {
+        SKIP("the AVX2 instance does not run on this CPU");
+    }
+    const size_t n = 3000;
+    const double dt = 0.01;
+    double *ax = noise_record(n, dt, 6.0, 41u), *ay = noise_record(n, dt, 5.0, 42u),
+           *av = noise_record(n, dt, 4.0, 43u);
+    sl_motion m[3] = {oracle_motion(ax, n, dt), oracle_motion(ay, n, dt), oracle_motion(av, n, dt)};
+    const sl_set set = {&m[0], &m[1], &m[2]};
+    enum { NM = 40 };
+    double mus[NM];
+    for (int k = 0; k < NM; k++)
+        mus[k] = 0.02 + 0.015 * k;
+    sl_slide_result r[2][NM];
+    for (int fixed = 0; fixed < 2; fixed++) {
+        sl_slide_opts o = opts_default();
+        o.substeps = fixed ? 8 : 0;
+        for (int k = 0; k < 2; k++) {
+            sl_kernel2d_baseline(k);
+            CHECK(sl_kernel2d_avx2() == !k, "instance %d", k);
+            CHECK(sl_slide_run(&set, mus, NM, &o, r[k], NULL) == SL_OK, "run");
+        }
+        sl_kernel2d_baseline(0);
+        same_results(r[0], r[1], NM, fixed ? "8 fixed sub-steps" : "error-controlled");
+    }
+    long episodes = 0;
+    for (int k = 0; k < NM; k++)
+        episodes += r[0][k].episodes;
+    CHECK(episodes >= 10 * NM, "a run with stops and onsets: %ld episodes", episodes);
+    free(ax);
+    free(ay);
+    free(av);
+}
+
 /* Bad options are errors, never silent. */
 static void test_bad_options(void)
 {
@@ -822,6 +883,7 @@ int main(void)
     RUN(test_error_control);
     RUN(test_stop_heavy);
     RUN(test_liftoff_inside_sample);
+    RUN(test_engine_instances_same_bits);
     RUN(test_bad_options);
     RUN(test_set_tol);
     return HARNESS_END("slide");

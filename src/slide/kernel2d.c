@@ -99,19 +99,72 @@ VECTOR_PASS static inline void ustep(double *vx, double *vy, double *ux, double 
     *vy = my;
 }
 
+/* Function multiversioning by hand (GCC, x86-64), as the oscillator bank
+ * (signal/spectrum.c): the two vector passes below are written once (K2_BODY,
+ * always inlined) and compiled twice, for AVX2 (4 doubles a vector) and for
+ * the baseline (SSE2, 2 doubles); the AVX2 instance runs when the CPU has
+ * it. Without FMA contraction (-ffp-contract=off) both do the same IEEE
+ * operations in the same order: the same bits (tests/test_slide.c
+ * test_engine_instances_same_bits). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define SL_K2_AVX2 1
+#endif
+#define K2_BODY VECTOR_PASS static inline __attribute__((always_inline))
+
+/* Set by sl_kernel2d_baseline(): the baseline instance even on an AVX2 CPU. */
+static int k2_force_baseline;
+
+int sl_kernel2d_baseline(int on)
+{
+    const int was = k2_force_baseline;
+    k2_force_baseline = on != 0;
+    return was;
+}
+
+int sl_kernel2d_avx2(void)
+{
+#ifdef SL_K2_AVX2
+    return !k2_force_baseline && __builtin_cpu_supports("avx2");
+#else
+    return 0;
+#endif
+}
+
+/* NAME_pass: NAME_body as the AVX2 or the baseline instance. */
+#ifdef SL_K2_AVX2
+#define K2_INSTANCES(name, params, args)                                                         \
+    VECTOR_PASS static void name##_base params { name##_body args; }                              \
+    __attribute__((target("avx2"))) VECTOR_PASS static void name##_avx2 params                   \
+    {                                                                                             \
+        name##_body args;                                                                         \
+    }                                                                                             \
+    static void name##_pass params                                                                \
+    {                                                                                             \
+        if (sl_kernel2d_avx2())                                                                   \
+            name##_avx2 args;                                                                     \
+        else                                                                                      \
+            name##_base args;                                                                     \
+    }
+#else
+#define K2_INSTANCES(name, params, args)                                                         \
+    static void name##_pass params { name##_body args; }
+#endif
+
 /* The vector pass over the na packed sliding blocks of one sample: one step
  * (3)-(4) of dt (Fc) against two of dt/2 (Fa, Fb), the local differences,
  * the in-sample peak, and the flag pd (1: redo alone). Separate arrays
  * declared restrict here, so the compiler vectorises both loops. */
-VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *Fa, const force *Fb,
-                          const sample *smp,
-                          const double *restrict pmu, const double *restrict ptol,
-                          double *restrict pux, double *restrict puy, double *restrict pvx,
-                          double *restrict pvy, double *restrict cux, double *restrict cuy,
-                          double *restrict cvx, double *restrict cvy, double *restrict pbad,
-                          double *restrict ppk2, double *restrict pd, double *restrict pdux,
-                          double *restrict pduy, double *restrict pdvx, double *restrict pdvy,
-                          double *restrict pns)
+#define DOUBLING_PARAMS                                                                           \
+    (size_t na, const force *Fc, const force *Fa, const force *Fb, const sample *smp,              \
+     const double *restrict pmu, const double *restrict ptol, double *restrict pux,               \
+     double *restrict puy, double *restrict pvx, double *restrict pvy, double *restrict cux,      \
+     double *restrict cuy, double *restrict cvx, double *restrict cvy, double *restrict pbad,     \
+     double *restrict ppk2, double *restrict pd, double *restrict pdux, double *restrict pduy,    \
+     double *restrict pdvx, double *restrict pdvy, double *restrict pns)
+#define DOUBLING_ARGS                                                                             \
+    (na, Fc, Fa, Fb, smp, pmu, ptol, pux, puy, pvx, pvy, cux, cuy, cvx, cvy, pbad, ppk2, pd, pdux, \
+     pduy, pdvx, pdvy, pns)
+K2_BODY void doubling_body DOUBLING_PARAMS
 {
     /* one step of dt against two of dt/2, every live block at once */
     const double c_ax = Fc->hax, c_ay = Fc->hay, c_n = Fc->hN, c_cx = Fc->cx, c_cy = Fc->cy,
@@ -185,6 +238,8 @@ VECTOR_PASS static void doubling_pass(size_t na, const force *Fc, const force *F
         pvy[j] = vy;
     }
 }
+
+K2_INSTANCES(doubling, DOUBLING_PARAMS, DOUBLING_ARGS)
 
 /* Packed working arrays of the live blocks of one sample. */
 enum { P_MU, P_TOL, P_UX, P_UY, P_VX, P_VY, P_CUX, P_CUY, P_CVX, P_CVY, P_BAD, P_PK2, P_D, P_DUX,
@@ -477,16 +532,20 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
  * track_peak on the path without the split step, every value computed and
  * selected (vector code). bad = 1 marks a block whose step needs the split
  * (5) (its O is then meaningless). */
-VECTOR_PASS static void substep_pass(
-    size_t nq, const force *F, double tu, const double *restrict mu, double *restrict bad,
-    const double *restrict iux, const double *restrict iuy, const double *restrict ivx,
-    const double *restrict ivy, const double *restrict isp, const double *restrict ipk2,
-    const double *restrict itpk, const double *restrict ipx, const double *restrict ipy,
-    const double *restrict ipath, const double *restrict ivm2, const double *restrict itsl,
-    const double *restrict itst, double *restrict oux, double *restrict ouy,
-    double *restrict ovx, double *restrict ovy, double *restrict osp, double *restrict opk2,
-    double *restrict otpk, double *restrict opx, double *restrict opy, double *restrict opath,
-    double *restrict ovm2, double *restrict otsl, double *restrict otst)
+#define SUBSTEP_PARAMS                                                                            \
+    (size_t nq, const force *F, double tu, const double *restrict mu, double *restrict bad,        \
+     const double *restrict iux, const double *restrict iuy, const double *restrict ivx,          \
+     const double *restrict ivy, const double *restrict isp, const double *restrict ipk2,         \
+     const double *restrict itpk, const double *restrict ipx, const double *restrict ipy,         \
+     const double *restrict ipath, const double *restrict ivm2, const double *restrict itsl,       \
+     const double *restrict itst, double *restrict oux, double *restrict ouy,                     \
+     double *restrict ovx, double *restrict ovy, double *restrict osp, double *restrict opk2,     \
+     double *restrict otpk, double *restrict opx, double *restrict opy, double *restrict opath,    \
+     double *restrict ovm2, double *restrict otsl, double *restrict otst)
+#define SUBSTEP_ARGS                                                                              \
+    (nq, F, tu, mu, bad, iux, iuy, ivx, ivy, isp, ipk2, itpk, ipx, ipy, ipath, ivm2, itsl, itst,   \
+     oux, ouy, ovx, ovy, osp, opk2, otpk, opx, opy, opath, ovm2, otsl, otst)
+K2_BODY void substep_body SUBSTEP_PARAMS
 {
     const double hax = F->hax, hay = F->hay, hN = F->hN, cx = F->cx, cy = F->cy, h = F->h;
     for (size_t j = 0; j < nq; j++) {
@@ -528,6 +587,8 @@ VECTOR_PASS static void substep_pass(
         bad[j] = 1.0 - ok;
     }
 }
+
+K2_INSTANCES(substep, SUBSTEP_PARAMS, SUBSTEP_ARGS)
 
 /* Row r of state bank `bank` of w->Q. */
 static double *q_row(const k2_work *w, int bank, int r)

@@ -54,6 +54,16 @@ int sl_kernel2d_run(const sl_k2_motion *in, const double *mu, const double *eta,
                     const double *scale_m, size_t m,
                     const sl_k2_opts *o, sl_k2_out *out, sl_history *hist);
 
+/* The vector passes' instances (kernel2d.c): built by GCC for x86-64 there
+ * are two, on AVX2 vectors (4 doubles), run when the CPU has AVX2, and the
+ * baseline (SSE2, 2 doubles); elsewhere only the baseline. Both give the same
+ * bits. sl_kernel2d_avx2() is 1 when the AVX2 instance runs;
+ * sl_kernel2d_baseline(1) makes later runs use the baseline (tests; not
+ * while runs go on in other threads), 0 restores the choice by CPU. Returns
+ * the previous setting. */
+int sl_kernel2d_avx2(void);
+int sl_kernel2d_baseline(int on);
+
 /* Default per-sample share of the tolerance, and the time a local velocity
  * difference is charged for in the acceptance test, s. */
 #define SL_K2_ETA 0.05

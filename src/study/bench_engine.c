@@ -21,6 +21,13 @@
 #else
 #define VECTOR_LOOP
 #endif
+/* The floor gets the engine's vector widths: AVX2 where the CPU has it
+ * (the engine's vector passes, slide/kernel2d.c), else SSE2. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define FLOOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define FLOOR_CLONES
+#endif
 
 const double sl_bench_wp_mu[SL_BENCH_WP_NMU] = {0.05, 0.075, 0.1, 0.15, 0.2, 0.3, 0.4};
 
@@ -37,7 +44,7 @@ static const char *const floor_sets[SL_BENCH_WP_NFLOOR] = {"RSN1063_NORTHR_RRS",
  * update of every block (the mean forcing of the sample, as the engine
  * uses), over contiguous arrays the compiler vectorises. Returns the share
  * of (sample, mu) updates in which the block moves. */
-VECTOR_LOOP static double floor_run(const sl_set *set, const double *restrict mu, size_t m,
+FLOOR_CLONES VECTOR_LOOP static double floor_run(const sl_set *set, const double *restrict mu, size_t m,
                                     double *restrict vx, double *restrict vy, double *restrict ux,
                                     double *restrict uy, double *restrict pk)
 {
