@@ -147,9 +147,9 @@ if command -v nm >/dev/null 2>&1; then
   # Every global symbol defined by the library starts with sl_ or SL_ (an
   # OpenMP named critical section, `omp critical(sl_x)`, is the compiler's
   # common symbol .gomp_critical_user_sl_x, and AddressSanitizer marks a
-  # global sl_x with __odr_asan.sl_x: our names behind their prefixes).
+  # global sl_x or SL_X with __odr_asan.sl_x: our names behind their prefixes).
   bad=$(nm -g --defined-only "$L/libseislide.a" 2>/dev/null |
-        awk 'NF == 3 && $3 !~ /^(sl_|SL_|\.gomp_critical_user_sl_|__odr_asan[._]sl_)/ { print $3 }' |
+        awk 'NF == 3 && $3 !~ /^(sl_|SL_|\.gomp_critical_user_sl_|__odr_asan[._](sl_|SL_))/ { print $3 }' |
         sort -u)
   [ -z "$bad" ] && t_pass || t_fail "libseislide.a exports names without sl_/SL_: $(echo $bad | head -c 400)"
   bad=$(nm -D --defined-only "$L/libseislide.so" 2>/dev/null |
