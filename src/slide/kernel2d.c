@@ -731,10 +731,10 @@ static void refine_onset(k2_work *w, size_t j, const sample *s, const double *mu
     if (!(x0 < 1.0))
         return;
     unsigned n = SL_K2_ONSET_SUB;
-    blk A = sl_k2_run_level(w->B[k], s, mu[k], n, x0), C;
+    blk A = sl_k2_run_onset(w->B[k], s, mu[k], n, x0), C;
     for (;;) {
         n *= 2;
-        C = sl_k2_run_level(w->B[k], s, mu[k], n, x0);
+        C = sl_k2_run_onset(w->B[k], s, mu[k], n, x0);
         const double eu = sqrt((C.ux - A.ux) * (C.ux - A.ux) + (C.uy - A.uy) * (C.uy - A.uy));
         const double ev = sqrt((C.vx - A.vx) * (C.vx - A.vx) + (C.vy - A.vy) * (C.vy - A.vy));
         if (eu + SL_K2_TV * ev <= tol || n >= NSUB_MAX)

@@ -190,11 +190,13 @@ double sl_k2_onset(const sample *s, double mu, double lo_x)
 }
 
 /* Sub-steps of width w from fraction x of one sample to its end, at most
- * jmax of them; a block at rest stays held until the exact onset instant. */
-blk sl_k2_run_from(blk b, const sample *s, double mu, double w, double x, unsigned jmax)
+ * jmax of them; a block at rest stays held until the exact onset instant
+ * (onset_at_x: x is that instant already). */
+static blk run_from(blk b, const sample *s, double mu, double w, double x, unsigned jmax,
+                    int onset_at_x)
 {
     for (unsigned j = 0; j < jmax && x < 1.0; j++) {
-        if (b.vx == 0.0 && b.vy == 0.0) {
+        if (b.vx == 0.0 && b.vy == 0.0 && !(j == 0 && onset_at_x)) {
             x = sl_k2_onset(s, mu, x);
             if (!(x < 1.0))
                 break;
@@ -207,9 +209,19 @@ blk sl_k2_run_from(blk b, const sample *s, double mu, double w, double x, unsign
     return b;
 }
 
+blk sl_k2_run_from(blk b, const sample *s, double mu, double w, double x, unsigned jmax)
+{
+    return run_from(b, s, mu, w, x, jmax, 0);
+}
+
 /* Sub-steps of width (1 - x0)/n over the part [x0, 1] of one sample from
  * b (run_from). */
 blk sl_k2_run_level(blk b, const sample *s, double mu, unsigned n, double x0)
 {
-    return sl_k2_run_from(b, s, mu, (1.0 - x0) / n, x0, 4u * n + 8u);
+    return run_from(b, s, mu, (1.0 - x0) / n, x0, 4u * n + 8u, 0);
+}
+
+blk sl_k2_run_onset(blk b, const sample *s, double mu, unsigned n, double x0)
+{
+    return run_from(b, s, mu, (1.0 - x0) / n, x0, 4u * n + 8u, 1);
 }

@@ -54,5 +54,8 @@ blk sl_k2_run_from(blk b, const sample *s, double mu, double w, double x, unsign
 
 /* n sub-steps of width (1 - x0)/n over [x0, 1] (sl_k2_run_from). */
 blk sl_k2_run_level(blk b, const sample *s, double mu, unsigned n, double x0);
+/* The same for a block at rest whose onset instant is x0
+ * (sl_k2_onset(s, mu, 0)): it slides from x0 without finding it again. */
+blk sl_k2_run_onset(blk b, const sample *s, double mu, unsigned n, double x0);
 
 #endif
