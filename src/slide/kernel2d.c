@@ -218,15 +218,15 @@ K2_BODY void doubling_body DOUBLING_PARAMS
         const double is0 = 1.0 / (s0 > 1e-300 ? s0 : 1e-300);
         const double c0 = (ax0 * pvx[j] + ay0 * pvy[j]) * is0 + pmu[j] * p0;
         const double c1 = (ax1 * pvx[j] + ay1 * pvy[j]) * is0 + pmu[j] * p1;
-        const double dc = c1 - c0;
         const double g_end = s0 - 0.5 * dt * (c0 + c1);
         /* g falls while c > 0 (g' = -c): its least value on [0, dt] is at
          * the end, or at tv where c falls through 0 inside the sample (else
          * tv = 0 and g(tv) = s0) */
         const double dip = c0 > 0.0 && c1 < 0.0 ? 1.0 : 0.0;
         const double tv = dip * c0 * dt / (c0 - c1 > 1e-300 ? c0 - c1 : 1e-300);
-        const double g_v = s0 - c0 * tv - dc * tv * tv / (2.0 * dt);
-        const double near_stop = min2(g_v, g_end) <= 0.0 ? 1.0 : 0.0;
+        const double g_v = s0 - 0.5 * c0 * tv; /* g(tv): c(tv) = 0 makes dc tv / dt = -c0 */
+        /* a speed so small that its square underflows has no direction */
+        const double near_stop = min2(g_v, g_end) <= 0.0 || s0 < 1e-150 ? 1.0 : 0.0;
         const double within = eu + SL_K2_TV * ev <= ptol[j] ? 1.0 : 0.0;
         pd[j] = within * (near_stop == 0.0 ? 1.0 : 0.0) > 0.0 ? bad : 1.0;
         pns[j] = near_stop;
@@ -716,7 +716,7 @@ static void finish_refined(k2_work *w, const rq *e, const blk *C, unsigned n, do
 }
 
 /* Redo packed block j of sample s, at rest at its start, alone: held until
- * the exact onset instant x0, then 1, 2, 4, ... sub-steps of [x0, 1] with the
+ * the exact onset instant x0, then n, 2n, 4n, ... sub-steps of [x0, 1] with the
  * full step (2)-(5) (from SL_K2_ONSET_SUB: it can stop again, as (6) says
  * of every block at rest, and a stop and restart inside one step can look
  * alike at 1 and 2 sub-steps) until two

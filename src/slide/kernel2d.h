@@ -71,17 +71,17 @@ int sl_kernel2d_baseline(int on);
 /* Step doubling on a smooth step of local order 3: the error of the two
  * half steps is the difference from the full step over 2^3/2 - 1 = 3. */
 #define SL_K2_RICHARDSON 3.0
-/* A sliding block is refined when it can stop inside the sample: a
- * lower bound of its speed, from its speed and direction at the start and
- * the largest deceleration along that direction, reaches zero (kernel2d.c
- * (6)); a block at rest always. */
-/* Sub-steps a block that can stop starts its refinement with (against twice
- * as many): a stop and restart inside one step can look alike at 1 and 2. */
+/* Sub-steps a sliding block starts its refinement with (against twice as
+ * many) when it can stop inside the sample: when a lower bound of its speed,
+ * from its speed and direction at the start and the largest deceleration
+ * along that direction, reaches zero (kernel2d.c (6)). A stop and restart
+ * inside one step can look alike at 1 and 2 (from 4 a peak left the
+ * tolerance by 1.45 x, docs/integrators.md). */
 #define SL_K2_NEAR_STOP_SUB 8u
 /* Sub-steps a block at rest starts the refinement of its onset with (against
- * twice as many), on its own grid from the exact onset instant: from 2 the
- * estimate came within 0.3 % of missing the tolerance at rtol 3e-4
- * (docs/integrators.md), from 4 the answers are as accurate as from 8. */
+ * twice as many), on its own grid from the exact onset instant: from 2 a
+ * peak missed the tolerance at rtol 3e-4 by 0.3 % (docs/integrators.md),
+ * from 4 the answers are as accurate as from 8. */
 #define SL_K2_ONSET_SUB 4u
 /* In the split step (5) the block is taken to stop at tau only when the
  * speed left across the old direction is at most this fraction of the speed

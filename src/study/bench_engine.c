@@ -22,8 +22,9 @@
 #define VECTOR_LOOP
 #endif
 /* The floor gets the engine's vector widths: AVX2 where the CPU has it
- * (the engine's vector passes, slide/kernel2d.c), else SSE2. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+ * (the engine's vector passes, slide/kernel2d.c), else SSE2. target_clones
+ * needs the C library's ifunc (glibc); elsewhere the floor is SSE2 only. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__)
 #define FLOOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define FLOOR_CLONES

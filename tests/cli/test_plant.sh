@@ -229,7 +229,10 @@ t_run run "$D/plant" -o "$D/out1" $OPTS; t_expect_rc truncated 0
 t_expect_err truncated-said "failed its check"
 same_out "$D/out1" "$D/ref" && t_pass || t_fail "outputs after a truncated entry differ"
 
-# SIGKILL in the middle, then the same command: identical outputs, finished floors reused
+# SIGKILL in the middle, then the same command: identical outputs, finished floors reused.
+# The kill comes when the first entry is seen; a fast run may have finished by then (the
+# outputs are in place): then the rerun reuses every floor. Kills at chosen system calls,
+# which cannot race, are tests/cli/test_faults.sh's.
 ( "$B" run "$D/plant" -o "$D/outk" $OPTS -q & echo $! > "$D/pid"; wait ) 2>/dev/null &
 i=0
 while [ $i -lt 600 ] && [ "$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c '\.slr$')" -lt 1 ]; do
@@ -237,13 +240,15 @@ while [ $i -lt 600 ] && [ "$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c 
 done
 kill -9 "$(cat "$D/pid")" 2>/dev/null; wait
 n_done=$(ls "$D/outk/.seislide-cache" 2>/dev/null | grep -c '\.slr$')
-[ "$n_done" -ge 1 ] && [ ! -e "$D/outk/plant.csv" ] && t_pass || t_fail "kill: expected finished entries and no outputs yet ($n_done entries)"
+finished=no; [ -e "$D/outk/plant.csv" ] && finished=yes
+[ "$n_done" -ge 1 ] && { [ $finished = no ] || [ "$n_done" -eq 3 ]; } && t_pass ||
+  t_fail "kill: $n_done entries, outputs written: $finished"
 t_run run "$D/plant" -o "$D/outk" $OPTS; t_expect_rc resumed 0
 # every entry finished before the kill is reused: the 4 floors hold 3 distinct ones (01-ground
-# twice), so n_done entries serve at least n_done floors, all 4 exactly when all 3 were done
-# (a kill after the last floor and before the outputs: the race with a fast run decides)
+# twice), so n_done entries serve n_done or n_done + 1 floors, all 4 exactly when all 3 were done
 R=$(sed -n 's/.*reused \([0-9]*\) of 4 floors.*/\1/p' "$T_ERR" | tail -1)
-[ -n "$R" ] && [ "$R" -ge "$n_done" ] && { { [ "$R" -eq 4 ] && [ "$n_done" -eq 3 ]; } || { [ "$R" -lt 4 ] && [ "$n_done" -lt 3 ]; }; } &&
+[ -n "$R" ] && [ "$R" -ge "$n_done" ] && [ "$R" -le $((n_done + 1)) ] &&
+  { { [ "$R" -eq 4 ] && [ "$n_done" -eq 3 ]; } || { [ "$R" -lt 4 ] && [ "$n_done" -lt 3 ]; }; } &&
   t_pass || t_fail "resumed: $n_done entries before the kill, then ${R:-no} floors reused"
 same_out "$D/outk" "$D/ref" && t_pass || t_fail "resumed outputs differ from an uninterrupted run"
 
