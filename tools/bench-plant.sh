@@ -23,7 +23,9 @@ run() { # label, then the command; prints "wall cpu"
   t=$( { time "$@" >/dev/null 2>&1; } 2>&1 | tail -1 )
   echo "$t" | awk '{ printf "%.2f %.2f\n", $1, $2 + $3 }'
 }
-sets() { grep -v '^#' "$1/plant.csv" | awk -F, 'NR > 1 { s += $(NF - 8) } END { print s }'; }
+# the sets column, counted from the end of the line (a floor's name may hold commas)
+sets() { grep -v '^#' "$1/plant.csv" | awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "sets") k = NF - i; next }
+                                              { s += $(NF - k) } END { print s }'; }
 r1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" -o "$W/out1" --no-cache -q $OPTS)
 r2=$(OMP_NUM_THREADS=2 run "$BIN" run "$W/plant" -o "$W/out2" --no-cache -q $OPTS)
 mkdir -p "$W/parts"
