@@ -93,7 +93,7 @@ bench: all
 	./$(PROG) bench
 
 # A plant of BENCH_PLANT_FLOORS floors (default 12) from a building model, run at
-# 1 and 2 threads and as 2 shards (GNU parallel); docs/performance.md, "Plant runs".
+# 1 and 2 threads and as 2 shards (GNU parallel); docs/plant.md, "Speed: make bench-plant".
 bench-plant: $(PROG) $(BUILD)/tools/benchplant
 	bash tools/bench-plant.sh ./$(PROG) $(BUILD)/tools/benchplant
 
