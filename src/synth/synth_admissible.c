@@ -19,6 +19,21 @@ void sl_synth_end_values(const double *a, size_t n, double dt, double *v_end, do
     *d_end = d;
 }
 
+void sl_synth_low_part(sl_synth_motion *m)
+{
+    const sl_synth *s = m->s;
+    for (size_t j = 0; j < s->nfft; j++)
+        m->rwork[j] = j < s->n ? m->acc[j] : 0.0;
+    fftw_execute_dft_r2c(s->r2c, m->rwork, m->cwork);
+    for (size_t k = 0; k < s->nbin; k++)
+        if (s->df * (double)k >= m->fc_hz)
+            m->cwork[k][0] = m->cwork[k][1] = 0;
+    fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
+    const double inv_n = 1.0 / (double)s->nfft;
+    for (size_t j = 0; j < s->n; j++)
+        m->rwork[j] *= inv_n;
+}
+
 /* Soft-knee compression of the peaks (the time-domain part of matching the
  * high-frequency end, SA -> PGA; as REQPY's local PGA correction). With
  * L = aim x ZPA, K = knee x L and P = max|a| > L: the motion is split
@@ -54,15 +69,7 @@ size_t sl_synth_compress_peaks(sl_synth_motion *m, double level, double knee)
     if (expand && (m->record || !m->rigid_end || !(pk > 0)))
         return 0;
     const double K = knee * (expand ? pk : level);
-    /* a_low into rwork (first n samples) */
-    for (size_t j = 0; j < s->nfft; j++)
-        m->rwork[j] = j < n ? a[j] : 0.0;
-    fftw_execute_dft_r2c(s->r2c, m->rwork, m->cwork);
-    for (size_t k = 0; k < s->nbin; k++)
-        if (s->df * (double)k >= m->fc_hz)
-            m->cwork[k][0] = m->cwork[k][1] = 0;
-    fftw_execute_dft_c2r(s->c2r, m->cwork, m->rwork);
-    const double inv_n = 1.0 / (double)s->nfft;
+    sl_synth_low_part(m);
     size_t count = 0, i = 0;
     while (i < n) {
         size_t j = i;
@@ -74,7 +81,7 @@ size_t sl_synth_compress_peaks(sl_synth_motion *m, double level, double knee)
         if (hp > K) {
             double g = (K + (hp - K) * (level - K) / (pk - K)) / hp;
             for (size_t q = i; q < j; q++) {
-                double lo = m->rwork[q] * inv_n;
+                double lo = m->rwork[q];
                 a[q] = lo + g * (a[q] - lo);
             }
             count++;

@@ -183,6 +183,10 @@ void sl_synth_check_psd(const double *acc, size_t n, double dt, const sl_spectru
  * exceeds SYNTH_CREST_AMP, | SYNTH_SHARP_SWEEP when it exceeds
  * SYNTH_SHARP_AMP, else 0 (synth_sharp.c). */
 int sl_synth_sharp_target(const sl_synth_motion *m);
+/* a_low of m->acc into m->rwork[0, n): its DFT bins below m->fc_hz, the
+ * long-period part the peak compression (eq. C2) and the crest reservation
+ * (eq. S2) leave untouched (synth_admissible.c). */
+void sl_synth_low_part(sl_synth_motion *m);
 /* Sharp targets: the mode sweep added to the start (eq. S1; SA/ZPA above
  * SYNTH_SHARP_AMP) and the crest reservation of an iterate (eq. S2; above
  * SYNTH_CREST_AMP), synth_sharp.c. */

@@ -132,16 +132,7 @@ size_t sl_synth_reserve_crest(sl_synth_motion *m)
     const sl_synth *s = m->s;
     const size_t n = s->n;
     double *a = m->acc, *lo = m->rwork;
-    for (size_t j = 0; j < s->nfft; j++)
-        lo[j] = j < n ? a[j] : 0.0;
-    fftw_execute_dft_r2c(s->r2c, lo, m->cwork);
-    for (size_t k = 0; k < s->nbin; k++)
-        if (s->df * (double)k >= m->fc_hz)
-            m->cwork[k][0] = m->cwork[k][1] = 0;
-    fftw_execute_dft_c2r(s->c2r, m->cwork, lo);
-    const double inv_n = 1.0 / (double)s->nfft;
-    for (size_t j = 0; j < n; j++)
-        lo[j] *= inv_n;
+    sl_synth_low_part(m);
     double top[CREST_KEEP] = {0}, x;
     size_t ip;
     for (size_t i = 0; i < n;) {
