@@ -7,14 +7,17 @@
  *      tests/converge-pool.c build/libseislide.a -lgsl -lgslcblas -lm -lfftw3 \
  *      -lxlsxwriter -linih -lz
  *   /tmp/converge-pool pool FLOOR.ini N SEED > pool.txt   (N sets, default mu grid:
- *                                                          a line per set: PGD, 76 peaks, m)
+ *                                                          a line per set: PGD, 76 peaks, m;
+ *                                                          CROSS=1: a line per crossed block)
  *   /tmp/converge-pool sim pool.txt FIRST MARGIN GROWTH RUNS [B [FIXED]]
  *   /tmp/converge-pool vr FLOOR.ini N SEED [M]              (variance reduction, below)
  *
  * `sim` treats the pool as the population (its design value is the truth):
  * each run draws sets from it with replacement and applies the stopping rule
  * (default targets 5 %, 1 mm; sl_stats_plan_next with MARGIN and GROWTH;
- * FIXED > 0: that many sets instead), then prints the mean sets per run, the
+ * FIXED > 0: that many sets instead; UNIT=3: each pool line is a crossed
+ * block of three sets, the rule counting sets and adding whole blocks, as
+ * the run does), then prints the mean sets per run, the
  * RMS stated SE over the scatter of the design value (range over mu and
  * mean), how often the actual SE (the pool's, at the run's count) misses
  * the target, and, with B > 0 resamples, how often the bootstrap-t and the
@@ -46,6 +49,38 @@
 #define NMAX 200
 #define PMAX 2000
 
+/* CROSS=1 (docs/run.md, "Variance reduction"): a block of three sets a, b,
+ * c analysed also in a Latin square, each set's H1 with the other two
+ * sets' H2 and V,
+ *   square 1: (H1a, H2b, Vc), (H1b, H2c, Va), (H1c, H2a, Vb)
+ *   square 2: (H1a, H2c, Vb), (H1b, H2a, Vc), (H1c, H2b, Va)
+ * the first whose three combinations pass the SRP 3.7.1 independence check
+ * (|rho| <= 0.16 for every pair), else none (led[i] = in[i]). Returns the
+ * square, or 0. */
+#define XBLOCK 3
+static int cross_block(const sl_set in[XBLOCK], sl_set led[XBLOCK])
+{
+    for (int q = 1; q <= 2; q++) {
+        sl_set c[XBLOCK];
+        int pass = 1;
+        for (int i = 0; i < XBLOCK; i++) {
+            c[i] = (sl_set){in[i].h1, in[(i + q) % XBLOCK].h2, in[(i + 2 * q) % XBLOCK].v};
+            const sl_motion *m[3] = {c[i].h1, c[i].h2, c[i].v};
+            for (int p = 0; p < 3; p++)
+                pass &= fabs(sl_synth_corr(m[p]->acc_ms2, m[(p + 1) % 3]->acc_ms2, m[p]->n)) <=
+                        SL_SYNTH_MAX_CORR;
+        }
+        if (pass) {
+            for (int i = 0; i < XBLOCK; i++)
+                led[i] = c[i];
+            return q;
+        }
+    }
+    for (int i = 0; i < XBLOCK; i++)
+        led[i] = in[i];
+    return 0;
+}
+
 static int pool(const char *path, size_t N, uint64_t seed)
 {
     sl_error err;
@@ -76,17 +111,53 @@ static int pool(const char *path, size_t N, uint64_t seed)
     const char *sv = getenv("SCATTER");
     double sigma = sv ? atof(sv) : SL_ANALYSIS_SCATTER;
     sl_scatter *sc = sigma > 0 ? sl_scatter_alloc(sigma, mu, K, &err) : NULL;
-    double *y = malloc(N * K * sizeof *y);
-    if (!y || (sc ? sl_scatter_slide_batch(sc, sets, N, &so, y, NULL, &err)
-                  : sl_slide_batch(sets, N, mu, K, &so, res, &err)))
+    /* CROSS=1: the run's crossed blocks (method/cross.h): each block of three
+     * sets also analysed in its Latin square, one line per block (the means
+     * of its sets' values, each set's the mean of its two analyses) */
+    const char *cv = getenv("CROSS");
+    const size_t U = cv && atoi(cv) ? XBLOCK : 1, nb = N / U;
+    size_t nr = N, crossed = 0;
+    sl_set *runs = calloc(2 * N, sizeof *runs);
+    size_t *led = calloc(N, sizeof *led);
+    if (!runs || !led)
         return 1;
     for (size_t s = 0; s < N; s++) {
-        printf("%.9g", sl_set_pgd_100_40(&sets[s]));
+        runs[s] = sets[s];
+        led[s] = s;
+    }
+    for (size_t b = 0; U > 1 && b < nb; b++) {
+        sl_set comb[XBLOCK];
+        int q = cross_block(sets + b * U, comb);
+        crossed += q > 0;
+        for (size_t i = 0; q > 0 && i < U; i++) {
+            led[b * U + i] = nr;
+            runs[nr++] = comb[i];
+        }
+    }
+    if (U > 1)
+        fprintf(stderr, "%zu of %zu blocks crossed\n", crossed, nb);
+    res = realloc(res, nr * K * sizeof *res);
+    double *y = malloc(nr * K * sizeof *y);
+    if (!y || !res || (sc ? sl_scatter_slide_batch(sc, runs, nr, &so, y, NULL, &err)
+                          : sl_slide_batch(runs, nr, mu, K, &so, res, &err)))
+        return 1;
+    for (size_t i = 0; !sc && i < nr * K; i++)
+        y[i] = res[i].peak_m;
+    for (size_t b = 0; b < nb; b++) {
+        double g = 0, x[K] = {0};
+        for (size_t i = b * U; i < (b + 1) * U; i++) {
+            g += 0.5 * (sl_set_pgd_100_40(&runs[i]) + sl_set_pgd_100_40(&runs[led[i]])) / (double)U;
+            for (int k = 0; k < K; k++)
+                x[k] += 0.5 * (y[i * K + k] + y[led[i] * K + k]) / (double)U;
+        }
+        printf("%.9g", g);
         for (int k = 0; k < K; k++)
-            printf(" %.9g", sc ? y[s * K + k] : res[s * K + k].peak_m);
+            printf(" %.9g", x[k]);
         printf("\n");
     }
     free(y);
+    free(runs);
+    free(led);
     sl_scatter_free(sc);
     return 0;
 }
@@ -119,6 +190,8 @@ static int sim(int argc, char **argv)
     }
     double se_pop[K]; /* the SE of a run of n sets is se_pop sqrt(np / n) */
     sl_stats_design_value(pk, np, K, pg, SL_NLTHA_FS, SL_DESIGN_CAP_FACTOR, truth, se_pop);
+    const char *uv = getenv("UNIT");
+    const size_t unit = uv && atoi(uv) > 0 ? (size_t)atoi(uv) : 1;
     size_t miss_any = 0, miss_mu = 0;
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(rng, 11);
@@ -140,13 +213,19 @@ static int sim(int argc, char **argv)
                 double t = fmax(SL_ANALYSIS_REL_SE * D[k], SL_ANALYSIS_ABS_SE_M);
                 worst = fmax(worst, SE[k] / t);
             }
-            size_t next = fixed ? n : sl_stats_plan_next(n, worst, margin, SL_ANALYSIS_MIN_BATCH,
-                                                         growth, NMAX);
+            /* the rule counts sets: a unit (pool line) is UNIT sets (3: a crossed
+             * block), the next count rounded up to whole units */
+            size_t next = n;
+            if (!fixed) {
+                size_t ns_ = sl_stats_plan_next(n * unit, worst, margin, SL_ANALYSIS_MIN_BATCH,
+                                                growth, NMAX / unit * unit);
+                next = (ns_ + unit - 1) / unit;
+            }
             if (next == n)
                 break;
             want = next;
         }
-        ns += (double)n;
+        ns += (double)(n * unit);
         /* does the actual SE (of the population, at n sets) meet the target of the truth? */
         size_t miss = 0;
         for (int k = 0; k < K; k++)
@@ -199,9 +278,9 @@ static int sim(int argc, char **argv)
                    "percentile %.3f\n", 0.05 + 0.01 * k, truth[k], q,
                    (double)cov_t[k] / (double)R, (double)cov_p[k] / (double)R);
     }
-    printf("first %zu, margin %.2f, growth %.1f, fixed %zu, %zu runs from %zu sets: %.1f sets per "
-           "run; stated SE / scatter %.3f to %.3f, mean %.3f", first, margin, growth, fixed, R, np,
-           ns / (double)R, rmin, rmax, rs / nk);
+    printf("first %zu, margin %.2f, growth %.1f, fixed %zu, %zu runs from %zu units of %zu "
+           "set(s): %.1f sets per run; stated SE / scatter %.3f to %.3f, mean %.3f", first,
+           margin, growth, fixed, R, np, unit, ns / (double)R, rmin, rmax, rs / nk);
     printf("; bias (design >= 1 mm) %+.4f to %+.4f, mean %+.4f", bmin, bmax, bsum / nb);
     printf("; actual SE above the target: in %.2f of the runs, at %.3f of the mu",
            (double)miss_any / (double)R, (double)miss_mu / (double)(R * K));
