@@ -461,7 +461,7 @@ static void run_block(const work *wk, size_t p0, size_t nb, size_t m, const doub
                       size_t n, size_t nfree, double *umax_out, double *amax_out)
 {
 #ifdef SL_KERNEL_AVX2
-    if (!kernel_force_baseline && __builtin_cpu_supports("avx2")) {
+    if (sl_spectrum_kernel_avx2()) {
         run_block_avx2(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
         return;
     }
