@@ -58,17 +58,6 @@ static int take(void *dst, int key, const char *v)
     return CLI_EXIT_OK;
 }
 
-static const sl_plant *owns_plant;
-static int owns(const char *name)
-{
-    if (sl_report_owns_name(name) || sl_plant_owns_name(name))
-        return 1;
-    for (size_t b = 0; owns_plant && owns_plant->is_plant && b < owns_plant->n_buildings; b++)
-        if (!strcmp(name, owns_plant->building[b]))
-            return 1;
-    return 0;
-}
-
 /* Copy a checked entry file into the output's cache (same bytes). */
 static sl_status copy_entry(const char *from, const char *dir, const char *hash, sl_error *err)
 {
@@ -106,6 +95,8 @@ int cmd_merge(int argc, char **argv)
     if (ns > SL_PLANT_MAX_SHARDS)
         return cli_usage("merge", "more than %d shard folders", SL_PLANT_MAX_SHARDS);
     char *const *dirs = argv + optind;
+    if ((rc = cli_outdir_apart("merge", a.out, (const char *const *)dirs, ns)))
+        return rc;
     sl_shard *sh = calloc(ns, sizeof *sh);
     const char **by_k = calloc(SL_PLANT_MAX_SHARDS + 1, sizeof *by_k);
     sl_atomic_dir *out = NULL;
@@ -146,8 +137,11 @@ int cmd_merge(int argc, char **argv)
         goto fail;
     }
     sl_plant *p = &sh[0].plant;
-    owns_plant = p;
-    if (!(out = cli_outdir_open(a.out, owns, &err)))
+    for (size_t i = 0; i < p->n; i++) /* the floor files the shards were computed from */
+        if ((rc = cli_outdir_apart("merge", a.out, (const char *const *)&p->floors[i].path, 1)))
+            goto done;
+    rc = CLI_EXIT_ERROR;
+    if (!(out = cli_outdir_open(a.out, VERSION_TEXT, NULL, &err)))
         goto fail;
     /* every result, checked */
     char path[4400], why[256];

@@ -27,19 +27,6 @@
 
 #define VERSION_TEXT "seislide " SEISLIDE_VERSION
 
-/* The output folder may hold what a run of any kind writes there. */
-static const sl_plant *owns_plant;
-static int owns(const char *name)
-{
-    if (sl_report_owns_name(name) || sl_plant_owns_name(name) ||
-        !strcmp(name, SL_SHARD_MANIFEST) || !strcmp(name, SL_SHARD_RESULTS))
-        return 1;
-    for (size_t b = 0; owns_plant && owns_plant->is_plant && b < owns_plant->n_buildings; b++)
-        if (!strcmp(name, owns_plant->building[b]))
-            return 1;
-    return 0;
-}
-
 /* "building/floor" in a plant, the floor's name otherwise. */
 static const char *label(const sl_plant *p, const sl_plant_floor *f, char *buf, size_t n)
 {
@@ -212,20 +199,28 @@ int cmd_run(int argc, char **argv)
     ao->max_sets = a.max_sets;
     ao->mu = a.mu.v;
     ao->n_mu = a.mu.n;
-    /* every floor read and checked, and the output folder made, before any long work */
+    /* every floor read and checked, and the output folder made, before any long work;
+     * the output folder apart from every input (exit 2) */
     int nargs = optind < argc ? argc - optind : 1;
-    if (sl_plant_load(&plant, optind < argc ? (const char *const *)argv + optind : dflt,
-                      (size_t)nargs, a.force, warn, sizeof warn, &err) ||
+    const char *const *ops = optind < argc ? (const char *const *)argv + optind : dflt;
+    if ((rc = cli_outdir_apart("run", a.out, ops, (size_t)nargs)) ||
+        (rc = cli_outdir_apart("run", a.out, &a.cache, 1)))
+        goto done;
+    rc = CLI_EXIT_ERROR;
+    if (sl_plant_load(&plant, ops, (size_t)nargs, a.force, warn, sizeof warn, &err) ||
         sl_plant_keys(&plant, ao, VERSION_TEXT, &err))
         goto fail;
+    for (size_t i = 0; i < plant.n; i++) /* a floor file the operands reach by a link */
+        if ((rc = cli_outdir_apart("run", a.out, (const char *const *)&plant.floors[i].path, 1)))
+            goto done;
+    rc = CLI_EXIT_ERROR;
     if (warn[0])
         cli_msg("run: warning (--force): %s", warn);
     if (a.shard_n)
         sl_plant_assign(&plant, a.shard_n);
-    owns_plant = &plant;
-    if (!a.no_cache && !a.cache) /* a run killed just before its swap left the cache there */
-        cli_outdir_salvage(a.out, SL_CACHE_DIR_NAME, owns);
-    if (!(out = cli_outdir_open(a.out, owns, &err)))
+    /* a run killed just before its swap left the cache in its fresh folder */
+    if (!(out = cli_outdir_open(a.out, VERSION_TEXT, !a.no_cache && !a.cache ? SL_CACHE_DIR_NAME
+                                                                           : NULL, &err)))
         goto fail;
     if (a.sets > 0 && a.sets < SL_NLTHA_MIN_SETS && !a.quiet)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",

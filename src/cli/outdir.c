@@ -1,14 +1,17 @@
 /* outdir.c - an output folder that survives interruption; see outdir.h. */
 #include "outdir.h"
 
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "io/outguard.h"
 
-static char final_dir[4096], fresh[4096], keep[2][4200];
+static char final_dir[4096], fresh[4096], lock_file[4096];
+static sl_outlock *lock; /* held from cli_outdir_open to cli_outdir_finish */
 static char said[4600]; /* the line printed when a signal ends the command */
 static volatile sig_atomic_t writing, interrupted;
 
@@ -18,9 +21,9 @@ static void on_signal(int s)
     interrupted = s;
     if (writing)
         return;
-    unlink(keep[0]);
-    unlink(keep[1]);
     rmdir(fresh);
+    if (lock_file[0])
+        unlink(lock_file); /* the lock itself goes with the process */
     ssize_t w = write(STDERR_FILENO, said, strlen(said));
     (void)w;
     signal(s, SIG_DFL);
@@ -38,8 +41,45 @@ static void say_stale(const char *dir, const char *text)
     }
 }
 
-sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
+int cli_outdir_apart(const char *cmd, const char *dir, const char *const *inputs, size_t n)
 {
+    for (size_t i = 0; i < n; i++) {
+        sl_overlap v = inputs[i] ? sl_path_overlap(dir, inputs[i]) : SL_OVERLAP_NONE;
+        if (v)
+            return cli_usage(cmd, "output folder '%s' %s '%s': give an output folder apart from "
+                             "every input (nothing was read or written)", dir,
+                             v == SL_OVERLAP_SAME     ? "is the input"
+                             : v == SL_OVERLAP_INSIDE ? "is inside the input"
+                                                      : "holds the input",
+                             inputs[i]);
+    }
+    return CLI_EXIT_OK;
+}
+
+/* Parents made, the lock taken, a folder of a killed swap put back. */
+static sl_status claim(const char *dir, sl_error *err)
+{
+    char bad[4096], note[8400];
+    if (sl_mkdir_parents(dir, bad, sizeof bad) != 0)
+        return sl_error_set(err, SL_EIO, bad[0] ? bad : dir, 0, "cannot create the output "
+                            "folder's parent: %s", strerror(errno));
+    if (!(lock = sl_outlock_take(dir, err)))
+        return err ? err->code : SL_EIO;
+    snprintf(lock_file, sizeof lock_file, "%s", sl_outlock_path(lock));
+    if (sl_atomic_dir_recover(dir, note, sizeof note))
+        cli_msg("output folder %s: %s", dir, note);
+    return SL_OK;
+}
+
+sl_atomic_dir *cli_outdir_open(const char *dir, const char *version, const char *salvage,
+                               sl_error *err)
+{
+    if (claim(dir, err))
+        return NULL;
+    char text[8400];
+    if (salvage && sl_outdir_check(dir, NULL) == SL_OK &&
+        sl_atomic_dir_salvage(dir, salvage, text, sizeof text))
+        cli_msg("output folder %s: %s", dir, text);
     /* INT, TERM and HUP held back from before the fresh folder exists until
      * the handler that removes it is in place (a shell starts a background
      * command with SIGINT ignored: one arriving in between was lost, and the
@@ -50,7 +90,7 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     sigaddset(&hold, SIGTERM);
     sigaddset(&hold, SIGHUP);
     sigprocmask(SIG_BLOCK, &hold, &before);
-    sl_atomic_dir *d = sl_atomic_dir_open(dir, owns, err);
+    sl_atomic_dir *d = sl_atomic_dir_open(dir, version, err);
     if (!d) {
         sigprocmask(SIG_SETMASK, &before, NULL);
         return NULL;
@@ -58,8 +98,6 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     say_stale(dir, sl_atomic_dir_stale(d));
     snprintf(final_dir, sizeof final_dir, "%s", dir);
     snprintf(fresh, sizeof fresh, "%s", sl_atomic_dir_path(d));
-    snprintf(keep[0], sizeof keep[0], "%s/.keep", fresh);
-    snprintf(keep[1], sizeof keep[1], "%s/.gitkeep", fresh);
     snprintf(said, sizeof said, "seislide: interrupted; the outputs in %s were left as they "
              "were\n", dir);
     signal(SIGINT, on_signal);
@@ -67,14 +105,6 @@ sl_atomic_dir *cli_outdir_open(const char *dir, sl_outdir_owns_fn owns, sl_error
     signal(SIGHUP, on_signal);
     sigprocmask(SIG_SETMASK, &before, NULL); /* one that came meanwhile is handled now */
     return d;
-}
-
-void cli_outdir_salvage(const char *dir, const char *name, sl_outdir_owns_fn owns)
-{
-    char text[8400];
-    if (sl_outdir_check(dir, owns, NULL) == SL_OK && sl_atomic_dir_salvage(dir, name, text,
-                                                                           sizeof text))
-        cli_msg("output folder %s: %s", dir, text);
 }
 
 void cli_outdir_final_name(char *path, size_t n)
@@ -95,7 +125,10 @@ sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err)
 {
     if (interrupted) /* *d stays for cli_outdir_finish() to drop */
         return sl_error_set(err, SL_EIO, NULL, 0, "interrupted: the output folder is unchanged");
-    sl_status s = sl_atomic_dir_commit(*d, err); /* consumes *d */
+    sl_status s = sl_atomic_dir_prepare(*d, err); /* on failure *d stays, as above */
+    if (s)
+        return s;
+    s = sl_atomic_dir_commit(*d, err); /* consumes *d */
     *d = NULL;
     if (s == SL_OK) /* a signal from now on finds the new outputs in place */
         snprintf(said, sizeof said, "seislide: interrupted after the output folder was written "
@@ -106,6 +139,9 @@ sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err)
 void cli_outdir_finish(sl_atomic_dir *d)
 {
     sl_atomic_dir_abort(d);
+    lock_file[0] = '\0';
+    sl_outlock_release(lock);
+    lock = NULL;
     if (interrupted) {
         fputs(said, stderr);
         fflush(stderr);

@@ -1,6 +1,7 @@
 /* atomic.c - temporary file + rename, fresh folder + swap; see atomic.h. */
 #define _GNU_SOURCE /* renameat2 (Linux, glibc >= 2.28) */
 #include "io/atomic.h"
+#include "io/outguard.h"
 #include "io/owner.h"
 
 #include <dirent.h>
@@ -143,7 +144,7 @@ static int is_placeholder(const char *name)
     return !strcmp(name, ".keep") || !strcmp(name, ".gitkeep");
 }
 
-sl_status sl_outdir_check(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
+sl_status sl_outdir_check(const char *dir, sl_error *err)
 {
     struct stat st;
     if (!dir || !*dir)
@@ -175,19 +176,24 @@ sl_status sl_outdir_check(const char *dir, sl_outdir_owns_fn owns, sl_error *err
     if (!S_ISDIR(st.st_mode))
         return sl_error_set(err, SL_EINVAL, dir, 0,
                             "output path exists and is not a folder; give a new or empty folder");
+    sl_manifest *m;
+    sl_status s = sl_manifest_read(dir, &m, err);
+    if (s || m) { /* marked: seislide's; its other entries are kept by the run */
+        sl_manifest_free(m);
+        return s;
+    }
     DIR *d = opendir(dir);
     if (!d)
         return sl_error_set(err, SL_EIO, dir, 0, "output folder: %s", strerror(errno));
     struct dirent *e;
-    sl_status s = SL_OK;
     while (s == SL_OK && (e = readdir(d)) != NULL) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") || is_placeholder(e->d_name))
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") || is_placeholder(e->d_name) ||
+            !strcmp(e->d_name, SL_MANIFEST_CACHE))
             continue;
-        if (!owns || !owns(e->d_name))
-            s = sl_error_set(err, SL_EINVAL, dir, 0,
-                             "output folder holds '%s', which seislide did not write; the run "
-                             "replaces the whole folder, so give a new or empty folder",
-                             e->d_name);
+        s = sl_error_set(err, SL_EINVAL, dir, 0,
+                         "the output folder holds '%s' and seislide did not make it (it has no "
+                         SL_MANIFEST_NAME "): seislide writes only into a new or empty folder, "
+                         "or one it wrote; give another folder", e->d_name);
     }
     closedir(d);
     return s;
@@ -196,6 +202,9 @@ sl_status sl_outdir_check(const char *dir, sl_outdir_owns_fn owns, sl_error *err
 struct sl_atomic_dir {
     char *path; /* final */
     char *tmp;  /* fresh */
+    char version[128];  /* for the manifest */
+    int prepared;       /* manifest written, the user's entries carried */
+    sl_manifest *old;   /* the final folder's manifest (NULL: none) */
     char stale[SL_ATOMIC_STALE_TEXT]; /* what was found of earlier runs (sl_atomic_dir_stale) */
 };
 
@@ -346,9 +355,9 @@ int sl_atomic_dir_salvage(const char *dir, const char *name, char *said, size_t 
 
 const char *sl_atomic_dir_stale(const sl_atomic_dir *d) { return d ? d->stale : ""; }
 
-sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_error *err)
+sl_atomic_dir *sl_atomic_dir_open(const char *dir, const char *version, sl_error *err)
 {
-    if (sl_outdir_check(dir, owns, err))
+    if (sl_outdir_check(dir, err))
         return NULL;
     sl_atomic_dir *a = calloc(1, sizeof *a);
     if (!a || !(a->path = strdup(dir)) || !(a->tmp = hidden_sibling(dir))) {
@@ -358,6 +367,7 @@ sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_er
         sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
         return NULL;
     }
+    snprintf(a->version, sizeof a->version, "%s", version ? version : "seislide");
     clean_stale(a);
     if (!mkdtemp(a->tmp) || chmod(a->tmp, 0777 & ~current_umask()) != 0) {
         sl_error_set(err, SL_EIO, dir, 0, "cannot create a folder beside it: %s", strerror(errno));
@@ -367,29 +377,78 @@ sl_atomic_dir *sl_atomic_dir_open(const char *dir, sl_outdir_owns_fn owns, sl_er
         free(a);
         return NULL;
     }
-    /* carry the version-control placeholders over */
-    static const char *const keep[] = {".keep", ".gitkeep"};
-    for (size_t i = 0; i < sizeof keep / sizeof keep[0]; i++) {
-        char src[4096], dst[4096];
-        struct stat st;
-        snprintf(src, sizeof src, "%s/%s", dir, keep[i]);
-        snprintf(dst, sizeof dst, "%s/%s", a->tmp, keep[i]);
-        if (stat(src, &st) == 0 && S_ISREG(st.st_mode)) {
-            int fd = open(dst, O_WRONLY | O_CREAT | O_TRUNC, 0666);
-            if (fd >= 0)
-                close(fd);
-        }
-    }
     return a;
+}
+
+int sl_atomic_dir_recover(const char *dir, char *said, size_t nsaid)
+{
+    char parent[4096], prefix[1024], from[8192], mark[8400];
+    struct stat st;
+    int has_dir, done = 0;
+    if (said && nsaid)
+        said[0] = '\0';
+    if (lstat(dir, &st) == 0 || errno != ENOENT)
+        return 0;
+    sibling_prefix(dir, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
+    DIR *d = opendir(parent);
+    if (!d)
+        return 0;
+    size_t plen = strlen(prefix);
+    for (struct dirent *e; !done && (e = readdir(d)) != NULL;) {
+        char owner[80];
+        long pid;
+        if (strncmp(e->d_name, prefix, plen) != 0 ||
+            owner_of(e->d_name + plen, &pid, owner, sizeof owner) != OWNER_GONE)
+            continue;
+        snprintf(from, sizeof from, "%s%s%s", parent, has_dir ? "" : "/", e->d_name);
+        snprintf(mark, sizeof mark, "%s/" SL_MANIFEST_NAME, from);
+        if (lstat(mark, &st) != 0 || rename(from, dir) != 0)
+            continue;
+        done = 1;
+        if (said && nsaid)
+            snprintf(said, nsaid, "put %s back in its place (left by process %ld, which is gone: "
+                     "a run killed while it swapped the folder in)", e->d_name, pid);
+    }
+    closedir(d);
+    return done;
 }
 
 const char *sl_atomic_dir_path(const sl_atomic_dir *d) { return d ? d->tmp : NULL; }
 
+
 static void atomic_dir_free(sl_atomic_dir *d)
 {
+    sl_manifest_free(d->old);
     free(d->tmp);
     free(d->path);
     free(d);
+}
+
+sl_status sl_atomic_dir_prepare(sl_atomic_dir *d, sl_error *err)
+{
+    if (!d)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "no folder to commit");
+    if (d->prepared)
+        return SL_OK;
+    struct stat st;
+    sl_status s = sl_manifest_write(d->tmp, d->version, err);
+    if (!s && lstat(d->path, &st) == 0) {
+        sl_manifest_free(d->old);
+        d->old = NULL;
+        s = sl_manifest_read(d->path, &d->old, err);
+        if (!s)
+            s = sl_manifest_carry(d->path, d->tmp, d->old, 0, err);
+    }
+    d->prepared = !s;
+    return s;
+}
+
+/* After the swap: what was added to the old folder since the carry, moved
+ * into the new one; then the old folder removed. */
+static void drop_old(sl_atomic_dir *d, const char *old)
+{
+    sl_manifest_carry(old, d->path, d->old, 1, NULL);
+    sl_remove_tree(old);
 }
 
 sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err)
@@ -397,7 +456,12 @@ sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err)
     if (!d)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "no folder to commit");
     struct stat st;
-    sl_status s = SL_OK;
+    sl_status s = sl_atomic_dir_prepare(d, err);
+    if (s) {
+        sl_remove_tree(d->tmp);
+        atomic_dir_free(d);
+        return s;
+    }
     if (lstat(d->path, &st) != 0) {
         if (rename(d->tmp, d->path) != 0)
             s = sl_error_set(err, SL_EIO, d->path, 0, "cannot create: %s", strerror(errno));
@@ -408,7 +472,9 @@ sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err)
         done = renameat2(AT_FDCWD, d->tmp, AT_FDCWD, d->path, RENAME_EXCHANGE) == 0;
 #endif
         if (!done) {
-            /* two renames: the old folder aside, the fresh one in */
+            /* two renames: the old folder aside, the fresh one in (a run killed in
+             * between leaves no DIR: the next one puts a folder back,
+             * sl_atomic_dir_recover) */
             char *old = hidden_sibling(d->path);
             if (!old || !mkdtemp(old) || rmdir(old) != 0 || rename(d->path, old) != 0) {
                 s = sl_error_set(err, SL_EIO, d->path, 0, "cannot replace: %s", strerror(errno));
@@ -416,21 +482,20 @@ sl_status sl_atomic_dir_commit(sl_atomic_dir *d, sl_error *err)
                 s = sl_error_set(err, SL_EIO, d->path, 0, "cannot replace: %s", strerror(errno));
                 rename(old, d->path);
             } else {
-                sl_remove_tree(old);
+                drop_old(d, old);
             }
             free(old);
-            if (s) {
+            if (s)
                 sl_remove_tree(d->tmp);
-                atomic_dir_free(d);
-                return s;
-            }
             atomic_dir_free(d);
-            return SL_OK;
+            return s;
         }
+        drop_old(d, d->tmp); /* after the exchange d->tmp holds the old outputs */
+        atomic_dir_free(d);
+        return SL_OK;
     }
-    /* after the exchange d->tmp holds the old outputs; after a failure, the
-     * fresh ones: either way it goes */
-    sl_remove_tree(d->tmp);
+    if (s)
+        sl_remove_tree(d->tmp);
     atomic_dir_free(d);
     return s;
 }
