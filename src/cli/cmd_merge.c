@@ -95,7 +95,7 @@ int cmd_merge(int argc, char **argv)
     if (ns > SL_PLANT_MAX_SHARDS)
         return cli_usage("merge", "more than %d shard folders", SL_PLANT_MAX_SHARDS);
     char *const *dirs = argv + optind;
-    if ((rc = cli_outdir_apart("merge", a.out, (const char *const *)dirs, ns)))
+    if ((rc = cli_outdir_apart("merge", "output folder", a.out, (const char *const *)dirs, ns)))
         return rc;
     sl_shard *sh = calloc(ns, sizeof *sh);
     const char **by_k = calloc(SL_PLANT_MAX_SHARDS + 1, sizeof *by_k);
@@ -138,7 +138,7 @@ int cmd_merge(int argc, char **argv)
     }
     sl_plant *p = &sh[0].plant;
     for (size_t i = 0; i < p->n; i++) /* the floor files the shards were computed from */
-        if ((rc = cli_outdir_apart("merge", a.out, (const char *const *)&p->floors[i].path, 1)))
+        if ((rc = cli_outdir_apart("merge", "output folder", a.out, (const char *const *)&p->floors[i].path, 1)))
             goto done;
     rc = CLI_EXIT_ERROR;
     if (!(out = cli_outdir_open(a.out, VERSION_TEXT, NULL, &err)))

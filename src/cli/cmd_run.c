@@ -203,15 +203,15 @@ int cmd_run(int argc, char **argv)
      * the output folder apart from every input (exit 2) */
     int nargs = optind < argc ? argc - optind : 1;
     const char *const *ops = optind < argc ? (const char *const *)argv + optind : dflt;
-    if ((rc = cli_outdir_apart("run", a.out, ops, (size_t)nargs)) ||
-        (rc = cli_outdir_apart("run", a.out, &a.cache, 1)))
+    if ((rc = cli_outdir_apart("run", "output folder", a.out, ops, (size_t)nargs)) ||
+        (rc = cli_outdir_apart("run", "output folder", a.out, &a.cache, 1)))
         goto done;
     rc = CLI_EXIT_ERROR;
     if (sl_plant_load(&plant, ops, (size_t)nargs, a.force, warn, sizeof warn, &err) ||
         sl_plant_keys(&plant, ao, VERSION_TEXT, &err))
         goto fail;
     for (size_t i = 0; i < plant.n; i++) /* a floor file the operands reach by a link */
-        if ((rc = cli_outdir_apart("run", a.out, (const char *const *)&plant.floors[i].path, 1)))
+        if ((rc = cli_outdir_apart("run", "output folder", a.out, (const char *const *)&plant.floors[i].path, 1)))
             goto done;
     rc = CLI_EXIT_ERROR;
     if (warn[0])

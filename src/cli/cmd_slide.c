@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "cli.h"
+#include "outdir.h"
 #include "io/setdir.h"
 #include "slide/slide.h"
 #include "slide_opts.h"
@@ -19,7 +20,7 @@ int cmd_slide(int argc, char **argv)
     sl_error err;
     sl_error_clear(&err);
     int rc = slide_parse(argc, argv, &a);
-    if (rc)
+    if (rc || (a.history && (rc = cli_outdir_apart("slide", "--history", a.history, a.path, 3))))
         goto done;
     rc = CLI_EXIT_ERROR;
     if (sl_set_read_files(a.path, &a.ro, a.truncate, &set, &fit, &err)) {

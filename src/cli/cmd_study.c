@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "outdir.h"
 #include "core/clock.h"
 #include "method/asce.h"
 #include "method/design.h"
@@ -103,6 +104,8 @@ int cmd_study(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (rc || (rc = cli_no_operands("study", argc, argv)))
+        return rc;
+    if ((rc = cli_outdir_apart("study", "output folder", a.out, &a.records, 1)))
         return rc;
     struct stat stt;
     if (stat(a.records, &stt) != 0 || !S_ISDIR(stt.st_mode)) {

@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "io/floor.h"
 #include "io/motion.h"
+#include "outdir.h"
 #include "signal/rg160.h"
 #include "synth/synth.h"
 #include "synth_opts.h"
@@ -35,8 +36,13 @@ int cmd_synth(int argc, char **argv)
     if (rc)
         return rc < 0 ? CLI_EXIT_OK : rc;
 
+    /* the output folder apart from the floor file and the records (exit 2) */
+    if ((rc = cli_outdir_apart("synth", "output folder", o.outdir, &o.floor_path, 1)) ||
+        (rc = cli_outdir_apart("synth", "output folder", o.outdir, o.match, o.nmatch)))
+        return rc;
     sl_error err;
     sl_error_clear(&err);
+    sl_atomic_dir *outd = NULL;
     sl_floor *fl = NULL;
     sl_spectrum *own[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_motion *rec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
@@ -90,8 +96,8 @@ int cmd_synth(int argc, char **argv)
             cli_print_error(&err);
         goto done;
     }
-    if (synth_make_dirs(o.outdir) != 0) {
-        cli_msg("%s: cannot create the output folder: %s", o.outdir, strerror(errno));
+    if (!(outd = cli_outdir_open(o.outdir, "seislide " SEISLIDE_VERSION, NULL, &err))) {
+        cli_print_error(&err);
         goto done;
     }
     nsets = o.nmatch > 0 ? 1 : (size_t)o.count;
@@ -100,9 +106,6 @@ int cmd_synth(int argc, char **argv)
         cli_msg("out of memory");
         goto done;
     }
-    char left[4400];
-    snprintf(left, sizeof left, "no file of this run written in %s yet", o.outdir);
-    cli_on_interrupt(left);
     int show = !o.quiet && isatty(STDERR_FILENO);
     sl_status st;
     if (o.nmatch > 0) {
@@ -121,13 +124,17 @@ int cmd_synth(int argc, char **argv)
         cli_print_error(&err);
         goto done;
     }
-    synth_output out = {o.outdir, o.csv, o.seed, o.nmatch > 0 ? o.match : NULL,
+    /* every file into the fresh folder, swapped in whole (outdir.h) */
+    cli_outdir_writing();
+    synth_output out = {sl_atomic_dir_path(outd), o.csv, o.seed, o.nmatch > 0 ? o.match : NULL,
                         (const char(*)[512])desc, &o.p};
-    snprintf(left, sizeof left, "%s holds some of this run's motion files (each whole), not "
-             "its report.csv, perhaps a hidden .*.tmp-* file; run it again", o.outdir);
-    cli_on_interrupt(left);
     if (synth_write_outputs(&out, sets, nsets) != CLI_EXIT_OK)
         goto done;
+    if (cli_outdir_commit(&outd, &err)) {
+        if (!cli_outdir_interrupted())
+            cli_print_error(&err);
+        goto done;
+    }
     if (fl && !o.quiet)
         synth_print_dampings(sets, nsets, &o.p);
     size_t total = 0, failed = 0;
@@ -161,5 +168,6 @@ done:
         sl_motion_free(rec[c]);
     }
     sl_floor_free(fl);
+    cli_outdir_finish(outd);
     return rc;
 }

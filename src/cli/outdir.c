@@ -41,13 +41,14 @@ static void say_stale(const char *dir, const char *text)
     }
 }
 
-int cli_outdir_apart(const char *cmd, const char *dir, const char *const *inputs, size_t n)
+int cli_outdir_apart(const char *cmd, const char *what, const char *dir,
+                     const char *const *inputs, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         sl_overlap v = inputs[i] ? sl_path_overlap(dir, inputs[i]) : SL_OVERLAP_NONE;
         if (v)
-            return cli_usage(cmd, "output folder '%s' %s '%s': give an output folder apart from "
-                             "every input (nothing was read or written)", dir,
+            return cli_usage(cmd, "%s '%s' %s '%s': give an output apart from every input "
+                             "(nothing was read or written)", what, dir,
                              v == SL_OVERLAP_SAME     ? "is the input"
                              : v == SL_OVERLAP_INSIDE ? "is inside the input"
                                                       : "holds the input",

@@ -18,10 +18,12 @@
 
 #include "io/atomic.h"
 
-/* Before any work: CLI_EXIT_OK when output folder dir is apart from each of
- * the n input paths (NULL ones skipped), else a usage error (exit 2) naming
- * the input dir is, is inside or holds (outguard.h: sl_path_overlap). */
-int cli_outdir_apart(const char *cmd, const char *dir, const char *const *inputs, size_t n);
+/* Before any work: CLI_EXIT_OK when output dir (a folder or a file; `what`
+ * names it in the message: "output folder", "--history") is apart from each
+ * of the n input paths (NULL ones skipped), else a usage error (exit 2)
+ * naming the input dir is, is inside or holds (outguard.h: sl_path_overlap). */
+int cli_outdir_apart(const char *cmd, const char *what, const char *dir,
+                     const char *const *inputs, size_t n);
 /* Make dir's missing parents (mkdir -p), take its lock (another run
  * writing there: SL_EINVAL naming it; held until cli_outdir_finish), put
  * back a folder a killed swap left aside, take `salvage` (NULL: nothing;

@@ -12,35 +12,6 @@
 #include "io/floor.h"
 #include "io/motion.h"
 
-/* mkdir -p. Returns 0 or -1 with errno set. */
-int synth_make_dirs(const char *path)
-{
-    char buf[SYNTH_PATH_MAX];
-    size_t n = strlen(path);
-    if (n == 0 || n >= sizeof buf) {
-        errno = ENAMETOOLONG;
-        return -1;
-    }
-    memcpy(buf, path, n + 1);
-    for (size_t i = 1; i <= n; i++) {
-        if (buf[i] != '/' && buf[i] != '\0')
-            continue;
-        char c = buf[i];
-        buf[i] = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-            return -1;
-        buf[i] = c;
-    }
-    struct stat st;
-    if (stat(path, &st) != 0)
-        return -1;
-    if (!S_ISDIR(st.st_mode)) {
-        errno = ENOTDIR;
-        return -1;
-    }
-    return 0;
-}
-
 /* Write a motion as CSV: time_s,acc_g (atomic). */
 static sl_status write_csv_motion(const char *path, const sl_motion *m, sl_error *err)
 {

@@ -22,8 +22,6 @@ typedef struct synth_output {
     const sl_synth_params *p;              /* the limits, repeated in the report */
 } synth_output;
 
-/* mkdir -p. Returns 0 or -1 with errno set. */
-int synth_make_dirs(const char *path);
 /* Write every motion of the nsets sets and DIR/report.csv (each atomic).
  * Returns CLI_EXIT_OK or CLI_EXIT_ERROR (message printed). */
 int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t nsets);

@@ -42,9 +42,13 @@ t_expect_err out-file-msg "README.md: output path exists and is not a folder"
 grep -q synthesis "$T_ERR" && t_fail "work done before the output check" || t_pass
 mkdir -p "$D/mine" && echo keep > "$D/mine/notes.txt"
 t_run run "$D/fl/01-ground.ini" -o "$D/mine" $FAST; t_expect_rc foreign 1
-t_expect_err foreign-msg "holds 'notes.txt', which seislide did not write"
+t_expect_err foreign-msg "mine: the output folder holds 'notes.txt' and seislide did not make it"
 [ -s "$D/mine/notes.txt" ] && t_pass || t_fail "a foreign file was touched"
-t_run run "$D/fl/01-ground.ini" -o "$D/no/such/dir" $FAST; t_expect_rc no-parent 1
+# missing parents are made (mkdir -p); a parent that is a file is an error naming it
+t_run run "$D/fl/01-ground.ini" -o "$D/no/such/dir" $FAST; t_expect_rc no-parent 0
+[ -f "$D/no/such/dir/summary.csv" ] && t_pass || t_fail "no-parent: no outputs in the made folder"
+t_run run "$D/fl/01-ground.ini" -o "$D/mine/notes.txt/out" $FAST; t_expect_rc parent-file 1
+t_expect_err parent-file-msg "mine/notes.txt: cannot create the output folder's parent: Not a directory"
 # a trailing slash names the same folder, new or existing
 t_run run "$D/fl/01-ground.ini" -o "$D/slash/" $FAST; t_expect_rc slash-new 0
 t_run run "$D/fl/01-ground.ini" -o "$D/slash/" $FAST; t_expect_rc slash-again 0
