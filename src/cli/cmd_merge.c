@@ -43,7 +43,8 @@ static const char merge_tail[] =
 enum { O_CREATED = CLI_OPT_ID };
 #define A(f) .off = offsetof(merge_args, f)
 static const cli_opt opts[] = {
-    {"output", 'o', "DIR", "output folder (default output/); written whole or not at all",
+    {"output", 'o', "DIR", "output folder (default output/); written whole or not at all,\n"
+     "as by run (not a shard folder)",
      .kind = CLI_STRING, A(out)},
     {"quiet", 'q', NULL, "no messages on stderr", .kind = CLI_FLAG, A(quiet)},
     {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\n"

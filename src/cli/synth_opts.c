@@ -195,7 +195,7 @@ static const cli_opt base_opts[] = {
     {"units", OPT_UNITS, "U", "units of --match files that do not name them", .kind = CLI_UNITS,
      .off = A(units)},
     {.head = "output:"},
-    {"output", 'o', "DIR", "folder for the files (created if missing)", .kind = CLI_STRING,
+    {"output", 'o', "DIR", "folder for the files, swapped in whole, as by run (parents made)", .kind = CLI_STRING,
      .off = A(outdir)},
     {"format", OPT_FORMAT, "at2|csv", "motion files: PEER-style AT2 in g (default), or CSV\n"
      "with columns time_s,acc_g", .kind = CLI_CALL},

@@ -60,6 +60,7 @@ WHERE=$D/plant/bldB refuse cwd-inside run ../../plant -o . $FAST
 mkdir -p "$D/df/floors" && cp floors/01-ground.ini "$D/df/floors/"
 WHERE=$D/df refuse default-floors run -o floors/new $FAST
 refuse linked-floor run fl2 -o plant/bldA $FAST
+refuse link-held run fl2/g.ini -o fl2 $FAST
 refuse cache-same run plant -o cc --cache cc $FAST
 refuse cache-held run plant -o out0 --cache out0/c $FAST
 refuse cache-inside run plant -o cc/out --cache cc $FAST
