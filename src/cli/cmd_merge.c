@@ -139,7 +139,7 @@ int cmd_merge(int argc, char **argv)
     }
     sl_plant *p = &sh[0].plant;
     for (size_t i = 0; i < p->n; i++) /* the floor files the shards were computed from */
-        if ((rc = cli_outdir_apart("merge", "output folder", a.out, (const char *const *)&p->floors[i].path, 1)))
+        if ((rc = cli_outdir_apart_floor("merge", a.out, p->floors[i].path, p->is_plant)))
             goto done;
     rc = CLI_EXIT_ERROR;
     if (!(out = cli_outdir_open(a.out, VERSION_TEXT, NULL, &err)))

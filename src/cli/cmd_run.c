@@ -210,8 +210,8 @@ int cmd_run(int argc, char **argv)
     if (sl_plant_load(&plant, ops, (size_t)nargs, a.force, warn, sizeof warn, &err) ||
         sl_plant_keys(&plant, ao, VERSION_TEXT, &err))
         goto fail;
-    for (size_t i = 0; i < plant.n; i++) /* a floor file the operands reach by a link */
-        if ((rc = cli_outdir_apart("run", "output folder", a.out, (const char *const *)&plant.floors[i].path, 1)))
+    for (size_t i = 0; i < plant.n; i++) /* what the operands reach through a link */
+        if ((rc = cli_outdir_apart_floor("run", a.out, plant.floors[i].path, plant.is_plant)))
             goto done;
     rc = CLI_EXIT_ERROR;
     if (warn[0])

@@ -57,10 +57,21 @@ int cli_outdir_apart(const char *cmd, const char *what, const char *dir,
     return CLI_EXIT_OK;
 }
 
+int cli_outdir_apart_floor(const char *cmd, const char *dir, const char *path, int folder_too)
+{
+    char folder[4096];
+    const char *slash = strrchr(path, '/');
+    snprintf(folder, sizeof folder, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    const char *in[2] = {path, folder_too && slash && slash != path ? folder : NULL};
+    return cli_outdir_apart(cmd, "output folder", dir, in, 2);
+}
+
 /* Parents made, the lock taken, a folder of a killed swap put back. */
 static sl_status claim(const char *dir, sl_error *err)
 {
     char bad[4096], note[8400];
+    if (!dir || !*dir)
+        return sl_error_set(err, SL_EINVAL, dir, 0, "no output folder given");
     if (sl_mkdir_parents(dir, bad, sizeof bad) != 0)
         return sl_error_set(err, SL_EIO, bad[0] ? bad : dir, 0, "cannot create the output "
                             "folder's parent: %s", strerror(errno));

@@ -24,6 +24,9 @@
  * naming the input dir is, is inside or holds (outguard.h: sl_path_overlap). */
 int cli_outdir_apart(const char *cmd, const char *what, const char *dir,
                      const char *const *inputs, size_t n);
+/* cli_outdir_apart for a floor file the operands reached (perhaps through a
+ * symbolic link) and, with folder_too (a plant's floor), its building folder. */
+int cli_outdir_apart_floor(const char *cmd, const char *dir, const char *path, int folder_too);
 /* Make dir's missing parents (mkdir -p), take its lock (another run
  * writing there: SL_EINVAL naming it; held until cli_outdir_finish), put
  * back a folder a killed swap left aside, take `salvage` (NULL: nothing;

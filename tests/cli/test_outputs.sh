@@ -61,6 +61,10 @@ mkdir -p "$D/df/floors" && cp floors/01-ground.ini "$D/df/floors/"
 WHERE=$D/df refuse default-floors run -o floors/new $FAST
 refuse linked-floor run fl2 -o plant/bldA $FAST
 refuse link-held run fl2/g.ini -o fl2 $FAST
+mkdir -p "$D/ext/bldC" "$D/plant3/bldA" && cp floors/03-el24.ini "$D/ext/bldC/" && cp floors/01-ground.ini "$D/plant3/bldA/"
+ln -s ../ext/bldC "$D/plant3/bldC"
+refuse linked-building run plant3 -o ext/bldC/out $FAST
+refuse linked-building-holds run plant3 -o ext $FAST
 refuse cache-same run plant -o cc --cache cc $FAST
 refuse cache-held run plant -o out0 --cache out0/c $FAST
 refuse cache-inside run plant -o cc/out --cache cc $FAST
@@ -138,6 +142,20 @@ rm "$O/bldB/summary.csv"
 t_run_in "$D" run plant -o out --sets 2 --mu 0.1,0.3 --created 1700000000; t_expect_rc after-conflict 0
 t_expect_err after-conflict-reused "reused 2 of 2 floors"
 [ "$(user)" = "$u0" ] && [ -f "$O/bldB/summary.csv" ] && t_pass || t_fail "after the conflict: outputs or user's files wrong"
+# killed at the swap: DIR as it was, and the fresh folder already held the user's files
+# (the same files: hard links), so that no moment of the swap can lose them
+if command -v strace >/dev/null 2>&1 && strace -qq -o /dev/null true 2>/dev/null; then
+  strace -f -qq -o /dev/null -e trace=renameat2 -e inject=renameat2:signal=SIGKILL:when=1 \
+    "$B" run "$D/plant" -o "$O" $FAST 2>/dev/null
+  fresh=$(ls -d "$D"/.out.tmp-* 2>/dev/null | head -1)
+  [ -n "$fresh" ] && [ "$(stat -c %i "$fresh/notes.txt")" = "$ino" ] && [ -f "$fresh/mine/deep/f.txt" ] &&
+    [ -L "$fresh/plantlink" ] && [ -d "$fresh/mine/empty" ] && t_pass || t_fail "killed at the swap: the fresh folder lacks the user's files"
+  [ "$(user)" = "$u0" ] && t_pass || t_fail "killed at the swap: the user's files changed"
+  t_run_in "$D" run plant -o out $FAST; t_expect_rc after-swap-kill 0
+  ls -a "$D" | grep -q '^\.out\.tmp-' && t_fail "killed at the swap: its fresh folder stayed" || t_pass
+else
+  t_skip "strace absent or not allowed: the kill at the swap not tried"
+fi
 # synth and merge keep the user's files too
 t_run_in "$D" synth --rg160 0.3 --count 1 --seed 1 -q -o syn; t_expect_rc synth 0
 echo "mine" >"$D/syn/notes.txt"
