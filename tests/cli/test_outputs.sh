@@ -181,7 +181,7 @@ t_expect_err recover-reused "reused 2 of 2 floors"
 
 # ---- two runs on one folder: the second refuses, naming the first ------------
 "$B" run "$D/plant" -o "$D/conc" --sets 8 --mu 0.1,0.3 --created 1700000000 -q --cache "$D/cc8" & pa=$!
-i=0; while [ $i -lt 600 ] && ! grep -q '@' "$D/.conc.lock" 2>/dev/null; do sleep 0.05; i=$((i + 1)); done
+i=0; while [ $i -lt 2400 ] && ! grep -q '@' "$D/.conc.lock" 2>/dev/null; do sleep 0.05; i=$((i + 1)); done
 t_run_in "$D" run plant -o ./conc/ $FAST; t_expect_rc busy 1
 t_expect_err busy-msg "conc/: another run is writing this output folder: process $pa@[^ ]+ \(lock .*/\.conc\.lock\)"
 wait $pa; ra=$?
@@ -192,7 +192,7 @@ same_csv "$D/conc" "$D/conc-ref" && t_pass || t_fail "the folder does not hold t
 t_run_in "$D" run plant -o conc $FAST; t_expect_rc after-busy 0
 # a killed run's lock holds nothing
 "$B" run "$D/plant" -o "$D/killed" --sets 8 --mu 0.1,0.3 -q --no-cache & pk=$!
-i=0; while [ $i -lt 600 ] && ! grep -q '@' "$D/.killed.lock" 2>/dev/null; do sleep 0.05; i=$((i + 1)); done
+i=0; while [ $i -lt 2400 ] && ! grep -q '@' "$D/.killed.lock" 2>/dev/null; do sleep 0.05; i=$((i + 1)); done
 kill -9 $pk 2>/dev/null; wait $pk 2>/dev/null
 t_run_in "$D" run plant -o killed $FAST; t_expect_rc after-kill 0
 ls -a "$D" | grep -Eq '\.lock$|\.tmp-' && t_fail "left: $(ls -a "$D" | grep -E 'lock|tmp')" || t_pass
