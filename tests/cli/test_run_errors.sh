@@ -166,14 +166,15 @@ grep -qx "seislide: interrupted; the outputs in $D/keep were left as they were" 
 [ "$(cat "$D/keep"/* | cksum)" = "$sum0" ] && t_pass || t_fail "SIGINT changed the output folder"
 ls -a "$D" | grep -q "^\.keep\.tmp-" && t_fail "SIGINT left a fresh folder" || t_pass
 
-# synth: the line says what the folder holds (nothing of this run before the writing)
+# synth: its folder is written as run's (a fresh folder swapped in): left as it was
 "$SEISLIDE_BIN" synth --rg160 0.3 --count 500 --seed 1 -o "$D/sint" -q 2> "$D/sint.err" & # some seconds of work
 pid=$!
-i=0; while [ $i -lt 200 ] && [ ! -d "$D/sint" ]; do sleep 0.1; i=$((i + 1)); done
-sleep 0.5 # the handlers are installed right after the folder is made
+i=0; while [ $i -lt 200 ] && ! ls -a "$D" | grep -q '^\.sint\.tmp-'; do sleep 0.1; i=$((i + 1)); done
+sleep 0.5 # the handlers are installed right after the fresh folder is made
 kill -INT $pid; wait $pid; rc=$?
 [ $rc -eq 130 ] && t_pass || t_fail "synth SIGINT: exit $rc, expected 130"
-grep -qx "seislide: interrupted; no file of this run written in $D/sint yet" "$D/sint.err" && t_pass \
+grep -qx "seislide: interrupted; the outputs in $D/sint were left as they were" "$D/sint.err" && [ ! -e "$D/sint" ] &&
+  ! ls -a "$D" | grep -q '^\.sint\.' && t_pass \
   || t_fail "synth SIGINT message: $(cat "$D/sint.err")"
 
 # ---- SIGKILL leaves the fresh folder; the next run removes it and says so --
