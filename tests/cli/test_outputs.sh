@@ -166,6 +166,18 @@ echo "mine" >"$D/merged/notes.txt"
 t_run_in "$D" merge parts/1 parts/2 -q --created 1700000000 -o merged; t_expect_rc merge-again 0
 [ "$(cat "$D/merged/notes.txt")" = mine ] && same_csv "$D/merged" "$O" && t_pass || t_fail "merge rerun: user's file or outputs wrong"
 
+# a manifest that is not one: an error naming its line, nothing changed
+cp -a "$D/empty" "$D/bad1" && cp -a "$D/empty" "$D/bad2"
+echo "../plant/bldA/01-ground.ini" >>"$D/bad1/.seislide-manifest"
+n1=$(wc -l <"$D/bad1/.seislide-manifest")
+sed -i '1s/.*/seislide-manifest 9/' "$D/bad2/.seislide-manifest"
+before=$(fp "$D")
+t_run_in "$D" run plant -o bad1 $FAST; t_expect_rc bad-manifest 1
+t_expect_err bad-manifest-msg "bad1/\.seislide-manifest:$n1: '\.\./plant/bldA/01-ground\.ini' is not a path inside the folder"
+t_run_in "$D" run plant -o bad2 $FAST; t_expect_rc bad-head 1
+t_expect_err bad-head-msg "bad2/\.seislide-manifest:1: not a manifest seislide wrote"
+[ "$(fp "$D")" = "$before" ] && t_pass || t_fail "a bad manifest: something changed"
+
 # ---- missing parents are made ---------------------------------------------
 t_run_in "$D" run plant -o deep/a/b/c $FAST; t_expect_rc parents 0
 [ -f "$D/deep/a/b/c/plant.csv" ] && t_pass || t_fail "parents: no outputs"
