@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define P SL_OUTGUARD_PATH
+#define PATH_CAP SL_OUTGUARD_PATH
 /* Times the lock is retried when its file was replaced under us. */
 #define LOCK_TRIES 100
 /* Longest "PID@HOST" read back from another run's lock file. */
@@ -31,7 +31,7 @@ static int join(char *buf, size_t n, const char *a, const char *b)
 
 int sl_path_resolve(const char *path, char *buf, size_t n)
 {
-    char res[P], cand[P], comp[P];
+    char res[PATH_CAP], cand[PATH_CAP], comp[PATH_CAP];
     if (!path || !*path) {
         errno = ENOENT;
         return -1;
@@ -97,7 +97,7 @@ static sl_overlap compare(const char *o, const char *i)
 
 sl_overlap sl_path_overlap(const char *out, const char *input)
 {
-    char o[P], i[P], parent[P], link[P];
+    char o[PATH_CAP], i[PATH_CAP], parent[PATH_CAP], link[PATH_CAP];
     if (sl_path_resolve(out, o, sizeof o) || sl_path_resolve(input, i, sizeof i))
         return SL_OVERLAP_NONE;
     sl_overlap v = compare(o, i);
@@ -111,7 +111,7 @@ sl_overlap sl_path_overlap(const char *out, const char *input)
     size_t cut = n;
     while (cut > 0 && input[cut - 1] != '/')
         cut--;
-    char base[P];
+    char base[PATH_CAP];
     snprintf(parent, sizeof parent, "%.*s", (int)(cut ? cut : 1), cut ? input : ".");
     snprintf(base, sizeof base, "%.*s", (int)(n - cut), input + cut);
     if (sl_path_resolve(parent, link, sizeof link) || join(i, sizeof i, link, base) != 0)
@@ -121,7 +121,7 @@ sl_overlap sl_path_overlap(const char *out, const char *input)
 
 int sl_mkdir_parents(const char *dir, char *bad, size_t nbad)
 {
-    char p[P];
+    char p[PATH_CAP];
     if (bad && nbad)
         bad[0] = '\0';
     if (!dir || strlen(dir) >= sizeof p) {
@@ -161,13 +161,13 @@ int sl_mkdir_parents(const char *dir, char *bad, size_t nbad)
 
 struct sl_outlock {
     int fd;       /* -1: holds nothing (no locks on this file system) */
-    char path[P];
+    char path[PATH_CAP];
 };
 
 /* ".BASE.lock" beside the resolved folder dir, into path. */
 static int lock_path(const char *dir, char *path, size_t n)
 {
-    char r[P];
+    char r[PATH_CAP];
     if (sl_path_resolve(dir, r, sizeof r))
         return -1;
     char *slash = strrchr(r, '/');
@@ -322,7 +322,7 @@ static int good_rel(const char *s, size_t k)
 
 sl_status sl_manifest_read(const char *dir, sl_manifest **out, sl_error *err)
 {
-    char path[P];
+    char path[PATH_CAP];
     struct stat st;
     *out = NULL;
     if (join(path, sizeof path, dir, SL_MANIFEST_NAME))
@@ -378,7 +378,7 @@ sl_status sl_manifest_read(const char *dir, sl_manifest **out, sl_error *err)
 /* Every entry under from/rel into m (folders with a trailing '/'). */
 static int list_tree(sl_manifest *m, const char *from, const char *rel)
 {
-    char dir[P], r[P], full[P];
+    char dir[PATH_CAP], r[PATH_CAP], full[PATH_CAP];
     if (join(dir, sizeof dir, from, rel))
         return -1;
     DIR *d = opendir(dir);
@@ -419,7 +419,7 @@ static int list_tree(sl_manifest *m, const char *from, const char *rel)
 
 sl_status sl_manifest_write(const char *fresh, const char *version, sl_error *err)
 {
-    char path[P];
+    char path[PATH_CAP];
     sl_manifest m = {0, 0, NULL};
     if (join(path, sizeof path, fresh, SL_MANIFEST_NAME))
         return sl_error_set(err, SL_EIO, fresh, 0, "path too long");
@@ -455,7 +455,7 @@ typedef struct carry {
 
 static sl_status conflict(carry *c, const char *rel)
 {
-    char p[P];
+    char p[PATH_CAP];
     join(p, sizeof p, c->from, rel);
     return sl_error_set(c->err, SL_EINVAL, p, 0, "seislide did not write this (the folder's "
                         SL_MANIFEST_NAME " does not name it) and this run writes an entry of "
@@ -467,7 +467,7 @@ static sl_status conflict(carry *c, const char *rel)
  * a conflict). */
 static sl_status make_parents(carry *c, const char *rel)
 {
-    char p[P], r[P];
+    char p[PATH_CAP], r[PATH_CAP];
     snprintf(r, sizeof r, "%s", rel);
     for (char *s = strchr(r, '/'); s; s = strchr(s + 1, '/')) {
         *s = '\0';
@@ -515,7 +515,7 @@ static int keep_entry(const char *from, const char *to, const struct stat *st)
     if (errno != EXDEV && errno != EPERM && errno != EMLINK && errno != EOPNOTSUPP)
         return -1;
     if (S_ISLNK(st->st_mode)) {
-        char target[P];
+        char target[PATH_CAP];
         ssize_t k = readlink(from, target, sizeof target - 1);
         if (k < 0)
             return -1;
@@ -527,7 +527,7 @@ static int keep_entry(const char *from, const char *to, const struct stat *st)
 
 static sl_status carry_tree(carry *c, const char *rel)
 {
-    char dir[P], r[P], fp[P], tp[P], rs[P];
+    char dir[PATH_CAP], r[PATH_CAP], fp[PATH_CAP], tp[PATH_CAP], rs[PATH_CAP];
     if (join(dir, sizeof dir, c->from, rel))
         return sl_error_set(c->err, SL_EIO, c->from, 0, "path too long");
     DIR *d = opendir(dir);
