@@ -287,15 +287,16 @@ static sl_design *grid_design(const double *mu, size_t n)
 /* plant.csv's fixed columns are the run's computed points: on a coarse grid
  * (0.04, 0.1, 0.2, 0.35) the columns 0.1 and 0.2 hold those rows' clearance
  * exactly, 0.05 and 0.3 (inside the grid, not on it) and 0.4, 0.5 (outside)
- * are empty, never a straight line between two computed points. On the
- * default grid (A + k S, as --mu-range makes it) every column is a row. */
+ * are empty, never a straight line between two computed points. On a grid
+ * made as --mu-range makes it (A + k S, off by round-off) every column is a
+ * row. */
 static void test_plant_csv_computed_points(void)
 {
     static const double coarse[] = {0.04, 0.1, 0.2, 0.35};
-    static const int step[] = {0, 1, 3, 5, 7, 9};
-    double fine[6]; /* 0.05 + k 0.05: 0.05, 0.1, 0.2 ... 0.5, each within round-off */
-    for (int k = 0; k < 6; k++)
-        fine[k] = 0.05 + (double)step[k] * 0.05;
+    double fine[6] = {0.05}; /* then 0.1 + k 0.1 as --mu-range makes it: 0.1 + 2 x 0.1 is
+                                0.30000000000000004, the grid point of mu 0.3 */
+    for (int k = 0; k < 5; k++)
+        fine[1 + k] = 0.1 + (double)k * 0.1;
     sl_design *dc = grid_design(coarse, 4), *df = grid_design(fine, 6);
     CHECK(dc && df, "designs");
     char dir[] = "/tmp/sl-plantcsv-XXXXXX", path[300], line[2000];
@@ -324,6 +325,8 @@ static void test_plant_csv_computed_points(void)
             for (size_t j = 0; j < d->n; j++) /* the computed row at that mu, if any */
                 if (fabs(d->rows[j].mu - SL_PLANT_BOOK_MU[k]) < 1e-12)
                     snprintf(want, sizeof want, "%.3f", 1e3 * d->rows[j].clearance_m);
+            if (g) /* every one on the fine grid */
+                CHECK(want[0], "mu %g not on the fine grid", SL_PLANT_BOOK_MU[k]);
             CHECK(!strcmp(cell, want), "%s grid, mu %g: '%s', expected '%s'",
                   g ? "fine" : "coarse", SL_PLANT_BOOK_MU[k], cell, want);
             if (!g && k == 0) /* the case a straight line would have filled */
