@@ -271,7 +271,8 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
                            F->title);
     snprintf(note, sizeof note, "One row per floor of every building. Clearance in mm at six "
              "friction values, each where the run computed it (empty where the friction grid does "
-             "not hold it: never interpolated); Governing: the design curve that gives it (clearance policy %s), \"(capped)\" "
+             "not hold it: never interpolated); Governing: the design curve that gives it "
+             "(clearance policy %s), \"(capped)\" "
              "where the cap governs; Motion checks: FAILED where the floor's motions failed "
              "their SRP 3.7.1 checks and were accepted with --accept-failed-checks. Each building's workbook (<building>/"
              "seislide-clearance.xlsx) shows every floor's curves, standard errors and flags; "
