@@ -14,6 +14,7 @@
 #include "method/stats.h"
 #include "slide/slide.h"
 #include "method/scatter.h"
+#include "plant/identity.h"
 #include "signal/spectrum.h"
 #include "core/units.h"
 
@@ -48,52 +49,10 @@ const char *sl_analysis_stop_name(sl_analysis_stop s)
     return ((int)s >= 0 && s <= SL_ANALYSIS_STOP_MAX_SETS) ? stop_names[s] : "unknown";
 }
 
-/* SplitMix64 finaliser (Steele, Lea and Flood 2014). */
-static uint64_t mix64(uint64_t x)
-{
-    x += 0x9e3779b97f4a7c15ULL;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
-
-/* FNV-1a, 64 bits, over the IEEE-754 bits of v, least significant byte
- * first (the same on every byte order). */
-static uint64_t fnv_double(uint64_t h, double v)
-{
-    uint64_t b;
-    if (v == 0)
-        v = 0.0; /* -0 and +0 alike */
-    memcpy(&b, &v, sizeof b);
-    for (int i = 0; i < 8; i++) {
-        h ^= (b >> (8 * i)) & 0xffu;
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
-
+/* The one identity of a floor gives its seed (plant/identity.h). */
 uint64_t sl_analysis_floor_seed(uint64_t seed, const sl_floor *fl)
 {
-    uint64_t base;
-    if (fl->has_seed) {
-        base = fl->seed;
-    } else {
-        base = 0xcbf29ce484222325ULL; /* FNV offset basis */
-        for (int c = 0; c < SL_FLOOR_NCOMP; c++) {
-            const sl_floor_component *fc = &fl->comp[c];
-            base = fnv_double(base, (double)c);
-            base = fnv_double(base, fc->zpa_ms2);
-            for (size_t d = 0; d < fc->nspec; d++) {
-                const sl_spectrum *sp = &fc->spec[d];
-                base = fnv_double(base, sp->damping);
-                for (size_t j = 0; j < sp->n; j++) {
-                    base = fnv_double(base, sp->f_hz[j]);
-                    base = fnv_double(base, sp->sa_ms2[j]);
-                }
-            }
-        }
-    }
-    return mix64(base) ^ seed;
+    return sl_identity_seed(seed, fl);
 }
 
 void sl_analysis_free(sl_analysis *a)

@@ -40,8 +40,9 @@
  * Seed. A floor's seed is splitmix64(base) XOR the run's seed, where base
  * is the floor file's `seed =` when given, else a 64-bit FNV-1a hash of the
  * floor's numbers (per component: every damping, frequency and value in
- * m/s^2, and the ZPA). A floor's motions therefore change neither with its
- * name nor with the other floors of the run.
+ * m/s^2, and the ZPA). It is made by the same walk over the floor as its
+ * cache key (plant/identity.h). A floor's motions therefore change neither
+ * with its name nor with the other floors of the run.
  */
 #ifndef SL_ANALYSIS_H
 #define SL_ANALYSIS_H

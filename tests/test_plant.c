@@ -269,6 +269,77 @@ static int csv_cell(const char *path, int row, int col, char *buf, size_t n)
     return found;
 }
 
+/* A design on the friction grid mu[0..n-1] (clearance rising from 10 mm). */
+static sl_design *grid_design(const double *mu, size_t n)
+{
+    double peak[2 * 8], asce[8];
+    const double pgd[2] = {2.0, 2.4};
+    for (size_t k = 0; k < n && k < 8; k++) {
+        peak[k] = 0.05 * exp(-6.0 * mu[k]);
+        peak[n + k] = 0.06 * exp(-5.0 * mu[k]);
+        asce[k] = 0.5 * peak[k];
+    }
+    sl_design_input in = oracle_design_input(n, 2, mu, peak, asce, pgd, 0.6 * SL_G);
+    sl_error e;
+    return n <= 8 ? sl_design_compute(&in, &e) : NULL;
+}
+
+/* plant.csv's fixed columns are the run's computed points: on a coarse grid
+ * (0.04, 0.1, 0.2, 0.35) the columns 0.1 and 0.2 hold those rows' clearance
+ * exactly, 0.05 and 0.3 (inside the grid, not on it) and 0.4, 0.5 (outside)
+ * are empty, never a straight line between two computed points. On a grid
+ * made as --mu-range makes it (A + k S, off by round-off) every column is a
+ * row. */
+static void test_plant_csv_computed_points(void)
+{
+    static const double coarse[] = {0.04, 0.1, 0.2, 0.35};
+    double fine[6] = {0.05}; /* then 0.1 + k 0.1 as --mu-range makes it: 0.1 + 2 x 0.1 is
+                                0.30000000000000004, the grid point of mu 0.3 */
+    for (int k = 0; k < 5; k++)
+        fine[1 + k] = 0.1 + (double)k * 0.1;
+    sl_design *dc = grid_design(coarse, 4), *df = grid_design(fine, 6);
+    CHECK(dc && df, "designs");
+    char dir[] = "/tmp/sl-plantcsv-XXXXXX", path[300], line[2000];
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    for (int g = 0; dc && df && g < 2; g++) {
+        const sl_design *d = g ? df : dc;
+        const sl_plant_book_row rows[1] = {{"B", "f", "floor", 0, 0.6 * SL_G, 2, "fixed", d,
+                                            NULL, 0, 0, 0}};
+        sl_plant_book b = {.version = "seislide test", .command_line = "-", .n = 1, .rows = rows};
+        sl_error e;
+        CHECK(sl_plant_book_write_csv(&b, dir, &e) == SL_OK, "plant.csv: %s", e.msg);
+        snprintf(path, sizeof path, "%s/plant.csv", dir);
+        FILE *f = fopen(path, "rb");
+        int row = 0, data = -1;
+        while (f && fgets(line, sizeof line, f)) {
+            if (!strncmp(line, "building,", 9))
+                data = row + 1;
+            row++;
+        }
+        if (f)
+            fclose(f);
+        CHECK(data > 0, "plant.csv header");
+        for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {
+            char cell[64] = "?", want[64] = "";
+            csv_cell(path, data, 7 + k, cell, sizeof cell);
+            for (size_t j = 0; j < d->n; j++) /* the computed row at that mu, if any */
+                if (fabs(d->rows[j].mu - SL_PLANT_BOOK_MU[k]) < 1e-12)
+                    snprintf(want, sizeof want, "%.3f", 1e3 * d->rows[j].clearance_m);
+            if (g) /* every one on the fine grid */
+                CHECK(want[0], "mu %g not on the fine grid", SL_PLANT_BOOK_MU[k]);
+            CHECK(!strcmp(cell, want), "%s grid, mu %g: '%s', expected '%s'",
+                  g ? "fine" : "coarse", SL_PLANT_BOOK_MU[k], cell, want);
+            if (!g && k == 0) /* the case a straight line would have filled */
+                CHECK(!isnan(sl_design_clearance_at(d, 0.05)) && !cell[0],
+                      "mu 0.05 inside the coarse grid: empty expected");
+        }
+        remove(path);
+    }
+    rmdir(dir);
+    sl_design_free(dc);
+    sl_design_free(df);
+}
+
 static void test_plant_lookup_libreoffice(void)
 {
     if (system("command -v soffice >/dev/null 2>&1") != 0)
@@ -389,5 +460,6 @@ int main(void)
     RUN(test_entry_roundtrip_and_damage);
     RUN(test_shard_lpt);
     RUN(test_plant_lookup_libreoffice);
+    RUN(test_plant_csv_computed_points);
     return HARNESS_END("plant");
 }

@@ -194,6 +194,41 @@ static void brute(double q, double sigma, size_t n, size_t R, double cov_min, co
     gsl_rng_free(rng);
 }
 
+/* One value repeated has no scatter, on every CPU: SE exactly 0 for n copies
+ * of any value (a bootstrap resample of one set), so that the 90 % band of
+ * 3 sets neither moves when the peaks move by an ulp (as they do between FMA
+ * and non-FMA libm routines) nor reaches far beyond the sets (the square root
+ * of round-off, 1e-8 of the mean, made t* of 1e8 and bands of 1e9 mm). */
+static void test_band_roundoff(void)
+{
+    size_t nonzero = 0;
+    for (int k = 1; k <= 400; k++) {
+        double c[7], d, se;
+        for (int i = 0; i < 7; i++)
+            c[i] = 0.001 * k + 1e-5 / k;
+        for (size_t n = 2; n <= 7; n++) {
+            sl_stats_design_value(c, n, 1, NULL, 3.0, 0.0, &d, &se);
+            nonzero += se != 0;
+        }
+    }
+    CHECK(nonzero == 0, "%zu of 2400 samples of one value repeated have an SE", nonzero);
+    /* three sets of peaks (m), and the same moved by an ulp each */
+    const double x[3] = {0.2052, 0.1528, 0.1044};
+    double y[3], lo[2], hi[2], d, se;
+    for (int i = 0; i < 3; i++)
+        y[i] = nextafter(x[i], i == 1 ? 0.0 : 1.0);
+    sl_error err;
+    sl_stats_design_value(x, 3, 1, NULL, 3.0, 0.0, &d, &se);
+    for (int r = 0; r < 2; r++)
+        CHECK(sl_stats_design_band(r ? y : x, 3, 1, NULL, 3.0, 0.0, 1000, 0.9, 7,
+                                   SL_STATS_BAND_STUDENT, &lo[r], &hi[r], &err) == SL_OK,
+              "band");
+    CHECK_CLOSE(lo[1], lo[0], 0, 1e-9);
+    CHECK_CLOSE(hi[1], hi[0], 0, 1e-9);
+    CHECK(lo[0] <= d && d <= hi[0] && hi[0] < 3.0 * 0.2052 * 1.5, "band %g-%g of %g (SE %g)",
+          lo[0], hi[0], d, se);
+}
+
 static void test_brute_force(void)
 {
     brute(0.0, 0.4, 20, 1000, 0, "all slide, sd_ln 0.4");
@@ -210,6 +245,7 @@ int main(void)
     RUN(test_plan);
     RUN(test_design_value);
     RUN(test_band_simple);
+    RUN(test_band_roundoff);
     RUN(test_brute_force);
     return HARNESS_END("stats");
 }

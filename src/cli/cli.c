@@ -440,22 +440,21 @@ void cli_command_line(char *buf, size_t n, int argc, char **argv)
         used = shell_word(buf, used, n, argv[i]);
 }
 
-int cli_mu_nonneg(const char *cmd, const cli_mu *mu)
+int cli_mu_check(const char *cmd, const cli_mu *mu)
 {
-    for (size_t k = 0; k < mu->n; k++)
-        if (!(mu->v[k] >= 0))
-            return cli_usage(cmd, "friction coefficient %g must be >= 0", mu->v[k]);
+    for (size_t k = 0; k < mu->n; k++) {
+        if (!(mu->v[k] > 0))
+            return cli_usage(cmd, "friction coefficient %g must be above 0 (a block without "
+                             "friction never stops)", mu->v[k]);
+        if (!(mu->v[k] <= CLI_MU_MAX * (1 + CLI_MU_ROUND))) /* 0.05:1.5:0.05 ends at 1.5 */
+            return cli_usage(cmd, "friction coefficient %.10g is above %g: not a friction "
+                             "coefficient of an equipment base (a typo, or a percent?)",
+                             mu->v[k], CLI_MU_MAX);
+        if (k > 0 && !(mu->v[k] > mu->v[k - 1]))
+            return cli_usage(cmd, "friction values must increase: %g follows %g", mu->v[k],
+                             mu->v[k - 1]);
+    }
     return CLI_EXIT_OK;
-}
-
-int cli_mu_increasing(const char *cmd, const cli_mu *mu)
-{
-    int rc = cli_mu_nonneg(cmd, mu);
-    for (size_t k = 1; rc == CLI_EXIT_OK && k < mu->n; k++)
-        if (!(mu->v[k] > mu->v[k - 1]))
-            rc = cli_usage(cmd, "friction values must increase: %g follows %g", mu->v[k],
-                           mu->v[k - 1]);
-    return rc;
 }
 
 void cli_help_options(FILE *f, const cli_opt *opts, size_t n, int col)

@@ -151,11 +151,19 @@ int cli_command_parse(const cli_command *c, int argc, char **argv, void *dst);
  * with a blank or another character a shell treats specially is single-quoted,
  * so that the recorded line can be pasted into a shell and runs the same. */
 void cli_command_line(char *buf, size_t n, int argc, char **argv);
-/* CLI_EXIT_OK when every friction value of mu is >= 0, else a usage error. */
-int cli_mu_nonneg(const char *cmd, const cli_mu *mu);
-/* CLI_EXIT_OK when every friction value is >= 0 and each is above the one
- * before, else a usage error naming the first that is not. */
-int cli_mu_increasing(const char *cmd, const cli_mu *mu);
+/* The largest friction coefficient --mu and --mu-range take. Static friction
+ * of equipment bases on concrete lies below about 1 (steel on concrete or
+ * grout about 0.4-0.7, ACI 318-19 Table 22.9.4.2 gives 0.7 against as-rolled
+ * steel; rubber on dry concrete up to about 1); the largest coefficient of
+ * that table, 1.4, is concrete cast monolithically (a crack, not a base). A
+ * value above 1.5 is a slip (3 for 0.3, a percent), not a friction. */
+#define CLI_MU_MAX 1.5
+/* Relative round-off allowed at CLI_MU_MAX (a range's last value is A + k S). */
+#define CLI_MU_ROUND 1e-9
+/* CLI_EXIT_OK when every friction value of mu is above 0, at most
+ * CLI_MU_MAX, and above the one before; else a usage error naming the first
+ * value that is not. */
+int cli_mu_check(const char *cmd, const cli_mu *mu);
 
 /* Print "seislide: FILE:LINE: message" for a library error. */
 void cli_print_error(const sl_error *err);

@@ -60,7 +60,8 @@ static const cli_opt asce_opts[] = {
     {"truncate", OPT_TRUNCATE, NULL, "cut motions of different length to the shortest",
      .kind = CLI_FLAG, A(truncate)},
     {.head = "friction:"},
-    {"mu", OPT_MU, "LIST", "comma-separated coefficients, e.g. 0.05,0.1,0.2", .kind = CLI_MU_LIST,
+    {"mu", OPT_MU, "LIST", "comma-separated coefficients, increasing, each above 0\n"
+     "and at most %g, e.g. 0.05,0.1,0.2", {CLI_MU_MAX}, .kind = CLI_MU_LIST,
      A(mu)},
     {"mu-range", OPT_MU_RANGE, "A:B:S", "A, A+S, ... up to B", .kind = CLI_MU_RANGE, A(mu)},
     {.head = "options:"},
@@ -91,7 +92,7 @@ static int check_args(void *dst)
         return cli_usage("asce", "--units, --dt and --truncate apply to motion files only");
     if (!a->mu.v)
         return cli_usage("asce", "give the friction coefficients with --mu or --mu-range");
-    return cli_mu_nonneg("asce", &a->mu);
+    return cli_mu_check("asce", &a->mu);
 }
 
 static const cli_command asce_cmd = {"asce", asce_head, asce_tail, asce_opts,

@@ -1,9 +1,12 @@
 /* main.c - seislide: dispatch to a command. */
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "signal/spectrum.h"
+#include "slide/kernel2d.h"
 
 typedef struct command {
     const char *name;
@@ -49,6 +52,14 @@ int main(int argc, char **argv)
      * SIGXFSZ ignored, the write that crosses it fails with EFBIG and the
      * command reports the file it could not write (docs/reliability.md). */
     signal(SIGXFSZ, SIG_IGN);
+    /* SEISLIDE_KERNELS=baseline: the vector kernels' baseline instance (SSE2)
+     * even on an AVX2 CPU, as a machine without AVX2 runs them; the outputs
+     * are the same bits (docs/reliability.md, "Across machines"). */
+    const char *kernels = getenv("SEISLIDE_KERNELS");
+    if (kernels && !strcmp(kernels, "baseline")) {
+        sl_spectrum_kernel_baseline(1);
+        sl_kernel2d_baseline(1);
+    }
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;

@@ -56,9 +56,11 @@ static const cli_opt opts[] = {
     {"seed", O_SEED, "S", "random seed (default 1); a floor's seed also depends on its\n"
      "spectra's numbers (or its 'seed ='), never on its name or the other floors",
      .kind = CLI_CALL},
-    {"mu-range", O_MU_RANGE, "A:B:S", "friction grid (default " SL_MU_GRID_TEXT ")",
+    {"mu-range", O_MU_RANGE, "A:B:S", "friction grid (default " SL_MU_GRID_TEXT "); every value above 0\n"
+     "and at most %g (static friction of equipment bases; docs/run.md)", {CLI_MU_MAX},
      .kind = CLI_MU_RANGE, A(mu)},
-    {"mu", O_MU, "LIST", "explicit friction values, increasing", .kind = CLI_MU_LIST, A(mu)},
+    {"mu", O_MU, "LIST", "explicit friction values, increasing, each above 0 and at most\n%g",
+     {CLI_MU_MAX}, .kind = CLI_MU_LIST, A(mu)},
     {"policy", O_POLICY, "P", "required clearance: nltha (default), asce or envelope",
      .kind = CLI_CALL},
     {"accuracy", O_ACC, "E", "relative error of every NLTHA peak the 2-D engine aims at (its\n"
@@ -163,7 +165,7 @@ static int check(void *dst)
     }
     if (a->mu.n > RUN_MAX_MU)
         return cli_usage(r, "%zu friction values; at most %d", a->mu.n, RUN_MAX_MU);
-    return cli_mu_increasing(r, &a->mu);
+    return cli_mu_check(r, &a->mu);
 }
 
 int run_parse(int argc, char **argv, run_args *a)

@@ -21,7 +21,7 @@ static const char slide_head[] =
     "normal force; a_v <= -g is lift-off (no friction), counted.\n\n";
 static const char slide_tail[] =
     "\nstatus: ok; no_sliding (mu g at or above the largest demand: not integrated);\n"
-    "never_stops (mu = 0); liftoff (some samples had a_v <= -g).\n"
+    "liftoff (some samples had a_v <= -g).\n"
     "Exit status: 0 success, 1 bad input or failed run, 2 usage error.\n";
 
 
@@ -46,7 +46,8 @@ static const cli_opt opts[] = {
     {"invert", O_INVERT, NULL, "multiply the horizontal records by -1", .kind = CLI_FLAG,
      A(so.invert)},
     {.head = "friction:"},
-    {"mu", O_MU, "LIST", "comma-separated coefficients, e.g. 0.05,0.1,0.2", .kind = CLI_MU_LIST,
+    {"mu", O_MU, "LIST", "comma-separated coefficients, increasing, each above 0\n"
+     "and at most %g, e.g. 0.05,0.1,0.2", {CLI_MU_MAX}, .kind = CLI_MU_LIST,
      A(mu)},
     {"mu-range", O_MU_RANGE, "A:B:S", "A, A+S, ... up to B", .kind = CLI_MU_RANGE, A(mu)},
     {"one-way", O_ONE_WAY, NULL, "1-D: the block slides only toward -x (where a positive\nfloor "
@@ -174,7 +175,7 @@ static int check_args(void *dst)
         return cli_usage("slide", "--one-way and --up-ratio are 1-D: drop --h2");
     if (a->history && a->mu.n != 1)
         return cli_usage("slide", "--history needs exactly one mu (got %zu)", a->mu.n);
-    if ((rc = cli_mu_nonneg("slide", &a->mu)))
+    if ((rc = cli_mu_check("slide", &a->mu)))
         return rc;
     return model_settings(a);
 }

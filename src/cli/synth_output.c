@@ -73,8 +73,8 @@ typedef struct report_row {
     X("zpa_g", "%.8g", r->k->zpa_ms2 / SL_G)                          \
     X("pgv_m_s", "%.6g", r->k->pgv_ms)                               \
     X("pgd_m", "%.6g", r->k->pgd_m)                                  \
-    X("v_end_m_s", "%.3e", r->k->v_end_ms)                           \
-    X("d_end_m", "%.3e", r->k->d_end_m)                              \
+    X("v_end_m_s", "%.3e", sl_synth_end_residual(r->k->v_end_ms, r->k->pgv_ms)) \
+    X("d_end_m", "%.3e", sl_synth_end_residual(r->k->d_end_m, r->k->pgd_m))    \
     X("d5_75_s", "%.4f", r->k->d5_75_s)                              \
     X("duration_s", "%.6g", r->k->duration_s)                        \
     X("corr_h1_h2", "%.4f", r->corr[0])                              \

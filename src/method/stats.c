@@ -4,6 +4,7 @@
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -130,14 +131,27 @@ sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double le
 /* Mean and SE of D = min(fs m, cap) from the sums of one sample (sums over
  * n values: s1 = sum x, s2 = sum x^2 at one mu; p1, p2 the same of pgd, or
  * has_cap 0), SE as sl_stats_design_value. */
+/* The sample variance from the sum of squares s2 and the mean m of n > 1
+ * values. s2 - n m^2 carries a round-off of up to about (n + 3) eps s2 of
+ * either sign, all there is when the values are one value repeated (a
+ * bootstrap resample of one set): at or below SL_STATS_VAR_ROUNDOFF times
+ * that it is 0, so that such a resample has SE* = 0 on every CPU and libm,
+ * never the square root of round-off (1e-8 of the mean). Real scatter
+ * (coefficient of variation 0.01 or more) is 1e-4 of s2 and more. */
+static double var_from_sums(double s2, double m, double dn)
+{
+    double q = s2 - dn * m * m;
+    return q > SL_STATS_VAR_ROUNDOFF * (dn + 3) * DBL_EPSILON * s2 ? q / (dn - 1) : 0.0;
+}
+
 static void design_from_sums(double s1, double s2, double p1, double p2, int has_cap, size_t n,
                              double fs, double cap_factor, double *d, double *se)
 {
     double dn = (double)n, m = s1 / dn;
-    double v = n > 1 ? (s2 - dn * m * m) / (dn - 1) : 0.0;
+    double v = n > 1 ? var_from_sums(s2, m, dn) : 0.0;
     double dd = fs * m, ss = fs * sqrt(v > 0 ? v / dn : 0.0);
     if (has_cap) {
-        double mp = p1 / dn, vp = n > 1 ? (p2 - dn * mp * mp) / (dn - 1) : 0.0;
+        double mp = p1 / dn, vp = n > 1 ? var_from_sums(p2, mp, dn) : 0.0;
         double cap = cap_factor * mp;
         if (dd > cap) {
             dd = cap;

@@ -67,6 +67,10 @@ typedef struct sl_stats_conv {
 /* Default number of bootstrap resamples and level of the band. */
 #define SL_STATS_BOOT_RESAMPLES 1000
 #define SL_STATS_BAND_LEVEL 0.90
+/* A sample variance within this many times the round-off of its sums,
+ * (n + 3) DBL_EPSILON x the sum of squares, is 0 (stats.c var_from_sums):
+ * n copies of one value have no scatter on any CPU. */
+#define SL_STATS_VAR_ROUNDOFF 4.0
 
 /* Summary of a sample (see the header comment for the formulas). */
 typedef struct sl_stats_mean {

@@ -2,6 +2,7 @@
  * line of a table: adding a field of sl_analysis the writers read is one
  * line here (and changes the schema hash, so older entries are recomputed). */
 #include "plant/entry.h"
+#include "plant/identity.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,19 +16,6 @@ typedef struct field {
 } field;
 #define FD(T, f, ty) {#f, ty, offsetof(T, f), sizeof(((T *)0)->f)}
 #define NF(t) (sizeof t / sizeof t[0])
-
-/* The settings of sl_analysis_opts that change a floor's result (the key).
- * Not here: progress and its context (no effect), mu (written as a list). */
-static const field key_opts[] = {
-    FD(sl_analysis_opts, n_sets, F_SIZE),       FD(sl_analysis_opts, rel_se, F_F64),
-    FD(sl_analysis_opts, abs_se_m, F_F64),      FD(sl_analysis_opts, max_sets, F_SIZE),
-    FD(sl_analysis_opts, first_batch, F_SIZE),  FD(sl_analysis_opts, min_batch, F_SIZE),
-    FD(sl_analysis_opts, plan_margin, F_F64),   FD(sl_analysis_opts, plan_growth, F_F64),
-    FD(sl_analysis_opts, boot_resamples, F_SIZE), FD(sl_analysis_opts, band_level, F_F64),
-    FD(sl_analysis_opts, band_method, F_ENUM),  FD(sl_analysis_opts, seed, F_U64),
-    FD(sl_analysis_opts, substeps, F_UINT),     FD(sl_analysis_opts, rtol, F_F64),
-    FD(sl_analysis_opts, scatter, F_F64),       FD(sl_analysis_opts, policy, F_ENUM),
-    FD(sl_analysis_opts, fs_nltha, F_F64),      FD(sl_analysis_opts, fs_asce, F_F64)};
 
 /* sl_analysis: the scalars (arrays below, after their counts). The wall
  * times are kept so that a reused floor reports what it cost. */
@@ -161,9 +149,9 @@ static uint64_t schema_hash(void)
     static const struct {
         const field *t;
         size_t n;
-    } all[] = {{key_opts, NF(key_opts)}, {f_analysis, NF(f_analysis)}, {f_design, NF(f_design)},
-               {f_row, NF(f_row)},       {f_range, NF(f_range)},       {f_conv, NF(f_conv)},
-               {f_damping, NF(f_damping)}, {f_check, NF(f_check)},     {f_set, NF(f_set)}};
+    } all[] = {{f_analysis, NF(f_analysis)}, {f_design, NF(f_design)}, {f_row, NF(f_row)},
+               {f_range, NF(f_range)},       {f_conv, NF(f_conv)},     {f_damping, NF(f_damping)},
+               {f_check, NF(f_check)},       {f_set, NF(f_set)}};
     /* the per-mu and per-set arrays, in the order they are written */
     static const char *const arrays[] = {"design_lo_m", "design_hi_m", "design_se_m",
                                          "err_est_m",   "vr_f_hz",     "vr_corr_sa",
@@ -184,8 +172,8 @@ void sl_entry_key_hash(const char *text, size_t len, char out[17])
     snprintf(out, 17, "%016llx", (unsigned long long)sl_fnv64(SL_FNV64_OFFSET, text, len));
 }
 
-/* The key text is the same byte encoding as the entries (pbuf.h), each
- * group preceded by its label, so that it is exact and unambiguous. */
+/* The key text is the same byte encoding as the entries (pbuf.h): the
+ * program, the schema, then the floor's identity (identity.h). */
 sl_status sl_entry_key_make(const sl_floor *fl, const sl_analysis_opts *o, const char *version,
                             sl_entry_key *k, sl_error *err)
 {
@@ -193,28 +181,7 @@ sl_status sl_entry_key_make(const sl_floor *fl, const sl_analysis_opts *o, const
     sl_pbuf_str(&w, "seislide floor result");
     sl_pbuf_str(&w, version);
     sl_pbuf_u64(&w, schema_hash());
-    sl_pbuf_str(&w, "settings");
-    put_fields(&w, o, key_opts, NF(key_opts));
-    sl_pbuf_u64(&w, o->n_mu);
-    for (size_t i = 0; i < o->n_mu; i++)
-        sl_pbuf_f64(&w, o->mu[i]);
-    sl_pbuf_str(&w, "floor");
-    sl_pbuf_u64(&w, (uint64_t)fl->has_seed);
-    sl_pbuf_u64(&w, fl->has_seed ? fl->seed : 0);
-    for (int c = 0; c < SL_FLOOR_NCOMP; c++) {
-        const sl_floor_component *fc = &fl->comp[c];
-        sl_pbuf_u64(&w, fc->nspec);
-        sl_pbuf_f64(&w, fc->zpa_ms2);
-        for (size_t s = 0; s < fc->nspec; s++) {
-            const sl_spectrum *sp = &fc->spec[s];
-            sl_pbuf_f64(&w, sp->damping);
-            sl_pbuf_u64(&w, sp->n);
-            for (size_t i = 0; i < sp->n; i++) {
-                sl_pbuf_f64(&w, sp->f_hz[i]);
-                sl_pbuf_f64(&w, sp->sa_ms2[i]);
-            }
-        }
-    }
+    sl_identity_write(&w, fl, o); /* the settings and the floor (identity.h) */
     if (w.oom) {
         sl_pbuf_free(&w);
         return sl_error_set(err, SL_ENOMEM, fl->path, 0, "out of memory");

@@ -4,18 +4,15 @@
  * read from an sl_analysis, so that a result read back gives byte-identical
  * outputs.
  *
- * Key. The key text lists, in a fixed order and with every double as its
- * exact bits: the program version, the entry schema (a hash of the field
- * tables below, so adding a field invalidates old entries), every setting
- * of sl_analysis_opts that changes a result (one table, entry.c: key_opts),
- * the friction grid, and the floor's numbers in SI (per component: every
- * damping, frequency and value, the ZPA; the file's `seed =` when given).
- * Nothing else: not the file's name, folder, building, floor name,
- * description, elevation or units (a floor's results depend on none of
- * them; analysis.h, "Seed"). The key hash (64-bit FNV-1a of the key text, 16
- * hex digits) names the entry; the entry stores the whole key text, and a
- * reader compares it byte for byte, so a hash collision is never a wrong
- * result.
+ * Key. The key text is: the program version, the entry schema (a hash of
+ * the field tables of entry.c, so adding a field invalidates old entries),
+ * and the floor's identity (identity.h: every setting that changes a
+ * result, the friction grid and the floor's numbers in SI, every double as
+ * its exact bits; the same walk makes the floor's seed). Nothing else: not
+ * the file's name, folder, building, floor name, description, elevation or
+ * units. The key hash (64-bit FNV-1a of the key text, 16 hex digits) names
+ * the entry; the entry stores the whole key text, and a reader compares it
+ * byte for byte, so a hash collision is never a wrong result.
  *
  * Not stored: the synthesized motions themselves (`--motions` recomputes),
  * only their quality checks the workbook shows.

@@ -141,8 +141,12 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
                                             .d5_75_s = k->d5_75_s, .min_ratio = k->min_ratio,
                                             .max_ratio = k->max_ratio,
                                             .max_run_below = (int)k->run_below,
-                                            .max_corr = k->max_corr, .v_end_ms = k->v_end_ms,
-                                            .d_end_m = k->d_end_m, .pass = k->pass,
+                                            .max_corr = k->max_corr,
+                                            .v_end_ms = sl_synth_end_residual(k->v_end_ms,
+                                                                              k->pgv_ms),
+                                            .d_end_m = sl_synth_end_residual(k->d_end_m,
+                                                                             k->pgd_m),
+                                            .pass = k->pass,
                                             .why = why[q]};
             }
     }

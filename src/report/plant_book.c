@@ -15,6 +15,14 @@
 
 const double SL_PLANT_BOOK_MU[SL_PLANT_BOOK_NMU] = {0.05, 0.1, 0.2, 0.3, 0.4, 0.5};
 
+double sl_plant_book_clearance(const sl_design *d, double mu)
+{
+    for (size_t k = 0; d && k < d->n; k++)
+        if (fabs(d->rows[k].mu - mu) <= SL_PLANT_BOOK_MU_TOL)
+            return d->rows[k].clearance_m;
+    return NAN; /* not a computed point: never interpolated between two */
+}
+
 const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n)
 {
     int nl = 0, as = 0, cap = 0;
@@ -108,8 +116,8 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
             sl_rpt_csv_comment(f, "WARNING", warn);
         }
     sl_rpt_csv_head(f, &rep, "the plant index: one row per floor of every building; the "
-                    "required clearance at six friction values (linear interpolation in mu on "
-                    "each floor's grid, empty outside it)");
+                    "required clearance at six friction values, each where the run computed it "
+                    "(empty where the friction grid does not hold it: never interpolated)");
     free(floors);
     free(ids);
     sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm");
@@ -129,7 +137,7 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
             fprintf(f, "%.3f", r->elevation_m);
         fprintf(f, ",%.4f,%zu,%s", r->zpa_h_ms2 / SL_G, r->n_sets, r->stop);
         for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {
-            double c = sl_design_clearance_at(r->design, SL_PLANT_BOOK_MU[k]);
+            double c = sl_plant_book_clearance(r->design, SL_PLANT_BOOK_MU[k]);
             fputc(',', f);
             if (isfinite(c))
                 fprintf(f, "%.3f", 1e3 * c);
@@ -262,8 +270,9 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
     worksheet_write_string(ws, 0, 0, "Plant index: the required clearance of every floor",
                            F->title);
     snprintf(note, sizeof note, "One row per floor of every building. Clearance in mm at six "
-             "friction values, by linear interpolation in mu on the floor's grid (empty outside "
-             "it); Governing: the design curve that gives it (clearance policy %s), \"(capped)\" "
+             "friction values, each where the run computed it (empty where the friction grid does "
+             "not hold it: never interpolated); Governing: the design curve that gives it "
+             "(clearance policy %s), \"(capped)\" "
              "where the cap governs; Motion checks: FAILED where the floor's motions failed "
              "their SRP 3.7.1 checks and were accepted with --accept-failed-checks. Each building's workbook (<building>/"
              "seislide-clearance.xlsx) shows every floor's curves, standard errors and flags; "
@@ -305,8 +314,8 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
         worksheet_write_string(ws, row, 6, r->stop, F->indent);
         for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
             sl_rpt_num_or_blank(ws, row, (lxw_col_t)(PL_CLEAR + k),
-                                SL_RPT_MM_PER_M * sl_design_clearance_at(r->design,
-                                                                         SL_PLANT_BOOK_MU[k]),
+                                SL_RPT_MM_PER_M * sl_plant_book_clearance(r->design,
+                                                                          SL_PLANT_BOOK_MU[k]),
                                 mm);
         worksheet_write_string(ws, row, PL_GOV, gov, F->indent);
         char chk_buf[64];

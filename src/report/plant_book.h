@@ -4,8 +4,8 @@
  *
  * Row: building, floor id, floor name, elevation, horizontal ZPA, motion
  * sets, convergence ("converged", "max_sets", "fixed"), the required
- * clearance at mu = SL_PLANT_BOOK_MU (sl_design_clearance_at; empty outside
- * the grid) and the governing method: which design curve gives the
+ * clearance at mu = SL_PLANT_BOOK_MU (sl_plant_book_clearance: the computed
+ * point; empty where the grid does not hold that mu) and the governing method: which design curve gives the
  * clearance at the grid rows where it is not zero ("NLTHA", "ASCE", "NLTHA
  * and ASCE" under the envelope policy), " (capped)" when the cap governs at
  * any of them; the motion checks ("passed", or "FAILED n of m" motion
@@ -70,6 +70,15 @@ typedef struct sl_plant_book {
     double lookup_mu;
     int lookup_zero_cache;
 } sl_plant_book;
+
+/* Two friction values closer than this are the same grid point. */
+#define SL_PLANT_BOOK_MU_TOL 1e-9
+
+/* The clearance (m) of design d at the grid row whose mu is within
+ * SL_PLANT_BOOK_MU_TOL of mu; NAN when the grid holds no such row. A fixed
+ * column of the plant index is a computed point, never interpolated across
+ * a coarse grid (a curve between two computed points need not be straight). */
+double sl_plant_book_clearance(const sl_design *d, double mu);
 
 /* The governing method of a row as text (above), into buf of size n. */
 const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n);

@@ -103,7 +103,7 @@ typedef struct sl_report_quality {
     int max_run_below;       /* longest run of consecutive frequency points
                                 below the target (SRP 3.7.1 limit: 9) */
     double max_corr;         /* largest |correlation| with the set's other components */
-    double v_end_ms, d_end_m;
+    double v_end_ms, d_end_m; /* 0 where round-off (sl_synth_end_residual) */
     int pass;
     const char *why;         /* failed checks, "" when passed */
 } sl_report_quality;

@@ -110,6 +110,13 @@
  * fraction of the motion's own PGV and PGD. */
 #define SL_SYNTH_END_VEL_FRAC 0.01
 #define SL_SYNTH_END_DISP_FRAC 0.01
+/* An end velocity or displacement at most this fraction of its peak (PGV,
+ * PGD) is round-off of the integration, not data: sl_synth_end_residual()
+ * makes it 0 for printing. The integration sums n (<= 1e5) terms of at most
+ * the peak each, so its round-off is at most about n x 2.2e-16 = 2e-11 of
+ * the peak; the baseline-corrected motions of the example floors end at up
+ * to 2e-12 of it. 1e-9 is far above both and 1e-7 of the 1 % check. */
+#define SL_SYNTH_END_ROUNDOFF 1e-9
 /* PGA/ZPA at least 1 - this (at most 1 + tol_above): the PGA is not pinned
  * but must agree with the target's ZPA. */
 #define SL_SYNTH_PGA_TOL_BELOW 0.25
@@ -418,6 +425,12 @@ const double *sl_synth_acc(const sl_synth_motion *m);
 const double *sl_synth_psa(const sl_synth_motion *m);
 /* The target on the grid (NAN outside its range); borrowed. */
 const double *sl_synth_target_psa(const sl_synth_motion *m);
+
+/* An end residual x (v_end_ms or d_end_m) as printed: 0 when |x| is at
+ * most SL_SYNTH_END_ROUNDOFF x peak (its PGV or PGD), else x. Round-off
+ * differs with the libm routines a CPU selects (FMA or not); printed, it
+ * would make outputs differ across machines. */
+double sl_synth_end_residual(double x, double peak);
 
 /* Every check of the best iterate except the correlation (max_corr = NAN,
  * ok_corr = 1), into *out. */

@@ -6,6 +6,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+double sl_synth_end_residual(double x, double peak)
+{
+    return fabs(x) <= SL_SYNTH_END_ROUNDOFF * fabs(peak) ? 0.0 : x;
+}
+
 void sl_synth_check_motion(const sl_synth_motion *m, sl_synth_check *out)
 {
     sl_synth_check_motion_psd(m, out, 1);

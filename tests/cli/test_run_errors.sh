@@ -32,8 +32,17 @@ usage accuracy-high "--accuracy 0.5 must be from 1e-09 to 0.1" run $G -o "$D/o" 
 usage accuracy-low "--accuracy 1e-12 must be from" run $G -o "$D/o" --accuracy 1e-12
 usage mu-decreasing "friction values must increase: 0.2 follows 0.3" run $G -o "$D/o" --mu 0.3,0.2
 usage mu-repeated "friction values must increase: 0.1 follows 0.1" run $G -o "$D/o" --mu 0.1,0.1
-usage mu-negative "friction coefficient -0.1 must be >= 0" run $G -o "$D/o" --mu -0.1,0.2
-usage mu-range-negative "friction coefficient -0.1 must be >= 0" run $G -o "$D/o" --mu-range -0.1:0.2:0.1
+usage mu-negative "friction coefficient -0.1 must be above 0" run $G -o "$D/o" --mu -0.1,0.2
+usage mu-range-negative "friction coefficient -0.1 must be above 0" run $G -o "$D/o" --mu-range -0.1:0.2:0.1
+# friction coefficients above 0 and at most 1.5 (docs/run.md), for a floor and a plant folder
+usage mu-zero "friction coefficient 0 must be above 0" run $G -o "$D/o" --mu 0,0.1,0.2
+usage mu-range-zero "friction coefficient 0 must be above 0" run $G -o "$D/o" --mu-range 0:0.5:0.1
+usage mu-plant-zero "friction coefficient 0 must be above 0" run floors -o "$D/o" --mu 0,0.05,0.1
+usage mu-high "friction coefficient 3 is above 1.5: not a friction coefficient" run $G -o "$D/o" --mu 0.1,3
+usage mu-percent "friction coefficient 5 is above 1.5" run $G -o "$D/o" --mu-range 5:50:5
+usage mu-range-top "friction coefficient 1.6 is above 1.5" run $G -o "$D/o" --mu-range 0.1:2:0.1
+usage mu-nan "bad --mu '0.1,nan'" run $G -o "$D/o" --mu 0.1,nan
+usage mu-high-unsorted "friction coefficient 2 is above 1.5" run $G -o "$D/o" --mu 0.5,2,0.1
 usage mu-twice "give the friction values once, by --mu or by --mu-range" run $G -o "$D/o" --mu 0.1 --mu-range 0.1:0.2:0.1
 usage mu-too-many "10001 friction values; at most 1000" run $G -o "$D/o" --mu-range 0:10:0.001
 usage mu-bad "bad --mu '0.1,x'" run $G -o "$D/o" --mu 0.1,x
@@ -76,6 +85,15 @@ usage slide-smooth-rtol "smooth model: rtol 0.5 outside" slide --h1 "$R" --units
 usage slide-smooth-one-way "reference models are symmetric" slide --h1 "$R" --units g --dt 0.01 --mu 0.3 --model smooth --one-way
 usage slide-plastic-rtol "--rtol or --atol does not apply to --model plastic" slide --h1 "$R" --units g --dt 0.01 --mu 0.3 --model plastic --rtol 0.001
 usage slide-substeps-rtol "--substeps replaces the error control that --rtol sets" slide --h1 "$R" --h2 "$R" --units g --dt 0.01 --mu 0.3 --substeps 4 --rtol 0.01
+usage slide-mu-zero "friction coefficient 0 must be above 0" slide --h1 "$R" --units g --dt 0.01 --mu 0
+usage slide-mu-decreasing "friction values must increase: 0.1 follows 0.3" slide --h1 "$R" --units g --dt 0.01 --mu 0.3,0.1
+usage slide-mu-high "friction coefficient 1.51 is above 1.5" slide --h1 "$R" --units g --dt 0.01 --mu 1.51
+usage asce-mu-high "friction coefficient 2 is above 1.5" asce --rg160 0.3 --mu 0.1,2
+usage asce-mu-range-zero "friction coefficient 0 must be above 0" asce --rg160 0.3 --mu-range 0:0.3:0.1
+usage asce-mu-decreasing "friction values must increase" asce --rg160 0.3 --mu 0.2,0.1
+# the limit itself is a friction coefficient (a range's last value A + k S within round-off)
+t_run asce --rg160 0.3 --mu-range 0.05:1.5:0.05 --csv; t_expect_rc asce-mu-limit 0
+[ "$(tail -1 "$T_OUT" | cut -d, -f1)" = 1.5 ] && t_pass || t_fail "mu 1.5 not the last row: $(tail -1 "$T_OUT")"
 usage slide-mu-twice "give the friction values once" slide --h1 "$R" --units g --dt 0.01 --mu 0.3 --mu-range 0.1:0.2:0.1
 usage slide-history-empty "--history needs a value" slide --h1 "$R" --units g --dt 0.01 --mu 0.3 --history ""
 usage asce-rg160 "--rg160 9 g must be from 0.01 to 5 g" asce --rg160 9 --mu 0.1
