@@ -8,6 +8,8 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
+
 /* Damping ratio of the spectra of the ASCE/SEI 43-05 method (Appendix A.1,
  * REFERENCE.md 2, step 3: 10 %-damped pseudo-accelerations); the study
  * also matched its ground set to RG 1.60 at this damping (REFERENCE.md 1). */
@@ -31,6 +33,6 @@
 
 /* Fill mu[0 .. SL_MU_GRID_N - 1] with the default grid, each value
  * computed from its index (from + k step, no accumulated round-off). */
-void sl_mu_grid_default(double mu[SL_MU_GRID_N]);
+SL_API void sl_mu_grid_default(double mu[SL_MU_GRID_N]);
 
 #endif
