@@ -157,5 +157,5 @@ install: $(PROG) $(LIB) $(SHLIB)
 	install -m 644 docs/seislide.1 $(DESTDIR)$(PREFIX)/share/man/man1/seislide.1
 
 clean:
-	rm -rf build build-asan $(PROG)
+	rm -rf build build-asan build-clang $(PROG)
 include tests/fuzz/fuzz.mk
