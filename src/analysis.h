@@ -171,7 +171,9 @@ typedef struct sl_analysis {
     size_t n_mu_skipped;        /* friction values not integrated for any set */
     int sa10_fallback;          /* 1: ASCE used the motions' mean 10 % spectra */
     double time_synth_s, time_nltha_s, time_asce_s; /* wall time of each step, s */
-    double time_stats_s;        /* wall time of the convergence statistics and band, s */
+    double time_stats_s;        /* wall time of the convergence statistics, the band and the
+                                   variance-reduction diagnostic, s (each step timed once:
+                                   time_asce_s is the ASCE method and the design only) */
     char note[512];             /* what a reader must know ("" when nothing) */
     /* every damping of the floor file other than the one matched, per
      * component in file order (n_dampings = 0: the file gives one) */
