@@ -10,7 +10,7 @@
 
 #include "core/api.h"
 
-/* Standard gravity, m/s^2 (ISO 80000-3; ../shared/docs/REFERENCE.md). */
+/* Standard gravity, m/s^2 (ISO 80000-3). */
 #define SL_G 9.80665
 
 /* pi (math.h's M_PI is not in C11). */

@@ -1,6 +1,6 @@
 /*
  * setdir.h - a recorded three-component set read from one folder: PEER
- * .AT2 files (the layout of ../shared/records/RSN*), two horizontals and
+ * .AT2 files (the layout of a PEER NGA-West2 download, RSN*), two horizontals and
  * one vertical told apart by sl_motion_name_is_vertical(); or, in a folder
  * without .AT2 files, the agency formats of io/formats.h: one GeoNet .V2A
  * or CSMIP .V2 file with three channels, three USGS .smc files, or three

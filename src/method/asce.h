@@ -1,6 +1,6 @@
 /*
  * asce.h - the approximate sliding displacement of ASCE/SEI 43-05,
- * Appendix A.1 (as used in the source study, ../shared/docs/REFERENCE.md 2),
+ * Appendix A.1 (as applied in the source study; docs/spectra.md section 3),
  * and Newmark's (1965) rigid-block estimates for comparison.
  *
  * Steps, for a friction coefficient mu:

@@ -10,7 +10,7 @@
  *   RG 1.60       horizontal spectrum at PGA   PGA (vertical     PGA                   1.4 x 36 in x PGA
  *                 for H1 and H2                ZPA = PGA)                              (100-40 of two equal)
  *
- * ZPA_h is the LARGER horizontal peak (REFERENCE.md 2: no sliding when
+ * ZPA_h is the LARGER horizontal peak (ASCE/SEI 43-05 A.1: no sliding when
  * mu_e g >= the horizontal peak acceleration). Damping: SL_ASCE_DAMPING
  * (core/standards.h).
  *

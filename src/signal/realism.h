@@ -1,11 +1,12 @@
 /*
  * realism.h - measures of whether an acceleration history looks like a real
- * earthquake motion, beyond the spectral checks (../shared/docs/REFERENCE.md
- * 5; docs/synthesis.md section 4).
+ * earthquake motion, beyond the spectral checks (US NRC SRP 3.7.1: motions
+ * consistent with the characteristic values of real ones; docs/synthesis.md
+ * section 4).
  *
  *  - Peaks near the PGA: the number of local maxima of |a| (sample i with
  *    |a_i| > |a_{i-1}| and |a_i| >= |a_{i+1}|) above frac x PGA. Real
- *    horizontal records (338 in ../shared/records): median 1, 90th
+ *    horizontal records (338 PEER NGA-West2, USGS and CWA components): median 1, 90th
  *    percentile 3, maximum 7 at frac = 0.9. Clipping makes dozens.
  *  - Characteristic ratios (SRP 3.7.1, "consistent with characteristic
  *    values"): V/A = PGV/PGA and AD/V^2 = PGA PGD/PGV^2. RG 1.60 rests on

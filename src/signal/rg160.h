@@ -1,7 +1,7 @@
 /*
  * rg160.h - US NRC Regulatory Guide 1.60 design response spectra
  * ("Design Response Spectra for Seismic Design of Nuclear Power Plants",
- * Rev. 1 1973 = Rev. 2 2014 numerically; ../shared/docs/REFERENCE.md 3).
+ * Rev. 1 1973 = Rev. 2 2014 numerically; Tables I and II, Figures 1 and 2).
  *
  * The spectrum is scaled to a peak ground acceleration a. It is given by four
  * control points joined by straight lines in log SA against log f:

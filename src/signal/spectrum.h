@@ -56,8 +56,8 @@
 #include "core/spectrum_type.h"
 #include "core/status.h"
 
-/* Sub-steps per natural period for the sampled peak (REFERENCE.md 4:
- * dt <= T/20, error <= 1 - cos(pi/20) = 1.23 %). */
+/* Sub-steps per natural period for the sampled peak (the peak over samples
+ * underestimates by up to 1 - cos(pi h/T): h <= T/20, error <= 1 - cos(pi/20) = 1.23 %). */
 #define SL_SPECTRUM_STEPS_PER_PERIOD 20.0
 
 /* Default frequency grid (US NRC SRP 3.7.1): 100 log-spaced points per

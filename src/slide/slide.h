@@ -2,9 +2,10 @@
  * slide.h - nonlinear time-history analysis (NLTHA) of a rigid block sliding
  * on a level floor with isotropic Coulomb friction (static = kinetic).
  *
- * Equation of motion (../shared/docs/REFERENCE.md section 1), u = block
- * displacement relative to the floor, a_g = horizontal floor acceleration
- * (1-D or 2-D), a_v = vertical floor acceleration (up positive):
+ * Equation of motion (the source study's model; docs/model.md, "Equation
+ * of motion"), u = block displacement relative to the floor, a_g =
+ * horizontal floor acceleration (1-D or 2-D), a_v = vertical floor
+ * acceleration (up positive):
  *
  *     u'' = -a_g(t) - mu N(t) s,   N = max(g + a_v, 0)              (1)
  *     s = u'/|u'| while sliding,   |s| <= 1 while stuck.

@@ -6,7 +6,7 @@
  * half-cycles; no clipping and no pinning of the peak (the PGA comes out of
  * matching the spectrum's high-frequency end). The same iteration modifies a
  * recorded motion to match a target while keeping its Fourier phases.
- * Method, defaults and measured results: docs/synthesis.md (issue 12).
+ * Method, defaults and measured results: docs/synthesis.md.
  *
  * Start (iteration 0). Synthetic: K Gabor wavelets (docs/synthesis.md 3.1)
  *     a(t) = sum_q A_q exp(-(t - t_q)^2/(2 s_q^2)) cos(2 pi f_q (t - t_q) + phi_q),
@@ -46,7 +46,7 @@
  *     E(t) = exp(-c (t - t2)) after, c = ln(1/e_end)/(T - t2), so E(T) = e_end,
  * with t1 = rise_frac T and t2 = hold_frac T.
  *
- * Acceptance checks (US NRC SRP 3.7.1, ../shared/docs/REFERENCE.md 5), each
+ * Acceptance checks (US NRC SRP 3.7.1, Option 1 Approach 2), each
  * a field of sl_synth_params with that default, computed per motion on the
  * grid of sl_spectrum_grid(fmin_hz, fmax_hz, per_decade) restricted to the
  * target's frequency range, at the target's damping:
@@ -99,7 +99,7 @@
 #include "signal/spectrum.h"
 #include "core/status.h"
 
-/* ---- Defaults of the acceptance checks (SRP 3.7.1; REFERENCE.md 5) ---- */
+/* ---- Defaults of the acceptance checks (SRP 3.7.1) -------------------- */
 #define SL_SYNTH_TOL_BELOW 0.10      /* no point more than 10 % below the target */
 #define SL_SYNTH_TOL_ABOVE 0.30      /* no point more than 30 % above the target */
 #define SL_SYNTH_MAX_RUN_BELOW 9     /* most consecutive grid points below the target */
@@ -324,7 +324,7 @@ SL_API unsigned long sl_synth_stream_seed(uint64_t seed, size_t set, sl_synth_co
                                           unsigned attempt);
 
 /* ------------------------------------------------------------------ */
-/* One motion: set / iterate / test (STYLE 5)                          */
+/* One motion: set / iterate / test                                    */
 /* ------------------------------------------------------------------ */
 
 /* Every other damping a floor file gives (docs/synthesis.md 4): the
