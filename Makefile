@@ -1,6 +1,7 @@
 # seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate physfloors.
 CC      ?= cc
 PREFIX  ?= /usr/local
+LIBDIR  ?= $(PREFIX)/lib
 DESTDIR ?=
 BUILD   ?= build
 OPT     ?= -O2 -g -fno-math-errno -ftree-vectorize
@@ -18,7 +19,9 @@ PKG_LIBS   := $(shell pkg-config --libs $(PKGS))
 FP      := -ffp-contract=off
 ALL_CFLAGS  = $(WARN) $(FP) $(WERROR) -fopenmp -D_XOPEN_SOURCE=700 -Isrc $(PKG_CFLAGS) $(OPT) $(CFLAGS)
 ALL_LDFLAGS = -fopenmp $(LDFLAGS)
-LIBS_ALL    = $(PKG_LIBS) -lm
+# FFTW's planner made thread-safe by the library (core/fftw.c) is in
+# libfftw3_threads (Debian's libfftw3-dev; it has no .pc of its own).
+LIBS_ALL    = -lfftw3_threads $(PKG_LIBS) -lm
 
 # libseislide is the numerical core (every src/ module but the command line
 # and the study); src/study (the source study, the bench, physical floors)
@@ -34,7 +37,8 @@ TEST_BIN  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 LIB       := $(BUILD)/libseislide.a
 STUDY_LIB := $(BUILD)/libseislide-study.a
 PROG      ?= seislide
-VERSION   := $(shell sed -n 's/^\#define SEISLIDE_VERSION "\(.*\)"/\1/p' src/cli/cli.h)
+# The version, declared once in src/core/version.h (MAJOR, MINOR, PATCH in that order).
+VERSION   := $(shell sed -n 's/^\#define SEISLIDE_VERSION_[A-Z]* \([0-9][0-9]*\)$$/\1/p' src/core/version.h | paste -sd.)
 # The shared library: libseislide.so.VERSION, soname libseislide.so.SO_MAJOR
 # (raised when the interface changes incompatibly). Its objects are the static
 # library's, compiled position-independent (PIC; docs/dependencies.md has the
@@ -54,7 +58,9 @@ all: $(PROG) $(SHLIB) $(TEST_BIN)
 
 # (the library's objects are rebuilt when the Makefile changes: a tree
 # built before they were PIC would not link the shared library)
-$(LIB_OBJ): OBJ_CFLAGS := $(PIC)
+# Hidden by default: the shared library exports the functions whose
+# declaration in an installed header carries SL_API (src/core/api.h), no other.
+$(LIB_OBJ): OBJ_CFLAGS := $(PIC) -fvisibility=hidden
 $(LIB_OBJ): Makefile
 $(BUILD)/%.o: %.c $(wildcard src/*.h src/*/*.h tests/*.h)
 	@mkdir -p $(dir $@)
@@ -118,10 +124,6 @@ asan:
 	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
 	  LDFLAGS="-fsanitize=address,undefined" test
 
-$(BUILD)/seislide.pc: seislide.pc.in Makefile src/cli/cli.h
-	@mkdir -p $(dir $@)
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' $< > $@
-
 # Mutation testing (minutes; not part of test): tests/mutations.txt, one line each,
 # applied in 2 scratch copies in parallel, each running only the suites that can see
 # the mutated file (tools/mutate.sh); ends with "N mutations, M survived, ...".
@@ -133,23 +135,27 @@ mutate:
 # include/seislide/, their quoted includes ("core/status.h") rewritten to
 # <seislide/core/status.h> so that Cflags -I$${includedir} finds them and no
 # generic name (analysis.h, core/status.h) lands on a user's include path;
-# seislide.pc and the manual page.
-install: $(PROG) $(LIB) $(SHLIB) $(BUILD)/seislide.pc
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig \
+# seislide.pc, written here from this install's PREFIX and LIBDIR (nothing
+# cached: a second install with another PREFIX writes its own), and the
+# manual page.
+install: $(PROG) $(LIB) $(SHLIB)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/pkgconfig \
 	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/include/seislide
 	install -m 755 $(PROG) $(DESTDIR)$(PREFIX)/bin/seislide
-	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/libseislide.a
-	install -m 755 $(SHLIB) $(DESTDIR)$(PREFIX)/lib/$(notdir $(SHLIB))
-	ln -sf $(notdir $(SHLIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
-	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libseislide.so
+	install -m 644 $(LIB) $(DESTDIR)$(LIBDIR)/libseislide.a
+	install -m 755 $(SHLIB) $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB))
+	ln -sf $(notdir $(SHLIB)) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libseislide.so
 	for h in $(PUBLIC_H:src/%=%); do \
 	  install -d $(DESTDIR)$(PREFIX)/include/seislide/$$(dirname $$h) && \
 	  sed 's|^\([[:space:]]*#[[:space:]]*include[[:space:]]*\)"\([^"]*\)"|\1<seislide/\2>|' \
 	    src/$$h > $(DESTDIR)$(PREFIX)/include/seislide/$$h && \
 	  chmod 644 $(DESTDIR)$(PREFIX)/include/seislide/$$h || exit 1; done
-	install -m 644 $(BUILD)/seislide.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/seislide.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' -e 's|@VERSION@|$(VERSION)|' \
+	  seislide.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/seislide.pc
+	chmod 644 $(DESTDIR)$(LIBDIR)/pkgconfig/seislide.pc
 	install -m 644 docs/seislide.1 $(DESTDIR)$(PREFIX)/share/man/man1/seislide.1
 
 clean:
-	rm -rf build build-asan $(PROG)
+	rm -rf build build-asan build-clang $(PROG)
 include tests/fuzz/fuzz.mk

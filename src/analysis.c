@@ -337,34 +337,62 @@ static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_er
     return SL_OK;
 }
 
-sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err)
+/* One floor's run: the floor, the options, the result being built and the
+ * working arrays of the steps below. */
+typedef struct run {
+    const sl_floor *fl;
+    const sl_analysis_opts *o;
+    sl_analysis *a;
+    int adaptive;            /* o->n_sets == 0: sets added until converged */
+    size_t cap_sets, n_mu;
+    size_t n;                /* sets synthesized and run so far */
+    sl_synth_params sp;
+    sl_synth_target tgt[SL_SYNTH_NCOMP];
+    sl_synth *plan;
+    sl_slide_opts so;
+    sl_scatter *scat;        /* with intensity scatter, else NULL */
+    sl_set *sets;            /* the sets' motions, borrowed from a->sets */
+    sl_slide_result *res;    /* n x n_mu (one when scat keeps its own) */
+    double *peak, *err_k;    /* n x n_mu peaks and error estimates, m */
+    double *best;            /* ASCE best estimate per mu, m */
+    int *noslide;            /* per mu: no set slides */
+    size_t *n_skip;          /* per mu: sets that need no NLTHA */
+    sl_spectrum *fb[2];      /* the ASCE fallback spectra (H1, H2) */
+    sl_asce *asce;
+    prog_ctx pc;
+} run;
+
+static void run_free(run *r)
 {
-    if (check_opts(fl, o, err))
-        return NULL;
-    const int adaptive = o->n_sets == 0;
-    const size_t cap_sets = adaptive ? o->max_sets : o->n_sets;
-    const size_t n_mu = o->n_mu;
-    sl_analysis *a = calloc(1, sizeof *a);
-    sl_synth *plan = NULL;
-    sl_set *sets = NULL;
-    sl_slide_result *res = NULL;
-    double *peak = NULL, *best = NULL;
-    int *noslide = NULL;
-    size_t *n_skip = NULL;
-    sl_spectrum *fb[2] = {NULL, NULL};
-    sl_asce *asce = NULL;
-    sl_scatter *scat = NULL;
-    double *err_k = NULL;
+    sl_scatter_free(r->scat);
+    free(r->err_k);
+    free(r->sets);
+    free(r->res);
+    free(r->peak);
+    free(r->n_skip);
+    free(r->noslide);
+    free(r->best);
+    sl_spectrum_free(r->fb[0]);
+    sl_spectrum_free(r->fb[1]);
+    sl_asce_free(r->asce);
+    sl_synth_free(r->plan);
+}
+
+/* The result and the working arrays, for up to cap_sets sets. */
+static sl_status run_alloc(run *r, sl_error *err)
+{
+    const size_t cap_sets = r->cap_sets, n_mu = r->n_mu;
+    sl_analysis *a = r->a = calloc(1, sizeof *a);
     if (!a)
-        goto nomem;
+        return sl_error_set(err, SL_ENOMEM, r->fl->path, 0, "out of memory");
     /* with scatter, each set's expected peak over its intensity (R3),
      * from the NLTHA on the scatter's log grid */
-    a->scatter = o->scatter;
+    a->scatter = r->o->scatter;
     a->n_nltha_mu = n_mu;
-    if (o->scatter > 0) {
-        if (!(scat = sl_scatter_alloc(o->scatter, o->mu, n_mu, err)))
-            goto fail;
-        sl_scatter_grid(scat, &a->n_nltha_mu);
+    if (r->o->scatter > 0) {
+        if (!(r->scat = sl_scatter_alloc(r->o->scatter, r->o->mu, n_mu, err)))
+            return err ? err->code : SL_ENOMEM;
+        sl_scatter_grid(r->scat, &a->n_nltha_mu);
     }
     a->sets = calloc(cap_sets, sizeof *a->sets);
     a->pgd_m = calloc(cap_sets, sizeof *a->pgd_m);
@@ -377,172 +405,208 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     a->vr_corr_sa = calloc(n_mu, sizeof *a->vr_corr_sa);
     a->vr_corr_pgv = calloc(n_mu, sizeof *a->vr_corr_pgv);
     a->vr_factor = calloc(n_mu, sizeof *a->vr_factor);
-    sets = calloc(cap_sets, sizeof *sets);
-    res = calloc(scat ? 1 : cap_sets * n_mu, sizeof *res); /* (R3) keeps its own */
-    err_k = calloc(cap_sets * n_mu, sizeof *err_k);
-    peak = calloc(cap_sets * n_mu, sizeof *peak);
-    n_skip = calloc(n_mu, sizeof *n_skip);
-    noslide = calloc(n_mu, sizeof *noslide);
-    best = calloc(n_mu, sizeof *best);
-    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m || !a->design_se_m ||
-        !a->err_est_m || !a->vr_f_hz || !a->vr_corr_sa || !a->vr_corr_pgv || !a->vr_factor ||
-        !sets ||
-        !res || !peak || !n_skip || !noslide || !best || !err_k)
-        goto nomem;
-    a->zpa_h_ms2 = sl_asce_floor_zpa_h(fl); /* the larger horizontal */
-    a->av_ms2 = fl->comp[SL_FLOOR_V].zpa_ms2;
-    a->floor_seed = sl_analysis_floor_seed(o->seed, fl);
+    r->sets = calloc(cap_sets, sizeof *r->sets);
+    r->res = calloc(r->scat ? 1 : cap_sets * n_mu, sizeof *r->res); /* (R3) keeps its own */
+    r->err_k = calloc(cap_sets * n_mu, sizeof *r->err_k);
+    r->peak = calloc(cap_sets * n_mu, sizeof *r->peak);
+    r->n_skip = calloc(n_mu, sizeof *r->n_skip);
+    r->noslide = calloc(n_mu, sizeof *r->noslide);
+    r->best = calloc(n_mu, sizeof *r->best);
+    if (!a->sets || !a->pgd_m || !a->conv || !a->design_lo_m || !a->design_hi_m ||
+        !a->design_se_m || !a->err_est_m || !a->vr_f_hz || !a->vr_corr_sa || !a->vr_corr_pgv ||
+        !a->vr_factor || !r->sets || !r->res || !r->peak || !r->n_skip || !r->noslide ||
+        !r->best || !r->err_k)
+        return sl_error_set(err, SL_ENOMEM, r->fl->path, 0, "out of memory");
+    a->zpa_h_ms2 = sl_asce_floor_zpa_h(r->fl); /* the larger horizontal */
+    a->av_ms2 = r->fl->comp[SL_FLOOR_V].zpa_ms2;
+    a->floor_seed = sl_analysis_floor_seed(r->o->seed, r->fl);
+    return SL_OK;
+}
 
-    sl_synth_params sp;
-    sl_synth_params_default(&sp);
-    sl_synth_target tgt[SL_SYNTH_NCOMP];
-    if (sl_synth_targets_floor(fl, 0.0, tgt, err))
-        goto fail;
+/* The floor's targets, the synthesis plan and the NLTHA options. */
+static sl_status run_plan(run *r, sl_error *err)
+{
+    sl_synth_params_default(&r->sp);
+    if (sl_synth_targets_floor(r->fl, 0.0, r->tgt, err))
+        return err ? err->code : SL_EINVAL;
     size_t n_t = (size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1;
-    plan = sl_synth_alloc(n_t, SL_SYNTH_DT_S, &sp, err);
-    if (!plan)
-        goto fail;
-    sl_slide_opts so;
-    sl_slide_opts_default(&so);
-    so.substeps = o->substeps;
-    so.rtol = o->rtol;
-    prog_ctx pc = {o};
+    if (!(r->plan = sl_synth_alloc(n_t, SL_SYNTH_DT_S, &r->sp, err)))
+        return err ? err->code : SL_ENOMEM;
+    sl_slide_opts_default(&r->so);
+    r->so.substeps = r->o->substeps;
+    r->so.rtol = r->o->rtol;
+    r->pc.o = r->o;
+    return SL_OK;
+}
 
-    /* 1-2. batches of synthesis and NLTHA until converged (or the fixed count) */
-    size_t n = 0, want = adaptive ? (o->first_batch < cap_sets ? o->first_batch : cap_sets)
-                                  : o->n_sets;
-    for (;;) {
-        size_t nb = want - n;
-        double t0 = sl_clock_s();
-        sl_status st = sl_synth_make_sets(plan, tgt, a->floor_seed, n, nb, a->sets + n,
-                                          synth_progress, &pc, err);
-        if (st != SL_OK && st != SL_ENOCONV)
-            goto fail;
-        a->n_sets = want;
-        for (size_t s = n; s < want; s++)
-            for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-                a->n_failed_motions += !a->sets[s].check[c].pass;
-        a->time_synth_s += sl_clock_s() - t0;
-
-        t0 = sl_clock_s();
-        for (size_t s = n; s < want; s++) {
-            sets[s] = a->sets[s].set;
-            a->pgd_m[s] = sl_set_pgd_100_40(&sets[s]);
-        }
-        if (o->progress)
-            o->progress(o->progress_ctx, "nltha", n, want);
-        if (scat ? sl_scatter_slide_batch(scat, sets + n, nb, &so, peak + n * n_mu,
-                                          err_k + n * n_mu, err)
-                 : sl_slide_batch(sets + n, nb, o->mu, n_mu, &so, res + n * n_mu, err))
-            goto fail;
-        if (o->progress)
-            o->progress(o->progress_ctx, "nltha", want, want);
-        for (size_t i = n * n_mu; i < want * n_mu; i++) {
-            size_t k = i % n_mu;
-            /* "need no NLTHA": skipped (mu above the set's threshold), or
-             * with scatter zero at every intensity */
-            if (scat) {
-                n_skip[k] += peak[i] == 0;
-            } else {
-                peak[i] = res[i].peak_m;
-                err_k[i] = res[i].err_est_m;
-                n_skip[k] += (res[i].flags & SL_SLIDE_SKIPPED) != 0;
-            }
-            a->err_est_m[k] = fmax(a->err_est_m[k], err_k[i]);
-        }
-        a->time_nltha_s += sl_clock_s() - t0;
-        n = want;
-        a->n_batches++;
-
-        t0 = sl_clock_s();
-        double worst = 0;
-        if (conv_update(a, peak, n, o, &worst, err))
-            goto fail;
-        a->time_stats_s += sl_clock_s() - t0;
-        if (!adaptive) {
-            a->stop = SL_ANALYSIS_STOP_FIXED;
-            break;
-        }
-        if (a->n_unconverged == 0) {
-            a->stop = SL_ANALYSIS_STOP_CONVERGED;
-            break;
-        }
-        if (n >= cap_sets) {
-            a->stop = SL_ANALYSIS_STOP_MAX_SETS;
-            break;
-        }
-        /* next batch: what the worst mu needs with the margin (stats.h (4)) */
-        want = sl_stats_plan_next(n, worst, o->plan_margin, o->min_batch, o->plan_growth,
-                                  cap_sets);
-    }
-    /* every other damping of the file on the motions' own spectra, once on
-     * all n sets (the set mean is over every set of the floor) */
+/* One batch: sets r->n .. want-1 synthesized (time_synth_s), then their
+ * NLTHA at every mu (time_nltha_s); r->n = want. */
+static sl_status run_batch(run *r, size_t want, sl_error *err)
+{
+    sl_analysis *a = r->a;
+    const sl_analysis_opts *o = r->o;
+    const size_t n = r->n, nb = want - n, n_mu = r->n_mu;
     double t0 = sl_clock_s();
-    if (store_dampings(a, plan, fl, &sp, err))
-        goto fail;
+    sl_status st = sl_synth_make_sets(r->plan, r->tgt, a->floor_seed, n, nb, a->sets + n,
+                                      synth_progress, &r->pc, err);
+    if (st != SL_OK && st != SL_ENOCONV)
+        return st;
+    a->n_sets = want;
+    for (size_t s = n; s < want; s++)
+        for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+            a->n_failed_motions += !a->sets[s].check[c].pass;
     a->time_synth_s += sl_clock_s() - t0;
 
     t0 = sl_clock_s();
-    if (conv_band(a, peak, n, o, err))
-        goto fail;
+    for (size_t s = n; s < want; s++) {
+        r->sets[s] = a->sets[s].set;
+        a->pgd_m[s] = sl_set_pgd_100_40(&r->sets[s]);
+    }
+    if (o->progress)
+        o->progress(o->progress_ctx, "nltha", n, want);
+    st = r->scat ? sl_scatter_slide_batch(r->scat, r->sets + n, nb, &r->so, r->peak + n * n_mu,
+                                          r->err_k + n * n_mu, err)
+                 : sl_slide_batch(r->sets + n, nb, o->mu, n_mu, &r->so, r->res + n * n_mu, err);
+    if (st)
+        return st;
+    if (o->progress)
+        o->progress(o->progress_ctx, "nltha", want, want);
+    for (size_t i = n * n_mu; i < want * n_mu; i++) {
+        size_t k = i % n_mu;
+        /* "need no NLTHA": skipped (mu above the set's threshold), or
+         * with scatter zero at every intensity */
+        if (r->scat) {
+            r->n_skip[k] += r->peak[i] == 0;
+        } else {
+            r->peak[i] = r->res[i].peak_m;
+            r->err_k[i] = r->res[i].err_est_m;
+            r->n_skip[k] += (r->res[i].flags & SL_SLIDE_SKIPPED) != 0;
+        }
+        a->err_est_m[k] = fmax(a->err_est_m[k], r->err_k[i]);
+    }
+    a->time_nltha_s += sl_clock_s() - t0;
+    r->n = want;
+    a->n_batches++;
+    return SL_OK;
+}
+
+/* 1-2. Batches of synthesis and NLTHA until converged, at the cap, or the
+ * fixed count; the convergence statistics after each (time_stats_s). */
+static sl_status run_sets(run *r, sl_error *err)
+{
+    sl_analysis *a = r->a;
+    const sl_analysis_opts *o = r->o;
+    size_t want = r->adaptive ? (o->first_batch < r->cap_sets ? o->first_batch : r->cap_sets)
+                              : o->n_sets;
+    for (;;) {
+        sl_status st = run_batch(r, want, err);
+        if (st)
+            return st;
+        double t0 = sl_clock_s(), worst = 0;
+        if ((st = conv_update(a, r->peak, r->n, o, &worst, err)))
+            return st;
+        a->time_stats_s += sl_clock_s() - t0;
+        if (!r->adaptive) {
+            a->stop = SL_ANALYSIS_STOP_FIXED;
+            return SL_OK;
+        }
+        if (a->n_unconverged == 0) {
+            a->stop = SL_ANALYSIS_STOP_CONVERGED;
+            return SL_OK;
+        }
+        if (r->n >= r->cap_sets) {
+            a->stop = SL_ANALYSIS_STOP_MAX_SETS;
+            return SL_OK;
+        }
+        /* next batch: what the worst mu needs with the margin (stats.h (4)) */
+        want = sl_stats_plan_next(r->n, worst, o->plan_margin, o->min_batch, o->plan_growth,
+                                  r->cap_sets);
+    }
+}
+
+/* Every other damping of the file on the motions' own spectra, once on all
+ * n sets (time_synth_s: the set mean is over every set of the floor); the
+ * bootstrap band (time_stats_s); the mu at which no set slides. */
+static sl_status run_bands(run *r, sl_error *err)
+{
+    sl_analysis *a = r->a;
+    double t0 = sl_clock_s();
+    sl_status st = store_dampings(a, r->plan, r->fl, &r->sp, err);
+    if (st)
+        return st;
+    a->time_synth_s += sl_clock_s() - t0;
+
+    t0 = sl_clock_s();
+    if ((st = conv_band(a, r->peak, r->n, r->o, err)))
+        return st;
     a->time_stats_s += sl_clock_s() - t0;
-    for (size_t k = 0; k < n_mu; k++) {
+    for (size_t k = 0; k < r->n_mu; k++) {
         a->design_lo_m[k] = a->conv[k].design_lo_m;
         a->design_hi_m[k] = a->conv[k].design_hi_m;
         a->design_se_m[k] = a->conv[k].design_se_m;
-        noslide[k] = n_skip[k] == n;
-        a->n_mu_skipped += (size_t)noslide[k];
+        r->noslide[k] = r->n_skip[k] == r->n;
+        a->n_mu_skipped += (size_t)r->noslide[k];
     }
+    return SL_OK;
+}
 
-    t0 = sl_clock_s();
-    /* 3. ASCE on the 10 % spectra (or the documented fallback) */
-    const sl_spectrum *s10[2] = {sl_floor_sa10(fl, SL_FLOOR_H1), sl_floor_sa10(fl, SL_FLOOR_H2)};
+/* 3. ASCE on the 10 % spectra (or the documented fallback): the best
+ * estimate and f_es at every mu. */
+static sl_status run_asce(run *r, sl_error *err)
+{
+    sl_analysis *a = r->a;
+    const sl_spectrum *s10[2] = {sl_floor_sa10(r->fl, SL_FLOOR_H1),
+                                 sl_floor_sa10(r->fl, SL_FLOOR_H2)};
     if (!s10[0] || !s10[1]) {
         a->sa10_fallback = 1;
         for (int c = 0; c < 2; c++)
-            if (!(fb[c] = mean_spectrum(a, c, err)))
-                goto fail;
-        s10[0] = fb[0];
-        s10[1] = fb[1];
+            if (!(r->fb[c] = mean_spectrum(a, c, err)))
+                return err ? err->code : SL_ENOMEM;
+        s10[0] = r->fb[0];
+        s10[1] = r->fb[1];
     }
     sl_asce_source ai; /* borrows the floor's or the fallback spectra: nothing to free */
-    if (sl_asce_input_from_floor(fl, s10, &ai, err))
-        goto fail;
-    ai.in.fs = o->fs_asce; /* pgd_m NAN: the common cap is applied in design.c */
-    asce = sl_asce_alloc(&ai.in, err);
-    if (!asce)
-        goto fail;
-    for (size_t k = 0; k < n_mu; k++) {
+    sl_status st = sl_asce_input_from_floor(r->fl, s10, &ai, err);
+    if (st)
+        return st;
+    ai.in.fs = r->o->fs_asce; /* pgd_m NAN: the common cap is applied in design.c */
+    if (!(r->asce = sl_asce_alloc(&ai.in, err)))
+        return err ? err->code : SL_ENOMEM;
+    for (size_t k = 0; k < r->n_mu; k++) {
         sl_asce_result ar;
-        if (sl_asce_eval(asce, o->mu[k], &ar, err))
-            goto fail;
-        best[k] = ar.delta_best_m;
+        if ((st = sl_asce_eval(r->asce, r->o->mu[k], &ar, err)))
+            return st;
+        r->best[k] = ar.delta_best_m;
         a->vr_f_hz[k] = ar.fes_hz > 0 && isfinite(ar.fes_hz) ? ar.fes_hz : NAN;
     }
-    double t1 = sl_clock_s();
-    if (vr_measure(a, peak, n, n_mu, err))
-        goto fail;
-    a->time_stats_s += sl_clock_s() - t1;
+    return SL_OK;
+}
 
-    /* 4. design */
+/* 4. The design values of both methods, the cap and the policy. */
+static sl_status run_design(run *r, sl_error *err)
+{
+    sl_analysis *a = r->a;
+    const sl_analysis_opts *o = r->o;
     sl_design_input di;
     sl_design_input_default(&di);
-    di.n_mu = n_mu;
-    di.n_sets = n;
+    di.n_mu = r->n_mu;
+    di.n_sets = r->n;
     di.mu = o->mu;
-    di.peak_m = peak;
-    di.no_slide = noslide;
-    di.asce_best_m = best;
+    di.peak_m = r->peak;
+    di.no_slide = r->noslide;
+    di.asce_best_m = r->best;
     di.pgd_m = a->pgd_m;
     di.zpa_h_ms2 = a->zpa_h_ms2;
     di.fs_nltha = o->fs_nltha;
     di.fs_asce = o->fs_asce;
     di.policy = o->policy;
     a->design = sl_design_compute(&di, err);
-    if (!a->design)
-        goto fail;
+    return a->design ? SL_OK : err ? err->code : SL_ENOMEM;
+}
 
-    a->time_asce_s = sl_clock_s() - t0;
+/* The run's note (analysis.h): what the reader must know about n sets. */
+static void run_note(sl_analysis *a, size_t n)
+{
     size_t used = 0;
     a->note[0] = '\0';
 #define NOTE(...)                                                                          \
@@ -565,26 +629,46 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
         NOTE("only %zu motion sets: ASCE/SEI 43-05 asks for at least %d. ", n,
              SL_NLTHA_MIN_SETS);
 #undef NOTE
-    goto cleanup;
-nomem:
-    sl_error_set(err, SL_ENOMEM, fl->path, 0, "out of memory");
-fail:
-    if (err && !err->file[0] && fl->path)
-        snprintf(err->file, sizeof err->file, "%s", fl->path);
-    sl_analysis_free(a);
-    a = NULL;
-cleanup:
-    sl_scatter_free(scat);
-    free(err_k);
-    free(sets);
-    free(res);
-    free(peak);
-    free(n_skip);
-    free(noslide);
-    free(best);
-    sl_spectrum_free(fb[0]);
-    sl_spectrum_free(fb[1]);
-    sl_asce_free(asce);
-    sl_synth_free(plan);
-    return a;
+}
+
+/* The steps in order, each timed once: synthesis and NLTHA (time_synth_s,
+ * time_nltha_s, in run_batch and run_bands), the statistics (time_stats_s:
+ * convergence, band and the variance-reduction diagnostic), ASCE and the
+ * design (time_asce_s). */
+sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err)
+{
+    if (check_opts(fl, o, err))
+        return NULL;
+    run r = {.fl = fl, .o = o, .adaptive = o->n_sets == 0, .n_mu = o->n_mu};
+    r.cap_sets = r.adaptive ? o->max_sets : o->n_sets;
+    sl_status st = run_alloc(&r, err);
+    if (!st)
+        st = run_plan(&r, err);
+    if (!st)
+        st = run_sets(&r, err);
+    if (!st)
+        st = run_bands(&r, err);
+    double t0 = sl_clock_s();
+    if (!st)
+        st = run_asce(&r, err);
+    double t_asce = sl_clock_s() - t0;
+    t0 = sl_clock_s();
+    if (!st)
+        st = vr_measure(r.a, r.peak, r.n, r.n_mu, err);
+    if (!st)
+        r.a->time_stats_s += sl_clock_s() - t0;
+    t0 = sl_clock_s(); /* the design: timed from here, not over the diagnostic */
+    if (!st)
+        st = run_design(&r, err);
+    if (!st) {
+        r.a->time_asce_s = t_asce + (sl_clock_s() - t0);
+        run_note(r.a, r.n);
+    } else {
+        if (err && !err->file[0] && fl->path)
+            snprintf(err->file, sizeof err->file, "%s", fl->path);
+        sl_analysis_free(r.a);
+        r.a = NULL;
+    }
+    run_free(&r);
+    return r.a;
 }

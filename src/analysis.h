@@ -50,6 +50,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/api.h"
 #include "method/design.h"
 #include "io/floor.h"
 #include "core/status.h"
@@ -85,7 +86,7 @@ typedef enum sl_analysis_stop {
 } sl_analysis_stop;
 
 /* "fixed", "converged", "max_sets". */
-const char *sl_analysis_stop_name(sl_analysis_stop s);
+SL_API const char *sl_analysis_stop_name(sl_analysis_stop s);
 
 typedef struct sl_analysis_opts {
     size_t n_sets;               /* > 0: exactly this many sets (< SL_NLTHA_MIN_SETS is
@@ -116,7 +117,7 @@ typedef struct sl_analysis_opts {
     void *progress_ctx;
 } sl_analysis_opts;
 
-void sl_analysis_opts_default(sl_analysis_opts *o);
+SL_API void sl_analysis_opts_default(sl_analysis_opts *o);
 
 /* The statistics of the NLTHA design value at one mu: stats.h. */
 typedef sl_stats_conv sl_analysis_conv;
@@ -171,7 +172,9 @@ typedef struct sl_analysis {
     size_t n_mu_skipped;        /* friction values not integrated for any set */
     int sa10_fallback;          /* 1: ASCE used the motions' mean 10 % spectra */
     double time_synth_s, time_nltha_s, time_asce_s; /* wall time of each step, s */
-    double time_stats_s;        /* wall time of the convergence statistics and band, s */
+    double time_stats_s;        /* wall time of the convergence statistics, the band and the
+                                   variance-reduction diagnostic, s (each step timed once:
+                                   time_asce_s is the ASCE method and the design only) */
     char note[512];             /* what a reader must know ("" when nothing) */
     /* every damping of the floor file other than the one matched, per
      * component in file order (n_dampings = 0: the file gives one) */
@@ -185,16 +188,16 @@ typedef struct sl_analysis {
  * options, synthesis error, solver failure); quality-check failures of
  * individual motions are not errors: they are counted and kept. Not
  * converging within max_sets is not an error either: stop says so. */
-sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err);
+SL_API sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_error *err);
 
-void sl_analysis_free(sl_analysis *a);
+SL_API void sl_analysis_free(sl_analysis *a);
 
 /* The other-damping check of a as text into buf (size n): "none" when the
  * file gives one damping, else "H1 10 %: 0.931-1.118 ok; H1 2 %: ... OUTSIDE;
  * ..." (set-mean S/T lowest-highest, verdict). Returns buf. */
-const char *sl_analysis_dampings_text(const sl_analysis *a, char *buf, size_t n);
+SL_API const char *sl_analysis_dampings_text(const sl_analysis *a, char *buf, size_t n);
 
 /* The seed used for a floor (see "Seed" above). */
-uint64_t sl_analysis_floor_seed(uint64_t seed, const sl_floor *fl);
+SL_API uint64_t sl_analysis_floor_seed(uint64_t seed, const sl_floor *fl);
 
 #endif

@@ -30,12 +30,26 @@
  * Conventions (every header): SI units inside (m, s, m/s^2), named units at
  * the boundary; one status enum with file:line messages (core/status.h);
  * the library never prints or exits, and leaves GSL's error handler as the
- * caller set it; *_alloc/*_free and *_read/*_free pairs; every exported
- * name starts with sl_ or SL_.
+ * caller set it (a GSL failure is returned as SL_ESOLVER); sl_X_alloc with
+ * sl_X_free and sl_X_read with sl_X_free in pairs; every exported name
+ * starts with sl_ or SL_, and libseislide.so exports exactly the functions
+ * marked SL_API (core/api.h). The version: SEISLIDE_VERSION_* (the headers,
+ * core/version.h) and sl_version() (the library).
+ *
+ * Threads: every function is reentrant - it may run in several threads at
+ * once (POSIX threads or OpenMP) on different objects, and on the same
+ * object when the object is only read (a plan, a floor, a motion: declared
+ * const). No function keeps hidden state between calls except two
+ * process-wide settings made safe by the library: FFTW's planner, made
+ * thread-safe once (fftw_make_planner_thread_safe), and GSL's error
+ * handler, turned off around the library's GSL calls and then put back
+ * (the first call in and the last out). A caller that changes GSL's
+ * handler while the library runs in another thread races with it.
  */
 #ifndef SEISLIDE_H
 #define SEISLIDE_H
 
+#include "core/version.h"
 #include "core/status.h"
 #include "core/units.h"
 #include "core/standards.h"

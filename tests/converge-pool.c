@@ -4,7 +4,7 @@
  * for hundreds of simulated runs instead of 20. Not part of `make test`.
  *
  *   cc -std=c11 -O2 -fopenmp -D_XOPEN_SOURCE=700 -Isrc -o /tmp/converge-pool \
- *      tests/converge-pool.c build/libseislide.a -lgsl -lgslcblas -lm -lfftw3 \
+ *      tests/converge-pool.c build/libseislide.a -lgsl -lgslcblas -lm -lfftw3_threads -lfftw3 \
  *      -lxlsxwriter -linih -lz
  *   /tmp/converge-pool pool FLOOR.ini N SEED > pool.txt   (N sets, default mu grid:
  *                                                          a line per set: PGD, 76 peaks, m;

@@ -4,7 +4,7 @@
  * HARNESS_END(), which prints "NAME: N passed, N failed, N skipped" and
  * returns the exit code.
  *
- * Floats are compared honestly (STYLE 13): pass when
+ * Floats are compared honestly: pass when
  *   |got - exp| <= abs_tol + rel_tol * |exp|
  * written so that NaN fails; both values printed with %.17g.
  */

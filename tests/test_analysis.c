@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "analysis.h"
+#include "core/clock.h"
 #include "harness.h"
 #include "signal/spectrum.h"
 #include "slide/slide.h"
@@ -361,12 +362,19 @@ static void test_vr_diagnostic(void)
     o.scatter = 0; /* peaks are one NLTHA each */
     o.boot_resamples = 0;
     sl_error err;
+    double t0 = sl_clock_s();
     sl_analysis *a = sl_analysis_run(fl, &o, &err);
+    double wall = sl_clock_s() - t0;
     CHECK(a != NULL, "run");
     if (!a) {
         sl_floor_free(fl);
         return;
     }
+    /* each step timed once: the four times are disjoint parts of the run */
+    double steps = a->time_synth_s + a->time_nltha_s + a->time_stats_s + a->time_asce_s;
+    CHECK(steps <= wall, "steps %.6f s > the run's wall time %.6f s (synth %.6f nltha %.6f "
+          "stats %.6f asce %.6f)", steps, wall, a->time_synth_s, a->time_nltha_s,
+          a->time_stats_s, a->time_asce_s);
     const size_t n = a->n_sets;
     sl_slide_opts so;
     sl_slide_opts_default(&so);

@@ -135,6 +135,14 @@ static void test_table_is_linear_in_ln_damping(void)
         }
 }
 
+/* The tabulated dampings, in the guide's order; NaN past the table. */
+static void test_dampings(void)
+{
+    for (size_t k = 0; k < 5; k++)
+        CHECK(sl_rg160_damping(k) == zt[k], "damping %zu: %g", k, sl_rg160_damping(k));
+    CHECK(isnan(sl_rg160_damping(5)), "damping 5 is %g, not NaN", sl_rg160_damping(5));
+}
+
 static void test_bad_input(void)
 {
     double f = 1.0, s;
@@ -177,6 +185,7 @@ int main(void)
     RUN(test_shape);
     RUN(test_damping_interpolation);
     RUN(test_table_is_linear_in_ln_damping);
+    RUN(test_dampings);
     RUN(test_bad_input);
     RUN(test_grid);
     return HARNESS_END("rg160");

@@ -8,6 +8,7 @@
 #include "core/clock.h"
 #include "io/motion.h"
 #include "signal/spectrum.h"
+#include "signal/spectrum_kernel.h"
 
 #define PI 3.14159265358979323846
 

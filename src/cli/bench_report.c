@@ -106,7 +106,7 @@ static void print_rest(FILE *f, const sl_bench *b)
                 b->spec_err[s][q]);
     out(f, "\n## 5. Motion synthesis: one three-component set, 20 s at 200 samples/s\n\n");
     out(f, "RG 1.60 at %.1f g, 5 %% damping; each set synthesized and verified (every check of\n"
-        "../shared/docs/REFERENCE.md section 5) on one thread; %d seeds.\n\n",
+        "US NRC SRP 3.7.1, docs/synthesis.md section 4) on one thread; %d seeds.\n\n",
         SL_BENCH_SYNTH_PGA_G, SL_BENCH_SYNTH_SEEDS);
     if (!b->synth_ok) {
         out(f, "synthesis unavailable: %s\n", b->synth_error);
@@ -120,7 +120,7 @@ static void print_rest(FILE *f, const sl_bench *b)
     out(f, "\n## 6. The main job on the example facility (`seislide run` on floors/)\n\n");
     out(f, "%d friction values, the default 2-D accuracy; all threads of this machine (%d);\n"
         "wall time. Two settings per floor: a fixed %d motion sets (the former default) and\n"
-        "the default since issue 13, sets added until the standard error of the design\n"
+        "the default, sets added until the standard error of the design\n"
         "value is <= max(5 %%, 1 mm) at every mu (docs/run.md, \"Convergence\"). The cost of\n"
         "a set does not depend on the setting; the number of sets does.\n\n", SL_MU_GRID_N,
         b->threads, SL_BENCH_FIXED_SETS);
@@ -182,7 +182,7 @@ void bench_report(FILE *f, const sl_bench *b, unsigned long repeat)
 }
 
 /* The engine's work-precision data and its ratio to the arithmetic floor
- * (study/bench_engine.h, issue 14). */
+ * (study/bench_engine.h; docs/integrators.md). */
 void bench_report_engine_wp(FILE *f, const sl_bench_wp *w)
 {
     out(f, "\n## Engine: work against precision on every record set, ratio to the floor\n\n"

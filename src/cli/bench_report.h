@@ -11,7 +11,7 @@
 /* Print every section to stdout and to f (the report file). */
 void bench_report(FILE *f, const sl_bench *b, unsigned long repeat);
 
-/* The engine's work-precision section (study/bench_engine.h, issue 14). */
+/* The engine's work-precision section (study/bench_engine.h; docs/integrators.md). */
 void bench_report_engine_wp(FILE *f, const sl_bench_wp *w);
 
 #endif

@@ -14,15 +14,15 @@
 
 #include "core/status.h"
 #include "core/units.h"
+#include "core/version.h"
 #include "signal/spectrum.h"
 
 #define CLI_EXIT_OK 0
 #define CLI_EXIT_ERROR 1
 #define CLI_EXIT_USAGE 2
 
-#ifndef SEISLIDE_VERSION
-#define SEISLIDE_VERSION "0.1.0"
-#endif
+/* The program's version is the library's (core/version.h). */
+#define SEISLIDE_VERSION SEISLIDE_VERSION_STRING
 
 /* Commands: each takes argc/argv with argv[0] the command name. */
 int cmd_run(int argc, char **argv);

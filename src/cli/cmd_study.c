@@ -21,7 +21,7 @@
 static const char study_head[] =
     "usage: seislide study [--records DIR] [-o DIR] [--parts LIST] [--no-plots] [-q]\n"
     "\n"
-    "Reproduce the source study's evaluation (../shared/docs/REFERENCE.md 1) from\n"
+    "Reproduce the source study's evaluation (docs/validation.md) from\n"
     "recorded three-component motions and write DIR/validation.md with its tables,\n"
     "and DIR/" STUDY_FIGDIR "/ with the data (TSV, units in the headers), the gnuplot\n"
     "scripts and the figures (SVG):\n"

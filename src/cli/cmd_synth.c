@@ -29,145 +29,172 @@ static void progress_cb(void *ctx, size_t done, size_t total)
 
 /* ---- The command ------------------------------------------------------ */
 
-int cmd_synth(int argc, char **argv)
-{
+/* One run: its options, targets, plan and sets (freed by job_free). */
+typedef struct synth_job {
     synth_run o;
-    int rc = synth_parse(argc, argv, &o);
-    if (rc)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-
-    /* the output folder apart from the floor file and the records (exit 2) */
-    if ((rc = cli_outdir_apart("synth", "output folder", o.outdir, &o.floor_path, 1)) ||
-        (rc = cli_outdir_apart("synth", "output folder", o.outdir, o.match, o.nmatch)))
-        return rc;
-    sl_error err;
-    sl_error_clear(&err);
-    sl_atomic_dir *outd = NULL;
-    sl_floor *fl = NULL;
-    sl_spectrum *own[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
-    sl_motion *rec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
-    sl_synth *plan = NULL;
-    sl_synth_set *sets = NULL;
-    size_t nsets = 0;
+    sl_floor *fl;
+    sl_spectrum *own[SL_SYNTH_NCOMP];   /* RG 1.60 targets' spectra */
+    sl_motion *rec[SL_SYNTH_NCOMP];     /* --match records */
+    sl_synth *plan;
+    sl_synth_set *sets;
+    size_t nsets;
+    sl_atomic_dir *outd;                /* the fresh output folder (outdir.h) */
     sl_synth_target tgt[SL_SYNTH_NCOMP];
     char desc[SL_SYNTH_NCOMP][512];
-    rc = CLI_EXIT_ERROR;
+    sl_error err;
+} synth_job;
 
-    /* Targets. */
-    if (o.floor_path) {
-        fl = sl_floor_load(o.floor_path, &err);
-        if (!fl || sl_synth_targets_floor(fl, o.damping, tgt, &err)) {
-            cli_print_error(&err);
-            goto done;
+static void job_free(synth_job *j)
+{
+    for (size_t k = 0; j->sets && k < j->nsets; k++)
+        sl_synth_set_clear(&j->sets[k]);
+    free(j->sets);
+    sl_synth_free(j->plan);
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        sl_spectrum_free(j->own[c]);
+        sl_motion_free(j->rec[c]);
+    }
+    sl_floor_free(j->fl);
+    cli_outdir_finish(j->outd);
+}
+
+/* The targets: the floor file's spectra or RG 1.60 at --rg160 PGA. */
+static int job_targets(synth_job *j)
+{
+    const synth_run *o = &j->o;
+    if (o->floor_path) {
+        j->fl = sl_floor_load(o->floor_path, &j->err);
+        if (!j->fl || sl_synth_targets_floor(j->fl, o->damping, j->tgt, &j->err)) {
+            cli_print_error(&j->err);
+            return CLI_EXIT_ERROR;
         }
     } else {
-        double z = o.damping > 0 ? o.damping : SL_SYNTH_DAMPING;
-        if (!(z >= SL_RG160_ZETA_MIN && z <= SL_RG160_ZETA_MAX)) {
-            rc = cli_usage("synth", "--damping %g outside RG 1.60's range [%g, %g]", z,
-                           SL_RG160_ZETA_MIN, SL_RG160_ZETA_MAX);
-            goto done;
-        }
-        if (sl_synth_targets_rg160(o.rg_pga_g * SL_G, z, &o.p, own, tgt, &err)) {
-            cli_print_error(&err);
-            goto done;
+        double z = o->damping > 0 ? o->damping : SL_SYNTH_DAMPING;
+        if (!(z >= SL_RG160_ZETA_MIN && z <= SL_RG160_ZETA_MAX))
+            return cli_usage("synth", "--damping %g outside RG 1.60's range [%g, %g]", z,
+                             SL_RG160_ZETA_MIN, SL_RG160_ZETA_MAX);
+        if (sl_synth_targets_rg160(o->rg_pga_g * SL_G, z, &o->p, j->own, j->tgt, &j->err)) {
+            cli_print_error(&j->err);
+            return CLI_EXIT_ERROR;
         }
     }
-    synth_describe_targets(fl, o.rg_pga_g, tgt, desc);
+    synth_describe_targets(j->fl, o->rg_pga_g, j->tgt, j->desc);
+    return CLI_EXIT_OK;
+}
 
-    /* Plan and motions. */
-    double dt = o.dt_s > 0 ? o.dt_s : SL_SYNTH_DT_S;
-    size_t n;
-    if (o.nmatch > 0) {
-        if ((rc = synth_read_records(&o, rec, &dt)) != CLI_EXIT_OK)
-            goto done;
-        rc = CLI_EXIT_ERROR;
-        n = 0;
-        for (size_t i = 0; i < o.nmatch; i++)
-            n = rec[i]->n > n ? rec[i]->n : n;
+/* The plan: --duration at --dt, or the longest --match record at its dt. */
+static int job_plan(synth_job *j)
+{
+    const synth_run *o = &j->o;
+    double dt = o->dt_s > 0 ? o->dt_s : SL_SYNTH_DT_S;
+    size_t n = 0;
+    if (o->nmatch > 0) {
+        int rc = synth_read_records(o, j->rec, &dt);
+        if (rc != CLI_EXIT_OK)
+            return rc;
+        for (size_t i = 0; i < o->nmatch; i++)
+            n = j->rec[i]->n > n ? j->rec[i]->n : n;
     } else {
-        n = (size_t)llround(o.duration_s / dt) + 1;
+        n = (size_t)llround(o->duration_s / dt) + 1;
     }
-    plan = sl_synth_alloc(n, dt, &o.p, &err);
-    if (!plan) { /* bad settings (not memory) are the options' doing: a usage error */
-        if (err.code == SL_EINVAL)
-            rc = cli_usage("synth", "%s (%zu samples of --dt %g s, --fmin %g Hz)", err.msg, n,
-                           dt, o.p.fmin_hz);
-        else
-            cli_print_error(&err);
-        goto done;
+    j->plan = sl_synth_alloc(n, dt, &o->p, &j->err);
+    if (!j->plan) { /* bad settings (not memory) are the options' doing: a usage error */
+        if (j->err.code == SL_EINVAL)
+            return cli_usage("synth", "%s (%zu samples of --dt %g s, --fmin %g Hz)", j->err.msg,
+                             n, dt, o->p.fmin_hz);
+        cli_print_error(&j->err);
+        return CLI_EXIT_ERROR;
     }
-    if (!(outd = cli_outdir_open(o.outdir, "seislide " SEISLIDE_VERSION, NULL, &err))) {
-        cli_print_error(&err);
-        goto done;
+    return CLI_EXIT_OK;
+}
+
+/* The sets (or the matched records) and, with a floor file, every other
+ * damping it gives on the motions' own spectra. */
+static int job_motions(synth_job *j)
+{
+    const synth_run *o = &j->o;
+    if (!(j->outd = cli_outdir_open(o->outdir, "seislide " SEISLIDE_VERSION, NULL, &j->err))) {
+        cli_print_error(&j->err);
+        return CLI_EXIT_ERROR;
     }
-    nsets = o.nmatch > 0 ? 1 : (size_t)o.count;
-    sets = calloc(nsets, sizeof *sets);
-    if (!sets) {
+    j->nsets = o->nmatch > 0 ? 1 : (size_t)o->count;
+    if (!(j->sets = calloc(j->nsets, sizeof *j->sets))) {
         cli_msg("out of memory");
-        goto done;
+        return CLI_EXIT_ERROR;
     }
-    int show = !o.quiet && isatty(STDERR_FILENO);
+    int show = !o->quiet && isatty(STDERR_FILENO);
     sl_status st;
-    if (o.nmatch > 0) {
-        const sl_motion *r3[SL_SYNTH_NCOMP] = {rec[0], rec[1], rec[2]};
-        st = sl_synth_match_set(plan, tgt, r3, sets, &err);
+    if (o->nmatch > 0) {
+        const sl_motion *r3[SL_SYNTH_NCOMP] = {j->rec[0], j->rec[1], j->rec[2]};
+        st = sl_synth_match_set(j->plan, j->tgt, r3, j->sets, &j->err);
     } else {
-        st = sl_synth_make_sets(plan, tgt, (uint64_t)o.seed, 0, nsets, sets,
-                                show ? progress_cb : NULL, NULL, &err);
+        st = sl_synth_make_sets(j->plan, j->tgt, (uint64_t)o->seed, 0, j->nsets, j->sets,
+                                show ? progress_cb : NULL, NULL, &j->err);
     }
-    if (st && st != SL_ENOCONV) {
-        cli_print_error(&err);
-        goto done;
+    if ((st && st != SL_ENOCONV) ||
+        (j->fl && sl_synth_check_dampings(j->plan, j->fl, j->sets, j->nsets, &j->err))) {
+        cli_print_error(&j->err);
+        return CLI_EXIT_ERROR;
     }
-    /* every other damping the floor file gives, on the motions' own spectra */
-    if (fl && sl_synth_check_dampings(plan, fl, sets, nsets, &err)) {
-        cli_print_error(&err);
-        goto done;
-    }
+    return CLI_EXIT_OK;
+}
+
+/* The files and the verdict: 1 (error) when a motion failed a check. */
+static int job_write(synth_job *j)
+{
+    const synth_run *o = &j->o;
     /* every file into the fresh folder, swapped in whole (outdir.h) */
     cli_outdir_writing();
-    synth_output out = {sl_atomic_dir_path(outd), o.csv, o.seed, o.nmatch > 0 ? o.match : NULL,
-                        (const char(*)[512])desc, &o.p};
-    if (synth_write_outputs(&out, sets, nsets) != CLI_EXIT_OK)
-        goto done;
-    if (cli_outdir_commit(&outd, &err)) {
+    synth_output out = {sl_atomic_dir_path(j->outd), o->csv, o->seed,
+                        o->nmatch > 0 ? o->match : NULL, (const char(*)[512])j->desc, &o->p};
+    if (synth_write_outputs(&out, j->sets, j->nsets) != CLI_EXIT_OK)
+        return CLI_EXIT_ERROR;
+    if (cli_outdir_commit(&j->outd, &j->err)) {
         if (!cli_outdir_interrupted())
-            cli_print_error(&err);
-        goto done;
+            cli_print_error(&j->err);
+        return CLI_EXIT_ERROR;
     }
-    if (fl && !o.quiet)
-        synth_print_dampings(sets, nsets, &o.p);
+    if (j->fl && !o->quiet)
+        synth_print_dampings(j->sets, j->nsets, &o->p);
     size_t total = 0, failed = 0;
-    for (size_t k = 0; k < nsets; k++)
+    for (size_t k = 0; k < j->nsets; k++)
         for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-            if (sl_synth_set_motion(&sets[k], (sl_synth_comp)c)) {
+            if (sl_synth_set_motion(&j->sets[k], (sl_synth_comp)c)) {
                 total++;
-                failed += !sets[k].check[c].pass;
+                failed += !j->sets[k].check[c].pass;
             }
     if (failed) {
         cli_msg("synth: %zu of %zu motions failed a check (see %s/report.csv)", failed, total,
-                o.outdir);
-        goto done;
+                o->outdir);
+        return CLI_EXIT_ERROR;
     }
-    if (!o.quiet) {
-        if (o.nmatch > 0)
-            cli_msg("synth: %zu motions matched, every check passed; %s/report.csv", total,
-                    o.outdir);
-        else
-            cli_msg("synth: %zu motions, every check passed (seed %llu); %s/report.csv", total,
-                    o.seed, o.outdir);
-    }
-    rc = CLI_EXIT_OK;
-done:
-    for (size_t k = 0; sets && k < nsets; k++)
-        sl_synth_set_clear(&sets[k]);
-    free(sets);
-    sl_synth_free(plan);
-    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
-        sl_spectrum_free(own[c]);
-        sl_motion_free(rec[c]);
-    }
-    sl_floor_free(fl);
-    cli_outdir_finish(outd);
+    if (!o->quiet && o->nmatch > 0)
+        cli_msg("synth: %zu motions matched, every check passed; %s/report.csv", total,
+                o->outdir);
+    else if (!o->quiet)
+        cli_msg("synth: %zu motions, every check passed (seed %llu); %s/report.csv", total,
+                o->seed, o->outdir);
+    return CLI_EXIT_OK;
+}
+
+int cmd_synth(int argc, char **argv)
+{
+    synth_job j = {0};
+    int rc = synth_parse(argc, argv, &j.o);
+    if (rc)
+        return rc < 0 ? CLI_EXIT_OK : rc;
+    /* the output folder apart from the floor file and the records (exit 2) */
+    if ((rc = cli_outdir_apart("synth", "output folder", j.o.outdir, &j.o.floor_path, 1)) ||
+        (rc = cli_outdir_apart("synth", "output folder", j.o.outdir, j.o.match, j.o.nmatch)))
+        return rc;
+    sl_error_clear(&j.err);
+    rc = job_targets(&j);
+    if (rc == CLI_EXIT_OK)
+        rc = job_plan(&j);
+    if (rc == CLI_EXIT_OK)
+        rc = job_motions(&j);
+    if (rc == CLI_EXIT_OK)
+        rc = job_write(&j);
+    job_free(&j);
     return rc;
 }

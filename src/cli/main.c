@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "signal/spectrum.h"
+#include "signal/spectrum_kernel.h"
 #include "slide/kernel2d.h"
 
 typedef struct command {

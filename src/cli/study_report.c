@@ -105,7 +105,7 @@ int study_report_part2(study_out *o, const sl_study_part2 *p)
     fprintf(md,
             "## 2. El Centro #9 (1940): the effect of the second horizontal and the vertical\n\n"
             "The three components (x = 180, y = 270, z = up) modified to match RG 1.60 at\n"
-            "%.0f %% damping (phases kept, ../shared/docs/REFERENCE.md 5 checks: %s), PGA\n"
+            "%.0f %% damping (phases kept, US NRC SRP 3.7.1 checks: %s), PGA\n"
             "%.1f g (vertical ZPA %.1f g), mu = %.1f (the study's Figures 3-7 to 3-9).\n\n",
             100 * SL_STUDY_ZETA, p->matched.pass ? "all passed" : "SOME FAILED, see motion checks",
             SL_STUDY_P2_PGA_G, sl_motion_pga(p->matched.set.v) / SL_G, SL_STUDY_P2_MU);
@@ -243,9 +243,9 @@ int study_report_part3(study_out *o, const sl_study_part3 *p)
             "The study's seven three-component records, modified to match RG 1.60 at\n"
             "%.0f %% damping (0.1-50 Hz; seislide's record matching keeps each record's\n"
             "Fourier phases, docs/synthesis.md) at 1 g and scaled to 0.2, 0.4, 0.6 and\n"
-            "0.8 g. Four of them are not in ../shared in three components; each stand-in\n"
+            "0.8 g. Four of them are not in the collection in three components; each stand-in\n"
             "is named with its reason:\n\n"
-            "| study record -> used | folder | why | matching checks (REFERENCE.md 5) | PGD H1, H2 at 1 g (m) |\n"
+            "| study record -> used | folder | why | matching checks (SRP 3.7.1) | PGD H1, H2 at 1 g (m) |\n"
             "|---|---|---|---|---|\n",
             100 * SL_STUDY_ZETA);
     for (size_t i = 0; i < SL_STUDY_NGROUND; i++) {
@@ -327,12 +327,12 @@ int study_report_part4(study_out *o, const sl_study_part4 *p)
     FILE *md = o->md;
     fprintf(md,
             "## 4. Real three-component record sets\n\n"
-            "The study used four standardized PEER sets of 40 records. ../shared has no\n"
+            "The study used four standardized PEER sets of 40 records. The collection has no\n"
             "distance, site or pulse metadata, so the groups below are seislide's own, from\n"
             "published classifications (per record; distances Rrup and Vs30 as given by\n"
             "NGA-West2, rounded, to be checked against the flatfile): near-field soil\n"
             "(Rrup < 15 km, Vs30 < 360 m/s, no pulse), far-field soil (FEMA P695 far-field\n"
-            "set, as ../shared/records/MANIFEST.tsv notes), near-field rock (Rrup <= 15 km,\n"
+            "set, as the collection's MANIFEST.tsv notes), near-field rock (Rrup <= 15 km,\n"
             "Vs30 > 450 m/s) and pulse-like (Baker 2007). Unscaled records, mu = %.2f to\n"
             "%.2f step %.2f (the study: every 0.05); NLTHA with both horizontals and the\n"
             "vertical; ASCE on each record's %.0f %%-damped spectra; both averaged.\n\n"
@@ -504,10 +504,11 @@ void study_report_preamble(study_out *o)
 {
     fprintf(o->md,
             "# Validation: seislide against the source study\n\n"
-            "Made by `seislide study` (`make study`) from the recorded motions in\n"
-            "../shared/records (provenance: ../shared/records/MANIFEST.tsv); every number\n"
-            "below is recomputed by that command. The study and its findings are summarised\n"
-            "in ../shared/docs/REFERENCE.md, section 1. Data and gnuplot scripts of every\n"
+            "Made by `seislide study` (`make study`) from a collection of recorded motions\n"
+            "(`--records DIR`; provenance in the collection's MANIFEST.tsv); every number\n"
+            "below is recomputed by that command. The source study (a master's thesis\n"
+            "evaluating the ASCE/SEI 43-05 Appendix A.1 method for sliding components) and\n"
+            "its findings are restated with each comparison. Data and gnuplot scripts of every\n"
             "figure are in `docs/" STUDY_FIGDIR "/`. Regression tests on the same\n"
             "computations: tests/test_study.c.\n\n");
 }

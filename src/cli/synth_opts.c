@@ -276,7 +276,7 @@ int synth_parse(int argc, char **argv, synth_run *o)
     }
     if (rc || (rc = cli_no_operands("synth", argc, argv)))
         return rc;
-    if (!o->floor_path == isnan(o->rg_pga_g))
+    if ((o->floor_path != NULL) == !isnan(o->rg_pga_g)) /* both or neither */
         return cli_usage("synth", "give exactly one target: --floor FILE or --rg160 PGA");
     if (!o->outdir)
         return cli_usage("synth", "-o DIR is required");

@@ -10,6 +10,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "core/motion_type.h"
 #include "core/status.h"
 
@@ -31,22 +32,22 @@ typedef struct sl_set_fit {
  * `truncate` nonzero cut to the shortest (the old behaviour). fit (may be
  * NULL) reports the lengths so the caller can say what was done. On error
  * the set is unchanged. */
-sl_status sl_set_check_fit(sl_set *set, int truncate, sl_set_fit *fit, sl_error *err);
+SL_API sl_status sl_set_check_fit(sl_set *set, int truncate, sl_set_fit *fit, sl_error *err);
 
 /* sl_set_check_fit() without the report. */
-sl_status sl_set_check(sl_set *set, int truncate, sl_error *err);
+SL_API sl_status sl_set_check(sl_set *set, int truncate, sl_error *err);
 
 /* Peak horizontal acceleration of the set: the larger component peak,
  * m/s^2. */
-double sl_set_pga_h(const sl_set *set);
+SL_API double sl_set_pga_h(const sl_set *set);
 
 /* Scale every component of the set by s = pga_ms2 / sl_set_pga_h(set), so
  * the larger horizontal peak becomes pga_ms2 (m/s^2). Returns s, or 0 with
  * the set unchanged when the horizontals are all zero (nothing to scale). */
-double sl_set_scale_pga_h(sl_set *set, double pga_ms2);
+SL_API double sl_set_scale_pga_h(sl_set *set, double pga_ms2);
 
 /* Peak displacement by the 100-40 rule: max(PGD1 + 0.4 PGD2, PGD2 + 0.4 PGD1),
  * m; PGD1 alone when H2 is absent. */
-double sl_set_pgd_100_40(const sl_set *set);
+SL_API double sl_set_pgd_100_40(const sl_set *set);
 
 #endif

@@ -15,6 +15,8 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
+
 /* Relative tolerance on sample intervals: the steps of a time column
  * against their mean, an explicit dt against the file's, and the dt of the
  * components of a set against each other (dimensionless). */
@@ -40,36 +42,36 @@ typedef struct sl_set {
  * path and label[0..label_len) are copied (label NULL gives ""). Returns
  * NULL on allocation failure, and then acc_owned still belongs to the
  * caller. For readers; callers with an array use sl_motion_from_array(). */
-sl_motion *sl_motion_new_owned(const char *path, const char *label, size_t label_len,
-                               double *acc_owned, size_t n, double dt_s);
+SL_API sl_motion *sl_motion_new_owned(const char *path, const char *label, size_t label_len,
+                                      double *acc_owned, size_t n, double dt_s);
 
 /* Make a motion from an array (copied). Returns NULL on bad dt or n == 0. */
-sl_motion *sl_motion_from_array(const double *acc_ms2, size_t n, double dt_s,
-                                const char *label);
+SL_API sl_motion *sl_motion_from_array(const double *acc_ms2, size_t n, double dt_s,
+                                       const char *label);
 
 /* Deep copy; NULL on allocation failure. */
-sl_motion *sl_motion_copy(const sl_motion *m);
+SL_API sl_motion *sl_motion_copy(const sl_motion *m);
 
-void sl_motion_free(sl_motion *m);
+SL_API void sl_motion_free(sl_motion *m);
 
 /* Derived quantities of one component (SI). The acceleration is taken as
  * piecewise linear between samples and integrated exactly:
  *   v_{i+1} = v_i + dt (a_i + a_{i+1})/2,
  *   d_{i+1} = d_i + dt v_i + dt^2 (2 a_i + a_{i+1})/6,
  * from rest, with no baseline correction (see docs/formats.md). */
-double sl_motion_pga(const sl_motion *m);  /* max |a|, m/s^2 */
-double sl_motion_pgv(const sl_motion *m);  /* max |v|, m/s   */
-double sl_motion_pgd(const sl_motion *m);  /* max |d|, m     */
+SL_API double sl_motion_pga(const sl_motion *m);  /* max |a|, m/s^2 */
+SL_API double sl_motion_pgv(const sl_motion *m);  /* max |v|, m/s   */
+SL_API double sl_motion_pgd(const sl_motion *m);  /* max |d|, m     */
 /* Arias intensity I_a = pi/(2 g) * integral a^2 dt, m/s (exact for
  * piecewise-linear a). */
-double sl_motion_arias(const sl_motion *m);
+SL_API double sl_motion_arias(const sl_motion *m);
 /* Significant duration between 5 % and 75 % of I_a, s (linear
  * interpolation of the normalised Husid curve). */
-double sl_motion_d5_75(const sl_motion *m);
+SL_API double sl_motion_d5_75(const sl_motion *m);
 /* Velocity and displacement histories (n samples each, caller-allocated). */
-void sl_motion_integrate(const sl_motion *m, double *vel_ms, double *disp_m);
+SL_API void sl_motion_integrate(const sl_motion *m, double *vel_ms, double *disp_m);
 
 /* Multiply all samples by s. */
-void sl_motion_scale(sl_motion *m, double s);
+SL_API void sl_motion_scale(sl_motion *m, double s);
 
 #endif

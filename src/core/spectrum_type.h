@@ -12,6 +12,8 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
+
 /* A spectrum at one damping: plain data. Each struct owns its two arrays
  * (free with sl_spectrum_free). */
 typedef struct sl_spectrum {
@@ -23,18 +25,18 @@ typedef struct sl_spectrum {
 
 /* Allocate a spectrum of n points (arrays zeroed), damping set. Returns NULL
  * on n == 0 or allocation failure. Free with sl_spectrum_free(). */
-sl_spectrum *sl_spectrum_alloc(size_t n, double damping);
+SL_API sl_spectrum *sl_spectrum_alloc(size_t n, double damping);
 
 /* Free a spectrum and its arrays; harmless on NULL. */
-void sl_spectrum_free(sl_spectrum *s);
+SL_API void sl_spectrum_free(sl_spectrum *s);
 
 /* Free only the arrays of a spectrum embedded in another struct (sets them
  * to NULL and n to 0); harmless on NULL. */
-void sl_spectrum_clear(sl_spectrum *s);
+SL_API void sl_spectrum_clear(sl_spectrum *s);
 
 /* Log-log interpolation of a spectrum at f_hz (power law between points):
  * SA(f) = SA_i (f/f_i)^p, p = ln(SA_{i+1}/SA_i)/ln(f_{i+1}/f_i).
  * Outside [f_0, f_{n-1}] returns NAN. Values must be positive. */
-double sl_spectrum_interp(const sl_spectrum *s, double f_hz);
+SL_API double sl_spectrum_interp(const sl_spectrum *s, double f_hz);
 
 #endif

@@ -11,6 +11,8 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
+
 /* Status codes. Zero is success. Keep sl_status_message() in step. */
 typedef enum sl_status {
     SL_OK = 0,
@@ -36,23 +38,23 @@ typedef struct sl_error {
 } sl_error;
 
 /* A short fixed message for a status code ("bad input value", ...). */
-const char *sl_status_message(sl_status code);
+SL_API const char *sl_status_message(sl_status code);
 
 /* Reset an error record to SL_OK. Harmless on NULL. */
-void sl_error_clear(sl_error *err);
+SL_API void sl_error_clear(sl_error *err);
 
 /* Fill `err` (if not NULL) with a code, optional file (may be NULL),
  * line (0 if none) and a printf-style message. Returns `code`. */
-sl_status sl_error_set(sl_error *err, sl_status code, const char *file,
-                       long line, const char *fmt, ...)
+SL_API sl_status sl_error_set(sl_error *err, sl_status code, const char *file,
+                              long line, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
 #endif
     ;
 
 /* As sl_error_set() with a column (0 = none). Returns `code`. */
-sl_status sl_error_set_at(sl_error *err, sl_status code, const char *file, long line,
-                          long col, const char *fmt, ...)
+SL_API sl_status sl_error_set_at(sl_error *err, sl_status code, const char *file, long line,
+                                 long col, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 6, 7)))
 #endif
@@ -61,6 +63,6 @@ sl_status sl_error_set_at(sl_error *err, sl_status code, const char *file, long 
 /* Format the record as "FILE:LINE:COL: message" (when col > 0),
  * "FILE:LINE: message" (or "FILE: message", or
  * "message") into buf of size n. Returns buf. */
-char *sl_error_format(const sl_error *err, char *buf, size_t n);
+SL_API char *sl_error_format(const sl_error *err, char *buf, size_t n);
 
 #endif

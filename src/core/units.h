@@ -8,7 +8,9 @@
 #ifndef SL_UNITS_H
 #define SL_UNITS_H
 
-/* Standard gravity, m/s^2 (ISO 80000-3; ../shared/docs/REFERENCE.md). */
+#include "core/api.h"
+
+/* Standard gravity, m/s^2 (ISO 80000-3). */
 #define SL_G 9.80665
 
 /* pi (math.h's M_PI is not in C11). */
@@ -28,12 +30,12 @@ typedef enum sl_unit {
 /* Parse a unit name: "g", "m/s2", "m/s^2", "cm/s2", "cm/s^2", "gal",
  * "mm/s2", "mm/s^2" (case-insensitive for "g" and "gal").
  * Returns SL_UNIT_NONE for anything else. */
-sl_unit sl_unit_parse(const char *name);
+SL_API sl_unit sl_unit_parse(const char *name);
 
 /* The canonical name of a unit ("g", "m/s2", "cm/s2", "mm/s2"). */
-const char *sl_unit_name(sl_unit u);
+SL_API const char *sl_unit_name(sl_unit u);
 
 /* Multiply a value in unit u by this to get m/s^2 (0 for SL_UNIT_NONE). */
-double sl_unit_to_ms2(sl_unit u);
+SL_API double sl_unit_to_ms2(sl_unit u);
 
 #endif

@@ -65,6 +65,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/api.h"
 #include "core/spectrum_type.h"
 #include "core/standards.h"
 #include "core/status.h"
@@ -136,39 +137,39 @@ typedef struct sl_floor {
 /* Read and validate a floor file, CSV when its name ends in .csv (any
  * case), else INI. Returns NULL and fills err (file, line,
  * message; SL_EIO, SL_EPARSE, SL_EINVAL or SL_ENOMEM) on failure. */
-sl_floor *sl_floor_load(const char *path, sl_error *err);
+SL_API sl_floor *sl_floor_load(const char *path, sl_error *err);
 
 /* Plausibility of the horizontal ZPA (the larger of H1 and H2): SL_OK, or
  * SL_EINVAL naming the file, the units line and the value when it lies
  * outside SL_FLOOR_ZPA_MIN_G-SL_FLOOR_ZPA_MAX_G (e.g. units = gal on values
  * in g). The caller decides whether that stops the run. */
-sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
+SL_API sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
 
 /* The format a path names by its extension: SL_FLOOR_CSV for .csv (any
  * case), else SL_FLOOR_INI. */
-sl_floor_format sl_floor_format_of(const char *path);
+SL_API sl_floor_format sl_floor_format_of(const char *path);
 
 /* The floor files named by `arg`: the file itself, or every *.ini and
  * *.csv in it (any case of the extension; hidden files skipped) when it is
  * a folder (sorted by name). Appends strdup'd paths to paths[*n], at most
  * `max` in all. SL_EIO (missing, unreadable, no floor file) or SL_EINVAL (more
  * than max) with the path in err. */
-sl_status sl_floor_list(const char *arg, char **paths, size_t *n, size_t max, sl_error *err);
+SL_API sl_status sl_floor_list(const char *arg, char **paths, size_t *n, size_t max, sl_error *err);
 
 /* Free a floor; harmless on NULL. */
-void sl_floor_free(sl_floor *fl);
+SL_API void sl_floor_free(sl_floor *fl);
 
 /* Section name of a component: "h1", "h2", "v". */
-const char *sl_floor_comp_name(sl_floor_comp c);
+SL_API const char *sl_floor_comp_name(sl_floor_comp c);
 
 /* The spectrum of component c at damping ratio `damping` (matched within
  * SL_FLOOR_DAMPING_TOL), or NULL when the file does not give it. Borrowed
  * pointer, valid until sl_floor_free(). */
-const sl_spectrum *sl_floor_spectrum(const sl_floor *fl, sl_floor_comp c, double damping);
+SL_API const sl_spectrum *sl_floor_spectrum(const sl_floor *fl, sl_floor_comp c, double damping);
 
 /* The 10 %-damped spectrum of component c (SL_FLOOR_ASCE_DAMPING), or NULL
  * when it is missing: the caller must then say so in its output and use its
  * documented fallback; the library never substitutes one silently. */
-const sl_spectrum *sl_floor_sa10(const sl_floor *fl, sl_floor_comp c);
+SL_API const sl_spectrum *sl_floor_sa10(const sl_floor *fl, sl_floor_comp c);
 
 #endif

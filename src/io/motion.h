@@ -32,6 +32,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "core/motion_set.h"
 #include "core/motion_type.h"
 #include "core/status.h"
@@ -67,13 +68,13 @@ typedef struct sl_read_opts {
  * failure: missing file, truncated AT2 or NPTS disagreeing with the data,
  * non-numeric token, NaN/Inf, dt <= 0, non-uniform time column, unknown or
  * missing units. */
-sl_motion *sl_motion_read(const char *path, const sl_read_opts *opts, sl_error *err);
+SL_API sl_motion *sl_motion_read(const char *path, const sl_read_opts *opts, sl_error *err);
 
 /* 1 when a file name (folders stripped) names a vertical component by the
  * PEER and agency conventions: the component code ends the name, before
  * the extension, as UP, DWN, DOWN, VER, VRT, -V, -Z, _Z or _V (any case):
  * "...-UP.AT2", "RinaldiUP.AT2", "...DWN-up.AT2", "...HECVER.AT2". Station
  * codes inside a name ("H-VC1", "H-Z11") do not count. */
-int sl_motion_name_is_vertical(const char *path);
+SL_API int sl_motion_name_is_vertical(const char *path);
 
 #endif

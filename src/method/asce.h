@@ -1,6 +1,6 @@
 /*
  * asce.h - the approximate sliding displacement of ASCE/SEI 43-05,
- * Appendix A.1 (as used in the source study, ../shared/docs/REFERENCE.md 2),
+ * Appendix A.1 (as applied in the source study; docs/spectra.md section 3),
  * and Newmark's (1965) rigid-block estimates for comparison.
  *
  * Steps, for a friction coefficient mu:
@@ -39,6 +39,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "signal/spectrum.h"
 #include "core/standards.h"
 #include "core/status.h"
@@ -85,7 +86,7 @@ typedef struct sl_asce_result {
 } sl_asce_result;
 
 /* Defaults: fs = SL_ASCE_FS, g = SL_G, pgd_m = NAN, the rest zero/NULL. */
-void sl_asce_input_default(sl_asce_input *in);
+SL_API void sl_asce_input_default(sl_asce_input *in);
 
 /* Opaque: the combined spectrum SA_vH and the input, prepared once for
  * many mu ("plan once, execute many"). */
@@ -96,23 +97,23 @@ typedef struct sl_asce sl_asce;
  * FS > 0), and forms SA_vH (step 3) on the union of the two spectra's
  * frequencies inside their common range, each spectrum interpolated
  * log-log. Returns NULL and fills err (SL_EINVAL, SL_ENOMEM) on failure. */
-sl_asce *sl_asce_alloc(const sl_asce_input *in, sl_error *err);
+SL_API sl_asce *sl_asce_alloc(const sl_asce_input *in, sl_error *err);
 
 /* Free; harmless on NULL. */
-void sl_asce_free(sl_asce *a);
+SL_API void sl_asce_free(sl_asce *a);
 
 /* The combined spectrum: its length, frequencies (Hz) and SA_vH (m/s^2).
  * Borrowed pointers, valid until sl_asce_free(). */
-size_t sl_asce_combined(const sl_asce *a, const double **f_hz, const double **savh_ms2);
+SL_API size_t sl_asce_combined(const sl_asce *a, const double **f_hz, const double **savh_ms2);
 
 /* Steps 1-7 for one mu (>= 0, finite) into *res. Returns SL_OK or
  * SL_EINVAL. */
-sl_status sl_asce_eval(const sl_asce *a, double mu, sl_asce_result *res, sl_error *err);
+SL_API sl_status sl_asce_eval(const sl_asce *a, double mu, sl_asce_result *res, sl_error *err);
 
 /* The status as text: "ok", or the flags joined by '+' in the order
  * no_sliding, no_crossing, below_fmin, capped (e.g. "below_fmin+capped").
  * Writes into buf (size n) and returns it. */
-const char *sl_asce_status_name(unsigned flags, char *buf, size_t n);
+SL_API const char *sl_asce_status_name(unsigned flags, char *buf, size_t n);
 
 /* Newmark (1965), rigid block with resistance mu g under a single
  * rectangular acceleration pulse of peak A (pga_ms2) and velocity V
@@ -121,7 +122,7 @@ const char *sl_asce_status_name(unsigned flags, char *buf, size_t n);
  *   asymmetric, one-way ("Newmark II"):  U = (2 V^2/(mu g)) (1 - mu g/A)^2
  * Both return 0 when mu g >= A; NAN when mu <= 0, A <= 0, V < 0 or an
  * input is not finite. Metres. */
-double sl_asce_newmark_sym(double pgv_ms, double pga_ms2, double mu, double g_ms2);
-double sl_asce_newmark_asym(double pgv_ms, double pga_ms2, double mu, double g_ms2);
+SL_API double sl_asce_newmark_sym(double pgv_ms, double pga_ms2, double mu, double g_ms2);
+SL_API double sl_asce_newmark_asym(double pgv_ms, double pga_ms2, double mu, double g_ms2);
 
 #endif

@@ -10,7 +10,7 @@
  *   RG 1.60       horizontal spectrum at PGA   PGA (vertical     PGA                   1.4 x 36 in x PGA
  *                 for H1 and H2                ZPA = PGA)                              (100-40 of two equal)
  *
- * ZPA_h is the LARGER horizontal peak (REFERENCE.md 2: no sliding when
+ * ZPA_h is the LARGER horizontal peak (ASCE/SEI 43-05 A.1: no sliding when
  * mu_e g >= the horizontal peak acceleration). Damping: SL_ASCE_DAMPING
  * (core/standards.h).
  *
@@ -21,6 +21,7 @@
 #ifndef SL_ASCE_INPUT_H
 #define SL_ASCE_INPUT_H
 
+#include "core/api.h"
 #include "core/status.h"
 #include "io/floor.h"
 #include "io/motion.h"
@@ -32,29 +33,29 @@ typedef struct sl_asce_source {
 } sl_asce_source;
 
 /* The floor's horizontal ZPA: the larger of the H1 and H2 zpa, m/s^2. */
-double sl_asce_floor_zpa_h(const sl_floor *fl);
+SL_API double sl_asce_floor_zpa_h(const sl_floor *fl);
 
 /* From a floor file. The spectra are the floor's 10 %-damped H1 and H2
  * (sl_floor_sa10); when the floor lacks one and `fallback` is not NULL,
  * fallback[0] and fallback[1] (borrowed, 10 %-damped) are used instead.
  * Returns SL_OK, or SL_EUNSUPPORTED naming the file, line and component
  * when a spectrum is missing and there is no fallback. */
-sl_status sl_asce_input_from_floor(const sl_floor *fl, const sl_spectrum *const *fallback,
-                                   sl_asce_source *src, sl_error *err);
+SL_API sl_status sl_asce_input_from_floor(const sl_floor *fl, const sl_spectrum *const *fallback,
+                                          sl_asce_source *src, sl_error *err);
 
 /* From a checked motion set (H1 and H2 required, V optional): the 10 %
  * PSA of H1 and H2 on the default grid (SL_SPECTRUM_FMIN_HZ ..
  * SL_SPECTRUM_FMAX_HZ, SL_SPECTRUM_PER_DECADE per decade). Returns SL_OK,
  * SL_EINVAL (no H2), SL_ENOMEM, or the spectrum's error. */
-sl_status sl_asce_input_from_set(const sl_set *set, sl_asce_source *src, sl_error *err);
+SL_API sl_status sl_asce_input_from_set(const sl_set *set, sl_asce_source *src, sl_error *err);
 
 /* From Regulatory Guide 1.60 at PGA pga_g (g, > 0): the horizontal
  * spectrum for both horizontals on its own grid (sl_rg160_grid over the
  * default range), A_v = ZPA_h = PGA, PGD = each horizontal's 36 in per g
  * combined 100-40. Returns SL_OK, SL_EINVAL or SL_ENOMEM. */
-sl_status sl_asce_input_from_rg160(double pga_g, sl_asce_source *src, sl_error *err);
+SL_API sl_status sl_asce_input_from_rg160(double pga_g, sl_asce_source *src, sl_error *err);
 
 /* Free the owned spectra and zero the source; harmless on NULL. */
-void sl_asce_source_free(sl_asce_source *src);
+SL_API void sl_asce_source_free(sl_asce_source *src);
 
 #endif

@@ -30,6 +30,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "core/standards.h"
 #include "core/status.h"
 
@@ -49,8 +50,8 @@ typedef enum sl_clearance_policy {
 
 /* Name of a policy ("nltha", "asce", "envelope") and its parser (-1 if
  * unknown). */
-const char *sl_clearance_policy_name(sl_clearance_policy p);
-int sl_clearance_policy_parse(const char *s);
+SL_API const char *sl_clearance_policy_name(sl_clearance_policy p);
+SL_API int sl_clearance_policy_parse(const char *s);
 
 enum {
     SL_DESIGN_NO_SLIDING = 1,     /* mu g at or above every set's demand: NLTHA not run, 0 */
@@ -120,14 +121,14 @@ typedef struct sl_design_input {
 } sl_design_input;
 
 /* Defaults for the factors, g and the policy; the caller sets the rest. */
-void sl_design_input_default(sl_design_input *in);
+SL_API void sl_design_input_default(sl_design_input *in);
 
 /* Compute the design spectra, crossover and clearance. Returns NULL and
  * fills err on bad input (n_mu == 0, n_sets == 0, mu not increasing,
  * ZPA <= 0, negative or non-finite peaks). */
-sl_design *sl_design_compute(const sl_design_input *in, sl_error *err);
+SL_API sl_design *sl_design_compute(const sl_design_input *in, sl_error *err);
 
-void sl_design_free(sl_design *d);
+SL_API void sl_design_free(sl_design *d);
 
 /* The required clearance at an arbitrary mu, m: linear interpolation in mu
  * between the grid rows k and k + 1 with mu_k <= mu <= mu_k+1,
@@ -136,6 +137,6 @@ void sl_design_free(sl_design *d);
  * the one definition: the workbook's Lookup formula is its visible twin
  * (report.c writes it; tests/test_lookup.c recalculates it with
  * LibreOffice and compares). */
-double sl_design_clearance_at(const sl_design *d, double mu);
+SL_API double sl_design_clearance_at(const sl_design *d, double mu);
 
 #endif

@@ -8,6 +8,7 @@
 #include <gsl/gsl_interp.h>
 #include <gsl/gsl_rng.h>
 
+#include "core/gslerr.h"
 #include "core/units.h"
 #include "io/setdir.h"
 #include "slide/slide.h"
@@ -15,17 +16,23 @@
 
 #define SCATTER_STREAM 0x7363617474657221ULL /* "scatter!" */
 
-double sl_scatter_factor(uint64_t seed, size_t set, double sigma_ln)
+sl_status sl_scatter_factor(uint64_t seed, size_t set, double sigma_ln, double *eps,
+                            sl_error *err)
 {
+    *eps = 1.0;
     if (!(sigma_ln > 0))
-        return 1.0;
+        return SL_OK;
+    sl_gsl_quiet_begin();
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (!rng)
-        return NAN;
-    gsl_rng_set(rng, sl_synth_stream_seed(seed ^ SCATTER_STREAM, set, SL_SYNTH_H1, 0));
-    double z = gsl_cdf_ugaussian_Pinv(gsl_rng_uniform_pos(rng));
+    if (rng) {
+        gsl_rng_set(rng, sl_synth_stream_seed(seed ^ SCATTER_STREAM, set, SL_SYNTH_H1, 0));
+        double z = gsl_cdf_ugaussian_Pinv(gsl_rng_uniform_pos(rng));
+        *eps = exp(sigma_ln * z - 0.5 * sigma_ln * sigma_ln); /* (R1) */
+    }
     gsl_rng_free(rng);
-    return exp(sigma_ln * z - 0.5 * sigma_ln * sigma_ln); /* (R1) */
+    sl_gsl_quiet_end(); /* the caller's handler back */
+    return rng ? SL_OK
+               : sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory (GSL's generator)");
 }
 
 sl_status sl_set_scaled_h_copy(const sl_set *in, double f, sl_set *out, sl_error *err)
@@ -160,22 +167,19 @@ sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_er
     const size_t nlog = s->nq - s->off;
     gsl_interp *ip = NULL;
     gsl_interp_accel *acc = NULL;
+    sl_status st = SL_OK;
+    /* GSL's handler off around its calls (gslerr.h): a failure is a status */
+    sl_gsl_quiet_begin();
     if (nlog > 0) { /* u between grid points: Steffen's monotone cubic in ln mu */
         ip = gsl_interp_alloc(gsl_interp_steffen, nlog);
         acc = gsl_interp_accel_alloc();
-        if (!ip || !acc) {
-            gsl_interp_free(ip);
-            gsl_interp_accel_free(acc);
-            return sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory");
-        }
-        if (gsl_interp_init(ip, s->lng, u + s->off, nlog)) {
-            gsl_interp_free(ip);
-            gsl_interp_accel_free(acc);
-            return sl_error_set(err, SL_EINVAL, NULL, 0,
-                                "scatter: peaks cannot be interpolated on the friction grid");
-        }
+        if (!ip || !acc)
+            st = sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory");
+        else if (gsl_interp_init(ip, s->lng, u + s->off, nlog))
+            st = sl_error_set(err, SL_ESOLVER, NULL, 0,
+                              "scatter: peaks cannot be interpolated on the friction grid");
     }
-    for (size_t k = 0; k < s->n_mu; k++) {
+    for (size_t k = 0; st == SL_OK && k < s->n_mu; k++) {
         const double *xk = s->x + k * s->nz;
         double sum = 0;
         for (size_t j = 0; j < s->nz; j++) {
@@ -186,7 +190,8 @@ sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_er
     }
     gsl_interp_free(ip);
     gsl_interp_accel_free(acc);
-    return SL_OK;
+    sl_gsl_quiet_end();
+    return st;
 }
 
 sl_status sl_scatter_slide_batch(const sl_scatter *s, const sl_set *sets, size_t n,

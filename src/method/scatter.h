@@ -50,10 +50,13 @@
 #define SL_SCATTER_PER_DECADE 32
 #define SL_SCATTER_SIGMA_MAX 1.0 /* log standard deviation, largest accepted */
 
-/* eps of (R1) for set `set`, z = Phi^-1(u), u from GSL's mt19937 seeded with
- * sl_synth_stream_seed(seed ^ "scatter!", set, H1, 0): a random draw for
- * Monte Carlo checks of (R3) (tests, tools); exactly 1 when sigma_ln is 0. */
-double sl_scatter_factor(uint64_t seed, size_t set, double sigma_ln);
+/* eps of (R1) for set `set` into *eps, z = Phi^-1(u), u from GSL's mt19937
+ * seeded with sl_synth_stream_seed(seed ^ "scatter!", set, H1, 0): a random
+ * draw for Monte Carlo checks of (R3) (tests, tools); exactly 1 when
+ * sigma_ln is 0. Returns SL_OK or SL_ENOMEM (GSL could not allocate its
+ * generator; GSL's error handler is off meanwhile, gslerr.h). */
+sl_status sl_scatter_factor(uint64_t seed, size_t set, double sigma_ln, double *eps,
+                            sl_error *err);
 
 /* out = a copy of in with H1 and H2 scaled by f and V as it is (owned:
  * sl_set_free_motions). Returns SL_OK or SL_ENOMEM (out left empty). */
@@ -71,7 +74,8 @@ void sl_scatter_free(sl_scatter *s);
 const double *sl_scatter_grid(const sl_scatter *s, size_t *n);
 
 /* y[k] = Y(mu[k]) of (R3) from u[q] >= 0, the peaks at
- * sl_scatter_grid()[q]. SL_OK or SL_ENOMEM. */
+ * sl_scatter_grid()[q]. SL_OK, SL_ENOMEM, or SL_ESOLVER (GSL could not
+ * set up the interpolation; its error handler is off meanwhile, gslerr.h). */
 sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_error *err);
 
 /* NLTHA of sets[0..n) on the grid (sl_slide_batch, in parallel) and (R3)

@@ -1,5 +1,6 @@
 /* stats.c - mean, standard errors and bootstrap band; see stats.h. */
 #include "method/stats.h"
+#include "core/gslerr.h"
 
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_sort.h>
@@ -68,7 +69,12 @@ struct sl_stats_boot {
 sl_stats_boot *sl_stats_boot_alloc(uint64_t seed, sl_error *err)
 {
     sl_stats_boot *b = malloc(sizeof *b);
-    if (!b || !(b->rng = gsl_rng_alloc(gsl_rng_mt19937))) {
+    if (b) { /* GSL's handler off: an allocation failure is a status (gslerr.h) */
+        sl_gsl_quiet_begin();
+        b->rng = gsl_rng_alloc(gsl_rng_mt19937);
+        sl_gsl_quiet_end();
+    }
+    if (!b || !b->rng) {
         free(b);
         sl_error_set(err, SL_ENOMEM, NULL, 0, "stats: out of memory");
         return NULL;

@@ -47,6 +47,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/api.h"
 #include "core/status.h"
 
 /* The statistics of a design value D = min(FS mean, cap) at one friction
@@ -89,28 +90,28 @@ typedef struct sl_stats_mean {
 /* Summarise x[0], x[stride], ..., x[(n - 1) stride] (n >= 1, values finite
  * and >= 0). Returns SL_OK, or SL_EINVAL on n = 0, stride = 0 or a bad
  * value. */
-sl_status sl_stats_mean_compute(const double *x, size_t n, size_t stride, sl_stats_mean *out,
-                                sl_error *err);
+SL_API sl_status sl_stats_mean_compute(const double *x, size_t n, size_t stride, sl_stats_mean *out,
+                                       sl_error *err);
 
 /* A bootstrap resampler: idx[0..n-1] drawn uniformly from 0..n-1 with
  * replacement, from a stream seeded with `seed`. */
 typedef struct sl_stats_boot sl_stats_boot;
 
-sl_stats_boot *sl_stats_boot_alloc(uint64_t seed, sl_error *err);
-void sl_stats_boot_free(sl_stats_boot *b);
+SL_API sl_stats_boot *sl_stats_boot_alloc(uint64_t seed, sl_error *err);
+SL_API void sl_stats_boot_free(sl_stats_boot *b);
 /* Fill idx with one resample of 0..n-1 (n >= 1). */
-void sl_stats_boot_draw(sl_stats_boot *b, size_t n, size_t *idx);
+SL_API void sl_stats_boot_draw(sl_stats_boot *b, size_t n, size_t *idx);
 
 /* The (1 - level)/2 and (1 + level)/2 quantiles of v[0..m-1] (sorted in
  * place; m >= 1, 0 < level < 1), linear interpolation between order
  * statistics (gsl_stats_quantile_from_sorted_data). */
-void sl_stats_band(double *v, size_t m, double level, double *lo, double *hi);
+SL_API void sl_stats_band(double *v, size_t m, double level, double *lo, double *hi);
 
 /* Percentile bootstrap band of the sample mean of x[0..n-1] (stride 1):
  * B resamples from `seed`. Allocates its own work space. Returns SL_OK or
  * SL_EINVAL / SL_ENOMEM. */
-sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double level,
-                                  uint64_t seed, double *lo, double *hi, sl_error *err);
+SL_API sl_status sl_stats_boot_mean_band(const double *x, size_t n, size_t B, double level,
+                                         uint64_t seed, double *lo, double *hi, sl_error *err);
 
 /* How sl_stats_design_band builds the band. */
 typedef enum sl_stats_band_method {
@@ -124,8 +125,8 @@ typedef enum sl_stats_band_method {
  * pgd[0..n-1] (pgd NULL: no cap), SE = fs s_k / sqrt(n) below the cap and
  * cap_factor s_pgd / sqrt(n) where the cap governs. Writes d[k] and se[k]
  * (either may be NULL). */
-void sl_stats_design_value(const double *peak, size_t n, size_t n_mu, const double *pgd,
-                           double fs, double cap_factor, double *d, double *se);
+SL_API void sl_stats_design_value(const double *peak, size_t n, size_t n_mu, const double *pgd,
+                                  double fs, double cap_factor, double *d, double *se);
 
 /* Bootstrap band at `level` of D_k (as sl_stats_design_value) at every k:
  * B resamples of the n sets from `seed`, each set's peaks and pgd drawn
@@ -135,10 +136,10 @@ void sl_stats_design_value(const double *peak, size_t n, size_t n_mu, const doub
  * few sliding sets drawn) that end falls back to the percentile end; the
  * low end is at least 0. Writes lo[k] <= hi[k]. Allocates its own work
  * space (B n_mu doubles). Returns SL_OK, SL_EINVAL or SL_ENOMEM. */
-sl_status sl_stats_design_band(const double *peak, size_t n, size_t n_mu, const double *pgd,
-                               double fs, double cap_factor, size_t B, double level,
-                               uint64_t seed, sl_stats_band_method method, double *lo,
-                               double *hi, sl_error *err);
+SL_API sl_status sl_stats_design_band(const double *peak, size_t n, size_t n_mu, const double *pgd,
+                                      double fs, double cap_factor, size_t B, double level,
+                                      uint64_t seed, sl_stats_band_method method, double *lo,
+                                      double *hi, sl_error *err);
 
 /* The next motion count of a sequential run (docs/run.md, "Stopping
  * rule"): after n sets, with r the largest SE / target over the friction
@@ -149,17 +150,17 @@ sl_status sl_stats_design_band(const double *peak, size_t n, size_t n_mu, const 
  * looking again and again at a SE hovering at the target and stopping on a
  * low fluctuation), at least n + min_batch, at most growth x n, at most
  * max_sets. */
-size_t sl_stats_plan_next(size_t n, double r, double margin, size_t min_batch, double growth,
-                          size_t max_sets);
+SL_API size_t sl_stats_plan_next(size_t n, double r, double margin, size_t min_batch, double growth,
+                                 size_t max_sets);
 
 /* Showing a design value at the precision its uncertainty supports:
  * the display step is the power of ten at the place of the SE's leading
  * digit (se 26 -> 10, 5.2 -> 1, 0.3 -> 0.1), clamped to [min_step,
  * max_step]; min_step when se is 0 or not finite. */
-double sl_stats_step(double se, double min_step, double max_step);
+SL_API double sl_stats_step(double se, double min_step, double max_step);
 
 /* Decimals needed to print multiples of step exactly: max(0, -log10 step),
  * rounded. */
-int sl_stats_step_decimals(double step);
+SL_API int sl_stats_step_decimals(double step);
 
 #endif

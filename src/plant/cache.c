@@ -295,7 +295,7 @@ sl_cache_lock_result sl_cache_lock(const char *dir, const char *hash, sl_error *
 
 void sl_cache_lock_touch(const char *dir, const char *hash)
 {
-    static time_t last;
+    static _Thread_local time_t last; /* per thread: reentrant */
     time_t now = time(NULL);
     if (difftime(now, last) < SL_CACHE_LOCK_TOUCH_S)
         return;

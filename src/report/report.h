@@ -42,6 +42,7 @@
 #include <stddef.h>
 #include <time.h>
 
+#include "core/api.h"
 #include "method/design.h"
 #include "core/status.h"
 
@@ -144,24 +145,24 @@ typedef struct sl_report {
 #define SL_REPORT_LOOKUP_MU 0.30
 
 /* Initialise a report: zeros, lookup_mu = SL_REPORT_LOOKUP_MU. */
-void sl_report_init(sl_report *r);
+SL_API void sl_report_init(sl_report *r);
 
 /* The short id of a floor file: its file name without folders and the
  * ".ini" ending, characters other than letters, digits, '-' and '_' made
  * '_' (into buf of size n). "floors/04-roof36.ini" -> "04-roof36". */
-char *sl_report_floor_id(const char *path, char *buf, size_t n);
+SL_API char *sl_report_floor_id(const char *path, char *buf, size_t n);
 
 /* Check that the floors' ids and names are unique (names compared without
  * case, as the workbook's MATCH does). SL_EINVAL naming both files. */
-sl_status sl_report_check_floors(const sl_report *r, sl_error *err);
+SL_API sl_status sl_report_check_floors(const sl_report *r, sl_error *err);
 
 /* Nonzero when `name` is a file or folder `seislide run` writes into its
  * output folder (for sl_outdir_check). */
-int sl_report_owns_name(const char *name);
+SL_API int sl_report_owns_name(const char *name);
 
 /* Write the workbook to path. Returns SL_OK, or SL_EIO/SL_EINVAL with the
  * path and libxlsxwriter's message. All floors must share the mu grid. */
-sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *err);
+SL_API sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *err);
 
 /* Write floor_<id>.csv per floor, summary.csv, floors.csv,
  * asce_below_nltha.csv and motion_quality.csv into dir (which must exist).
@@ -172,16 +173,16 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
  * title block, and the floor(s), ZPA and units; then one header line; one
  * value per field. Every number written is finite (a value that does not exist is an
  * empty field); a non-finite result is an error, not a file. */
-sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err);
+SL_API sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err);
 
 
 /* Every range of mu where ASCE is below NLTHA as "a-b, c-d" (ends
  * interpolated; "<=a" or "b+" where the grid does not close the range),
  * or "none"; into buf of size n. The one text every sheet, CSV comment and
  * message uses. */
-char *sl_report_ranges_text(const sl_design *d, char *buf, size_t n);
+SL_API char *sl_report_ranges_text(const sl_design *d, char *buf, size_t n);
 
 /* Flags of a design row as text ("nltha_capped asce_unconservative ..."). */
-char *sl_report_flags(unsigned flags, char *buf, size_t n);
+SL_API char *sl_report_flags(unsigned flags, char *buf, size_t n);
 
 #endif

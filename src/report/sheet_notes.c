@@ -42,7 +42,7 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
 {
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Notes");
     const sl_design *d = r->floors[0].design; /* factors and policy: one per run */
-    static notes s;
+    static _Thread_local notes s; /* 120 kB: off the stack, one per thread */
     char sets[1200], se[1200], shapes[2000], ids[400];
     memset(&s, 0, sizeof s);
     for (size_t i = 0; i < r->n_floors; i++) { /* what the reader must know first */

@@ -1,6 +1,7 @@
 /* realism.c - peaks near the PGA, characteristic ratios and the SRP 3.7.1
  * Appendix B minimum-PSD check (see realism.h). */
 #include "signal/realism.h"
+#include "core/fftw_safe.h"
 
 #include <fftw3.h>
 #include <math.h>
@@ -151,7 +152,7 @@ sl_status sl_psd_check_motion(const double *acc, size_t n, double dt_s,
     fftw_complex *c = fftw_malloc((m / 2 + 1) * sizeof *c);
     fftw_plan plan = NULL;
     if (r && c) {
-#pragma omp critical(sl_fftw_planner)
+        sl_fftw_thread_safe();
         plan = fftw_plan_dft_r2c_1d((int)m, r, c, FFTW_ESTIMATE);
     }
     if (!plan) {
@@ -166,7 +167,6 @@ sl_status sl_psd_check_motion(const double *acc, size_t n, double dt_s,
     /* G_k (R2), then running sums for the +-20 % averages. */
     double *cum = malloc((nb + 1) * sizeof *cum);
     if (!cum) {
-#pragma omp critical(sl_fftw_planner)
         fftw_destroy_plan(plan);
         fftw_free(r);
         fftw_free(c);
@@ -182,7 +182,6 @@ sl_status sl_psd_check_motion(const double *acc, size_t n, double dt_s,
     double *tf = malloc(2 * (ntf > 2 ? ntf : 2) * sizeof *tf);
     if (!tf) {
         free(cum);
-#pragma omp critical(sl_fftw_planner)
         fftw_destroy_plan(plan);
         fftw_free(r);
         fftw_free(c);
@@ -223,7 +222,6 @@ sl_status sl_psd_check_motion(const double *acc, size_t n, double dt_s,
     }
     free(cum);
     free(tf);
-#pragma omp critical(sl_fftw_planner)
     fftw_destroy_plan(plan);
     fftw_free(r);
     fftw_free(c);

@@ -1,11 +1,12 @@
 /*
  * realism.h - measures of whether an acceleration history looks like a real
- * earthquake motion, beyond the spectral checks (../shared/docs/REFERENCE.md
- * 5; docs/synthesis.md section 4).
+ * earthquake motion, beyond the spectral checks (US NRC SRP 3.7.1: motions
+ * consistent with the characteristic values of real ones; docs/synthesis.md
+ * section 4).
  *
  *  - Peaks near the PGA: the number of local maxima of |a| (sample i with
  *    |a_i| > |a_{i-1}| and |a_i| >= |a_{i+1}|) above frac x PGA. Real
- *    horizontal records (338 in ../shared/records): median 1, 90th
+ *    horizontal records (338 PEER NGA-West2, USGS and CWA components): median 1, 90th
  *    percentile 3, maximum 7 at frac = 0.9. Clipping makes dozens.
  *  - Characteristic ratios (SRP 3.7.1, "consistent with characteristic
  *    values"): V/A = PGV/PGA and AD/V^2 = PGA PGD/PGV^2. RG 1.60 rests on
@@ -42,6 +43,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "core/status.h"
 #include "signal/spectrum.h"
 
@@ -59,20 +61,20 @@
 
 /* Local maxima of |a| above frac x max|a| (definition above). 0 for n < 1
  * or an all-zero motion. */
-size_t sl_realism_peaks_above(const double *acc, size_t n, double frac);
+SL_API size_t sl_realism_peaks_above(const double *acc, size_t n, double frac);
 
 /* Characteristic ratios of a motion from its peaks: *va_s = PGV/PGA (s),
  * *adv2 = PGA PGD / PGV^2 (dimensionless). NAN when a peak is zero. */
-void sl_realism_ratios(double pga_ms2, double pgv_ms, double pgd_m, double *va_s,
-                       double *adv2);
+SL_API void sl_realism_ratios(double pga_ms2, double pgv_ms, double pgd_m, double *va_s,
+                              double *adv2);
 
 /* Expected V/A (s) and D/A (s^2) of a spectrum (any damping, log-log
  * interpolated; values > 0) by the calibrated moment ratios above, and
  * AD/V^2 = (D/A)/(V/A)^2. Integrals by the trapezoid rule in ln f on
  * 100 points per decade over the spectrum's range. Returns SL_OK or
  * SL_EINVAL (fewer than 2 points). */
-sl_status sl_realism_expected(const sl_spectrum *s, double *va_s, double *da_s2,
-                              double *adv2, sl_error *err);
+SL_API sl_status sl_realism_expected(const sl_spectrum *s, double *va_s, double *da_s2,
+                                     double *adv2, sl_error *err);
 
 /* Result of the minimum-PSD check of one motion. */
 typedef struct sl_psd_check {
@@ -86,8 +88,8 @@ typedef struct sl_psd_check {
  * `target` (PSA, its own damping) with limit frac over [fmin_hz, fmax_hz]
  * (clipped to the target's range). Uses FFTW (FFTW_ESTIMATE, under the
  * planner lock). Returns SL_OK, SL_EINVAL, SL_ENOMEM. */
-sl_status sl_psd_check_motion(const double *acc, size_t n, double dt_s,
-                              const sl_spectrum *target, double frac, double fmin_hz,
-                              double fmax_hz, sl_psd_check *out, sl_error *err);
+SL_API sl_status sl_psd_check_motion(const double *acc, size_t n, double dt_s,
+                                     const sl_spectrum *target, double frac, double fmin_hz,
+                                     double fmax_hz, sl_psd_check *out, sl_error *err);
 
 #endif

@@ -10,7 +10,12 @@
 /* Two grid frequencies closer than this (relative) are the same point. */
 #define RG160_GRID_MERGE_REL 1e-9
 
-const double sl_rg160_dampings[SL_RG160_NDAMPING] = {0.005, 0.02, 0.05, 0.07, 0.10};
+static const double dampings[SL_RG160_NDAMPING] = {0.005, 0.02, 0.05, 0.07, 0.10};
+
+double sl_rg160_damping(size_t i)
+{
+    return i < SL_RG160_NDAMPING ? dampings[i] : NAN;
+}
 
 /* Control frequencies D, C, B, A, Hz (RG 1.60 Figures 1 and 2). */
 static const double control_f_hz[2][SL_RG160_NCONTROL] = {
@@ -38,9 +43,9 @@ static const double factor_d[2][SL_RG160_NDAMPING] = {
 static double interp_ln_zeta(const double tab[SL_RG160_NDAMPING], double zeta)
 {
     size_t i = 0;
-    while (i + 2 < SL_RG160_NDAMPING && zeta > sl_rg160_dampings[i + 1])
+    while (i + 2 < SL_RG160_NDAMPING && zeta > dampings[i + 1])
         i++;
-    double z0 = sl_rg160_dampings[i], z1 = sl_rg160_dampings[i + 1];
+    double z0 = dampings[i], z1 = dampings[i + 1];
     if (zeta == z0)
         return tab[i];
     if (zeta == z1)

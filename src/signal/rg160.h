@@ -1,7 +1,7 @@
 /*
  * rg160.h - US NRC Regulatory Guide 1.60 design response spectra
  * ("Design Response Spectra for Seismic Design of Nuclear Power Plants",
- * Rev. 1 1973 = Rev. 2 2014 numerically; ../shared/docs/REFERENCE.md 3).
+ * Rev. 1 1973 = Rev. 2 2014 numerically; Tables I and II, Figures 1 and 2).
  *
  * The spectrum is scaled to a peak ground acceleration a. It is given by four
  * control points joined by straight lines in log SA against log f:
@@ -34,6 +34,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "core/status.h"
 #include "core/units.h"
 
@@ -53,30 +54,32 @@ typedef enum sl_rg160_dir {
 /* Spectral displacement per 1 g of PGA at the control point D: 36 in. */
 #define SL_RG160_DISP_PER_G_M (36.0 * SL_INCH_M)
 
-/* The tabulated damping ratios, ascending (0.005 ... 0.10). */
-extern const double sl_rg160_dampings[SL_RG160_NDAMPING];
+/* The i-th tabulated damping ratio, ascending (0.005 ... 0.10) for
+ * i = 0 .. SL_RG160_NDAMPING - 1; NaN for any other i. (A function, not
+ * an array: the library exports no data.) */
+SL_API double sl_rg160_damping(size_t i);
 
 /* Amplification factors at damping zeta by (1): B and C multiply the PGA,
  * D multiplies 36 in x PGA/g. Returns SL_OK or SL_EINVAL (zeta outside
  * [SL_RG160_ZETA_MIN, SL_RG160_ZETA_MAX] or not finite). Any output may be
  * NULL. */
-sl_status sl_rg160_factors(sl_rg160_dir dir, double zeta, double *b, double *c,
-                           double *d, sl_error *err);
+SL_API sl_status sl_rg160_factors(sl_rg160_dir dir, double zeta, double *b, double *c,
+                                  double *d, sl_error *err);
 
 /* Control points D, C, B, A (ascending frequency) of the spectrum at
  * damping zeta scaled to pga_ms2 (>= 0): f_hz[4] and sa_ms2[4]
  * (pseudo-spectral acceleration, m/s^2). Returns SL_OK or SL_EINVAL. */
-sl_status sl_rg160_control(sl_rg160_dir dir, double zeta, double pga_ms2,
-                           double f_hz[SL_RG160_NCONTROL],
-                           double sa_ms2[SL_RG160_NCONTROL], sl_error *err);
+SL_API sl_status sl_rg160_control(sl_rg160_dir dir, double zeta, double pga_ms2,
+                                  double f_hz[SL_RG160_NCONTROL],
+                                  double sa_ms2[SL_RG160_NCONTROL], sl_error *err);
 
 /* Pseudo-spectral acceleration of the design spectrum at n frequencies
  * f_hz (> 0, any order) into psa_ms2 (caller's array of n). Straight lines
  * in log-log between the control points, SA = PGA above A, constant SD below
  * D (see above). Returns SL_OK or SL_EINVAL (bad damping, pga_ms2 < 0 or not
  * finite, a frequency not positive). */
-sl_status sl_rg160_psa(sl_rg160_dir dir, double zeta, double pga_ms2, const double *f_hz,
-                       size_t n, double *psa_ms2, sl_error *err);
+SL_API sl_status sl_rg160_psa(sl_rg160_dir dir, double zeta, double pga_ms2, const double *f_hz,
+                              size_t n, double *psa_ms2, sl_error *err);
 
 /* A frequency grid for the design spectrum: the log grid of
  * sl_spectrum_grid(fmin_hz, fmax_hz, per_decade) with the control
@@ -84,7 +87,7 @@ sl_status sl_rg160_psa(sl_rg160_dir dir, double zeta, double pga_ms2, const doub
  * that log-log interpolation between grid points reproduces the spectrum
  * exactly. Sorted, no duplicates (relative 1e-9). Returns a malloc'd array
  * (caller frees) and its length in *n, or NULL on bad input. */
-double *sl_rg160_grid(sl_rg160_dir dir, double fmin_hz, double fmax_hz, double per_decade,
-                      size_t *n);
+SL_API double *sl_rg160_grid(sl_rg160_dir dir, double fmin_hz, double fmax_hz, double per_decade,
+                             size_t *n);
 
 #endif

@@ -1,5 +1,7 @@
 /* spectrum.c - Nigam-Jennings response spectra (see spectrum.h). */
 #include "signal/spectrum.h"
+#include "core/fftw_safe.h"
+#include "signal/spectrum_kernel.h"
 
 #include "core/units.h"
 
@@ -536,12 +538,10 @@ void sl_spectrum_plan_free(sl_spectrum_plan *p)
         free(lv->gain);
         work_free(&lv->wk);
         if (lv->c2r) {
-#pragma omp critical(sl_fftw_planner)
             fftw_destroy_plan(lv->c2r);
         }
     }
     if (p->r2c) {
-#pragma omp critical(sl_fftw_planner)
         fftw_destroy_plan(p->r2c);
     }
     free(p);
@@ -675,7 +675,7 @@ sl_spectrum_plan *sl_spectrum_plan_alloc(size_t n, double dt_s, const double *f_
         double *r = fftw_malloc(p->nfft * sizeof *r);
         fftw_complex *c = fftw_malloc((p->nfft / 2 + 1) * sizeof *c);
         if (r && c) {
-#pragma omp critical(sl_fftw_planner)
+            sl_fftw_thread_safe();
             {
                 p->r2c = fftw_plan_dft_r2c_1d((int)p->nfft, r, c, FFTW_ESTIMATE);
                 for (size_t l = 1; l < p->nlev; l++)

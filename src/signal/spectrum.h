@@ -51,12 +51,13 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "core/motion_type.h"
 #include "core/spectrum_type.h"
 #include "core/status.h"
 
-/* Sub-steps per natural period for the sampled peak (REFERENCE.md 4:
- * dt <= T/20, error <= 1 - cos(pi/20) = 1.23 %). */
+/* Sub-steps per natural period for the sampled peak (the peak over samples
+ * underestimates by up to 1 - cos(pi h/T): h <= T/20, error <= 1 - cos(pi/20) = 1.23 %). */
 #define SL_SPECTRUM_STEPS_PER_PERIOD 20.0
 
 /* Default frequency grid (US NRC SRP 3.7.1): 100 log-spaced points per
@@ -84,7 +85,7 @@ typedef struct sl_spectrum_opts {
 } sl_spectrum_opts;
 
 /* Fill defaults (steps_per_period = 20, free_vibration = 1). */
-void sl_spectrum_opts_default(sl_spectrum_opts *o);
+SL_API void sl_spectrum_opts_default(sl_spectrum_opts *o);
 
 /* Log-spaced frequency grid from fmin_hz to fmax_hz inclusive with at least
  * per_decade points per decade: k = ceil(per_decade log10(fmax/fmin))
@@ -93,7 +94,7 @@ void sl_spectrum_opts_default(sl_spectrum_opts *o);
  * the caller frees, and its length in *n; NULL (and *n = 0) on bad input
  * (non-positive, non-finite, fmax < fmin, per_decade <= 0) or allocation
  * failure. */
-double *sl_spectrum_grid(double fmin_hz, double fmax_hz, double per_decade, size_t *n);
+SL_API double *sl_spectrum_grid(double fmin_hz, double fmax_hz, double per_decade, size_t *n);
 
 /* Spectrum of one record at one damping, default options.
  *   acc_ms2, n, dt_s : the record (n >= 1 samples, dt_s > 0), m/s^2, s
@@ -102,16 +103,16 @@ double *sl_spectrum_grid(double fmin_hz, double fmax_hz, double per_decade, size
  *   psa_ms2, sd_m, sa_abs_ms2 : outputs of nf values each (any may be NULL)
  * Returns SL_OK; SL_EINVAL for bad arguments or a non-finite sample;
  * SL_ENOMEM. Equation (1)-(2); peak definitions above. Thread-safe. */
-sl_status sl_spectrum_compute(const double *acc_ms2, size_t n, double dt_s,
-                              const double *f_hz, size_t nf, double zeta,
-                              double *psa_ms2, double *sd_m, double *sa_abs_ms2,
-                              sl_error *err);
+SL_API sl_status sl_spectrum_compute(const double *acc_ms2, size_t n, double dt_s,
+                                     const double *f_hz, size_t nf, double zeta,
+                                     double *psa_ms2, double *sd_m, double *sa_abs_ms2,
+                                     sl_error *err);
 
 /* As sl_spectrum_compute() with explicit options (NULL = defaults). */
-sl_status sl_spectrum_compute_opts(const double *acc_ms2, size_t n, double dt_s,
-                                   const double *f_hz, size_t nf, double zeta,
-                                   const sl_spectrum_opts *opts, double *psa_ms2,
-                                   double *sd_m, double *sa_abs_ms2, sl_error *err);
+SL_API sl_status sl_spectrum_compute_opts(const double *acc_ms2, size_t n, double dt_s,
+                                          const double *f_hz, size_t nf, double zeta,
+                                          const sl_spectrum_opts *opts, double *psa_ms2,
+                                          double *sd_m, double *sa_abs_ms2, sl_error *err);
 
 /* Spectra of nm motions at one damping, in parallel over motions (OpenMP).
  * Outputs are row-major nm x nf: psa_ms2[i * nf + j] is motion i at
@@ -119,19 +120,19 @@ sl_status sl_spectrum_compute_opts(const double *acc_ms2, size_t n, double dt_s,
  * status of the first failing motion (in index order) with its message and
  * the motion's path as the error's file. Results do not depend on the
  * thread count. Memory: the caller owns every array. */
-sl_status sl_spectrum_batch(const sl_motion *const *motions, size_t nm,
-                            const double *f_hz, size_t nf, double zeta,
-                            const sl_spectrum_opts *opts, double *psa_ms2,
-                            double *sd_m, double *sa_abs_ms2, sl_error *err);
+SL_API sl_status sl_spectrum_batch(const sl_motion *const *motions, size_t nm,
+                                   const double *f_hz, size_t nf, double zeta,
+                                   const sl_spectrum_opts *opts, double *psa_ms2,
+                                   double *sd_m, double *sa_abs_ms2, sl_error *err);
 
 /* Response history of one oscillator, at the record's samples: u_m[i] and
  * v_ms[i] (relative displacement, m, and velocity, m/s) at t = i dt_s,
  * i = 0..n-1, from rest, on sub-steps h <= T/steps_per_period (opts may be
  * NULL). Either output may be NULL. Returns SL_OK, SL_EINVAL. For tests and
  * plots; the spectrum functions do not store histories. */
-sl_status sl_spectrum_history(const double *acc_ms2, size_t n, double dt_s,
-                              double f_hz, double zeta, const sl_spectrum_opts *opts,
-                              double *u_m, double *v_ms, sl_error *err);
+SL_API sl_status sl_spectrum_history(const double *acc_ms2, size_t n, double dt_s,
+                                     double f_hz, double zeta, const sl_spectrum_opts *opts,
+                                     double *u_m, double *v_ms, sl_error *err);
 
 /* How to compute the recurrence coefficients. */
 typedef enum sl_spectrum_method {
@@ -151,20 +152,8 @@ typedef enum sl_spectrum_method {
  * M = [0 1; -w^2 -2zw], e = [0 1]^T, phi_k(Z) = sum_j Z^j/(j+k)!, evaluated
  * on the balanced matrix w h [0 1; -1 -2z].
  * Returns SL_OK, or SL_EINVAL (f <= 0, h <= 0, zeta outside [0, 1)). */
-sl_status sl_spectrum_coefs(double f_hz, double zeta, double h_s,
-                            sl_spectrum_method method, double c[8], sl_error *err);
-
-/* The oscillator bank's instances. Built by GCC for x86-64 there are two:
- * one on AVX2 vectors (4 doubles), run when the CPU has AVX2, and the
- * baseline (SSE2, 2 doubles); elsewhere only the baseline. Both do the same
- * IEEE operations in the same order, so spectra are the same bits on either.
- * sl_spectrum_kernel_avx2() is 1 when the AVX2 instance runs.
- * sl_spectrum_kernel_baseline(1) makes every later spectrum use the baseline
- * (for tests that compare the two; not to be called while spectra are being
- * computed in other threads); 0 restores the choice by CPU. Returns the
- * previous setting. */
-int sl_spectrum_kernel_avx2(void);
-int sl_spectrum_kernel_baseline(int force);
+SL_API sl_status sl_spectrum_coefs(double f_hz, double zeta, double h_s,
+                                   sl_spectrum_method method, double c[8], sl_error *err);
 
 /* ---- plans: coefficients made once; optional multirate ---------------
  *
@@ -208,25 +197,25 @@ typedef struct sl_spectrum_plan sl_spectrum_plan;
 /* Plan for records of n samples at dt_s, frequencies f_hz[0..nf-1] (any
  * order), damping zeta, options opts (NULL = defaults), multirate ratio
  * (0 = none, else >= SL_SPECTRUM_MIN_RATIO). NULL on bad arguments (err
- * says which) or allocation failure. Makes FFTW plans (inside
- * "#pragma omp critical(sl_fftw_planner)") when multirate. Free with
+ * says which) or allocation failure. Makes FFTW plans when multirate (from
+ * any thread: the planner is made thread-safe). Free with
  * sl_spectrum_plan_free(). */
-sl_spectrum_plan *sl_spectrum_plan_alloc(size_t n, double dt_s, const double *f_hz, size_t nf,
-                                         double zeta, const sl_spectrum_opts *opts,
-                                         double ratio, sl_error *err);
+SL_API sl_spectrum_plan *sl_spectrum_plan_alloc(size_t n, double dt_s, const double *f_hz, size_t nf,
+                                                double zeta, const sl_spectrum_opts *opts,
+                                                double ratio, sl_error *err);
 
 /* Free a plan; harmless on NULL. */
-void sl_spectrum_plan_free(sl_spectrum_plan *p);
+SL_API void sl_spectrum_plan_free(sl_spectrum_plan *p);
 
 /* Number of rates the plan uses (1 without multirate). */
-size_t sl_spectrum_plan_levels(const sl_spectrum_plan *p);
+SL_API size_t sl_spectrum_plan_levels(const sl_spectrum_plan *p);
 
 /* Spectrum of one record of the plan's length: outputs as in
  * sl_spectrum_compute() (sa_abs_ms2 must be NULL for a multirate plan).
  * The plan is only read: one plan may serve several threads at once.
  * Returns SL_OK, SL_EINVAL (non-finite sample), SL_ENOMEM. */
-sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_ms2,
-                                   double *psa_ms2, double *sd_m, double *sa_abs_ms2,
-                                   sl_error *err);
+SL_API sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_ms2,
+                                          double *psa_ms2, double *sd_m, double *sa_abs_ms2,
+                                          sl_error *err);
 
 #endif

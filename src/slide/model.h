@@ -9,6 +9,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "core/status.h"
 #include "io/motion.h"
 
@@ -53,7 +54,7 @@ typedef struct sl_slide_opts {
 } sl_slide_opts;
 
 /* Fill defaults (documented next to each field). */
-void sl_slide_opts_default(sl_slide_opts *o);
+SL_API void sl_slide_opts_default(sl_slide_opts *o);
 
 /* Apply the accuracy a user asks for, one relative tolerance rtol and one
  * absolute tolerance atol_m (m), to the model o->model: for SL_MODEL_SMOOTH
@@ -63,13 +64,13 @@ void sl_slide_opts_default(sl_slide_opts *o);
  * atol_m) (rtol, atol_m; docs/integrators.md). A value <= 0 keeps the
  * setting as it is. Returns SL_OK, or SL_EINVAL (err set, o unchanged) for
  * an engine rtol outside [SL_SLIDE_RTOL_MIN, SL_SLIDE_RTOL_MAX]. */
-sl_status sl_slide_opts_set_tol(sl_slide_opts *o, double rtol, double atol_m, sl_error *err);
+SL_API sl_status sl_slide_opts_set_tol(sl_slide_opts *o, double rtol, double atol_m, sl_error *err);
 
 /* The model named "exact", "smooth" or "plastic"; -1 for any other name. */
-int sl_model_parse(const char *name);
+SL_API int sl_model_parse(const char *name);
 /* The smoothed model's solver (sl_slide_opts.smooth_solver) named "msbdf",
  * "rk4imp", "bsimp" or "rkf45": 0..3; -1 for any other name. */
-int sl_smooth_solver_parse(const char *name);
+SL_API int sl_smooth_solver_parse(const char *name);
 
 /* Status flags of one result. */
 enum {
@@ -110,14 +111,14 @@ typedef struct sl_history {
 
 /* Allocate a history with room for cap samples (n = 0); NULL on failure.
  * Free with sl_history_free(). */
-sl_history *sl_history_alloc(size_t cap, double dt_s);
+SL_API sl_history *sl_history_alloc(size_t cap, double dt_s);
 /* Grow every array to hold cap samples. Returns 0, or -1 with the arrays
  * intact. */
-int sl_history_reserve(sl_history *h, size_t cap);
-void sl_history_free(sl_history *h);
+SL_API int sl_history_reserve(sl_history *h, size_t cap);
+SL_API void sl_history_free(sl_history *h);
 
 /* Append one sample to a history that has room for it (library-internal). */
-void sl_history_push(sl_history *h, double t, double ux, double uy, double vx, double vy,
-                     double fx, double fy);
+SL_API void sl_history_push(sl_history *h, double t, double ux, double uy, double vx, double vy,
+                            double fx, double fy);
 
 #endif

@@ -2,9 +2,10 @@
  * slide.h - nonlinear time-history analysis (NLTHA) of a rigid block sliding
  * on a level floor with isotropic Coulomb friction (static = kinetic).
  *
- * Equation of motion (../shared/docs/REFERENCE.md section 1), u = block
- * displacement relative to the floor, a_g = horizontal floor acceleration
- * (1-D or 2-D), a_v = vertical floor acceleration (up positive):
+ * Equation of motion (the source study's model; docs/model.md, "Equation
+ * of motion"), u = block displacement relative to the floor, a_g =
+ * horizontal floor acceleration (1-D or 2-D), a_v = vertical floor
+ * acceleration (up positive):
  *
  *     u'' = -a_g(t) - mu N(t) s,   N = max(g + a_v, 0)              (1)
  *     s = u'/|u'| while sliding,   |s| <= 1 while stuck.
@@ -39,6 +40,7 @@
 
 #include <stddef.h>
 
+#include "core/api.h"
 #include "slide/model.h"
 
 
@@ -46,25 +48,25 @@
  * max_i |a_h(t_i)| / N(t_i) over samples (INFINITY with lift-off). Exact for
  * piecewise-linear input since |a_h| is convex and N linear on each step.
  * With up_ratio != 1 this is the threshold for the downslope resistance. */
-double sl_slide_mu_threshold(const sl_set *set, const sl_slide_opts *opts);
+SL_API double sl_slide_mu_threshold(const sl_set *set, const sl_slide_opts *opts);
 
 /* Analyse one checked set for n_mu friction coefficients (each >= 0) at
  * once; res[k] is for mu[k]. mu at or above the threshold is not
  * integrated (flag SL_SLIDE_SKIPPED, zero displacement). Returns SL_OK or an
  * error (bad mu, bad options, solver failure for the reference models). */
-sl_status sl_slide_run(const sl_set *set, const double *mu, size_t n_mu,
-                       const sl_slide_opts *opts, sl_slide_result *res,
-                       sl_error *err);
+SL_API sl_status sl_slide_run(const sl_set *set, const double *mu, size_t n_mu,
+                              const sl_slide_opts *opts, sl_slide_result *res,
+                              sl_error *err);
 
 /* As sl_slide_run for one mu, also returning the history (*hist, caller
  * frees with sl_history_free). */
-sl_status sl_slide_history(const sl_set *set, double mu, const sl_slide_opts *opts,
-                           sl_slide_result *res, sl_history **hist, sl_error *err);
+SL_API sl_status sl_slide_history(const sl_set *set, double mu, const sl_slide_opts *opts,
+                                  sl_slide_result *res, sl_history **hist, sl_error *err);
 
 /* Many sets: res[i * n_mu + k] for set i and mu[k]; runs the sets in
  * parallel with OpenMP. Results do not depend on the thread count. */
-sl_status sl_slide_batch(const sl_set *sets, size_t n_sets, const double *mu,
-                         size_t n_mu, const sl_slide_opts *opts,
-                         sl_slide_result *res, sl_error *err);
+SL_API sl_status sl_slide_batch(const sl_set *sets, size_t n_sets, const double *mu,
+                                size_t n_mu, const sl_slide_opts *opts,
+                                sl_slide_result *res, sl_error *err);
 
 #endif

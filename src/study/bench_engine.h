@@ -1,6 +1,6 @@
 /*
  * bench_engine.h - work-precision data of the error-controlled engine
- * (issue 14; `seislide bench`, docs/integrators.md), as measurements:
+ * (`seislide bench`, docs/integrators.md), as measurements:
  *
  *  1. Over EVERY three-component set under shared/records (io/setdir.h) and
  *     the friction values sl_bench_wp_mu (2-D + vertical): for each accuracy

@@ -19,20 +19,20 @@
 /* ------------------------------------------------------------------ */
 
 /* A record set of the study and why it is there. */
-/* Part 3: the study's seven-record ground set (REFERENCE.md 1), with the
- * stand-in for each record ../shared lacks in three components. */
+/* Part 3: the study's seven-record ground set (docs/validation.md), with the
+ * stand-in for each record the collection lacks in three components. */
 static const sl_study_entry ground_set[] = {
     {"RSN20_NCALIF.FH_H-FRN", "Ferndale 1954 (Ferndale City Hall)", "the study's record"},
     {"RSN77_SFERN_PUL", "Pacoima Dam 1971 (upper left abutment)", "the study's record"},
     {"RSN31_PARKF_C08", "Cholame-Shandon #5 1966 -> Cholame-Shandon #8, 1966",
-     "stand-in: same event and array; ../shared has #5 in one component only"},
+     "stand-in: same event and array; the collection has #5 in one component only"},
     {"RSN777_LOMAP_HCH", "Hollister 1961 -> Hollister City Hall, Loma Prieta 1989",
-     "stand-in: the 1961 records were made at this station; 1961 is not in ../shared"},
+     "stand-in: the 1961 records were made at this station; 1961 is not in the collection"},
     {"RSN57_SFERN_ORR", "Taft 1952 -> Castaic Old Ridge Route, San Fernando 1971",
-     "stand-in: Taft is in ../shared in one component only; Castaic is a "
+     "stand-in: Taft is in the collection in one component only; Castaic is a "
      "moderate-distance record of a California reverse-fault event of the same era"},
     {"RSN776_LOMAP_HSP", "Ferndale 1941 (1) -> Hollister South & Pine, Loma Prieta 1989",
-     "stand-in: 1941 is not in ../shared; a northern-California soil record at "
+     "stand-in: 1941 is not in the collection; a northern-California soil record at "
      "moderate distance, like Ferndale's"},
     {"RSN162_IMPVALL.H_H-CXO", "Ferndale 1941 (2) -> Calexico Fire Station, Imperial Valley 1979",
      "stand-in: as above; a soil record of a moderate (M6.5) event"},
@@ -43,7 +43,7 @@ const sl_study_group sl_study_ground = {"ground set", "ground", ground_set,
                                        sizeof ground_set / sizeof ground_set[0]};
 
 /* Part 4: real three-component sets grouped like the study's four PEER sets.
- * ../shared has no distance, site or pulse metadata; the classification is
+ * The collection has no distance, site or pulse metadata; the classification is
  * ours, from published sets (named per record). */
 static const sl_study_entry group_nf_soil[] = {
     {"RSN6_IMPVALL.I_I-ELC", "El Centro #9, Imperial Valley 1940", "NGA-West2: Rrup ~6 km, soil"},

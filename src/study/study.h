@@ -9,7 +9,7 @@
  *    own 10 %-damped spectra (asce.h), both averaged over the group, and the
  *    design spectra, cap and crossover (design.h).
  *
- * Group averages (../shared/docs/REFERENCE.md 1: "averaged over a set"):
+ * Group averages (the source study: "averaged over a set"):
  *     NLTHA best estimate  m(mu)  = (1/N) sum_s peak_s(mu)
  *     ASCE best estimate   d(mu)  = (1/N) sum_s delta_s(mu)   (NAN if any set
  *                                   has no answer, e.g. no crossing)
@@ -44,8 +44,8 @@ typedef struct sl_study_group {
     size_t n;
 } sl_study_group;
 
-/* The study's seven-record ground set (REFERENCE.md 1), with the stand-in for
- * each record ../shared lacks in three components. */
+/* The study's seven-record ground set (docs/validation.md), with the stand-in
+ * for each record the collection lacks in three components. */
 #define SL_STUDY_NGROUND 7
 extern const sl_study_group sl_study_ground;
 

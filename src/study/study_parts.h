@@ -1,6 +1,6 @@
 /*
  * study_parts.h - the four computed parts of the source study's evaluation
- * (../shared/docs/REFERENCE.md 1; docs/validation.md), as data: every
+ * (docs/validation.md), as data: every
  * number `seislide study` prints or plots comes from these structs and the
  * constants below; the command only formats them.
  *
@@ -25,7 +25,7 @@
 #include "slide/slide.h"
 #include "study/study.h"
 
-/* The study's settings (REFERENCE.md 1). */
+/* The source study's settings (docs/validation.md). */
 #define SL_STUDY_ZETA SL_ASCE_DAMPING /* RG 1.60 matching damping of the study */
 #define SL_STUDY_P1_MU 0.3            /* part 1 friction coefficient */
 #define SL_STUDY_P1_DIR "RSN1063_NORTHR_RRS" /* Rinaldi */

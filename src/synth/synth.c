@@ -1,6 +1,7 @@
 /* synth.c - spectrum-compatible motions: parameters, targets and the plan
  * (see synth.h, synth_internal.h and docs/synthesis.md). */
 #include "synth/synth_internal.h"
+#include "core/fftw_safe.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -201,7 +202,6 @@ void sl_synth_free(sl_synth *s)
 {
     if (!s)
         return;
-#pragma omp critical(sl_fftw_planner)
     {
         if (s->r2c)
             fftw_destroy_plan(s->r2c);
@@ -364,7 +364,7 @@ sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_err
     fftw_complex *c = fftw_malloc(s->nbin * sizeof *c);
     const int have_buffers = r && c;
     if (have_buffers) {
-#pragma omp critical(sl_fftw_planner)
+        sl_fftw_thread_safe();
         {
             s->r2c = fftw_plan_dft_r2c_1d((int)nfft, r, c, FFTW_ESTIMATE);
             s->c2r = fftw_plan_dft_c2r_1d((int)nfft, c, r, FFTW_ESTIMATE);

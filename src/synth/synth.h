@@ -6,7 +6,7 @@
  * half-cycles; no clipping and no pinning of the peak (the PGA comes out of
  * matching the spectrum's high-frequency end). The same iteration modifies a
  * recorded motion to match a target while keeping its Fourier phases.
- * Method, defaults and measured results: docs/synthesis.md (issue 12).
+ * Method, defaults and measured results: docs/synthesis.md.
  *
  * Start (iteration 0). Synthetic: K Gabor wavelets (docs/synthesis.md 3.1)
  *     a(t) = sum_q A_q exp(-(t - t_q)^2/(2 s_q^2)) cos(2 pi f_q (t - t_q) + phi_q),
@@ -46,7 +46,7 @@
  *     E(t) = exp(-c (t - t2)) after, c = ln(1/e_end)/(T - t2), so E(T) = e_end,
  * with t1 = rise_frac T and t2 = hold_frac T.
  *
- * Acceptance checks (US NRC SRP 3.7.1, ../shared/docs/REFERENCE.md 5), each
+ * Acceptance checks (US NRC SRP 3.7.1, Option 1 Approach 2), each
  * a field of sl_synth_params with that default, computed per motion on the
  * grid of sl_spectrum_grid(fmin_hz, fmax_hz, per_decade) restricted to the
  * target's frequency range, at the target's damping:
@@ -78,10 +78,10 @@
  * so another CPU type may differ in the last bits.
  *
  * Threads. An sl_synth plan is read-only after sl_synth_alloc() and may be
- * shared by threads, each with its own sl_synth_motion. FFTW's planner is
- * not thread-safe: sl_synth_alloc()/sl_synth_free() plan and destroy inside
- * "#pragma omp critical(sl_fftw_planner)"; other code planning FFTW in
- * OpenMP threads must use the same critical name.
+ * shared by threads, each with its own sl_synth_motion. sl_synth_alloc()
+ * and sl_synth_free() may run in several threads at once: the library makes
+ * FFTW's planner thread-safe (fftw_make_planner_thread_safe) before its
+ * first plan, which covers the caller's own FFTW plans as well.
  *
  * Units: SI (s, Hz, m, m/s, m/s^2). Damping as a ratio of critical.
  */
@@ -92,13 +92,14 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "core/api.h"
 #include "io/floor.h"
 #include "io/motion.h"
 #include "signal/realism.h"
 #include "signal/spectrum.h"
 #include "core/status.h"
 
-/* ---- Defaults of the acceptance checks (SRP 3.7.1; REFERENCE.md 5) ---- */
+/* ---- Defaults of the acceptance checks (SRP 3.7.1) -------------------- */
 #define SL_SYNTH_TOL_BELOW 0.10      /* no point more than 10 % below the target */
 #define SL_SYNTH_TOL_ABOVE 0.30      /* no point more than 30 % above the target */
 #define SL_SYNTH_MAX_RUN_BELOW 9     /* most consecutive grid points below the target */
@@ -259,10 +260,10 @@ typedef struct sl_synth_params {
 
 /* Fill p with the defaults above (grid: SL_SPECTRUM_FMIN_HZ..FMAX_HZ at
  * SL_SPECTRUM_PER_DECADE, 271 points). */
-void sl_synth_params_default(sl_synth_params *p);
+SL_API void sl_synth_params_default(sl_synth_params *p);
 
 /* Check a parameter set: SL_OK or SL_EINVAL naming the bad field. */
-sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err);
+SL_API sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err);
 
 /* A target: a spectrum (borrowed; values > 0, damping in (0, 1)) and the
  * zero-period acceleration the motion's peak is scaled to, m/s^2. */
@@ -281,21 +282,21 @@ typedef struct sl_synth_target {
  * log-log interpolation is exact; zpa = PGA for all three. spec[c] are
  * allocated (free each with sl_spectrum_free). Returns SL_OK, SL_EINVAL,
  * SL_ENOMEM; on failure nothing is left allocated. */
-sl_status sl_synth_targets_rg160(double pga_ms2, double zeta, const sl_synth_params *p,
-                                 sl_spectrum *spec[SL_SYNTH_NCOMP],
-                                 sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err);
+SL_API sl_status sl_synth_targets_rg160(double pga_ms2, double zeta, const sl_synth_params *p,
+                                        sl_spectrum *spec[SL_SYNTH_NCOMP],
+                                        sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err);
 
 /* The damping a floor component is matched at: SL_SYNTH_DAMPING (5 %) when
  * the file gives it, else the lowest damping given (SRP practice matches
  * the 5 % spectrum). Returns the damping ratio (> 0). */
-double sl_synth_floor_damping(const sl_floor *fl, sl_floor_comp c);
+SL_API double sl_synth_floor_damping(const sl_floor *fl, sl_floor_comp c);
 
 /* The targets of a floor: component c's spectrum at zeta (> 0, must be given
  * in the file) or, when zeta <= 0, at sl_synth_floor_damping(); zpa from
  * comp[c].zpa_ms2. Borrowed pointers into fl. Returns SL_OK or SL_EINVAL
  * (damping not given; err names the file and component). */
-sl_status sl_synth_targets_floor(const sl_floor *fl, double zeta,
-                                 sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err);
+SL_API sl_status sl_synth_targets_floor(const sl_floor *fl, double zeta,
+                                        sl_synth_target tgt[SL_SYNTH_NCOMP], sl_error *err);
 
 /* ------------------------------------------------------------------ */
 /* The plan: FFTW plans, buffers and tables for one length             */
@@ -309,28 +310,28 @@ typedef struct sl_synth sl_synth;
  * under the planner lock), the check grid, the bin-to-grid interpolation
  * table, the envelope and the baseline shapes. Returns NULL and fills err
  * (SL_EINVAL, SL_ENOMEM, SL_ESOLVER) on failure. Free with sl_synth_free. */
-sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_error *err);
+SL_API sl_synth *sl_synth_alloc(size_t n, double dt_s, const sl_synth_params *p, sl_error *err);
 
 /* Free a plan; harmless on NULL. Every sl_synth_motion of it must be freed
  * first. */
-void sl_synth_free(sl_synth *s);
+SL_API void sl_synth_free(sl_synth *s);
 
-size_t sl_synth_n(const sl_synth *s);        /* motion samples */
-double sl_synth_dt(const sl_synth *s);       /* s */
-size_t sl_synth_nfft(const sl_synth *s);     /* FFT length N */
-const sl_synth_params *sl_synth_params_of(const sl_synth *s);
+SL_API size_t sl_synth_n(const sl_synth *s);        /* motion samples */
+SL_API double sl_synth_dt(const sl_synth *s);       /* s */
+SL_API size_t sl_synth_nfft(const sl_synth *s);     /* FFT length N */
+SL_API const sl_synth_params *sl_synth_params_of(const sl_synth *s);
 /* The check grid: *nf points, Hz, borrowed from the plan. */
-const double *sl_synth_grid(const sl_synth *s, size_t *nf);
+SL_API const double *sl_synth_grid(const sl_synth *s, size_t *nf);
 /* The envelope E(t_j), n values, borrowed. */
-const double *sl_synth_envelope(const sl_synth *s);
+SL_API const double *sl_synth_envelope(const sl_synth *s);
 
 /* SplitMix64 hash of (seed, set, comp, attempt), low 32 bits: the seed of
  * the motion's mt19937 stream. Pure function. */
-unsigned long sl_synth_stream_seed(uint64_t seed, size_t set, sl_synth_comp comp,
-                                   unsigned attempt);
+SL_API unsigned long sl_synth_stream_seed(uint64_t seed, size_t set, sl_synth_comp comp,
+                                          unsigned attempt);
 
 /* ------------------------------------------------------------------ */
-/* One motion: set / iterate / test (STYLE 5)                          */
+/* One motion: set / iterate / test                                    */
 /* ------------------------------------------------------------------ */
 
 /* Every other damping a floor file gives (docs/synthesis.md 4): the
@@ -384,47 +385,47 @@ typedef struct sl_synth_motion sl_synth_motion;
 /* A workspace for one motion at a time, for plan s (borrowed: keep s alive).
  * Buffers are fftw_malloc'd once here and reused by every set/iterate.
  * Returns NULL (err filled, SL_ENOMEM) on failure. */
-sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err);
+SL_API sl_synth_motion *sl_synth_motion_alloc(const sl_synth *s, sl_error *err);
 
 /* Free a workspace; harmless on NULL. */
-void sl_synth_motion_free(sl_synth_motion *m);
+SL_API void sl_synth_motion_free(sl_synth_motion *m);
 
 /* Start a synthetic motion for target t: random phases from the stream
  * sl_synth_stream_seed(seed, set, comp, attempt), amplitudes T(f)/sqrt(f)
  * (T extended below its range at constant SD, above at its last value),
  * times the envelope; makes iteration 0 (motion and spectrum). Returns
  * SL_OK, SL_EINVAL (bad target), SL_ENOMEM, SL_ESOLVER. */
-sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint64_t seed,
-                              size_t set, sl_synth_comp comp, unsigned attempt,
-                              sl_error *err);
+SL_API sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint64_t seed,
+                                     size_t set, sl_synth_comp comp, unsigned attempt,
+                                     sl_error *err);
 
 /* Start from a recorded motion acc_ms2[0..n-1] (n <= the plan's n, sampled
  * at the plan's dt; zero-extended to it), no envelope; makes iteration 0.
  * Returns SL_OK, SL_EINVAL (n == 0, too long, non-finite or all-zero
  * samples, bad target), SL_ENOMEM, SL_ESOLVER. */
-sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
-                              const double *acc_ms2, size_t n, sl_error *err);
+SL_API sl_status sl_synth_set_record(sl_synth_motion *m, const sl_synth_target *t,
+                                     const double *acc_ms2, size_t n, sl_error *err);
 
 /* One iteration (see above): spectral correction of the current iterate,
  * peak limiting, baseline, scaling, spectrum. Keeps the best iterate.
  * Returns SL_OK, SL_EINVAL (no successful set_* before), SL_ESOLVER
  * (non-finite values). */
-sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err);
+SL_API sl_status sl_synth_iterate(sl_synth_motion *m, sl_error *err);
 
 /* 1 when the spectral checks (below, above, run) pass for the best iterate,
  * else 0. */
-int sl_synth_test(const sl_synth_motion *m);
+SL_API int sl_synth_test(const sl_synth_motion *m);
 
 /* Iterations done since the last set_*. */
-unsigned sl_synth_iterations(const sl_synth_motion *m);
+SL_API unsigned sl_synth_iterations(const sl_synth_motion *m);
 
 /* The best iterate so far (n samples, m/s^2) and its spectrum on the grid
  * (NAN outside the target's range); borrowed, valid until the next call on
  * m. */
-const double *sl_synth_acc(const sl_synth_motion *m);
-const double *sl_synth_psa(const sl_synth_motion *m);
+SL_API const double *sl_synth_acc(const sl_synth_motion *m);
+SL_API const double *sl_synth_psa(const sl_synth_motion *m);
 /* The target on the grid (NAN outside its range); borrowed. */
-const double *sl_synth_target_psa(const sl_synth_motion *m);
+SL_API const double *sl_synth_target_psa(const sl_synth_motion *m);
 
 /* An end residual x (v_end_ms or d_end_m) as printed: 0 when |x| is at
  * most SL_SYNTH_END_ROUNDOFF x peak (its PGV or PGD), else x. Round-off
@@ -434,12 +435,12 @@ double sl_synth_end_residual(double x, double peak);
 
 /* Every check of the best iterate except the correlation (max_corr = NAN,
  * ok_corr = 1), into *out. */
-void sl_synth_check_motion(const sl_synth_motion *m, sl_synth_check *out);
+SL_API void sl_synth_check_motion(const sl_synth_motion *m, sl_synth_check *out);
 
 /* Pearson correlation coefficient of a and b over n samples (means
  * removed): sum (a - ma)(b - mb) / sqrt(sum (a - ma)^2 sum (b - mb)^2).
  * 0 when either is constant. */
-double sl_synth_corr(const double *a, const double *b, size_t n);
+SL_API double sl_synth_corr(const double *a, const double *b, size_t n);
 
 /* ------------------------------------------------------------------ */
 /* Whole sets                                                          */
@@ -456,10 +457,10 @@ typedef struct sl_synth_set {
 } sl_synth_set;
 
 /* Component c of a set: set.h1, set.h2 or set.v (NULL when absent). */
-sl_motion *sl_synth_set_motion(const sl_synth_set *s, sl_synth_comp c);
+SL_API sl_motion *sl_synth_set_motion(const sl_synth_set *s, sl_synth_comp c);
 
 /* Free the motions of a set and zero it; harmless on NULL. */
-void sl_synth_set_clear(sl_synth_set *set);
+SL_API void sl_synth_set_clear(sl_synth_set *set);
 
 /* Progress callback: `done` of `total` motion runs finished. Called from one
  * thread at a time (inside an OpenMP critical section). */
@@ -475,25 +476,25 @@ typedef void (*sl_synth_progress)(void *ctx, size_t done, size_t total);
  * "setNN_h1" etc.). Returns SL_OK when every check passed, SL_ENOCONV when
  * some motion failed a check (out complete; see pass flags), or SL_EINVAL,
  * SL_ENOMEM, SL_ESOLVER (out cleared). progress may be NULL. */
-sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
-                             uint64_t seed, size_t first_set, size_t count,
-                             sl_synth_set *out, sl_synth_progress progress, void *ctx,
-                             sl_error *err);
+SL_API sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                                    uint64_t seed, size_t first_set, size_t count,
+                                    sl_synth_set *out, sl_synth_progress progress, void *ctx,
+                                    sl_error *err);
 
 /* One set (set index `set`; its three components in parallel): the unit
  * timed by the benchmark. Equal, bit for bit, to set `set` of a
  * sl_synth_make_sets() batch with the same seed. Same returns as
  * sl_synth_make_sets. */
-sl_status sl_synth_make_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
-                            uint64_t seed, size_t set, sl_synth_set *out, sl_error *err);
+SL_API sl_status sl_synth_make_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                                   uint64_t seed, size_t set, sl_synth_set *out, sl_error *err);
 
 /* Match recorded components rec[H1, H2, V] (any may be NULL, at least one
  * present; all at the plan's dt, each n <= the plan's n) to tgt: the same
  * iteration from the records' Fourier phases. out filled as above (labels
  * "match_h1" etc.). Same returns as sl_synth_make_sets. */
-sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
-                             const sl_motion *const rec[SL_SYNTH_NCOMP], sl_synth_set *out,
-                             sl_error *err);
+SL_API sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                                    const sl_motion *const rec[SL_SYNTH_NCOMP], sl_synth_set *out,
+                                    sl_error *err);
 
 /* Every other damping of a floor file, checked on the motions' own spectra
  * (the ASCE method reads e.g. the 10 % table while the NLTHA sees the
@@ -506,12 +507,12 @@ sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYN
  * parameters). Fills check[c].n_other and other[] (0 for a component
  * absent from some set, as with records). Returns SL_OK, SL_EINVAL (no
  * sets), SL_ENOMEM, SL_ESOLVER. */
-sl_status sl_synth_check_dampings(const sl_synth *s, const sl_floor *fl, sl_synth_set *sets,
-                                  size_t nsets, sl_error *err);
+SL_API sl_status sl_synth_check_dampings(const sl_synth *s, const sl_floor *fl, sl_synth_set *sets,
+                                         size_t nsets, sl_error *err);
 
 /* 1 when every set-mean check of the other dampings passed (or there are
  * none) for sets[0..nsets-1] after sl_synth_check_dampings. */
-int sl_synth_dampings_ok(const sl_synth_set *sets, size_t nsets);
+SL_API int sl_synth_dampings_ok(const sl_synth_set *sets, size_t nsets);
 
 /* ------------------------------------------------------------------ */
 /* Input and output helpers                                            */
@@ -521,18 +522,18 @@ int sl_synth_dampings_ok(const sl_synth_set *sets, size_t nsets);
  * (exact for the piecewise-linear reading of the record), over the same
  * duration: floor((n - 1) dt/dt_new) + 1 samples, returned in *n_new.
  * Returns a malloc'd array (caller frees) or NULL on bad input. */
-double *sl_synth_resample(const double *acc_ms2, size_t n, double dt_s, double dt_new_s,
-                          size_t *n_new);
+SL_API double *sl_synth_resample(const double *acc_ms2, size_t n, double dt_s, double dt_new_s,
+                                 size_t *n_new);
 
 /* The step record matching uses for a record sampled at dt_s: the largest
  * dt_s/k <= SL_SYNTH_MAX_DT_S, k whole (dt_s itself when it is fine enough),
  * so every record sample stays a sample. */
-double sl_synth_match_dt(double dt_s);
+SL_API double sl_synth_match_dt(double dt_s);
 
 /* m resampled to dt_s by sl_synth_resample (a plain copy when m is already
  * at dt_s within 1e-9 relative), keeping its path and label. Returns NULL on
  * bad input or allocation failure; free with sl_motion_free. */
-sl_motion *sl_synth_resample_motion(const sl_motion *m, double dt_s);
+SL_API sl_motion *sl_synth_resample_motion(const sl_motion *m, double dt_s);
 
 /* Write a motion as a PEER-style AT2 file readable by sl_motion_read():
  * line 1 "SEISLIDE SYNTHETIC MOTION", line 2 the title, line 3
@@ -540,10 +541,10 @@ sl_motion *sl_synth_resample_motion(const sl_motion *m, double dt_s);
  * then 5 values a line in g, %.9E (a relative rounding of 5e-10). Written
  * atomically (atomic.h). Returns SL_OK or SL_EIO/SL_ENOMEM (err names the
  * path). */
-sl_status sl_synth_write_at2(const char *path, const sl_motion *m, const char *title,
-                             sl_error *err);
+SL_API sl_status sl_synth_write_at2(const char *path, const sl_motion *m, const char *title,
+                                    sl_error *err);
 
 /* Short name of a component: "h1", "h2", "v". */
-const char *sl_synth_comp_name(sl_synth_comp c);
+SL_API const char *sl_synth_comp_name(sl_synth_comp c);
 
 #endif

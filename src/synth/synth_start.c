@@ -2,6 +2,7 @@
  * eq. 1, docs/synthesis.md 3.1), the target on the grid, the high-pass and the
  * first gain. */
 #include "synth/synth_internal.h"
+#include "core/gslerr.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -233,7 +234,9 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
     if (st)
         return st;
     const sl_synth *s = m->s;
+    sl_gsl_quiet_begin(); /* GSL's handler off: a failure is a status (gslerr.h) */
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    sl_gsl_quiet_end();
     if (!rng)
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
     gsl_rng_set(rng, sl_synth_stream_seed(seed, set, comp, attempt));

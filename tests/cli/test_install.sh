@@ -8,19 +8,42 @@
 # 43-05 estimate on RG 1.60 that it checks by hand. Then the library's
 # hygiene: every exported symbol is sl_/SL_, no research code (src/study) in
 # it, src/signal includes nothing from src/io, no src/**/*.c over 1,000 lines.
+# The interface: installed twice with two PREFIX values, the second's
+# seislide.pc names the second (nothing cached from the first); every
+# installed header compiles alone as C11 and as C++17 with -Wall -Wextra
+# -Werror -pedantic; libseislide.so exports exactly the SL_API functions of
+# the installed headers and no data; sl_version() is SEISLIDE_VERSION_STRING
+# and seislide.pc's Version; a C++ program links against the library.
 . "$(dirname "$0")/lib.sh"
 t_suite cli_install
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 D=$T_TMP/dest
 P=/opt/seislide
 # The install rebuilds nothing in an up-to-date tree; LDFLAGS as the build's
-# (make asan), should it link the shared library.
+# (make asan), should it link the shared library. A first install with
+# another PREFIX (and the default LIBDIR) into another DESTDIR; then the one
+# the rest of the test uses, with LIBDIR named.
 # shellcheck disable=SC2086
-make -s -C "$ROOT" install DESTDIR="$D" PREFIX=$P $SEISLIDE_MAKEVARS LDFLAGS="$SEISLIDE_LDFLAGS" \
-  >"$T_TMP/make.out" 2>&1
+make -s -C "$ROOT" install DESTDIR="$T_TMP/first" PREFIX=/opt/seislide-first $SEISLIDE_MAKEVARS \
+  LDFLAGS="$SEISLIDE_LDFLAGS" >"$T_TMP/make.out" 2>&1
+[ $? -eq 0 ] && t_pass || t_fail "first make install failed: $(head -c 400 "$T_TMP/make.out")"
+grep -qx 'prefix=/opt/seislide-first' "$T_TMP/first/opt/seislide-first/lib/pkgconfig/seislide.pc" &&
+  grep -qx 'libdir=/opt/seislide-first/lib' "$T_TMP/first/opt/seislide-first/lib/pkgconfig/seislide.pc" &&
+  t_pass || t_fail "first install: seislide.pc does not name /opt/seislide-first and its lib/"
+# shellcheck disable=SC2086
+make -s -C "$ROOT" install DESTDIR="$D" PREFIX=$P LIBDIR=$P/lib64 $SEISLIDE_MAKEVARS \
+  LDFLAGS="$SEISLIDE_LDFLAGS" >"$T_TMP/make.out" 2>&1
 [ $? -eq 0 ] && t_pass || t_fail "make install failed: $(head -c 400 "$T_TMP/make.out")"
 I=$D$P/include/seislide
-L=$D$P/lib
+L=$D$P/lib64
+pc=$L/pkgconfig/seislide.pc
+grep -qx "prefix=$P" "$pc" && grep -qx "libdir=$P/lib64" "$pc" && ! grep -q seislide-first "$pc" &&
+  t_pass || t_fail "second install: seislide.pc is not the second's: $(grep -E '^(prefix|libdir)=' "$pc" | tr '\n' ' ')"
+# The version, declared once (src/core/version.h): the .pc and the program say it.
+V=$(sed -n 's/^#define SEISLIDE_VERSION_[A-Z]* \([0-9][0-9]*\)$/\1/p' "$ROOT/src/core/version.h" | paste -sd.)
+grep -qx "Version: $V" "$pc" && t_pass || t_fail "seislide.pc: Version is not $V"
+[ "$("$SEISLIDE_BIN" --version)" = "seislide $V" ] && t_pass ||
+  t_fail "seislide --version: '$("$SEISLIDE_BIN" --version)', expected 'seislide $V'"
 for h in seislide.h core/status.h slide/slide.h method/asce_input.h report/report.h; do
   [ -f "$I/$h" ] && t_pass || t_fail "$h not installed"
 done
@@ -81,6 +104,7 @@ else
  * 1.5 x 1.4 x 36 in x 0.3 = 0.576072 m: flag capped (1), design = cap. */
 #include <seislide/seislide.h>
 #include <stdio.h>
+#include <string.h>
 int main(void)
 {
     sl_asce_source src;
@@ -94,13 +118,14 @@ int main(void)
     sl_asce_result r;
     int bad = !a || sl_asce_eval(a, 0.1, &r, &err) != SL_OK;
     if (!bad)
-        printf("%.6f %.6f %u %.6f\n", r.mu_e, r.cs_ms2 / SL_G, r.flags, r.delta_design_m);
+        printf("%.6f %.6f %u %.6f %s %d\n", r.mu_e, r.cs_ms2 / SL_G, r.flags, r.delta_design_m,
+               sl_version(), strcmp(sl_version(), SEISLIDE_VERSION_STRING) == 0);
     sl_asce_free(a);
     sl_asce_source_free(&src);
     return bad;
 }
 PROG
-  want="0.088000 0.176000 1 0.576072"
+  want="0.088000 0.176000 1 0.576072 $V 1"
   cd "$T_TMP" || exit 2
   # 1. the plain line: the shared library
   # shellcheck disable=SC2046,SC2086
@@ -139,6 +164,34 @@ PROG
         t_fail "archive line: the program still needs libseislide.so" || t_pass
     fi
   fi
+  # 4. the same program as C++17 (SL_API gives the declarations C linkage)
+  if command -v "${CXX:-g++}" >/dev/null 2>&1; then
+    # shellcheck disable=SC2046,SC2086
+    ${CXX:-g++} -std=c++17 -x c++ prog.c -x none $(pkg-config --cflags --libs seislide) $SEISLIDE_LDFLAGS \
+      -o prog_cxx >cc.out 2>&1
+    [ $? -eq 0 ] && t_pass || t_fail "C++ program: $(head -c 600 cc.out)"
+    if [ -x prog_cxx ]; then
+      out=$(LD_LIBRARY_PATH="$L${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" ./prog_cxx)
+      [ "$out" = "$want" ] && t_pass || t_fail "C++ program printed '$out'"
+    fi
+  else
+    t_skip "no C++ compiler: the C++ program is not built"
+  fi
+  # Every installed header alone, as C11 and as C++17, warning-free under
+  # -Wall -Wextra -Werror -pedantic (seislide.h includes all the others).
+  bad=
+  for h in $(cd "$D$P/include" && find seislide -name '*.h' | sort); do
+    printf '#include <%s>\nint sl_header_test;\n' "$h" >hdr.c
+    # shellcheck disable=SC2046
+    $CC -std=c11 -Wall -Wextra -Werror -pedantic -fsyntax-only $(pkg-config --cflags seislide) \
+      hdr.c >cc.out 2>&1 || bad="$bad $h(C11: $(head -c 200 cc.out))"
+    if command -v "${CXX:-g++}" >/dev/null 2>&1; then
+      # shellcheck disable=SC2046
+      ${CXX:-g++} -std=c++17 -x c++ -Wall -Wextra -Werror -pedantic -fsyntax-only \
+        $(pkg-config --cflags seislide) hdr.c >cc.out 2>&1 || bad="$bad $h(C++17: $(head -c 200 cc.out))"
+    fi
+  done
+  [ -z "$bad" ] && t_pass || t_fail "headers not clean:$bad"
   cd "$ROOT" || exit 2
 fi
 
@@ -157,6 +210,24 @@ if command -v nm >/dev/null 2>&1; then
   [ -z "$bad" ] && t_pass || t_fail "libseislide.so exports names without sl_/SL_: $(echo $bad | head -c 400)"
   n=$(nm -D --defined-only "$L/libseislide.so" 2>/dev/null | grep -c ' T sl_')
   [ "$n" -gt 50 ] && t_pass || t_fail "libseislide.so exports only $n sl_ functions"
+  # Exported = declared: the names libseislide.so defines are the SL_API
+  # declarations of the installed headers, both ways; and every sl_
+  # function declared at file scope in them carries SL_API.
+  nm -D --defined-only "$L/libseislide.so" | awk 'NF == 3 { print $3 }' | sort -u >"$T_TMP/exported"
+  grep -rh '^SL_API' "$I" | sed -E 's/^[^([]*[^a-z0-9_](sl_[a-z0-9_]+) *[([].*/\1/' |
+    sort -u >"$T_TMP/declared"
+  only=$(comm -23 "$T_TMP/exported" "$T_TMP/declared" | tr '\n' ' ')
+  [ -z "$only" ] && t_pass || t_fail "exported but declared in no installed header with SL_API: $only"
+  only=$(comm -13 "$T_TMP/exported" "$T_TMP/declared" | tr '\n' ' ')
+  [ -z "$only" ] && t_pass || t_fail "declared SL_API but not exported: $only"
+  [ "$(wc -l <"$T_TMP/declared")" -gt 100 ] && t_pass ||
+    t_fail "only $(wc -l <"$T_TMP/declared") SL_API declarations found"
+  bare=$(grep -rnE '^[a-z][a-z0-9_ *]*[ *]sl_[a-z0-9_]+ *\(' "$I" | grep -vE ':(typedef|struct|enum|static) ' |
+         sed "s|$I/||" | head -5)
+  [ -z "$bare" ] && t_pass || t_fail "function declared without SL_API: $bare"
+  # No data exported, writable or not (only functions: type T).
+  data=$(nm -D --defined-only "$L/libseislide.so" | awk 'NF == 3 && $2 != "T" { print $2, $3 }' | tr '\n' ' ')
+  [ -z "$data" ] && t_pass || t_fail "libseislide.so exports data: $data"
   # The research code (src/study: the study, the bench, physical floors) is
   # not in the public library.
   bad=$(nm -g --defined-only "$L/libseislide.a" "$L/libseislide.so" 2>/dev/null |
@@ -172,4 +243,19 @@ bad=$(grep -lE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"io/' "$ROOT"/src/s
 big=$(find "$ROOT/src" -name '*.c' -exec wc -l {} + |
       awk '$2 != "total" && $1 > 1000 { sub(".*/src/", "src/", $2); printf " %s (%d lines)", $2, $1 }')
 [ -z "$big" ] && t_pass || t_fail "over 1,000 lines:$big"
+# Functions a reader can hold: none over 120 lines in src/cli or
+# src/analysis.c (from its first line at column 0 to its closing brace), and
+# no src/cli/cmd_*.c over 250 lines. LONG_OK names the files not yet split.
+LONG_OK="cmd_run.c cmd_merge.c"
+long=$(for f in "$ROOT"/src/cli/*.c "$ROOT"/src/analysis.c; do
+         case " $LONG_OK " in *" $(basename "$f") "*) continue ;; esac
+         awk '/^[A-Za-z_].*\(/ && !/;[[:space:]]*$/ && !/^(typedef|struct|enum|static const)/ { s = FNR; h = $0 }
+              /^}/ && s { if (FNR - s + 1 > 120) printf " %s:%d (%d lines)", FILENAME, s, FNR - s + 1; s = 0 }' "$f"
+       done | sed "s|$ROOT/||g")
+[ -z "$long" ] && t_pass || t_fail "functions over 120 lines:$long"
+long=$(for f in "$ROOT"/src/cli/cmd_*.c; do
+         case " $LONG_OK " in *" $(basename "$f") "*) continue ;; esac
+         n=$(wc -l <"$f"); [ "$n" -gt 250 ] && printf ' %s (%d lines)' "${f#"$ROOT"/}" "$n"
+       done)
+[ -z "$long" ] && t_pass || t_fail "command files over 250 lines:$long"
 t_end
