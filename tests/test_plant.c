@@ -290,12 +290,12 @@ static void test_plant_lookup_libreoffice(void)
         return;
     const sl_plant_book_row rows[4] = {
         {"Aux", "ground", "Aux ground", 0, 0.3 * SL_G, 2, "fixed", d[0], "p/Aux/ground.ini",
-         0x1a2b3c4dUL, 1001, 0},
+         0x1a2b3c4dUL, 1001, 0, NULL},
         {"Aux", "el12", "Aux el. 12 m", 12, 0.39 * SL_G, 2, "fixed", d[1], "p/Aux/el12.ini",
-         0xdeadbeefUL, 1002, 0},
+         0xdeadbeefUL, 1002, 0, NULL},
         {RB, "ground", "Rez-de-chaussée", 0, 0.3 * SL_G, 2, "fixed", d[2],
-         "p/" RB "/ground.ini", 0x0000beefUL, 1003, 0},
-        {RB, "Niveau_-3", "Niveau −3 m", -3, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0, 0}};
+         "p/" RB "/ground.ini", 0x0000beefUL, 1003, 0, NULL},
+        {RB, "Niveau_-3", "Niveau −3 m", -3, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0, 0, NULL}};
     /* plant.csv: the building CSVs' trace lines, # program: first, a CRC
      * line per floor named building/id (a floor without a path: "-") */
     {

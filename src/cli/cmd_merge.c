@@ -63,8 +63,9 @@ static int owns(const char *name)
 {
     if (sl_report_owns_name(name) || sl_plant_owns_name(name))
         return 1;
+    char file[SL_DELIVER_ID_MAX];
     for (size_t b = 0; owns_plant && owns_plant->is_plant && b < owns_plant->n_buildings; b++)
-        if (!strcmp(name, owns_plant->building[b]))
+        if (!strcmp(name, sl_report_file_name(owns_plant->building[b], file, sizeof file)))
             return 1;
     return 0;
 }

@@ -50,6 +50,17 @@ static const char *checks_text(const sl_plant_book_row *r, char *buf, size_t n)
     return buf;
 }
 
+/* Decimals of a plant.csv clearance at mu: as many as summary.csv shows at
+ * a grid mu (text.c: the place of the standard error's leading digit, 1 or
+ * 0.1 mm); between grid rows, the more of the two rows around mu. */
+static int csv_decimals(const sl_plant_book_row *r, double mu)
+{
+    const sl_report_floor fl = {.design = r->design, .design_se_m = r->design_se_m};
+    size_t k1, k0 = sl_rpt_lookup_bracket(r->design, 1, mu, &k1);
+    int d0 = sl_rpt_shown_decimals(&fl, k0), d1 = sl_rpt_shown_decimals(&fl, k1);
+    return r->design->rows[k0].mu == mu || d0 > d1 ? d0 : d1;
+}
+
 /* The report the shared writers (csv.c, layout.c) read: the run's record
  * and title block, and one "floor" per row named BUILDING/ID for the
  * floor_file_crc32 lines (ids[i], SL_PLANT_ID_MAX each, or NULL). */
@@ -119,7 +130,8 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
                     "each floor's grid, empty outside it)");
     free(floors);
     free(ids);
-    sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm");
+    sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm, shown to the "
+                       "digit of its standard error (1 mm or 0.1 mm, as summary.csv)");
     fputs("building,floor,floor_name,elevation_m,zpa_g,sets,convergence", f);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         fprintf(f, ",clearance_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
@@ -139,7 +151,7 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
             double c = sl_design_clearance_at(r->design, SL_PLANT_BOOK_MU[k]);
             fputc(',', f);
             if (isfinite(c))
-                fprintf(f, "%.3f", 1e3 * c);
+                fprintf(f, "%.*f", csv_decimals(r, SL_PLANT_BOOK_MU[k]), 1e3 * c);
         }
         char chk[64];
         fprintf(f, ",%s,%s\r\n", sl_plant_book_governing(r->design, gov, sizeof gov),

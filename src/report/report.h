@@ -146,10 +146,20 @@ typedef struct sl_report {
 /* Initialise a report: zeros, lookup_mu = SL_REPORT_LOOKUP_MU. */
 void sl_report_init(sl_report *r);
 
-/* The short id of a floor file: its file name without folders and the
- * ".ini" ending, characters other than letters, digits, '-' and '_' made
- * '_' (into buf of size n). "floors/04-roof36.ini" -> "04-roof36". */
+/* The id of a floor file (or of a building's folder): its file name without
+ * folders and the ".ini" or ".csv" ending, as written (UTF-8), control bytes
+ * and bytes that are not UTF-8 made '_', cut at whole characters to 64
+ * bytes (into buf of size n). "floors/04-roof36.ini" -> "04-roof36",
+ * "Niveau −3 m.ini" -> "Niveau −3 m". */
 char *sl_report_floor_id(const char *path, char *buf, size_t n);
+/* The part of an output file (or folder) name made from an id: ASCII
+ * letters, digits, '-', '_' and every character beyond ASCII kept, any other
+ * character made '_' (into buf of size n; 4 x the id's length suffices).
+ * "Niveau −3 m" -> "Niveau_−3_m"; "Bâtiment réacteur" -> "Bâtiment_réacteur". */
+char *sl_report_file_name(const char *id, char *buf, size_t n);
+/* Bytes of the UTF-8 character at s (1 for ASCII), 0 when s holds no valid
+ * one (or is at its end). */
+size_t sl_report_utf8_len(const char *s);
 
 /* Check that the floors' ids and names are unique (names compared without
  * case, as the workbook's MATCH does). SL_EINVAL naming both files. */

@@ -174,10 +174,12 @@ void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax);
 void sl_rpt_add_series(lxw_chart *ch, const char *sheet, lxw_col_t xc, lxw_col_t yc,
                        lxw_row_t r0, lxw_row_t r1, const char *name, lxw_color_t color,
                        float width, uint8_t dash, uint8_t transparency);
-/* Sheet names of the floors (names[i], SL_RPT_SHEET_NAME_MAX + 1 each):
- * the floor ids when every one fits, is unique without case and is not
+/* Sheet names of the floors (names[i], 4 SL_RPT_SHEET_NAME_MAX + 1 bytes
+ * each: 31 characters of UTF-8): the floor ids as written, Excel's
+ * forbidden characters []:*?/\ (and an apostrophe at either end) made '_',
+ * cut at 31 characters, when they are unique without case and none is
  * another sheet's name; else "F1", "F2", ... */
-void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX + 1]);
+void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX * 4 + 1]);
 
 /* ---- the sheets -------------------------------------------------------- */
 void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
