@@ -25,6 +25,7 @@
 #define XLSX_CHART_PX 480.0
 #define CHARS_PER_WIDTH 1.12
 #define CHARS_PER_WIDTH_BOLD 1.05
+#define HEAD_CHARS_PER_WIDTH 1.2
 
 void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
 {
@@ -75,6 +76,12 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     format_set_text_wrap(F->header);
     format_set_align(F->header, LXW_ALIGN_VERTICAL_TOP);
     format_set_bottom(F->header, LXW_BORDER_THIN);
+    F->header_num = workbook_add_format(wb); /* a heading over numbers: at their right */
+    format_set_bold(F->header_num);
+    format_set_text_wrap(F->header_num);
+    format_set_align(F->header_num, LXW_ALIGN_VERTICAL_TOP);
+    format_set_align(F->header_num, LXW_ALIGN_RIGHT);
+    format_set_bottom(F->header_num, LXW_BORDER_THIN);
     F->indent = workbook_add_format(wb); /* text after a number: kept off it */
     format_set_text_wrap(F->indent);
     format_set_align(F->indent, LXW_ALIGN_VERTICAL_TOP);
@@ -136,6 +143,60 @@ double sl_rpt_text_height(const char *s, double width, int bold)
 {
     int cpl = (int)floor(width * (bold ? CHARS_PER_WIDTH_BOLD : CHARS_PER_WIDTH)) - 1;
     return LINE_PT * wrapped_lines(s ? s : "", cpl) + 1.0;
+}
+
+/* Characters (not bytes) of the UTF-8 text s[0..len). */
+static size_t utf8_chars(const char *s, size_t len)
+{
+    size_t c = 0;
+    for (size_t k = 0; k < len; k++)
+        c += ((unsigned char)s[k] & 0xC0) != 0x80;
+    return c;
+}
+
+/* s broken at blanks into lines of at most max characters (a longer word
+ * alone on its line) into buf (NULL: only counted); returns the lines. */
+static int break_lines(const char *s, size_t max, char *buf, size_t n)
+{
+    size_t k = 0, col = 0;
+    int lines = 1;
+    for (const char *p = s; *p;) {
+        if (*p == ' ') {
+            p++;
+            continue;
+        }
+        size_t len = strcspn(p, " "), w = utf8_chars(p, len);
+        if (buf && len + 2 > n - k)
+            break;
+        char sep = col ? (col + 1 + w > max ? '\n' : ' ') : 0;
+        if (sep) {
+            lines += sep == '\n';
+            col = sep == '\n' ? 0 : col + 1;
+            if (buf)
+                buf[k++] = sep;
+        }
+        if (buf)
+            memcpy(buf + k, p, len);
+        k += len;
+        col += w;
+        p += len;
+    }
+    if (buf && n)
+        buf[k < n ? k : n - 1] = '\0';
+    return lines;
+}
+
+char *sl_rpt_header_text(const char *s, double width, char *buf, size_t n)
+{
+    /* a line a character short of what LibreOffice fits in bold (measured:
+     * "cap (1.5 x" in a column 8.5 wide), then as short as the same number
+     * of lines allows: balanced lines, no word left alone */
+    size_t max = (size_t)fmax(1, floor(HEAD_CHARS_PER_WIDTH * width) - 1);
+    int lines = break_lines(s, max, NULL, 0);
+    while (max > 1 && break_lines(s, max - 1, NULL, 0) == lines)
+        max--;
+    break_lines(s, max, buf, n);
+    return buf;
 }
 
 /* Text for a header/footer: '&' doubled (Excel's escape), cut to max

@@ -255,6 +255,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
 {
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Plant");
     lxw_format *num = top_format(wb, NULL, 0), *mm = top_format(wb, "0.0", 0),
+               *mm0 = top_format(wb, "0", 0), /* shown as plant.csv shows it */
                *g = top_format(wb, "0.000", 0), *head_mu = top_format(wb, NULL, 1);
     size_t lb = 0, lf = 0, ln = 0;
     for (size_t i = 0; i < b->n; i++) {
@@ -326,7 +327,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
             sl_rpt_num_or_blank(ws, row, (lxw_col_t)(PL_CLEAR + k),
                                 SL_RPT_MM_PER_M * sl_design_clearance_at(r->design,
                                                                          SL_PLANT_BOOK_MU[k]),
-                                mm);
+                                csv_decimals(r, SL_PLANT_BOOK_MU[k]) ? mm : mm0);
         worksheet_write_string(ws, row, PL_GOV, gov, F->indent);
         char chk_buf[64];
         const char *chk = checks_text(r, chk_buf, sizeof chk_buf);

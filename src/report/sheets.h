@@ -29,7 +29,7 @@
 
 typedef struct sl_rpt_fmts {
     lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
-        *note, *label, *sci, *warn, *indent;
+        *note, *label, *sci, *warn, *indent, *header_num;
 } sl_rpt_fmts;
 
 /* Layout (0-based rows). */
@@ -154,6 +154,10 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F);
  * merged range) `width` characters wide (LibreOffice does not grow a row
  * whose height a file sets, nor one it reads without one). */
 double sl_rpt_text_height(const char *s, double width, int bold);
+/* A column heading broken into lines ('\n', at blanks) two characters
+ * shorter than a column `width` wide holds in bold, so that no heading
+ * runs into the next one (into buf of size n). */
+char *sl_rpt_header_text(const char *s, double width, char *buf, size_t n);
 /* The x_scale of a chart as wide as n columns of these widths. */
 double sl_rpt_chart_scale(const double *width, size_t n);
 /* Page setup shared by every sheet: A4, margins, a two-line header with the
