@@ -144,7 +144,9 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         row = info_row(ws, F, row, "ASCE spectrum", sl_rpt_sa10_text(fl), w_value);
     const char *note = fl->note ? fl->note : "";
     size_t ln = strlen(note); /* after a sentence, a blank; after a phrase, "; " */
-    snprintf(buf, sizeof buf, "%s%s%zu friction values %s", note,
+    while (ln && note[ln - 1] == ' ')
+        ln--;
+    snprintf(buf, sizeof buf, "%.*s%s%zu friction values %s", (int)ln, note,
              !ln ? "" : note[ln - 1] == '.' ? " " : "; ", fl->n_mu_skipped,
              fl->scatter > 0 ? "with no sliding at any intensity of the scatter (mu g at or above "
                                "every motion's demand even at the strongest intensity)"
