@@ -6,15 +6,17 @@
  *  - "Lookup": choose a floor from a drop-down list, type mu; formulas return
  *    the required clearance in mm, interpolated linearly in mu (the same rule
  *    as sl_design_clearance_at()), with every intermediate cell visible;
- *  - "Summary": rows mu, one column per floor, required clearance in mm;
- *    below it each floor's ZPA and sets, then each floor's file, crossover,
- *    ranges and note, and a chart of every floor;
- *  - one sheet per floor, named by its id (sl_report_floor_id; "F1", "F2",
- *    ... when an id cannot be a sheet name), the full name in its title:
- *    mu, mu g/ZPA, NLTHA mean and design with its standard error, ASCE best
- *    and design, cap, clearance (all mm), flags, and a scatter chart of the
- *    design sliding spectra with the cap and the crossover on a page of its
- *    own;
+ *  - "Summary": a chart of every floor; each floor's file, crossover,
+ *    ranges and note; last, rows mu, one column per floor, required
+ *    clearance in mm, and below it each floor's ZPA and sets;
+ *  - one sheet per floor, named by its id (sl_report_floor_id; Excel's
+ *    forbidden characters made '_', cut at 31 characters; "F1", "F2", ...
+ *    when two such names collide), the full name in its title: what the
+ *    floor is, a scatter chart of the design sliding spectra with the cap,
+ *    then (last, from a new page) mu, mu g/ZPA, NLTHA mean and design with
+ *    its standard error, ASCE best and design, cap, clearance (all mm),
+ *    flags. A table is the last part of its sheet, so that its repeated
+ *    header row prints over table pages only;
  *  - "Motion quality": the synthesized motions' checks, one row per set;
  *  - "Notes": assumptions and limits, every count given per floor;
  *  - "Inputs": what reproduces the run (version, command, floor files with
@@ -46,8 +48,9 @@
 #include "core/status.h"
 
 typedef struct sl_report_floor {
-    const char *id;          /* short stable id: the file name's stem made safe
-                                (sl_report_floor_id); unique in a report */
+    const char *id;          /* short stable id: the file name's stem as written
+                                (sl_report_floor_id); unique in a report, and so is
+                                its file name (sl_report_file_name) */
     const char *name;        /* floor name (from its file); unique in a report */
     const char *path;        /* floor file */
     const char *description; /* free text from the file ("" when none) */
