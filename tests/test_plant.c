@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "analysis.h"
@@ -207,6 +208,9 @@ static sl_design *make_design(double scale, double zpa_g)
     return sl_design_compute(&in, &e);
 }
 
+/* a building and floor names as written, not ASCII (UTF-8) */
+#define RB "Bâtiment réacteur"
+
 typedef struct pcase {
     const char *building, *floor;
     double mu;
@@ -214,22 +218,24 @@ typedef struct pcase {
 } pcase;
 
 static const pcase cases[] = {
-    {"Reactor", "ground", 0.30, "ok"},   {"Reactor", "ground", 0.05, "ok"},
-    {"Reactor", "ground", 0.80, "ok"},   {"Reactor", "ground", 0.0712, "ok"},
-    {"Reactor", "roof", 0.337, "ok"},    {"Reactor", "roof", 0.1234, "ok"},
-    {"Reactor", "roof", 0.55, "ok"},     {"Reactor", "roof", 0.79, "ok"},
-    {"Aux", "ground", 0.30, "ok"},       {"Aux", "ground", 0.2222, "ok"},
-    {"Aux", "ground", 0.45, "ok"},       {"Aux", "ground", 0.651, "ok"},
-    {"Aux", "el12", 0.05, "ok"},         {"Aux", "el12", 0.0999, "ok"},
-    {"Aux", "el12", 0.375, "ok"},        {"Aux", "el12", 0.7001, "ok"},
-    {"Reactor", "roof", 0.25, "ok"},     {"Aux", "el12", 0.2, "ok"},
-    {"Reactor", "ground", 0.61, "ok"},   {"Aux", "ground", 0.15, "ok"},
-    {"Aux", "roof", 0.3, "unknown floor in this building: choose one from the list"},
-    {"Turbine", "ground", 0.3, "unknown building: choose one from the list"},
-    {"", "ground", 0.3, "choose a building from the list"},
+    {RB, "Rez-de-chaussée", 0.30, "ok"},   {RB, "Rez-de-chaussée", 0.05, "ok"},
+    {RB, "Rez-de-chaussée", 0.80, "ok"},   {RB, "Rez-de-chaussée", 0.0712, "ok"},
+    {RB, "Niveau −3 m", 0.337, "ok"},      {RB, "Niveau −3 m", 0.1234, "ok"},
+    {RB, "Niveau −3 m", 0.55, "ok"},       {RB, "niveau −3 M", 0.79, "ok"},
+    {"Aux", "Aux ground", 0.30, "ok"},     {"Aux", "Aux ground", 0.2222, "ok"},
+    {"Aux", "Aux ground", 0.45, "ok"},     {"aux", "Aux ground", 0.651, "ok"},
+    {"Aux", "Aux el. 12 m", 0.05, "ok"},   {"Aux", "Aux el. 12 m", 0.0999, "ok"},
+    {"Aux", "Aux el. 12 m", 0.375, "ok"},  {"Aux", "Aux el. 12 m", 0.7001, "ok"},
+    {RB, "Niveau −3 m", 0.25, "ok"},       {"Aux", "Aux el. 12 m", 0.2, "ok"},
+    {RB, "Rez-de-chaussée", 0.61, "ok"},   {"Aux", "Aux ground", 0.15, "ok"},
+    /* the Lookup lists floor names, as the building Lookup does: an id is unknown */
+    {"Aux", "el12", 0.3, "unknown floor in this building: choose one from the list"},
+    {"Aux", "Niveau −3 m", 0.3, "unknown floor in this building: choose one from the list"},
+    {"Turbine", "Aux ground", 0.3, "unknown building: choose one from the list"},
+    {"", "Aux ground", 0.3, "choose a building from the list"},
     {"Aux", "", 0.3, "choose a floor from the list"},
-    {"Aux", "el12", 0.9, "mu outside the table"},
-    {"Aux", "el12", NAN, "type mu"},
+    {"Aux", "Aux el. 12 m", 0.9, "mu outside the table"},
+    {"Aux", "Aux el. 12 m", NAN, "type mu"},
 };
 #define N_CASES (sizeof cases / sizeof cases[0])
 
@@ -347,7 +353,7 @@ static void test_plant_lookup_libreoffice(void)
              "libreoffice-calc-nogui");
     char dir[] = "/tmp/sl-plantbook-XXXXXX", cmd[8192], sub[256], prof[300], xcu[400];
     CHECK(mkdtemp(dir) != NULL, "temporary folder");
-    /* Aux: ground, el12; Reactor: ground, roof (the same floor id in two buildings) */
+    /* Aux: ground, el12; RB: ground, Niveau_-3 (the same floor id in two buildings) */
     sl_design *d[4] = {make_design(0.8, 0.3), make_design(0.5, 0.39), make_design(1.0, 0.3),
                        make_design(0.6, 0.63)};
     CHECK(d[0] && d[1] && d[2] && d[3], "designs");
@@ -355,12 +361,12 @@ static void test_plant_lookup_libreoffice(void)
         return;
     const sl_plant_book_row rows[4] = {
         {"Aux", "ground", "Aux ground", 0, 0.3 * SL_G, 2, "fixed", d[0], "p/Aux/ground.ini",
-         0x1a2b3c4dUL, 1001, 0},
+         0x1a2b3c4dUL, 1001, 0, NULL},
         {"Aux", "el12", "Aux el. 12 m", 12, 0.39 * SL_G, 2, "fixed", d[1], "p/Aux/el12.ini",
-         0xdeadbeefUL, 1002, 0},
-        {"Reactor", "ground", "Reactor ground", 0, 0.3 * SL_G, 2, "fixed", d[2],
-         "p/Reactor/ground.ini", 0x0000beefUL, 1003, 0},
-        {"Reactor", "roof", "Reactor roof", 36, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0, 0}};
+         0xdeadbeefUL, 1002, 0, NULL},
+        {RB, "ground", "Rez-de-chaussée", 0, 0.3 * SL_G, 2, "fixed", d[2],
+         "p/" RB "/ground.ini", 0x0000beefUL, 1003, 0, NULL},
+        {RB, "Niveau_-3", "Niveau −3 m", -3, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0, 0, NULL}};
     /* plant.csv: the building CSVs' trace lines, # program: first, a CRC
      * line per floor named building/id (a floor without a path: "-") */
     {
@@ -373,8 +379,8 @@ static void test_plant_lookup_libreoffice(void)
             "# created: 1970-01-02T00:00:00Z\r\n", "# seed: 7\r\n",
             "# floor_file_crc32: 1a2b3c4d Aux/ground (p/Aux/ground.ini, 1001 bytes)\r\n",
             "# floor_file_crc32: deadbeef Aux/el12 (p/Aux/el12.ini, 1002 bytes)\r\n",
-            "# floor_file_crc32: 0000beef Reactor/ground (p/Reactor/ground.ini, 1003 bytes)\r\n",
-            "# floor_file_crc32: 00000000 Reactor/roof (-, 0 bytes)\r\n", "# project: -\r\n",
+            "# floor_file_crc32: 0000beef " RB "/ground (p/" RB "/ground.ini, 1003 bytes)\r\n",
+            "# floor_file_crc32: 00000000 " RB "/Niveau_-3 (-, 0 bytes)\r\n", "# project: -\r\n",
             "# document: -\r\n", "# revision: -\r\n", "# units: ", "building,floor,"};
         char path[300], line[2000];
         snprintf(path, sizeof path, "%s/plant.csv", dir);
@@ -439,7 +445,8 @@ static void test_plant_lookup_libreoffice(void)
         }
         const sl_design *dd = NULL;
         for (int i = 0; i < 4; i++)
-            if (!strcmp(rows[i].building, cases[c].building) && !strcmp(rows[i].id, cases[c].floor))
+            if (!strcasecmp(rows[i].building, cases[c].building) &&
+                !strcasecmp(rows[i].name, cases[c].floor)) /* MATCH ignores ASCII case */
                 dd = rows[i].design;
         double want = 1000.0 * sl_design_clearance_at(dd, cases[c].mu);
         char *end;

@@ -12,15 +12,35 @@
 #include "oracle.h"
 #include "method/design.h"
 #include "report/report.h"
+#include "report/sheets.h"
 
 static void test_floor_id(void)
 {
     char b[80];
     CHECK(!strcmp(sl_report_floor_id("floors/04-roof36.ini", b, sizeof b), "04-roof36"), "%s", b);
-    CHECK(!strcmp(sl_report_floor_id("a/b/Aux bldg, el. 12.INI", b, sizeof b), "Aux_bldg__el__12"),
+    /* names as written (UTF-8); only file names made safe */
+    CHECK(!strcmp(sl_report_floor_id("a/b/Aux bldg, el. 12.INI", b, sizeof b),
+                  "Aux bldg, el. 12"), "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("x.txt", b, sizeof b), "x.txt"), "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("dir/.ini", b, sizeof b), ".ini"), "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("p/Bâtiment réacteur", b, sizeof b), "Bâtiment réacteur"),
           "%s", b);
-    CHECK(!strcmp(sl_report_floor_id("x.txt", b, sizeof b), "x_txt"), "%s", b);
-    CHECK(!strcmp(sl_report_floor_id("dir/.ini", b, sizeof b), "_ini"), "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("Niveau −3 m.ini", b, sizeof b), "Niveau −3 m"), "%s", b);
+    /* a byte that is not UTF-8 (Latin-1 e acute), a control byte, a cut sequence */
+    CHECK(!strcmp(sl_report_floor_id("caf\xe9\x01.ini", b, sizeof b), "caf__"), "%s", b);
+    CHECK(!strcmp(sl_report_floor_id("a\xe2\x88.ini", b, sizeof b), "a__"), "%s", b);
+    /* 64 bytes at most, cut at a whole character: 63 'x' then a 2-byte letter */
+    char longp[80];
+    memset(longp, 'x', 63);
+    strcpy(longp + 63, "éé.ini");
+    CHECK(strlen(sl_report_floor_id(longp, b, sizeof b)) == 63 && b[62] == 'x', "%s", b);
+    char f[80];
+    CHECK(!strcmp(sl_report_file_name("Bâtiment réacteur", f, sizeof f), "Bâtiment_réacteur"),
+          "%s", f);
+    CHECK(!strcmp(sl_report_file_name("Niveau −3 m", f, sizeof f), "Niveau_−3_m"), "%s", f);
+    CHECK(!strcmp(sl_report_file_name("Aux bldg, el. 12", f, sizeof f), "Aux_bldg__el__12"), "%s",
+          f);
+    CHECK(!strcmp(sl_report_file_name("a:b\\c\xe9", f, sizeof f), "a_b_c_"), "%s", f);
     CHECK(sl_report_owns_name("floor_04-roof36.csv") && sl_report_owns_name("summary.csv") &&
               sl_report_owns_name("motions") && sl_report_owns_name("seislide-clearance.xlsx"),
           "own names");
@@ -39,6 +59,26 @@ static sl_design *design(double peak0)
     sl_design_input in = oracle_design_input(4, 1, mu, peak, asce, pgd, 0.5 * SL_G);
     sl_error e;
     return sl_design_compute(&in, &e);
+}
+
+/* Sheet names: the ids as written, Excel's forbidden characters made '_',
+ * cut at 31 characters (not bytes); "F1", "F2", ... when two collide. */
+static void test_sheet_names(void)
+{
+    sl_report_floor fl[3] = {{.id = "Bâtiment réacteur: niveau −3 m [sous-sol]"},
+                             {.id = "a/b?c*"}, {.id = "'x'"}};
+    sl_report r;
+    sl_report_init(&r);
+    r.floors = fl;
+    r.n_floors = 3;
+    char names[3][SL_RPT_SHEET_NAME_MAX * 4 + 1];
+    sl_rpt_sheet_names(&r, names);
+    CHECK(!strcmp(names[0], "Bâtiment réacteur_ niveau −3 m "), "'%s'", names[0]);
+    CHECK(!strcmp(names[1], "a_b_c_") && !strcmp(names[2], "_x_"), "'%s' '%s'", names[1],
+          names[2]);
+    fl[2].id = "A/B?C*"; /* the same sheet name as floor 2, without case */
+    sl_rpt_sheet_names(&r, names);
+    CHECK(!strcmp(names[0], "F1") && !strcmp(names[2], "F3"), "'%s' '%s'", names[0], names[2]);
 }
 
 static void test_ranges_text(void)
@@ -223,6 +263,7 @@ static void test_failed_checks_and_trace(void)
 int main(void)
 {
     RUN(test_floor_id);
+    RUN(test_sheet_names);
     RUN(test_ranges_text);
     RUN(test_csv_band_and_finite);
     RUN(test_design_se);

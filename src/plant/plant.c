@@ -68,10 +68,13 @@ static sl_status add_building(sl_plant *p, const char *id, const char *const *ar
                               int force, char *warnings, size_t nw, sl_error *err)
 {
     size_t b = p->n_buildings;
+    char fa[SL_DELIVER_ID_MAX], fb[SL_DELIVER_ID_MAX];
     for (size_t j = 0; j < b; j++)
-        if (!strcmp(p->building[j], id))
-            return sl_error_set(err, SL_EINVAL, args[0], 0, "building id '%s' is also that of "
-                                "another folder: rename one", id);
+        if (!strcmp(sl_report_file_name(p->building[j], fa, sizeof fa),
+                    sl_report_file_name(id, fb, sizeof fb)))
+            return sl_error_set(err, SL_EINVAL, args[0], 0, "building '%s' gives the output "
+                                "folder name '%s', as building '%s' does: rename one folder",
+                                id, fb, p->building[j]);
     sl_deliver_inputs *in = calloc(1, sizeof *in);
     if (!in)
         return sl_error_set(err, SL_ENOMEM, args[0], 0, "out of memory");
@@ -265,9 +268,10 @@ sl_status sl_plant_deliver(const sl_plant *p, const char *dir, const sl_deliver_
 {
     if (!p->is_plant)
         return deliver_building(p, 0, dir, o, err);
-    char sub[4400];
+    char sub[4400], file[SL_DELIVER_ID_MAX];
     for (size_t b = 0; b < p->n_buildings; b++) {
-        snprintf(sub, sizeof sub, "%s/%s", dir, p->building[b]);
+        snprintf(sub, sizeof sub, "%s/%s", dir,
+                 sl_report_file_name(p->building[b], file, sizeof file));
         if (mkdir(sub, 0777) != 0)
             return sl_error_set(err, SL_EIO, sub, 0, "cannot create: %s", strerror(errno));
         sl_status st = deliver_building(p, b, sub, o, err);
@@ -285,7 +289,8 @@ sl_status sl_plant_deliver(const sl_plant *p, const char *dir, const sl_deliver_
                                       .stop = sl_analysis_stop_name(f->an->stop),
                                       .design = f->an->design, .path = f->path,
                                       .crc32 = f->crc32, .size_bytes = f->size_bytes,
-                                      .n_failed_motions = f->an->n_failed_motions};
+                                      .n_failed_motions = f->an->n_failed_motions,
+                                      .design_se_m = f->an->design_se_m};
     }
     char seed[32]; /* as the building CSVs record it (deliver.c) */
     snprintf(seed, sizeof seed, "%llu", (unsigned long long)o->seed);

@@ -7,7 +7,8 @@
  * Layout. `seislide run PLANT`: when PLANT is one folder that holds no floor
  * files itself and holds sub-folders, it is a plant, each non-hidden
  * sub-folder a building whose floor files are read as `seislide run` reads a
- * folder; the building's id is its folder name made safe (as a floor id). Any
+ * folder; the building's id is its folder name as written (as a floor id;
+ * its output folder's name made safe by sl_report_file_name). Any
  * other operands (floor files, a folder of floor files, several of them) are
  * one building, as before. A floor id must be unique within its building; the
  * same id in two buildings is fine.

@@ -93,8 +93,8 @@ static sl_status csv_floor(const sl_report *r, const sl_report_floor *fl, const 
                            sl_error *err)
 {
     sl_atomic *a;
-    char name[SL_RPT_ID_MAX + 16], buf[1024], flags[256];
-    snprintf(name, sizeof name, "floor_%s.csv", fl->id);
+    char name[SL_RPT_ID_MAX + 16], buf[1024], flags[256], file[SL_RPT_ID_MAX + 1];
+    snprintf(name, sizeof name, "floor_%s.csv", sl_report_file_name(fl->id, file, sizeof file));
     if (csv_open(dir, name, &a, err))
         return err ? err->code : SL_EIO;
     FILE *f = sl_atomic_file(a);
@@ -173,8 +173,12 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         csv_comment(f, key, buf);
     }
     fputs("mu", f);
-    for (size_t i = 0; i < r->n_floors; i++)
-        fprintf(f, ",%s_clearance_mm", r->floors[i].id);
+    for (size_t i = 0; i < r->n_floors; i++) { /* an id as written may need quotes */
+        char col[SL_RPT_ID_MAX + 16];
+        snprintf(col, sizeof col, "%s_clearance_mm", r->floors[i].id);
+        fputc(',', f);
+        csv_field(f, col);
+    }
     fputs("\r\n", f);
     size_t n = r->floors[0].design->n;
     for (size_t k = 0; k < n; k++) {
@@ -209,7 +213,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
         const sl_design *d = fl->design;
-        fprintf(f, "%s,", fl->id);
+        csv_field(f, fl->id);
+        fputc(',', f);
         csv_field(f, fl->name);
         fputc(',', f);
         csv_field(f, fl->path);
@@ -250,7 +255,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         const sl_design *d = r->floors[i].design;
         for (size_t q = 0; q < d->n_ranges; q++) {
             const sl_design_range *g = &d->ranges[q];
-            fprintf(f, "%s,%zu,%.4f,%.4f,%.4f,%.4f,%d,%d\r\n", r->floors[i].id, q + 1, g->mu_lo,
+            csv_field(f, r->floors[i].id);
+            fprintf(f, ",%zu,%.4f,%.4f,%.4f,%.4f,%d,%d\r\n", q + 1, g->mu_lo,
                     g->mu_hi, g->x_lo, g->x_hi, g->open_lo, g->open_hi);
         }
     }
@@ -266,7 +272,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
           "longest_run_below,max_abs_correlation,v_end_m_s,d_end_m,pass,failed_checks\r\n", f);
     for (size_t q = 0; q < r->n_quality; q++) {
         const sl_report_quality *m = &r->quality[q];
-        fprintf(f, "%s,%d,%s,", m->floor, m->set, m->component);
+        csv_field(f, m->floor);
+        fprintf(f, ",%d,%s,", m->set, m->component);
         const double v[] = {m->pga_g, m->d5_75_s, m->min_ratio, m->max_ratio};
         const char *fmt[] = {"%.4f,", "%.3f,", "%.4f,", "%.4f,"};
         for (size_t c = 0; c < 4; c++) {

@@ -38,12 +38,13 @@ static sl_status write_motions(const char *dir, size_t n, const sl_deliver_meta 
                                uint64_t seed, sl_error *err)
 {
     static const char *const cn[SL_SYNTH_NCOMP] = {"h1", "h2", "v"};
-    char sub[4096], path[4400], title[512];
+    char sub[4096], path[4400], title[512], file[SL_DELIVER_ID_MAX];
     snprintf(sub, sizeof sub, "%s/motions", dir);
     if (mkdir(sub, 0777) != 0)
         return sl_error_set(err, SL_EIO, sub, 0, "cannot create: %s", strerror(errno));
     for (size_t i = 0; i < n; i++) {
-        snprintf(sub, sizeof sub, "%s/motions/%s", dir, ids[i]);
+        snprintf(sub, sizeof sub, "%s/motions/%s", dir,
+                 sl_report_file_name(ids[i], file, sizeof file));
         if (mkdir(sub, 0777) != 0)
             return sl_error_set(err, SL_EIO, sub, 0, "cannot create: %s", strerror(errno));
         for (size_t s = 0; s < an[i]->n_sets; s++)

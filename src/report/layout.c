@@ -1,7 +1,6 @@
 /* layout.c - what every sheet shares: formats, row heights that show wrapped
  * text whole, page setup, the title block, chart axes and series, sheet
  * names (sheets.h). */
-#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -26,6 +25,7 @@
 #define XLSX_CHART_PX 480.0
 #define CHARS_PER_WIDTH 1.12
 #define CHARS_PER_WIDTH_BOLD 1.05
+#define HEAD_CHARS_PER_WIDTH 1.2
 
 void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
 {
@@ -76,6 +76,12 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     format_set_text_wrap(F->header);
     format_set_align(F->header, LXW_ALIGN_VERTICAL_TOP);
     format_set_bottom(F->header, LXW_BORDER_THIN);
+    F->header_num = workbook_add_format(wb); /* a heading over numbers: at their right */
+    format_set_bold(F->header_num);
+    format_set_text_wrap(F->header_num);
+    format_set_align(F->header_num, LXW_ALIGN_VERTICAL_TOP);
+    format_set_align(F->header_num, LXW_ALIGN_RIGHT);
+    format_set_bottom(F->header_num, LXW_BORDER_THIN);
     F->indent = workbook_add_format(wb); /* text after a number: kept off it */
     format_set_text_wrap(F->indent);
     format_set_align(F->indent, LXW_ALIGN_VERTICAL_TOP);
@@ -139,13 +145,67 @@ double sl_rpt_text_height(const char *s, double width, int bold)
     return LINE_PT * wrapped_lines(s ? s : "", cpl) + 1.0;
 }
 
+/* Characters (not bytes) of the UTF-8 text s[0..len). */
+static size_t utf8_chars(const char *s, size_t len)
+{
+    size_t c = 0;
+    for (size_t k = 0; k < len; k++)
+        c += ((unsigned char)s[k] & 0xC0) != 0x80;
+    return c;
+}
+
+/* s broken at blanks into lines of at most max characters (a longer word
+ * alone on its line) into buf (NULL: only counted); returns the lines. */
+static int break_lines(const char *s, size_t max, char *buf, size_t n)
+{
+    size_t k = 0, col = 0;
+    int lines = 1;
+    for (const char *p = s; *p;) {
+        if (*p == ' ') {
+            p++;
+            continue;
+        }
+        size_t len = strcspn(p, " "), w = utf8_chars(p, len);
+        if (buf && len + 2 > n - k)
+            break;
+        char sep = col ? (col + 1 + w > max ? '\n' : ' ') : 0;
+        if (sep) {
+            lines += sep == '\n';
+            col = sep == '\n' ? 0 : col + 1;
+            if (buf)
+                buf[k++] = sep;
+        }
+        if (buf)
+            memcpy(buf + k, p, len);
+        k += len;
+        col += w;
+        p += len;
+    }
+    if (buf && n)
+        buf[k < n ? k : n - 1] = '\0';
+    return lines;
+}
+
+char *sl_rpt_header_text(const char *s, double width, char *buf, size_t n)
+{
+    /* a line a character short of what LibreOffice fits in bold (measured:
+     * "cap (1.5 x" in a column 8.5 wide), then as short as the same number
+     * of lines allows: balanced lines, no word left alone */
+    size_t max = (size_t)fmax(1, floor(HEAD_CHARS_PER_WIDTH * width) - 1);
+    int lines = break_lines(s, max, NULL, 0);
+    while (max > 1 && break_lines(s, max - 1, NULL, 0) == lines)
+        max--;
+    break_lines(s, max, buf, n);
+    return buf;
+}
+
 /* Text for a header/footer: '&' doubled (Excel's escape), cut to max
- * characters with "..." (buf of size n > max + 4). */
+ * characters (UTF-8: whole characters) with "..." (buf of size n > 4 max + 4). */
 static void hf_escape(const char *s, size_t max, char *buf, size_t n)
 {
     size_t k = 0, shown = 0;
-    for (; s && *s && k + 5 < n; s++, shown++) {
-        if (shown == max) {
+    for (; s && *s && k + 5 < n; s++) {
+        if ((*s & 0xC0) != 0x80 && shown++ == max) { /* not inside a character */
             strcpy(buf + k, "...");
             return;
         }
@@ -159,13 +219,13 @@ static void hf_escape(const char *s, size_t max, char *buf, size_t n)
 void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
                        const char *failed_ids)
 {
-    char proj[2 * HF_PROJECT_MAX + 8], doc[80], rev[40], ids[120], h[2 * HF_MAX], ver[80];
+    char proj[4 * HF_PROJECT_MAX + 8], doc[140], rev[120], ids[180], h[4 * HF_MAX], ver[260];
     const sl_report_project *p = &r->project;
-    hf_escape(p->project && *p->project ? p->project : "project not named (--project)",
+    hf_escape(p->project && *p->project ? p->project : "not given",
               HF_PROJECT_MAX, proj, sizeof proj);
-    hf_escape(p->document && *p->document ? p->document : "not given (--document)", 30, doc,
+    hf_escape(p->document && *p->document ? p->document : "not given", 30, doc,
               sizeof doc);
-    hf_escape(p->revision && *p->revision ? p->revision : "not given (--revision)", 24, rev,
+    hf_escape(p->revision && *p->revision ? p->revision : "not given", 24, rev,
               sizeof rev);
     hf_escape(failed_ids, 40, ids, sizeof ids);
     hf_escape(r->version, 60, ver, sizeof ver);
@@ -177,7 +237,7 @@ void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
         worksheet_set_portrait(ws);
     /* left: who and what (two lines), right: the sheet, and the floors whose
      * motions failed their checks; nothing in the centre to run into */
-    snprintf(h, sizeof h, "&L&8%s\nDocument %s, revision %s&R&8&A%s%s", proj, doc, rev,
+    snprintf(h, sizeof h, "&L&8Project: %s\nDocument %s, revision %s&R&8&A%s%s", proj, doc, rev,
              ids[0] ? "\n&\"-,Bold\"checks failed: " : "", ids);
     worksheet_set_header(ws, h);
     snprintf(h, sizeof h, "&L&8%s&C&8&F&R&8Page &P of &N", ver);
@@ -300,24 +360,47 @@ void sl_rpt_add_series(lxw_chart *ch, const char *sheet, lxw_col_t xc, lxw_col_t
     chart_series_set_marker_type(s, LXW_CHART_MARKER_NONE);
 }
 
-void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX + 1])
+/* The sheet name of an id: Excel's forbidden characters []:*?/\ and an
+ * apostrophe at either end made '_', cut at 31 characters (counted as
+ * Excel counts them: a character beyond U+FFFF is two). */
+static void sheet_name(const char *id, char *buf)
+{
+    size_t k = 0, chars = 0;
+    for (const char *p = id; *p;) {
+        size_t c = sl_report_utf8_len(p), w = c > 3 ? 2 : 1;
+        if (chars + w > SL_RPT_SHEET_NAME_MAX)
+            break;
+        if (c > 1) {
+            memcpy(buf + k, p, c);
+            k += c;
+            p += c;
+        } else {
+            buf[k++] = c && !strchr("[]:*?/\\", *p) ? *p : '_';
+            p++;
+        }
+        chars += w;
+    }
+    buf[k] = '\0';
+    if (buf[0] == '\'')
+        buf[0] = '_';
+    if (k && buf[k - 1] == '\'')
+        buf[k - 1] = '_';
+}
+
+void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX * 4 + 1])
 {
     static const char *const other[] = {"Lookup", "Summary", "Motion quality", "Notes",
                                         "Inputs", "Data", "History"};
     int use_ids = 1;
-    for (size_t i = 0; i < r->n_floors && use_ids; i++) {
-        const char *id = r->floors[i].id;
-        use_ids = *id && strlen(id) <= SL_RPT_SHEET_NAME_MAX && id[0] != '\'';
-        for (size_t k = 0; k < sizeof other / sizeof other[0] && use_ids; k++)
-            use_ids = strcasecmp(id, other[k]) != 0;
-        for (size_t j = 0; j < i && use_ids; j++)
-            use_ids = strcasecmp(id, r->floors[j].id) != 0;
-        for (const char *p = id; *p && use_ids; p++) /* sl_report_floor_id's characters */
-            use_ids = isalnum((unsigned char)*p) || *p == '-' || *p == '_';
-    }
     for (size_t i = 0; i < r->n_floors; i++)
-        if (use_ids)
-            snprintf(names[i], SL_RPT_SHEET_NAME_MAX + 1, "%s", r->floors[i].id);
-        else
-            snprintf(names[i], SL_RPT_SHEET_NAME_MAX + 1, "F%zu", i + 1);
+        sheet_name(r->floors[i].id, names[i]);
+    for (size_t i = 0; i < r->n_floors && use_ids; i++) {
+        use_ids = names[i][0] != '\0';
+        for (size_t k = 0; k < sizeof other / sizeof other[0] && use_ids; k++)
+            use_ids = strcasecmp(names[i], other[k]) != 0;
+        for (size_t j = 0; j < i && use_ids; j++) /* Excel compares without case */
+            use_ids = strcasecmp(names[i], names[j]) != 0;
+    }
+    for (size_t i = 0; i < r->n_floors && !use_ids; i++)
+        snprintf(names[i], SL_RPT_SHEET_NAME_MAX + 1, "F%zu", i + 1);
 }

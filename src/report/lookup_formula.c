@@ -1,9 +1,13 @@
-/* lookup_formula.c - what the building Lookup (sheet_lookup.c) and the
- * plant Lookup (plant_book.c) compute alike: the formula cells of column B
- * with their cached values, the interpolated clearance, the no-sliding note
- * and the heading of the visible steps. Each sheet places the cells
- * (sl_rpt_lookup_cells) and writes its own input check and steps. */
+/* lookup_formula.c - the one generator of the Lookup chain that the building
+ * Lookup (sheet_lookup.c) and the plant Lookup (plant_book.c) both write:
+ * each cell's Excel formula and the value the program computes for it are
+ * made side by side here, so that the two sheets cannot drift apart. A
+ * sheet describes where its table lies (sl_rpt_lookup_table), passes its
+ * own floor tests, and adds what only it shows (the building's ZPA, standard
+ * error, flags and policy; the plant's building list). */
+#include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "report/sheets.h"
 
@@ -27,35 +31,99 @@ size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1)
     return k0;
 }
 
-void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
-                          const sl_rpt_lookup_cells *c, double res, int ok)
+int sl_rpt_lookup_check(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
+                        const sl_rpt_lookup_cells *c, const sl_rpt_lookup_test *tests,
+                        size_t n_tests, const char *mu_text, double mu, double mu_min,
+                        double mu_max)
 {
-    /* linear interpolation in mu between the grid rows around it, as
-     * sl_design_clearance_at: C0 + (mu - mu0) (C1 - C0) / (mu1 - mu0) */
-    char f[512];
+    char f[2000];
+    const char *check = NULL;
+    size_t used = (size_t)snprintf(f, sizeof f, "=");
+    for (size_t k = 0; k < n_tests; k++) {
+        used += (size_t)snprintf(f + used, sizeof f - used, "IF(%s,\"%s\",", tests[k].formula,
+                                 tests[k].message);
+        if (!check && tests[k].holds)
+            check = tests[k].message;
+    }
+    /* the mu tests, the same in every Lookup: blank, not a number, off the grid */
+    used += (size_t)snprintf(f + used, sizeof f - used,
+                             "IF(B%d=\"\",\"type mu\",IF(NOT(ISNUMBER(B%d)),\"mu must be a "
+                             "number\",IF(OR(B%d<%.10g,B%d>%.10g),\"mu outside the table\","
+                             "\"ok\")))",
+                             c->mu + 1, c->mu + 1, c->mu + 1, mu_min, c->mu + 1, mu_max);
+    for (size_t k = 0; k < n_tests && used + 1 < sizeof f; k++)
+        f[used++] = ')';
+    f[used] = '\0';
+    if (!check)
+        check = mu_text && *mu_text ? "mu must be a number"
+                : !isfinite(mu) || mu_text ? "type mu"
+                : mu < mu_min || mu > mu_max ? "mu outside the table"
+                : "ok";
+    worksheet_write_string(ws, c->check, 0, "Input check", F->bold);
+    sl_rpt_lookup_formula(ws, zero_cache, c->check, f, 0, check, F->bold);
+    return !strcmp(check, "ok");
+}
+
+double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
+                           const sl_rpt_lookup_cells *c, const sl_rpt_lookup_table *t,
+                           const sl_design *d, size_t floor_index, double mu, int ok)
+{
+    /* the steps: where the floor is, where mu is, the grid rows around mu
+     * and their clearances (cached: row k0 and k1 of d, as MATCH finds them) */
+    const int chk = c->check + 1, fs = c->steps + 1, ms = c->steps + 2;
+    const lxw_row_t mu0 = c->steps + 2, mu1 = mu0 + 1, c0 = mu0 + 2, c1 = mu0 + 3;
+    size_t n = d->n, k1, k0 = sl_rpt_lookup_bracket(d, ok, mu, &k1);
+    const char *none = ok ? NULL : "";
+    char f[600], next[40], at0[80], at1[80];
+    const char *const label[6] = {t->floor_step, t->mu_step, "mu at or below", "mu above",
+                                  "clearance at the mu at or below, mm",
+                                  "clearance at the mu above, mm"};
+    const char *how = "How it is computed: the clearance at mu is interpolated linearly "
+                      "between the two grid rows around it (every CSV and table of the run "
+                      "interpolates so):";
+    worksheet_merge_range(ws, c->steps - 1, 0, c->steps - 1, 1, how, F->bold);
+    worksheet_set_row(ws, c->steps - 1, sl_rpt_text_height(how, t->width, 1), NULL);
+    for (int s = 0; s < 6; s++)
+        worksheet_write_string(ws, (lxw_row_t)(c->steps + s), 0, label[s], NULL);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",%s)", chk, t->floor_match);
+    sl_rpt_lookup_formula(ws, zero_cache, c->steps, f, (double)(floor_index + 1), none, NULL);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,%s,1))", chk, c->mu + 1, t->grid);
+    sl_rpt_lookup_formula(ws, zero_cache, c->steps + 1, f, (double)(k0 + 1), none, NULL);
+    /* the grid: a column (INDEX(grid,k)) or a row (INDEX(grid,1,k)) */
+    snprintf(next, sizeof next, "MIN(B%d+1,%zu)", ms, n);
+    const char *by = t->floors_down ? "1," : "";
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(%s,%sB%d))", chk, t->grid, by, ms);
+    sl_rpt_lookup_formula(ws, zero_cache, mu0, f, d->rows[k0].mu, none, F->ratio);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(%s,%s%s))", chk, t->grid, by, next);
+    sl_rpt_lookup_formula(ws, zero_cache, mu1, f, d->rows[k1].mu, none, F->ratio);
+    /* the table: floors down and mu across (plant), or mu down (building) */
+    if (t->floors_down) {
+        snprintf(at0, sizeof at0, "B%d,B%d", fs, ms);
+        snprintf(at1, sizeof at1, "B%d,%s", fs, next);
+    } else {
+        snprintf(at0, sizeof at0, "B%d,B%d", ms, fs);
+        snprintf(at1, sizeof at1, "%s,B%d", next, fs);
+    }
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(%s,%s))", chk, t->table, at0);
+    sl_rpt_lookup_formula(ws, zero_cache, c0, f, SL_RPT_MM_PER_M * d->rows[k0].clearance_m,
+                          none, F->mm);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(%s,%s))", chk, t->table, at1);
+    sl_rpt_lookup_formula(ws, zero_cache, c1, f, SL_RPT_MM_PER_M * d->rows[k1].clearance_m,
+                          none, F->mm);
+
+    /* the result: C0 + (mu - mu0) (C1 - C0) / (mu1 - mu0), which is
+     * sl_design_clearance_at's interpolation (its value is cached) */
+    double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(d, mu) : NAN;
     worksheet_write_string(ws, c->result, 0, "Required clearance, mm", F->title);
     snprintf(f, sizeof f,
-             "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
-             c->check + 1, c->mu1 + 1, c->mu0 + 1, c->c0 + 1, c->c0 + 1, c->mu + 1, c->mu0 + 1,
-             c->c1 + 1, c->c0 + 1, c->mu1 + 1, c->mu0 + 1);
+             "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))", chk,
+             mu1 + 1, mu0 + 1, c0 + 1, c0 + 1, c->mu + 1, mu0 + 1, c1 + 1, c0 + 1, mu1 + 1,
+             mu0 + 1);
     sl_rpt_lookup_formula(ws, zero_cache, c->result, f, res, ok ? NULL : "-", F->result);
-}
-
-void sl_rpt_lookup_note(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
-                        const sl_rpt_lookup_cells *c, double res, int ok)
-{
-    char f[256];
     worksheet_write_string(ws, c->note, 0, "Note", F->bold);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"%s\",\"\"))", c->check + 1,
-             c->result + 1, SL_RPT_LOOKUP_NO_SLIDING);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"%s\",\"\"))", chk, c->result + 1,
+             SL_RPT_LOOKUP_NO_SLIDING);
     sl_rpt_lookup_formula(ws, zero_cache, c->note, f, 0,
                           ok && res == 0 ? SL_RPT_LOOKUP_NO_SLIDING : "", F->wrap);
-}
-
-void sl_rpt_lookup_how(lxw_worksheet *ws, const sl_rpt_fmts *F, lxw_row_t row, double width)
-{
-    const char *how = "How it is computed (linear interpolation in mu, as "
-                      "sl_design_clearance_at in the program):";
-    worksheet_merge_range(ws, row, 0, row, 1, how, F->bold);
-    worksheet_set_row(ws, row, sl_rpt_text_height(how, width, 1), NULL);
+    return res;
 }

@@ -42,6 +42,13 @@ const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n)
     return buf;
 }
 
+/* The floor's name as the Lookup lists it (its id when it has none), as the
+ * building workbook's Lookup lists its floors. */
+static const char *floor_name(const sl_plant_book_row *r)
+{
+    return r->name && *r->name ? r->name : r->id;
+}
+
 /* The motion checks of a row as text: "passed" or "FAILED n of m". */
 static const char *checks_text(const sl_plant_book_row *r, char *buf, size_t n)
 {
@@ -49,6 +56,17 @@ static const char *checks_text(const sl_plant_book_row *r, char *buf, size_t n)
         return "passed";
     snprintf(buf, n, "FAILED %zu of %zu", r->n_failed_motions, 3 * r->n_sets);
     return buf;
+}
+
+/* Decimals of a plant.csv clearance at mu: as many as summary.csv shows at
+ * a grid mu (text.c: the place of the standard error's leading digit, 1 or
+ * 0.1 mm); between grid rows, the more of the two rows around mu. */
+static int csv_decimals(const sl_plant_book_row *r, double mu)
+{
+    const sl_report_floor fl = {.design = r->design, .design_se_m = r->design_se_m};
+    size_t k1, k0 = sl_rpt_lookup_bracket(r->design, 1, mu, &k1);
+    int d0 = sl_rpt_shown_decimals(&fl, k0), d1 = sl_rpt_shown_decimals(&fl, k1);
+    return r->design->rows[k0].mu == mu || d0 > d1 ? d0 : d1;
 }
 
 /* The report the shared writers (csv.c, layout.c) read: the run's record
@@ -120,7 +138,8 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
                     "(empty where the friction grid does not hold it: never interpolated)");
     free(floors);
     free(ids);
-    sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm");
+    sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm, shown to the "
+                       "digit of its standard error (1 mm or 0.1 mm, as summary.csv)");
     fputs("building,floor,floor_name,elevation_m,zpa_g,sets,convergence", f);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         fprintf(f, ",clearance_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
@@ -140,7 +159,7 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
             double c = sl_plant_book_clearance(r->design, SL_PLANT_BOOK_MU[k]);
             fputc(',', f);
             if (isfinite(c))
-                fprintf(f, "%.3f", 1e3 * c);
+                fprintf(f, "%.*f", csv_decimals(r, SL_PLANT_BOOK_MU[k]), 1e3 * c);
         }
         char chk[64];
         fprintf(f, ",%s,%s\r\n", sl_plant_book_governing(r->design, gov, sizeof gov),
@@ -153,7 +172,7 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
  * (rows 0-7, layout.c), the range of mu under its input. tests/test_plant.c
  * reads B14 (the clearance) and B15 (the input check). */
 enum { LK_BUILDING = SL_RPT_TB_ROWS + 1, LK_FLOOR, LK_MU, LK_RANGE, LK_RESULT, LK_CHECK, LK_NOTE,
-       LK_HOW = LK_NOTE + 2, LK_ROW, LK_K, LK_MU0, LK_MU1, LK_C0, LK_C1 };
+       LK_HOW = LK_NOTE + 2, LK_ROW, LK_C1 = LK_ROW + 5 };
 /* Lookup columns: labels, values; 64 units in all, a portrait A4 page at
  * 100 % (as the building Lookup, sheet_lookup.c). */
 #define LK_W_A 36.0
@@ -164,7 +183,7 @@ enum { LK_BUILDING = SL_RPT_TB_ROWS + 1, LK_FLOOR, LK_MU, LK_RANGE, LK_RESULT, L
 enum { PL_NOTE = 1, PL_HEAD = 3, PL_SUBHEAD, PL_FIRST, PL_CLEAR = 7,
        PL_GOV = PL_CLEAR + SL_PLANT_BOOK_NMU, PL_CHECKS, PL_COLS };
 
-/* Data: A building, B floor, C building|floor, D.. clearance on the grid
+/* Data: A building, B floor name, C building|floor name, D.. clearance on the grid
  * (row 1: the grid); the building list in the column after the grid.
  * Hidden: not printed (the Plant sheet and each building's workbook hold
  * the same numbers), as the building workbook's Data (sheet_data.c). */
@@ -185,8 +204,8 @@ static void data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_bo
         const sl_plant_book_row *r = &b->rows[i];
         lxw_row_t row = (lxw_row_t)(i + 1);
         worksheet_write_string(ws, row, 0, r->building, NULL);
-        worksheet_write_string(ws, row, 1, r->id, NULL);
-        snprintf(key, sizeof key, "%s|%s", r->building, r->id);
+        worksheet_write_string(ws, row, 1, floor_name(r), NULL);
+        snprintf(key, sizeof key, "%s|%s", r->building, floor_name(r));
         worksheet_write_string(ws, row, 2, key, NULL);
         for (size_t k = 0; k < r->design->n; k++)
             worksheet_write_number(ws, row, (lxw_col_t)(3 + k),
@@ -244,6 +263,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
 {
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Plant");
     lxw_format *num = top_format(wb, NULL, 0), *mm = top_format(wb, "0.0", 0),
+               *mm0 = top_format(wb, "0", 0), /* shown as plant.csv shows it */
                *g = top_format(wb, "0.000", 0), *head_mu = top_format(wb, NULL, 1);
     size_t lb = 0, lf = 0, ln = 0;
     for (size_t i = 0; i < b->n; i++) {
@@ -316,7 +336,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
             sl_rpt_num_or_blank(ws, row, (lxw_col_t)(PL_CLEAR + k),
                                 SL_RPT_MM_PER_M * sl_plant_book_clearance(r->design,
                                                                           SL_PLANT_BOOK_MU[k]),
-                                mm);
+                                csv_decimals(r, SL_PLANT_BOOK_MU[k]) ? mm : mm0);
         worksheet_write_string(ws, row, PL_GOV, gov, F->indent);
         char chk_buf[64];
         const char *chk = checks_text(r, chk_buf, sizeof chk_buf);
@@ -364,7 +384,7 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
         worksheet_set_row(ws, SL_RPT_WARN_ROW, sl_rpt_text_height(warn, LK_W_A + LK_W_B, 1), NULL);
     }
     const char *b0 = b->lookup_building ? b->lookup_building : b->rows[0].building;
-    const char *f0 = b->lookup_floor ? b->lookup_floor : b->rows[0].id;
+    const char *f0 = b->lookup_floor ? b->lookup_floor : floor_name(&b->rows[0]);
     double mu0 = b->lookup_mu;
     static const char *const in_label[3] = {"Building (choose from the list)",
                                             "Floor (choose from the list)",
@@ -423,72 +443,40 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
     dm.error_message = msg;
     worksheet_data_validation_cell(ws, LK_MU, 1, &dm);
 
-    /* the C twin of the formulas, for the cached values */
+    /* the input check and the chain (lookup_formula.c), formulas and values */
     size_t fi = b->n;
     int bknown = 0;
     for (size_t i = 0; i < b->n; i++) {
         bknown |= !strcasecmp(b0, b->rows[i].building);
-        if (fi == b->n && !strcasecmp(b0, b->rows[i].building) && !strcasecmp(f0, b->rows[i].id))
+        if (fi == b->n && !strcasecmp(b0, b->rows[i].building) &&
+            !strcasecmp(f0, floor_name(&b->rows[i])))
             fi = i;
     }
-    const char *check = !*b0 ? "choose a building from the list"
-                        : !bknown ? "unknown building: choose one from the list"
-                        : !*f0 ? "choose a floor from the list"
-                        : fi == b->n ? "unknown floor in this building: choose one from the list"
-                        : !isfinite(mu0) ? "type mu"
-                        : (mu0 < mu_min || mu0 > mu_max) ? "mu outside the table" : "ok";
-    int ok = !strcmp(check, "ok");
-    size_t k1, k0 = sl_rpt_lookup_bracket(d0, ok, mu0, &k1);
-    const sl_design *ds = ok ? b->rows[fi].design : d0;
-    double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(ds, mu0) : NAN;
-
+    char t_b[40], t_bu[80], t_f[40], t_fu[140], match[120];
+    snprintf(t_b, sizeof t_b, "B%d=\"\"", LK_BUILDING + 1);
+    snprintf(t_bu, sizeof t_bu, "ISNA(MATCH(B%d,plant_buildings,0))", LK_BUILDING + 1);
+    snprintf(t_f, sizeof t_f, "B%d=\"\"", LK_FLOOR + 1);
+    snprintf(match, sizeof match, "MATCH(B%d&\"|\"&B%d,plant_floor_keys,0)", LK_BUILDING + 1,
+             LK_FLOOR + 1);
+    snprintf(t_fu, sizeof t_fu, "ISNA(%s)", match);
+    const sl_rpt_lookup_test tests[] = {
+        {t_b, "choose a building from the list", !*b0},
+        {t_bu, "unknown building: choose one from the list", !bknown},
+        {t_f, "choose a floor from the list", !*f0},
+        {t_fu, "unknown floor in this building: choose one from the list", fi == b->n}};
     const sl_rpt_lookup_cells cells = {.mu = LK_MU, .result = LK_RESULT, .check = LK_CHECK,
-                                       .note = LK_NOTE, .mu0 = LK_MU0, .mu1 = LK_MU1,
-                                       .c0 = LK_C0, .c1 = LK_C1};
-    sl_rpt_lookup_result(ws, F, z, &cells, res, ok);
-    worksheet_write_string(ws, LK_CHECK, 0, "Input check", F->bold);
-    snprintf(f, sizeof f,
-             "=IF(B%d=\"\",\"choose a building from the list\",IF(ISNA(MATCH(B%d,plant_buildings,0)),"
-             "\"unknown building: choose one from the list\",IF(B%d=\"\",\"choose a floor from the "
-             "list\",IF(ISNA(MATCH(B%d&\"|\"&B%d,plant_floor_keys,0)),\"unknown floor in this "
-             "building: choose one from the list\",IF(B%d=\"\",\"type mu\",IF(NOT(ISNUMBER(B%d)),"
-             "\"mu must be a number\",IF(OR(B%d<%.10g,B%d>%.10g),\"mu outside the table\","
-             "\"ok\")))))))",
-             LK_BUILDING + 1, LK_BUILDING + 1, LK_FLOOR + 1, LK_BUILDING + 1, LK_FLOOR + 1,
-             LK_MU + 1, LK_MU + 1, LK_MU + 1, mu_min, LK_MU + 1, mu_max);
-    sl_rpt_lookup_formula(ws, z, LK_CHECK, f, 0, check, F->bold);
+                                       .note = LK_NOTE, .steps = LK_ROW};
+    int ok = sl_rpt_lookup_check(ws, F, z, &cells, tests, 4, NULL, mu0, mu_min, mu_max);
     /* the longest check text wraps to two lines in column B */
-    worksheet_set_row(ws, LK_CHECK, sl_rpt_text_height("unknown floor in this building: choose "
-                                                       "one from the list", LK_W_B, 1), NULL);
-    sl_rpt_lookup_note(ws, F, z, &cells, res, ok);
+    worksheet_set_row(ws, LK_CHECK, sl_rpt_text_height(tests[3].message, LK_W_B, 1), NULL);
+    const sl_rpt_lookup_table table = {.grid = "plant_mu_grid", .table = "plant_clearance_mm",
+                                       .floor_match = match,
+                                       .floor_step = "row of the floor in Data",
+                                       .mu_step = "column of the mu at or below",
+                                       .floors_down = 1, .width = LK_W_A + LK_W_B};
+    sl_rpt_lookup_chain(ws, F, z, &cells, &table, ok ? b->rows[fi].design : d0, ok ? fi : 0,
+                        mu0, ok);
     worksheet_set_row(ws, LK_NOTE, sl_rpt_text_height(SL_RPT_LOOKUP_NO_SLIDING, LK_W_B, 0), NULL);
-
-    sl_rpt_lookup_how(ws, F, LK_HOW, LK_W_A + LK_W_B);
-    static const char *const step[] = {"row of the floor in Data", "column of the mu at or below",
-                                       "mu at or below", "mu above",
-                                       "clearance at the mu at or below, mm",
-                                       "clearance at the mu above, mm"};
-    for (int k = 0; k < 6; k++)
-        worksheet_write_string(ws, (lxw_row_t)(LK_ROW + k), 0, step[k], NULL);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d&\"|\"&B%d,plant_floor_keys,0))",
-             LK_CHECK + 1, LK_BUILDING + 1, LK_FLOOR + 1);
-    sl_rpt_lookup_formula(ws, z, LK_ROW, f, (double)(fi + 1), ok ? NULL : "", NULL);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,plant_mu_grid,1))", LK_CHECK + 1,
-             LK_MU + 1);
-    sl_rpt_lookup_formula(ws, z, LK_K, f, (double)(k0 + 1), ok ? NULL : "", NULL);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_mu_grid,1,B%d))", LK_CHECK + 1, LK_K + 1);
-    sl_rpt_lookup_formula(ws, z, LK_MU0, f, ds->rows[k0].mu, ok ? NULL : "", F->ratio);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_mu_grid,1,MIN(B%d+1,%zu)))",
-             LK_CHECK + 1, LK_K + 1, n);
-    sl_rpt_lookup_formula(ws, z, LK_MU1, f, ds->rows[k1].mu, ok ? NULL : "", F->ratio);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_clearance_mm,B%d,B%d))", LK_CHECK + 1,
-             LK_ROW + 1, LK_K + 1);
-    sl_rpt_lookup_formula(ws, z, LK_C0, f, SL_RPT_MM_PER_M * ds->rows[k0].clearance_m,
-                          ok ? NULL : "", F->mm);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_clearance_mm,B%d,MIN(B%d+1,%zu)))",
-             LK_CHECK + 1, LK_ROW + 1, LK_K + 1, n);
-    sl_rpt_lookup_formula(ws, z, LK_C1, f, SL_RPT_MM_PER_M * ds->rows[k1].clearance_m,
-                          ok ? NULL : "", F->mm);
     snprintf(f, sizeof f, "%zu buildings, %zu floors; clearance policy %s. Each building's own "
              "workbook (<building>/seislide-clearance.xlsx) shows every floor's curves, their "
              "standard errors, flags and the assumptions; the Plant sheet lists every floor.",

@@ -55,6 +55,8 @@ typedef struct sl_plant_book_row {
     long size_bytes;
     size_t n_failed_motions;  /* motion components that failed their SRP 3.7.1 checks, of
                                  3 n_sets (kept only by --accept-failed-checks) */
+    const double *design_se_m; /* per grid row, the SE of the NLTHA design value (NULL:
+                                  FS sd / sqrt(N), as text.c) */
 } sl_plant_book_row;
 
 typedef struct sl_plant_book {

@@ -20,9 +20,22 @@ void sl_report_init(sl_report *r)
     r->lookup_mu = SL_REPORT_LOOKUP_MU;
 }
 
-static char safe_char(char c)
+size_t sl_report_utf8_len(const char *s)
 {
-    return (isalnum((unsigned char)c) || c == '-' || c == '_') ? c : '_';
+    const unsigned char *u = (const unsigned char *)s;
+    if (u[0] < 0x80)
+        return u[0] ? 1 : 0;
+    size_t len = u[0] >= 0xC2 && u[0] <= 0xDF ? 2 : u[0] >= 0xE0 && u[0] <= 0xEF ? 3
+                 : u[0] >= 0xF0 && u[0] <= 0xF4 ? 4 : 0;
+    /* the second byte's range excludes overlong forms, surrogates and > U+10FFFF */
+    unsigned char lo = u[0] == 0xE0 ? 0xA0 : u[0] == 0xF0 ? 0x90 : 0x80;
+    unsigned char hi = u[0] == 0xED ? 0x9F : u[0] == 0xF4 ? 0x8F : 0xBF;
+    if (len && (u[1] < lo || u[1] > hi))
+        return 0;
+    for (size_t k = 2; k < len; k++)
+        if ((u[k] & 0xC0) != 0x80)
+            return 0;
+    return len;
 }
 
 char *sl_report_floor_id(const char *path, char *buf, size_t n)
@@ -35,11 +48,43 @@ char *sl_report_floor_id(const char *path, char *buf, size_t n)
     if (len > 4 && (!strcasecmp(base + len - 4, ".ini") || !strcasecmp(base + len - 4, ".csv")))
         len -= 4;
     size_t k = 0;
-    for (size_t i = 0; i < len && k + 1 < n && k < SL_RPT_ID_MAX; i++)
-        buf[k++] = safe_char(base[i]);
+    for (size_t i = 0; i < len;) {
+        size_t c = sl_report_utf8_len(base + i);
+        if (c > len - i)
+            c = 0;
+        size_t w = c ? c : 1;
+        if (k + w >= n || k + w > SL_RPT_ID_MAX) /* whole characters only */
+            break;
+        if (c > 1 || (c == 1 && (unsigned char)base[i] >= 0x20 && base[i] != 0x7f))
+            memcpy(buf + k, base + i, c);
+        else /* a control byte or a byte that is not UTF-8 */
+            buf[k] = '_';
+        k += w;
+        i += w;
+    }
     if (k == 0 && n > 1)
         buf[k++] = '_';
-    buf[k] = '\0';
+    if (n)
+        buf[k < n ? k : n - 1] = '\0';
+    return buf;
+}
+
+char *sl_report_file_name(const char *id, char *buf, size_t n)
+{
+    size_t k = 0;
+    for (const char *p = id; *p && k + 1 < n;) {
+        size_t c = sl_report_utf8_len(p);
+        if (c > 1 && k + c < n) { /* a letter beyond ASCII: kept */
+            memcpy(buf + k, p, c);
+            k += c;
+            p += c;
+            continue;
+        }
+        buf[k++] = isalnum((unsigned char)*p) || *p == '-' || *p == '_' ? *p : '_';
+        p += c > 1 ? c : 1;
+    }
+    if (n)
+        buf[k] = '\0';
     return buf;
 }
 
@@ -48,11 +93,18 @@ sl_status sl_report_check_floors(const sl_report *r, sl_error *err)
     for (size_t i = 0; i < r->n_floors; i++)
         for (size_t j = 0; j < i; j++) {
             const sl_report_floor *a = &r->floors[j], *b = &r->floors[i];
+            char fa[4 * SL_RPT_ID_MAX + 1], fb[4 * SL_RPT_ID_MAX + 1];
             if (!strcmp(a->id, b->id))
                 return sl_error_set(err, SL_EINVAL, b->path, 0,
                                     "floor id '%s' (from the file name) is also that of %s: "
                                     "rename one file, the outputs are named by it",
                                     b->id, a->path);
+            if (!strcmp(sl_report_file_name(a->id, fa, sizeof fa),
+                        sl_report_file_name(b->id, fb, sizeof fb)))
+                return sl_error_set(err, SL_EINVAL, b->path, 0,
+                                    "floor id '%s' (from the file name) gives the output file "
+                                    "name floor_%s.csv, as %s does: rename one file",
+                                    b->id, fb, a->path);
             if (!strcasecmp(a->name, b->name))
                 return sl_error_set(err, SL_EINVAL, b->path, 0,
                                     "floor name '%s' is also that of %s: floor names must "
@@ -162,7 +214,7 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
         &a, err);
     if (!wb)
         return err ? err->code : SL_EIO;
-    char (*names)[SL_RPT_SHEET_NAME_MAX + 1] = calloc(r->n_floors, sizeof *names);
+    char (*names)[SL_RPT_SHEET_NAME_MAX * 4 + 1] = calloc(r->n_floors, sizeof *names);
     if (!names) {
         workbook_close(wb);
         sl_atomic_abort(a);

@@ -6,15 +6,17 @@
  *  - "Lookup": choose a floor from a drop-down list, type mu; formulas return
  *    the required clearance in mm, interpolated linearly in mu (the same rule
  *    as sl_design_clearance_at()), with every intermediate cell visible;
- *  - "Summary": rows mu, one column per floor, required clearance in mm;
- *    below it each floor's ZPA and sets, then each floor's file, crossover,
- *    ranges and note, and a chart of every floor;
- *  - one sheet per floor, named by its id (sl_report_floor_id; "F1", "F2",
- *    ... when an id cannot be a sheet name), the full name in its title:
- *    mu, mu g/ZPA, NLTHA mean and design with its standard error, ASCE best
- *    and design, cap, clearance (all mm), flags, and a scatter chart of the
- *    design sliding spectra with the cap and the crossover on a page of its
- *    own;
+ *  - "Summary": a chart of every floor; each floor's file, crossover,
+ *    ranges and note; last, rows mu, one column per floor, required
+ *    clearance in mm, and below it each floor's ZPA and sets;
+ *  - one sheet per floor, named by its id (sl_report_floor_id; Excel's
+ *    forbidden characters made '_', cut at 31 characters; "F1", "F2", ...
+ *    when two such names collide), the full name in its title: what the
+ *    floor is, a scatter chart of the design sliding spectra with the cap,
+ *    then (last, from a new page) mu, mu g/ZPA, NLTHA mean and design with
+ *    its standard error, ASCE best and design, cap, clearance (all mm),
+ *    flags. A table is the last part of its sheet, so that its repeated
+ *    header row prints over table pages only;
  *  - "Motion quality": the synthesized motions' checks, one row per set;
  *  - "Notes": assumptions and limits, every count given per floor;
  *  - "Inputs": what reproduces the run (version, command, floor files with
@@ -47,8 +49,9 @@
 #include "core/status.h"
 
 typedef struct sl_report_floor {
-    const char *id;          /* short stable id: the file name's stem made safe
-                                (sl_report_floor_id); unique in a report */
+    const char *id;          /* short stable id: the file name's stem as written
+                                (sl_report_floor_id); unique in a report, and so is
+                                its file name (sl_report_file_name) */
     const char *name;        /* floor name (from its file); unique in a report */
     const char *path;        /* floor file */
     const char *description; /* free text from the file ("" when none) */
@@ -147,10 +150,20 @@ typedef struct sl_report {
 /* Initialise a report: zeros, lookup_mu = SL_REPORT_LOOKUP_MU. */
 SL_API void sl_report_init(sl_report *r);
 
-/* The short id of a floor file: its file name without folders and the
- * ".ini" ending, characters other than letters, digits, '-' and '_' made
- * '_' (into buf of size n). "floors/04-roof36.ini" -> "04-roof36". */
+/* The id of a floor file (or of a building's folder): its file name without
+ * folders and the ".ini" or ".csv" ending, as written (UTF-8), control bytes
+ * and bytes that are not UTF-8 made '_', cut at whole characters to 64
+ * bytes (into buf of size n). "floors/04-roof36.ini" -> "04-roof36",
+ * "Niveau −3 m.ini" -> "Niveau −3 m". */
 SL_API char *sl_report_floor_id(const char *path, char *buf, size_t n);
+/* The part of an output file (or folder) name made from an id: ASCII
+ * letters, digits, '-', '_' and every character beyond ASCII kept, any other
+ * character made '_' (into buf of size n; 4 x the id's length suffices).
+ * "Niveau −3 m" -> "Niveau_−3_m"; "Bâtiment réacteur" -> "Bâtiment_réacteur". */
+SL_API char *sl_report_file_name(const char *id, char *buf, size_t n);
+/* Bytes of the UTF-8 character at s (1 for ASCII), 0 when s holds no valid
+ * one (or is at its end). */
+SL_API size_t sl_report_utf8_len(const char *s);
 
 /* Check that the floors' ids and names are unique (names compared without
  * case, as the workbook's MATCH does). SL_EINVAL naming both files. */

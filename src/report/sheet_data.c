@@ -38,6 +38,16 @@ void sl_rpt_data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *
     worksheet_write_string(ws, 1, 0,
                            "Chart columns leave a cell empty where the value is 0 or does not "
                            "exist: a log axis has no 0.", NULL);
+    /* the floor names the Lookup lists and matches (floor_names), in the
+     * order of the Summary's columns */
+    worksheet_write_string(ws, SL_RPT_DATA_HEAD - 1, 0, "floor names", F->bold);
+    for (size_t i = 0; i < nf; i++)
+        worksheet_write_string(ws, SL_RPT_DATA_HEAD - 1, (lxw_col_t)(1 + i), r->floors[i].name,
+                               NULL);
+    char last[8], def[80];
+    sl_rpt_col_name(nf, last);
+    snprintf(def, sizeof def, "=Data!$B$%d:$%s$%d", SL_RPT_DATA_HEAD, last, SL_RPT_DATA_HEAD);
+    workbook_define_name(wb, "floor_names", def);
     worksheet_write_string(ws, SL_RPT_DATA_HEAD, 0, "mu", F->header);
     static const char *const sname[SL_RPT_DS_N] = {"NLTHA design, mm", "ASCE design, mm",
                                                    "NLTHA mean, mm", "cap, mm", "clearance, mm",

@@ -1,5 +1,5 @@
 /* sheet_floor.c - one sheet per floor: what the floor is, its table against
- * mu and its chart on a page of its own (sheets.h). */
+ * mu and its chart (sheets.h). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -142,15 +142,37 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
                    w_value);
     if (fl->sa10_fallback)
         row = info_row(ws, F, row, "ASCE spectrum", sl_rpt_sa10_text(fl), w_value);
-    snprintf(buf, sizeof buf, "%s%s%zu friction values %s", fl->note && *fl->note ? fl->note : "",
-             fl->note && *fl->note ? "; " : "", fl->n_mu_skipped,
+    const char *note = fl->note ? fl->note : "";
+    size_t ln = strlen(note); /* after a sentence, a blank; after a phrase, "; " */
+    while (ln && note[ln - 1] == ' ')
+        ln--;
+    snprintf(buf, sizeof buf, "%.*s%s%zu friction values %s", (int)ln, note,
+             !ln ? "" : note[ln - 1] == '.' ? " " : "; ", fl->n_mu_skipped,
              fl->scatter > 0 ? "with no sliding at any intensity of the scatter (mu g at or above "
                                "every motion's demand even at the strongest intensity)"
                              : "needed no NLTHA (mu g at or above every motion's demand)");
     row = info_row(ws, F, row, "note", buf, w_value);
 
-    lxw_row_t head = row + 1;
-    char h[FL_COLS][96];
+    /* the chart under what the floor is, then the table from a new page,
+     * last, so that its repeated header row is printed over table pages
+     * only (LibreOffice repeats it from the page after the one it is on) */
+    lxw_row_t chart_row = row + 1;
+    /* as wide as the table and about as high (LibreOffice draws a column
+     * half as wide again as libxlsxwriter's model, a row as high) */
+    const double widths[FL_COLS] = {W_MU, W_X, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL,
+                                    w_flags};
+    double xs = sl_rpt_chart_scale(widths, FL_COLS);
+    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 1.6 * xs};
+    worksheet_insert_chart_opt(ws, chart_row, 0, floor_chart(wb, r, i, ax), &co);
+    const char *band = "The red band along the bottom marks every range of mu where the ASCE "
+                       "design value is below the NLTHA design value; the black dash-dot line "
+                       "is the cap.";
+    lxw_row_t band_row = chart_row + CHART_ROWS;
+    worksheet_merge_range(ws, band_row, 0, band_row, FL_COLS - 1, band, F->note);
+    worksheet_set_row(ws, band_row, sl_rpt_text_height(band, w_all, 0), NULL);
+
+    lxw_row_t head = band_row + 2;
+    char h[FL_COLS][96], hb[160];
     snprintf(h[0], sizeof h[0], "mu");
     snprintf(h[1], sizeof h[1], "mu g / ZPA");
     snprintf(h[2], sizeof h[2], "NLTHA mean, mm");
@@ -164,11 +186,11 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     double hh = 0;
     for (lxw_col_t c = 0; c < FL_COLS; c++) {
         double w = c == 0 ? W_MU : c == 1 ? W_X : c == 9 ? w_flags : W_VAL;
-        worksheet_write_string(ws, head, c, h[c], F->header);
-        hh = fmax(hh, sl_rpt_text_height(h[c], w, 1));
+        sl_rpt_header_text(h[c], w, hb, sizeof hb);
+        worksheet_write_string(ws, head, c, hb, c == 9 ? F->header : F->header_num);
+        hh = fmax(hh, sl_rpt_text_height(hb, 1e3, 1)); /* its own lines */
     }
     worksheet_set_row(ws, head, hh, NULL);
-    worksheet_freeze_panes(ws, head + 1, 1);
     for (size_t k = 0; k < d->n; k++) {
         const sl_design_row *w = &d->rows[k];
         lxw_row_t rr = (lxw_row_t)(head + 1 + k);
@@ -185,25 +207,11 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         if (fh > 20) /* more than a line */
             worksheet_set_row(ws, rr, fh, NULL);
     }
-    /* the chart on a page of its own, below the table */
-    lxw_row_t chart_row = (lxw_row_t)(head + d->n + 2);
-    lxw_row_t breaks[] = {chart_row, 0};
+    lxw_row_t breaks[] = {head, 0};
     worksheet_set_h_pagebreaks(ws, breaks);
-    /* as wide as the table and about as high (LibreOffice draws a column
-     * half as wide again as libxlsxwriter's model, a row as high) */
-    const double widths[FL_COLS] = {W_MU, W_X, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL,
-                                    w_flags};
-    double xs = sl_rpt_chart_scale(widths, FL_COLS);
-    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 1.6 * xs};
-    worksheet_insert_chart_opt(ws, chart_row, 0, floor_chart(wb, r, i, ax), &co);
-    const char *band = "The red band along the bottom marks every range of mu where the ASCE "
-                       "design value is below the NLTHA design value; the black dash-dot line "
-                       "is the cap.";
-    worksheet_merge_range(ws, chart_row + CHART_ROWS, 0, chart_row + CHART_ROWS, FL_COLS - 1, band, F->note);
-    worksheet_set_row(ws, chart_row + CHART_ROWS, sl_rpt_text_height(band, w_all, 0), NULL);
     sl_rpt_page_setup(ws, r, 0, fl->n_failed_motions ? fl->id : "");
     worksheet_set_print_scale(ws, SL_RPT_FLOOR_PRINT_SCALE);
     worksheet_repeat_rows(ws, head, head);
-    worksheet_print_area(ws, 0, 0, chart_row + CHART_ROWS + 1, FL_COLS - 1);
+    worksheet_print_area(ws, 0, 0, (lxw_row_t)(head + d->n), FL_COLS - 1);
     sl_rpt_protect(ws);
 }

@@ -1,8 +1,9 @@
 /* sheet_lookup.c - the "Lookup" sheet: choose a floor, type mu, read the
  * required clearance; every step a visible formula over the Summary's named
  * ranges (floor_names, mu_grid, clearance_mm, floor_zpa_g, floor_sets) and
- * the Data sheet, with its value for the initial inputs computed here
- * (sl_design_clearance_at is the C twin; tests/test_lookup.c recalculates). */
+ * the Data sheet, with its value for the initial inputs computed here; the
+ * input check, the steps and the result come from lookup_formula.c, which
+ * writes the plant Lookup's too (tests/test_lookup.c recalculates). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -107,42 +108,31 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     dm.error_message = msg;
     worksheet_data_validation_cell(ws, LK_MU, 1, &dm);
 
-    /* cached values for the initial inputs: the C twin of the formulas */
+    /* the input check and the chain (lookup_formula.c), formulas and values */
     size_t fi = nf;
     for (size_t i = 0; i < nf; i++)
         if (!strcasecmp(floor0, r->floors[i].name))
             fi = i;
     double mu0 = r->lookup_mu;
-    const char *check = "ok";
-    if (!*floor0)
-        check = "choose a floor from the list";
-    else if (fi == nf)
-        check = "unknown floor: choose one from the list";
-    else if (r->lookup_mu_text && *r->lookup_mu_text)
-        check = "mu must be a number";
-    else if (!isfinite(mu0) || r->lookup_mu_text)
-        check = "type mu";
-    else if (mu0 < mu_min || mu0 > mu_max)
-        check = "mu outside the table";
-    int ok = !strcmp(check, "ok");
+    char t_blank[40], t_unknown[80], match[80];
+    snprintf(t_blank, sizeof t_blank, "B%d=\"\"", LK_FLOOR + 1);
+    snprintf(t_unknown, sizeof t_unknown, "ISNA(MATCH(B%d,floor_names,0))", LK_FLOOR + 1);
+    const sl_rpt_lookup_test tests[] = {
+        {t_blank, "choose a floor from the list", !*floor0},
+        {t_unknown, "unknown floor: choose one from the list", fi == nf}};
+    const sl_rpt_lookup_cells cells = {.mu = LK_MU, .result = LK_RESULT, .check = LK_CHECK,
+                                       .note = LK_NOTE, .steps = LK_COL};
+    int ok = sl_rpt_lookup_check(ws, F, zc, &cells, tests, 2, r->lookup_mu_text, mu0, mu_min,
+                                 mu_max);
+    snprintf(match, sizeof match, "MATCH(B%d,floor_names,0)", LK_FLOOR + 1);
+    const sl_rpt_lookup_table table = {.grid = "mu_grid", .table = "clearance_mm",
+                                       .floor_match = match,
+                                       .floor_step = "column of the floor in Summary",
+                                       .mu_step = "row of the mu at or below", .width = W_A + W_B};
     size_t k1, k0 = sl_rpt_lookup_bracket(d0, ok, mu0, &k1);
     const sl_design *dsel = ok ? r->floors[fi].design : d0;
-    double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(dsel, mu0) : NAN;
+    sl_rpt_lookup_chain(ws, F, zc, &cells, &table, dsel, ok ? fi : 0, mu0, ok);
     const int B_CHECK = LK_CHECK + 1, B_COL = LK_COL + 1, B_ROW = LK_ROW + 1;
-
-    const sl_rpt_lookup_cells cells = {.mu = LK_MU, .result = LK_RESULT, .check = LK_CHECK,
-                                       .note = LK_NOTE, .mu0 = LK_MU0, .mu1 = LK_MU1,
-                                       .c0 = LK_C0, .c1 = LK_C1};
-    sl_rpt_lookup_result(ws, F, zc, &cells, res, ok);
-    worksheet_write_string(ws, LK_CHECK, 0, "Input check", F->bold);
-    snprintf(f, sizeof f,
-             "=IF(B%d=\"\",\"choose a floor from the list\",IF(ISNA(MATCH(B%d,floor_names,0)),"
-             "\"unknown floor: choose one from the list\",IF(B%d=\"\",\"type mu\","
-             "IF(NOT(ISNUMBER(B%d)),\"mu must be a number\",IF(OR(B%d<%.10g,B%d>%.10g),"
-             "\"mu outside the table\",\"ok\")))))",
-             LK_FLOOR + 1, LK_FLOOR + 1, LK_MU + 1, LK_MU + 1, LK_MU + 1, mu_min, LK_MU + 1, mu_max);
-    sl_rpt_lookup_formula(ws, zc, LK_CHECK, f, 0, check, F->bold);
-    sl_rpt_lookup_note(ws, F, zc, &cells, res, ok);
     worksheet_set_row(ws, LK_NOTE, 2 * 15.0 + 1, NULL);
     worksheet_write_string(ws, LK_ZPA, 0, "Floor's horizontal ZPA, g", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(floor_zpa_g,1,B%d))", B_CHECK, B_COL);
@@ -192,30 +182,7 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
                       "asce_below_nltha | nltha_capped asce_capped asce_below_nltha", W_B, 0),
                       NULL);
 
-    sl_rpt_lookup_how(ws, F, LK_HOW, W_A + W_B);
-    static const char *const step[] = {"column of the floor in Summary", "row of the mu at or below",
-                                       "mu at or below", "mu above",
-                                       "clearance at the mu at or below, mm",
-                                       "clearance at the mu above, mm",
-                                       "motion sets of the floor"};
-    for (int s = 0; s < 7; s++)
-        worksheet_write_string(ws, (lxw_row_t)(LK_COL + s), 0, step[s], NULL);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,floor_names,0))", B_CHECK, LK_FLOOR + 1);
-    sl_rpt_lookup_formula(ws, zc, LK_COL, f, (double)(fi + 1), ok ? NULL : "", NULL);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",MATCH(B%d,mu_grid,1))", B_CHECK, LK_MU + 1);
-    sl_rpt_lookup_formula(ws, zc, LK_ROW, f, (double)(k0 + 1), ok ? NULL : "", NULL);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(mu_grid,B%d))", B_CHECK, B_ROW);
-    sl_rpt_lookup_formula(ws, zc, LK_MU0, f, dsel->rows[k0].mu, ok ? NULL : "", F->mu);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(mu_grid,MIN(B%d+1,%zu)))", B_CHECK, B_ROW, n);
-    sl_rpt_lookup_formula(ws, zc, LK_MU1, f, dsel->rows[k1].mu, ok ? NULL : "", F->mu);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(clearance_mm,B%d,B%d))", B_CHECK, B_ROW,
-             B_COL);
-    sl_rpt_lookup_formula(ws, zc, LK_C0, f, SL_RPT_MM_PER_M * dsel->rows[k0].clearance_m,
-                          ok ? NULL : "", F->mm);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(clearance_mm,MIN(B%d+1,%zu),B%d))", B_CHECK,
-             B_ROW, n, B_COL);
-    sl_rpt_lookup_formula(ws, zc, LK_C1, f, SL_RPT_MM_PER_M * dsel->rows[k1].clearance_m,
-                          ok ? NULL : "", F->mm);
+    worksheet_write_string(ws, LK_SETS, 0, "motion sets of the floor", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(floor_sets,1,B%d))", B_CHECK, B_COL);
     sl_rpt_lookup_formula(ws, zc, LK_SETS, f, ok ? (double)dsel->n_sets : 0, ok ? NULL : "", NULL);
 

@@ -27,6 +27,10 @@ static lxw_row_t record_row(lxw_worksheet *ws, const sl_rpt_fmts *F, lxw_row_t r
     return row + 1;
 }
 
+/* Rows a chart of y_scale covers (288 pixels high at scale 1, rows of 20
+ * pixels) and one. */
+static lxw_row_t chart_rows(double y_scale) { return (lxw_row_t)ceil(288.0 * y_scale / 20.0) + 1; }
+
 void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r,
                           const sl_rpt_axes *ax)
 {
@@ -47,41 +51,35 @@ void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
         worksheet_set_row(ws, SL_RPT_WARN_ROW,
                           sl_rpt_text_height(buf, W_LABEL + W_FLOOR * (double)last, 1), NULL);
     }
-    worksheet_write_string(ws, SL_RPT_SUM_HEAD, 0, "mu", F->header);
-    double hh = 15;
-    for (size_t i = 0; i < nf; i++) {
-        worksheet_write_string(ws, SL_RPT_SUM_HEAD, (lxw_col_t)(i + 1), r->floors[i].name,
-                               F->header);
-        hh = fmax(hh, sl_rpt_text_height(r->floors[i].name, W_FLOOR, 1));
-    }
-    worksheet_set_row(ws, SL_RPT_SUM_HEAD, hh, NULL);
-    worksheet_freeze_panes(ws, SL_RPT_SUM_HEAD + 1, 1);
-    for (size_t k = 0; k < n; k++) {
-        lxw_row_t row = (lxw_row_t)(SL_RPT_SUM_HEAD + 1 + k);
-        worksheet_write_number(ws, row, 0, r->floors[0].design->rows[k].mu, F->mu);
-        for (size_t i = 0; i < nf; i++)
-            sl_rpt_num_or_blank(ws, row, (lxw_col_t)(i + 1),
-                                SL_RPT_MM_PER_M * r->floors[i].design->rows[k].clearance_m,
-                                sl_rpt_shown_decimals(&r->floors[i], k) ? F->mm : F->mm0);
-    }
-    /* short values, one column per floor (the Lookup reads ZPA and sets) */
-    lxw_row_t b = (lxw_row_t)(SL_RPT_SUM_HEAD + n + 2);
-    static const char *const lab[] = {"floor id", "horizontal ZPA, g", "motion sets",
-                                      "sets stopped because"};
-    for (lxw_row_t q = 0; q < 4; q++) {
-        worksheet_write_string(ws, b + q, 0, lab[q], F->label);
-        worksheet_set_row(ws, b + q, sl_rpt_text_height(lab[q], W_LABEL, 1), NULL);
-    }
-    for (size_t i = 0; i < nf; i++) {
-        const sl_report_floor *fl = &r->floors[i];
-        lxw_col_t c = (lxw_col_t)(i + 1);
-        worksheet_write_string(ws, b, c, fl->id, F->wrap);
-        worksheet_write_number(ws, b + 1, c, fl->zpa_h_ms2 / SL_G, F->ratio);
-        worksheet_write_number(ws, b + 2, c, (double)fl->design->n_sets, NULL);
-        worksheet_write_string(ws, b + 3, c, sl_rpt_or_dash(fl->sets_stop), NULL);
-    }
+    /* Printed in this order, each part from a new page: the title block and
+     * the chart of every floor; each floor's statements; the table, last,
+     * so that its repeated header row is printed over table pages only
+     * (LibreOffice repeats it from the page after the one it is on). */
+    lxw_row_t chart_row = SL_RPT_SUM_HEAD + 1;
+    lxw_chart *ch = workbook_add_chart(wb, LXW_CHART_SCATTER_STRAIGHT);
+    static const lxw_color_t pal[] = {0x1F4E79, 0xC55A11, 0x548235, 0x7030A0, 0xBF9000, 0x2E75B6,
+                                      0xFF0000, 0x000000};
+    for (size_t i = 0; i < nf; i++)
+        sl_rpt_add_series(ch, "Data", 0, sl_rpt_data_col_series(nf, i, SL_RPT_DS_CLEAR),
+                          SL_RPT_DATA_HEAD + 1, (lxw_row_t)(SL_RPT_DATA_HEAD + n),
+                          r->floors[i].name, pal[i % 8], 2.0f,
+                          (uint8_t)(i / 8 % 3 ? LXW_CHART_LINE_DASH_DASH
+                                              : LXW_CHART_LINE_DASH_SOLID), 0);
+    snprintf(buf, sizeof buf, "Required clearance (%s), every floor",
+             sl_clearance_policy_name(r->floors[0].design->policy));
+    chart_title_set_name(ch, buf);
+    sl_rpt_chart_axes(ch, ax);
+    /* as wide as the printed columns */
+    double widths[64] = {W_LABEL};
+    size_t nw = 1;
+    for (; nw <= last && nw < 64; nw++)
+        widths[nw] = W_FLOOR;
+    double xs = sl_rpt_chart_scale(widths, nw);
+    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 1.6 * xs};
+    worksheet_insert_chart_opt(ws, chart_row, 0, ch, &co);
+
     /* each floor's statements, one record per floor */
-    lxw_row_t row = b + 5;
+    lxw_row_t row = chart_row + chart_rows(co.y_scale), statements = row;
     for (size_t i = 0; i < nf; i++) {
         const sl_report_floor *fl = &r->floors[i];
         snprintf(buf, sizeof buf, "%s: %s", fl->id, fl->name);
@@ -113,50 +111,67 @@ void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
         row = record_row(ws, F, row, last, "note", buf, F->note);
         row++;
     }
-    /* named ranges the Lookup formulas read */
+
+    /* the table: a row per mu, a column per floor, headed by the floor names */
+    lxw_row_t head = row;
+    worksheet_write_string(ws, head, 0, "mu", F->header_num);
+    double hh = 15;
+    for (size_t i = 0; i < nf; i++) {
+        char name[600];
+        sl_rpt_header_text(r->floors[i].name, W_FLOOR, name, sizeof name);
+        worksheet_write_string(ws, head, (lxw_col_t)(i + 1), name, F->header_num);
+        hh = fmax(hh, sl_rpt_text_height(name, 1e3, 1)); /* its own lines */
+    }
+    for (lxw_col_t c = (lxw_col_t)nf + 1; c <= last; c++)
+        worksheet_write_blank(ws, head, c, F->header);
+    worksheet_set_row(ws, head, hh, NULL);
+    for (size_t k = 0; k < n; k++) {
+        lxw_row_t rr = (lxw_row_t)(head + 1 + k);
+        worksheet_write_number(ws, rr, 0, r->floors[0].design->rows[k].mu, F->mu);
+        for (size_t i = 0; i < nf; i++)
+            sl_rpt_num_or_blank(ws, rr, (lxw_col_t)(i + 1),
+                                SL_RPT_MM_PER_M * r->floors[i].design->rows[k].clearance_m,
+                                sl_rpt_shown_decimals(&r->floors[i], k) ? F->mm : F->mm0);
+    }
+    /* under it, short values, one column per floor (the Lookup reads ZPA and sets) */
+    lxw_row_t b = (lxw_row_t)(head + n + 2);
+    static const char *const lab[] = {"floor id", "horizontal ZPA, g", "motion sets",
+                                      "sets stopped because"};
+    for (lxw_row_t q = 0; q < 4; q++) {
+        worksheet_write_string(ws, b + q, 0, lab[q], F->label);
+        worksheet_set_row(ws, b + q, sl_rpt_text_height(lab[q], W_LABEL, 1), NULL);
+    }
+    double h_id = 15;
+    for (size_t i = 0; i < nf; i++) {
+        const sl_report_floor *fl = &r->floors[i];
+        lxw_col_t c = (lxw_col_t)(i + 1);
+        worksheet_write_string(ws, b, c, fl->id, F->wrap);
+        h_id = fmax(h_id, sl_rpt_text_height(fl->id, W_FLOOR, 0));
+        worksheet_write_number(ws, b + 1, c, fl->zpa_h_ms2 / SL_G, F->ratio);
+        worksheet_write_number(ws, b + 2, c, (double)fl->design->n_sets, NULL);
+        worksheet_write_string(ws, b + 3, c, sl_rpt_or_dash(fl->sets_stop), NULL);
+    }
+    worksheet_set_row(ws, b, fmax(h_id, sl_rpt_text_height(lab[0], W_LABEL, 1)), NULL);
+
+    /* named ranges the Lookup formulas read (floor_names: the Data sheet, the
+     * names whole where the headings above break them into lines) */
     char last_col[8], def[160];
     sl_rpt_col_name(nf, last_col);
-    snprintf(def, sizeof def, "=Summary!$B$%d:$%s$%d", SL_RPT_SUM_HEAD + 1, last_col,
-             SL_RPT_SUM_HEAD + 1);
-    workbook_define_name(wb, "floor_names", def);
-    snprintf(def, sizeof def, "=Summary!$A$%d:$A$%zu", SL_RPT_SUM_HEAD + 2,
-             SL_RPT_SUM_HEAD + 1 + n);
+    snprintf(def, sizeof def, "=Summary!$A$%u:$A$%zu", (unsigned)head + 2, head + 1 + n);
     workbook_define_name(wb, "mu_grid", def);
-    snprintf(def, sizeof def, "=Summary!$B$%d:$%s$%zu", SL_RPT_SUM_HEAD + 2, last_col,
-             SL_RPT_SUM_HEAD + 1 + n);
+    snprintf(def, sizeof def, "=Summary!$B$%u:$%s$%zu", (unsigned)head + 2, last_col,
+             head + 1 + n);
     workbook_define_name(wb, "clearance_mm", def);
     snprintf(def, sizeof def, "=Summary!$B$%u:$%s$%u", (unsigned)b + 2, last_col, (unsigned)b + 2);
     workbook_define_name(wb, "floor_zpa_g", def);
     snprintf(def, sizeof def, "=Summary!$B$%u:$%s$%u", (unsigned)b + 3, last_col, (unsigned)b + 3);
     workbook_define_name(wb, "floor_sets", def);
-    /* one chart with every floor, on a page of its own */
-    lxw_row_t chart_row = row + 1;
-    lxw_chart *ch = workbook_add_chart(wb, LXW_CHART_SCATTER_STRAIGHT);
-    static const lxw_color_t pal[] = {0x1F4E79, 0xC55A11, 0x548235, 0x7030A0, 0xBF9000, 0x2E75B6,
-                                      0xFF0000, 0x000000};
-    for (size_t i = 0; i < nf; i++)
-        sl_rpt_add_series(ch, "Data", 0, sl_rpt_data_col_series(nf, i, SL_RPT_DS_CLEAR),
-                          SL_RPT_DATA_HEAD + 1, (lxw_row_t)(SL_RPT_DATA_HEAD + n),
-                          r->floors[i].name, pal[i % 8], 2.0f,
-                          (uint8_t)(i / 8 % 3 ? LXW_CHART_LINE_DASH_DASH
-                                              : LXW_CHART_LINE_DASH_SOLID), 0);
-    snprintf(buf, sizeof buf, "Required clearance (%s), every floor",
-             sl_clearance_policy_name(r->floors[0].design->policy));
-    chart_title_set_name(ch, buf);
-    sl_rpt_chart_axes(ch, ax);
-    lxw_row_t breaks[] = {chart_row, 0};
+
+    lxw_row_t breaks[] = {statements, head, 0};
     worksheet_set_h_pagebreaks(ws, breaks);
-    /* as wide as the printed columns */
-    double widths[64] = {W_LABEL};
-    size_t nw = 1;
-    for (; nw <= last && nw < 64; nw++)
-        widths[nw] = W_FLOOR;
-    double xs = sl_rpt_chart_scale(widths, nw);
-    lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 2.0 * xs};
-    worksheet_insert_chart_opt(ws, chart_row, 0, ch, &co);
     sl_rpt_page_setup(ws, r, 0, ids);
     worksheet_fit_to_pages(ws, 1, 0);
-    worksheet_repeat_rows(ws, SL_RPT_SUM_HEAD, SL_RPT_SUM_HEAD);
-    worksheet_print_area(ws, 0, 0, chart_row + 30, last);
+    worksheet_repeat_rows(ws, head, head);
+    worksheet_print_area(ws, 0, 0, b + 3, last);
     sl_rpt_protect(ws);
 }

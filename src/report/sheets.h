@@ -29,7 +29,7 @@
 
 typedef struct sl_rpt_fmts {
     lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
-        *note, *label, *sci, *warn, *indent;
+        *note, *label, *sci, *warn, *indent, *header_num;
 } sl_rpt_fmts;
 
 /* Layout (0-based rows). */
@@ -96,13 +96,31 @@ lxw_workbook *sl_rpt_workbook_open(const char *path, const char *title, const ch
 /* Close wb and rename it over `path` (or remove it on error). */
 sl_status sl_rpt_workbook_close(lxw_workbook *wb, sl_atomic *a, const char *path, sl_error *err);
 
-/* ---- lookup_formula.c -------------------------------------------------- */
+/* ---- lookup_formula.c: the Lookup chain of both workbooks ----------------- */
 /* The rows (0-based) of a Lookup's cells in column B: the mu input, the
- * result, the input check, the note, and the grid rows around mu (mu0,
- * mu1) with their clearances (c0, c1). */
+ * result, the input check, the note, and the six visible steps from row
+ * `steps` on (where the floor is, where mu is, the grid mu at or below and
+ * above, their clearances), under a heading in row steps - 1. */
 typedef struct sl_rpt_lookup_cells {
-    int mu, result, check, note, mu0, mu1, c0, c1;
+    int mu, result, check, note, steps;
 } sl_rpt_lookup_cells;
+/* Where a Lookup's table lies: named ranges of the friction grid and the
+ * clearances in mm; floors_down: 1 when the table has a row per floor and
+ * the grid is a row (plant), 0 when it has a row per grid mu and a column
+ * per floor (building); the formula that gives the floor's index in the
+ * table (MATCH(...)); the labels of the first two steps; the width of
+ * columns A:B. */
+typedef struct sl_rpt_lookup_table {
+    const char *grid, *table, *floor_match, *floor_step, *mu_step;
+    int floors_down;
+    double width;
+} sl_rpt_lookup_table;
+/* One test of a Lookup's inputs: its Excel condition, the message shown
+ * when it holds, and whether it holds for the initial inputs. */
+typedef struct sl_rpt_lookup_test {
+    const char *formula, *message;
+    int holds;
+} sl_rpt_lookup_test;
 #define SL_RPT_LOOKUP_NO_SLIDING \
     "no sliding predicted: mu g is at or above what every motion demands"
 /* A formula in column B with its cached value (a number v, or the text s
@@ -113,15 +131,22 @@ void sl_rpt_lookup_formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, con
  * grid,1) and the next): returns k0, the last row whose mu is at or below
  * mu (0 when !ok), and sets *k1 to the row after it (k0 at the grid's end). */
 size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1);
-/* "Required clearance, mm" and its interpolation formula (res: its value). */
-void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
-                          const sl_rpt_lookup_cells *c, double res, int ok);
-/* "Note" and its formula (no sliding where the result is 0); the row
- * height is the sheet's. */
-void sl_rpt_lookup_note(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
-                        const sl_rpt_lookup_cells *c, double res, int ok);
-/* The heading of the visible steps, merged over columns A:B (`width`). */
-void sl_rpt_lookup_how(lxw_worksheet *ws, const sl_rpt_fmts *F, lxw_row_t row, double width);
+/* "Input check": the message of the first of tests[] that holds, else of
+ * the mu tests every Lookup shares (mu blank or typed as text `mu_text`:
+ * "type mu" / "mu must be a number"; outside [mu_min, mu_max]), else "ok";
+ * formula and cached value alike. Returns 1 when the check is "ok". */
+int sl_rpt_lookup_check(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
+                        const sl_rpt_lookup_cells *c, const sl_rpt_lookup_test *tests,
+                        size_t n_tests, const char *mu_text, double mu, double mu_min,
+                        double mu_max);
+/* The heading and the six steps over table t, the "Required clearance, mm"
+ * result (linear interpolation in mu) and the no-sliding note: formulas,
+ * and cached values from d (the chosen floor's design when ok, any floor's
+ * otherwise) at floor_index (0-based) and mu. Returns the result in mm (NAN
+ * when !ok). */
+double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
+                           const sl_rpt_lookup_cells *c, const sl_rpt_lookup_table *t,
+                           const sl_design *d, size_t floor_index, double mu, int ok);
 
 /* ---- layout.c ---------------------------------------------------------- */
 void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F);
@@ -129,6 +154,10 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F);
  * merged range) `width` characters wide (LibreOffice does not grow a row
  * whose height a file sets, nor one it reads without one). */
 double sl_rpt_text_height(const char *s, double width, int bold);
+/* A column heading broken into lines ('\n', at blanks) two characters
+ * shorter than a column `width` wide holds in bold, so that no heading
+ * runs into the next one (into buf of size n). */
+char *sl_rpt_header_text(const char *s, double width, char *buf, size_t n);
 /* The x_scale of a chart as wide as n columns of these widths. */
 double sl_rpt_chart_scale(const double *width, size_t n);
 /* Page setup shared by every sheet: A4, margins, a two-line header with the
@@ -149,10 +178,12 @@ void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax);
 void sl_rpt_add_series(lxw_chart *ch, const char *sheet, lxw_col_t xc, lxw_col_t yc,
                        lxw_row_t r0, lxw_row_t r1, const char *name, lxw_color_t color,
                        float width, uint8_t dash, uint8_t transparency);
-/* Sheet names of the floors (names[i], SL_RPT_SHEET_NAME_MAX + 1 each):
- * the floor ids when every one fits, is unique without case and is not
+/* Sheet names of the floors (names[i], 4 SL_RPT_SHEET_NAME_MAX + 1 bytes
+ * each: 31 characters of UTF-8): the floor ids as written, Excel's
+ * forbidden characters []:*?/\ (and an apostrophe at either end) made '_',
+ * cut at 31 characters, when they are unique without case and none is
  * another sheet's name; else "F1", "F2", ... */
-void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX + 1]);
+void sl_rpt_sheet_names(const sl_report *r, char (*names)[SL_RPT_SHEET_NAME_MAX * 4 + 1]);
 
 /* ---- the sheets -------------------------------------------------------- */
 void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);

@@ -126,4 +126,13 @@ same_twice created0 --created 0
 SOURCE_DATE_EPOCH=0; export SOURCE_DATE_EPOCH
 same_twice source-date-epoch0
 unset SOURCE_DATE_EPOCH
+# floor ids as written: Excel's forbidden characters and an apostrophe in a sheet name, a
+# comma in a CSV column name (quoted), only the file names made safe
+mkdir -p "$D/odd"
+cp floors/01-ground.ini "$D/odd/O'Brien [1]: nord.ini"
+cp floors/02-el12.ini "$D/odd/a, b.ini"
+t_run run "$D/odd" -o "$D/odd_out" --sets 2 --mu 0.1,0.3 -q; t_expect_rc odd-ids 0
+[ -s "$D/odd_out/floor_O_Brien__1___nord.csv" ] && [ -s "$D/odd_out/floor_a__b.csv" ] && t_pass || t_fail "safe file names: $(ls "$D/odd_out" | tr '\n' ' ')"
+grep -v '^#' "$D/odd_out/summary.csv" | head -1 | grep -qF "mu,O'Brien [1]: nord_clearance_mm,\"a, b_clearance_mm\"" && t_pass || t_fail "summary.csv columns: $(grep -v '^#' "$D/odd_out/summary.csv" | head -1)"
+unzip -p "$D/odd_out/seislide-clearance.xlsx" xl/workbook.xml 2>/dev/null | grep -q "<sheet name=\"O&apos;Brien _1__ nord\"\|<sheet name=\"O'Brien _1__ nord\"" && t_pass || t_fail "sheet name: $(unzip -p "$D/odd_out/seislide-clearance.xlsx" xl/workbook.xml | grep -o '<sheet name="[^"]*"' | tr '\n' ' ')"
 t_end

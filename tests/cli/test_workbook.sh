@@ -72,8 +72,23 @@ cells = re.findall(r'<c r="([A-Z]+\d+)" s="(\d+)"', xml['Lookup'])
 ok(sorted(r for r, s in cells if int(s) in unlocked) == ['B11', 'B12'], 'Lookup inputs unlocked: %s' % sorted(r for r, s in cells if int(s) in unlocked))
 ok('type="list"' in xml['Lookup'] and 'floor_names' in xml['Lookup'] and 'type="decimal"' in xml['Lookup'], 'Lookup validation')
 # named ranges
-for nm in ('floor_names', 'mu_grid', 'clearance_mm', 'floor_zpa_g'):
+for nm in ('mu_grid', 'clearance_mm', 'floor_zpa_g'):
     ok(re.search(r'<definedName name="%s">Summary!' % nm, wb) is not None, 'named range ' + nm)
+# the names whole (the Summary's headings break them into lines): on the hidden Data sheet
+ok(re.search(r'<definedName name="floor_names">Data!', wb) is not None, 'named range floor_names')
+ok('Roof el. 36 m' in strings('Data') and not any('\n' in t for t in strings('Data')[:3]), 'floor names whole on Data')
+# no C function named in what the workbook shows
+ok(not any(re.search(r'\bsl_[a-z_]+', t) for t in ss), 'no C name in the workbook: %s' % [t for t in ss if 'sl_' in t][:2])
+# the repeated header row is the table's, and the table is the last part of its sheet: the
+# last manual page break is at its header (print titles repeat from the page after)
+for i, n in enumerate(names):
+    m = re.search(r'<definedName name="_xlnm.Print_Titles" localSheetId="%d">[^<]*\$(\d+):\$(\d+)<' % i, wb)
+    if m:
+        brk = [int(b) for b in re.findall(r'<brk id="(\d+)"', xml[n])]
+        ok(max(brk or [0]) == (int(m.group(1)) - 1 if brk else 0), n + ': header row %s repeated, last page break %s' % (m.group(1), brk))
+# column headings over numbers: broken into lines, right-aligned, none longer than its column holds
+heads = [t for t in strings('Summary') if t.replace('\n', ' ') in ('Ground level (RG 1.60, 0.3 g)', 'Roof el. 36 m')]
+ok(len(heads) == 2 and '\n' in heads[0] and all(len(l) <= 13 for t in heads for l in t.split('\n')), 'Summary headings broken into lines of 13 characters at most (a column 12 wide): %s' % heads)
 # charts: one per floor + Summary; x = mu on the same axis limits, log y with the same limits
 charts = sorted(n for n in z.namelist() if re.match(r'xl/charts/chart\d+\.xml$', n))
 ok(len(charts) == 3, 'charts %d' % len(charts))
@@ -116,7 +131,7 @@ for n in floors:
     ok(m is not None and int(m.group(1)) >= 70 and 'fitToPage' not in xml[n] and 'orientation="portrait"' in xml[n], n + ' print scale %s' % (m and m.group(1)))
 for n in names:
     ok('Page &amp;P of &amp;N' in xml[n] and '<oddHeader>' in xml[n], n + ' header and footer')
-    ok('Plant &amp;&amp; Unit 2' in xml[n] and 'Document DOC-0042, revision C' in xml[n] and '&amp;C' not in xml[n].split('<oddHeader>')[1].split('</oddHeader>')[0], n + ' header: title block left, nothing centred')
+    ok('Project: Plant &amp;&amp; Unit 2' in xml[n] and '(--' not in xml[n].split('<oddHeader>')[1].split('</oddHeader>')[0] and 'Document DOC-0042, revision C' in xml[n] and '&amp;C' not in xml[n].split('<oddHeader>')[1].split('</oddHeader>')[0], n + ' header: title block left, nothing centred')
 PY
 grep '^FAIL' "$D/check.txt" | while read -r l; do echo "  FAIL cli_workbook: $l" >&2; done
 np=$(grep -c '^ok ' "$D/check.txt"); nf=$(grep -c '^FAIL' "$D/check.txt")
@@ -131,6 +146,24 @@ if command -v soffice >/dev/null 2>&1; then
     t_pass
     pages=$(python3 -c "import re,sys; print(len(re.findall(rb'/Type\s*/Page[^s]', open(sys.argv[1], 'rb').read())))" "$D/pdf/seislide-clearance.pdf")
     [ "$pages" -eq 12 ] && t_pass || t_fail "PDF has $pages pages, expected 12 (a sheet spilled over its page width?)"
+    # a table's header row is printed only over its rows: every page that shows a heading
+    # line starting "mu" shows rows of the table under it
+    if command -v pdftotext >/dev/null 2>&1; then
+      pdftotext -layout "$D/pdf/seislide-clearance.pdf" "$D/pdf/text.txt"
+      bad=$(python3 - "$D/pdf/text.txt" <<'PY'
+import sys, re
+bad = []
+for i, p in enumerate(open(sys.argv[1]).read().split('\f')[:-1], 1):
+    lines = p.split('\n')
+    head = [l for l in lines if re.match(r'\s*mu\s+(mu g|Ground|Roof)', l)]
+    rows = [l for l in lines if re.match(r'\s*0\.\d\d\s+[\d.]+\s+[\d.]+', l)]
+    if head and len(rows) < 5:
+        bad.append(i)
+print(' '.join(map(str, bad)))
+PY
+)
+      [ -z "$bad" ] && t_pass || t_fail "table header printed over pages without table rows: $bad"
+    fi
   else
     t_fail "soffice did not render the workbook to PDF"
   fi
