@@ -13,6 +13,7 @@
 
 #include "analysis.h"
 #include "cli.h"
+#include "components_out.h"
 #include "outdir.h"
 #include "plant/cache.h"
 #include "plant/plant.h"
@@ -279,6 +280,8 @@ int cmd_run(int argc, char **argv)
     const char *fresh = sl_atomic_dir_path(out);
     if (a.shard_n ? write_shard(&plant, fresh, &a, &ss, &err)
                   : sl_plant_deliver(&plant, fresh, dop, &err))
+        goto fail;
+    if (a.components && components_write(fresh, a.components, fresh, cmdline, dop->created, &err))
         goto fail;
     /* the default cache travels with the outputs across the swap */
     char moved[4400] = "";

@@ -27,17 +27,26 @@ size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1)
     return k0;
 }
 
+char *sl_rpt_interp_formula(char *buf, size_t n, const char *mu, const char *mu0, const char *mu1,
+                            const char *c0, const char *c1)
+{
+    snprintf(buf, n, "IF(%s=%s,%s,%s+(%s-%s)*(%s-%s)/(%s-%s))", mu1, mu0, c0, c0, mu, mu0, c1, c0,
+             mu1, mu0);
+    return buf;
+}
+
 void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
                           const sl_rpt_lookup_cells *c, double res, int ok)
 {
     /* linear interpolation in mu between the grid rows around it, as
      * sl_design_clearance_at: C0 + (mu - mu0) (C1 - C0) / (mu1 - mu0) */
-    char f[512];
+    char f[512], ip[300], r[5][16];
     worksheet_write_string(ws, c->result, 0, "Required clearance, mm", F->title);
-    snprintf(f, sizeof f,
-             "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
-             c->check + 1, c->mu1 + 1, c->mu0 + 1, c->c0 + 1, c->c0 + 1, c->mu + 1, c->mu0 + 1,
-             c->c1 + 1, c->c0 + 1, c->mu1 + 1, c->mu0 + 1);
+    const int rows[5] = {c->mu, c->mu0, c->mu1, c->c0, c->c1};
+    for (int k = 0; k < 5; k++)
+        snprintf(r[k], sizeof r[k], "B%d", rows[k] + 1);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"-\",%s)", c->check + 1,
+             sl_rpt_interp_formula(ip, sizeof ip, r[0], r[1], r[2], r[3], r[4]));
     sl_rpt_lookup_formula(ws, zero_cache, c->result, f, res, ok ? NULL : "-", F->result);
 }
 
