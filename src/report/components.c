@@ -823,7 +823,7 @@ static sl_status read_row(const sl_comp_results *r, sl_comp_table *t, csv_rec *w
     const char *path = t->path;
     const int *col = t->col;
     if (w->n != t->n_cols)
-        return sl_error_set_at(err, SL_EPARSE, path, w->line, (long)(w->n < t->n_cols ? w->n
+        return sl_error_set_at(err, SL_EPARSE, path, w->line, (long)(w->n < t->n_cols ? w->n + 1
                                : t->n_cols + 1), "%zu fields; the header has %zu", w->n,
                                t->n_cols);
     char b[512];

@@ -27,7 +27,7 @@ enum { FS_BLD, FS_FID, FS_NAME, FS_KID, FS_KNAME, FS_GRID };
 #define W_TAG 14.0
 #define W_TEXT 14.0
 #define W_NUM 9.0
-#define W_REASON 58.0
+#define W_REASON 46.0
 #define W_EXTRA_MAX 24.0
 
 static const char *const verdict_label[] = {"ok", "short", "rocking", "outside", "check input"};
@@ -38,7 +38,7 @@ static const lxw_color_t verdict_fg[] = {0x006100, 0x9C0006, 0x9C5700, 0x404040,
 typedef struct book {
     lxw_workbook *wb;
     sl_rpt_fmts F;
-    lxw_format *in_text, *in_num, *num3, *mm, *reason, *vfmt[N_LABELS];
+    lxw_format *in_text, *in_num, *num3, *mm, *reason, *top, *vfmt[N_LABELS];
     const sl_comp_results *r;
     const sl_comp_table *t;
     size_t n_extra, vis, last;   /* extra columns; visible columns; last formula row */
@@ -104,6 +104,8 @@ static void formats(book *b)
     b->mm = workbook_add_format(b->wb);
     format_set_num_format(b->mm, "0.0");
     format_set_align(b->mm, LXW_ALIGN_VERTICAL_TOP);
+    b->top = workbook_add_format(b->wb);
+    format_set_align(b->top, LXW_ALIGN_VERTICAL_TOP);
     b->reason = workbook_add_format(b->wb);
     format_set_text_wrap(b->reason);
     format_set_align(b->reason, LXW_ALIGN_VERTICAL_TOP);
@@ -212,7 +214,7 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
         ref(h[k], col_h(b, k), row);
     for (int k = 0; k < R_N; k++)
         ref(v[k], col_res(b, k), row);
-    double height = 2 * 15.0 + 1;
+    double height = 15.0 + 1;
     /* the inputs */
     for (int c = 0; c < SL_COMP_NCOLS; c++) {
         int num = c >= SL_COMP_MU;
@@ -318,7 +320,7 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
     snprintf(f, sizeof f, "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input\",IF(%s>=%s,\"rocking\","
              "IF(%s=\"\",\"outside\",IF(%s>=0,\"ok\",\"short\")))))", h[H_CHK], h[H_CHK], D,
              v[R_BH], h[H_K], v[R_MARGIN]);
-    fcell(ws, row, col_res(b, R_VERDICT), f, 0, ok ? SL_COMP_VERDICT_NAME[vi] : "", NULL);
+    fcell(ws, row, col_res(b, R_VERDICT), f, 0, ok ? SL_COMP_VERDICT_NAME[vi] : "", b->top);
     const char *V = v[R_VERDICT];
     snprintf(f, sizeof f,
              "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input: \"&%s,IF(%s=\"rocking\",\"mu \"&"
@@ -368,7 +370,7 @@ static void components_sheet(book *b, const sl_report *rep)
     lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Components");
     size_t vis = b->vis;
     /* widths */
-    const double w_in[SL_COMP_NCOLS] = {W_TAG, W_TEXT - 4, W_TEXT, 7, 8, 9, 11};
+    const double w_in[SL_COMP_NCOLS] = {W_TAG, W_TEXT - 4, W_TEXT, 6, 8, 12, 13};
     for (int c = 0; c < SL_COMP_NCOLS; c++)
         worksheet_set_column(ws, (lxw_col_t)c, (lxw_col_t)c, w_in[c], NULL);
     for (size_t e = 0; e < b->n_extra; e++) {
@@ -378,7 +380,7 @@ static void components_sheet(book *b, const sl_report *rep)
         worksheet_set_column(ws, (lxw_col_t)(SL_COMP_NCOLS + e), (lxw_col_t)(SL_COMP_NCOLS + e),
                              fmin(w, W_EXTRA_MAX), NULL);
     }
-    const double w_res[R_N] = {7, 10, 8, 9, 9, W_REASON};
+    const double w_res[R_N] = {6, 10, 8, 9, 9, W_REASON};
     for (int k = 0; k < R_N; k++)
         worksheet_set_column(ws, col_res(b, k), col_res(b, k), w_res[k], NULL);
     lxw_row_col_options hid = {.hidden = 1};
@@ -408,7 +410,7 @@ static void components_sheet(book *b, const sl_report *rep)
     for (size_t e = 0; e < b->n_extra; e++)
         worksheet_write_string(ws, CS_HEAD, (lxw_col_t)(SL_COMP_NCOLS + e),
                                t->header[b->extra[e]], b->F.header);
-    static const char *const rh[R_N] = {"b/h", "required clearance_mm", "SE_mm", "margin_mm",
+    static const char *const rh[R_N] = {"b/h", "required, mm", "its SE, mm", "margin, mm",
                                         "verdict", "reason"};
     for (int k = 0; k < R_N; k++)
         worksheet_write_string(ws, CS_HEAD, col_res(b, k), rh[k], b->F.header);
@@ -454,7 +456,7 @@ static void summary_sheet(book *b, const sl_report *rep)
     lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Summary");
     int plant = r->is_plant;
     lxw_col_t c0 = plant ? 1 : 0; /* the floor id column */
-    const double w_b = 14, w_id = 14, w_name = 30, w_n = 10;
+    const double w_b = 14, w_id = 14, w_name = 30, w_n = 12;
     if (plant)
         worksheet_set_column(ws, 0, 0, w_b, NULL);
     worksheet_set_column(ws, c0, c0, w_id, NULL);
@@ -580,6 +582,7 @@ static void chart_sheet(book *b, const sl_report *rep)
     lxw_chart_line line = {.color = 0x404040, .width = 1.25, .dash_type = LXW_CHART_LINE_DASH_DASH};
     chart_series_set_line(dg, &line);
     chart_series_set_marker_type(dg, LXW_CHART_MARKER_NONE);
+    chart_show_hidden_data(ch); /* the points are in hidden columns */
     chart_title_set_name(ch, "Available against required clearance");
     chart_axis_set_name(ch->x_axis, "Required clearance at the component's mu, mm");
     chart_axis_set_name(ch->y_axis, "Available clearance, mm");
