@@ -30,8 +30,10 @@ size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1)
 char *sl_rpt_interp_formula(char *buf, size_t n, const char *mu, const char *mu0, const char *mu1,
                             const char *c0, const char *c1)
 {
-    snprintf(buf, n, "IF(%s=%s,%s,%s+(%s-%s)*(%s-%s)/(%s-%s))", mu1, mu0, c0, c0, mu, mu0, c1, c0,
-             mu1, mu0);
+    snprintf(buf, n, "IF(%s=%s,%s,%s+(%s-%s)*(%s-%s)/(%s-%s))", /* c0 + (mu-mu0)(c1-c0)/(mu1-mu0) */
+             mu1, mu0, c0,
+             c0, mu, mu0,
+             c1, c0, mu1, mu0);
     return buf;
 }
 

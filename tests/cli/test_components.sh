@@ -51,6 +51,8 @@ A[1][3:6] = ['0.04', '3', '0.5']    # below the grid, squat
 A[2][3:6] = ['0.55', '3', '0.5']    # above the grid, squat
 A[3][3:6] = ['0.3', '0.5', '1.2']   # slender: b/h 0.21
 Bx = rows('B', 10)
+Bx[0][1:7] = ['bld-B', '04-roof36', '0.2', '2', '1', 'EXACT']   # typed in: the same tie
+Bx[1][1:7] = ['bldA', 'Ground level (RG 1.60, 0.3 g)', '0.3', '0.5', '1.2', '40']   # by name; slender
 head = ['Tag', 'BUILDING', 'floor', 'Mu', 'base_m', 'cg_height_m', 'clearance_mm', 'description', 'room']
 with open(d + '/a.csv', 'w', newline='') as f:
     f.write('\ufeff# components of the test plant\r\n' + ','.join(head) + '\r\n')
@@ -67,6 +69,7 @@ PY
 # the exact tie: the roof's clearance at mu 0.2 as its table gives it
 tie=$(awk -F, '/^0.2,/ {print $12}' "$D/res/bld-B/floor_04-roof36.csv")
 sed -i "s/,EXACT,/,$tie,/" "$D/a.csv" "$D/ab.csv"
+sed -i "s/\tEXACT\t/\t$tie\t/" "$D/b.tsv"
 
 t_run components "$D/res" "$D/a.csv" -o "$D/cout" --created 1700000000
 t_expect_rc components 0
