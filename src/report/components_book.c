@@ -24,11 +24,12 @@ enum { R_BH, R_REQ, R_SE, R_MARGIN, R_VERDICT, R_REASON, R_N };
  * by name, then the grid's clearance, then its standard error (row 1: mu). */
 enum { FS_BLD, FS_FID, FS_NAME, FS_KID, FS_KNAME, FS_GRID };
 /* Column widths (characters). */
-#define W_TAG 14.0
-#define W_TEXT 14.0
+#define W_TAG 10.0
+#define W_TEXT 12.0
 #define W_NUM 9.0
-#define W_REASON 46.0
-#define W_EXTRA_MAX 24.0
+#define W_REASON 30.0
+#define W_EXTRA_MAX 13.0
+#define W_CHART 100.0 /* the Chart sheet's one column: a landscape page */
 
 static const char *const verdict_label[] = {"ok", "short", "rocking", "outside", "check input"};
 static const lxw_color_t verdict_bg[] = {0xC6EFCE, 0xFFC7CE, 0xFFEB9C, 0xD9D9D9, 0xE4DFEC};
@@ -44,6 +45,7 @@ typedef struct book {
     size_t n_extra, vis, last;   /* extra columns; visible columns; last formula row */
     int extra[SL_COMP_MAX_COLS]; /* the file's column of each extra column */
     char g0[48], g1[48];         /* the grid's ends as the reasons show them */
+    double diag_mm;              /* the end of the chart's diagonal (Floors) */
 } book;
 
 static lxw_col_t col_res(const book *b, int k) { return (lxw_col_t)(SL_COMP_NCOLS + b->n_extra + (size_t)k); }
@@ -104,8 +106,9 @@ static void formats(book *b)
     b->mm = workbook_add_format(b->wb);
     format_set_num_format(b->mm, "0.0");
     format_set_align(b->mm, LXW_ALIGN_VERTICAL_TOP);
-    b->top = workbook_add_format(b->wb);
+    b->top = workbook_add_format(b->wb); /* the verdict: kept off the margin beside it */
     format_set_align(b->top, LXW_ALIGN_VERTICAL_TOP);
+    format_set_indent(b->top, 1);
     b->reason = workbook_add_format(b->wb);
     format_set_text_wrap(b->reason);
     format_set_align(b->reason, LXW_ALIGN_VERTICAL_TOP);
@@ -175,12 +178,6 @@ static void floors_sheet(book *b)
         workbook_define_name(b->wb, names[k].name, def);
     }
     /* the chart's diagonal: (0, 0) and (M, M), M a little above every clearance */
-    double top = 0;
-    for (size_t i = 0; i < b->t->n; i++) {
-        const sl_comp_row *w = &b->t->rows[i];
-        if (w->verdict == SL_COMP_OK || w->verdict == SL_COMP_SHORT)
-            top = fmax(top, fmax(w->required_mm, w->clearance_mm));
-    }
     lxw_row_t d = (lxw_row_t)(nf + 2);
     char rq[80], cl[80], f[240];
     worksheet_write_string(ws, d, 0, "chart diagonal, mm", b->F.header);
@@ -188,9 +185,9 @@ static void floors_sheet(book *b)
     worksheet_write_number(ws, d + 1, 1, 0, NULL);
     snprintf(f, sizeof f, "=1.05*MAX(%s,%s)", range(b, rq, sizeof rq, col_res(b, R_REQ)),
              range(b, cl, sizeof cl, SL_COMP_CLEARANCE));
-    fcell(ws, d + 2, 0, f, 1.05 * top, NULL, NULL);
+    fcell(ws, d + 2, 0, f, b->diag_mm, NULL, NULL);
     snprintf(f, sizeof f, "=A%u", (unsigned)d + 3);
-    fcell(ws, d + 2, 1, f, 1.05 * top, NULL, NULL);
+    fcell(ws, d + 2, 1, f, b->diag_mm, NULL, NULL);
     worksheet_hide(ws);
 }
 
@@ -370,7 +367,7 @@ static void components_sheet(book *b, const sl_report *rep)
     lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Components");
     size_t vis = b->vis;
     /* widths */
-    const double w_in[SL_COMP_NCOLS] = {W_TAG, W_TEXT - 4, W_TEXT, 6, 8, 12, 13};
+    const double w_in[SL_COMP_NCOLS] = {W_TAG, W_TEXT - 4, W_TEXT, 5, 7, 11, 13};
     for (int c = 0; c < SL_COMP_NCOLS; c++)
         worksheet_set_column(ws, (lxw_col_t)c, (lxw_col_t)c, w_in[c], NULL);
     for (size_t e = 0; e < b->n_extra; e++) {
@@ -380,7 +377,7 @@ static void components_sheet(book *b, const sl_report *rep)
         worksheet_set_column(ws, (lxw_col_t)(SL_COMP_NCOLS + e), (lxw_col_t)(SL_COMP_NCOLS + e),
                              fmin(w, W_EXTRA_MAX), NULL);
     }
-    const double w_res[R_N] = {6, 10, 8, 9, 9, W_REASON};
+    const double w_res[R_N] = {5, 8, 6, 7, 9, W_REASON};
     for (int k = 0; k < R_N; k++)
         worksheet_set_column(ws, col_res(b, k), col_res(b, k), w_res[k], NULL);
     lxw_row_col_options hid = {.hidden = 1};
@@ -546,7 +543,7 @@ static void summary_sheet(book *b, const sl_report *rep)
 static void chart_sheet(book *b, const sl_report *rep)
 {
     lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Chart");
-    worksheet_set_column(ws, 0, 0, 130, NULL);
+    worksheet_set_column(ws, 0, 0, W_CHART, NULL);
     worksheet_write_string(ws, 0, 0, "Components: available against required clearance",
                            b->F.title);
     const char *cap = "One point per component that slides (verdict ok or short): the required "
@@ -555,7 +552,7 @@ static void chart_sheet(book *b, const sl_report *rep)
                       "components and those whose mu is off the grid are not drawn (see the "
                       "Components sheet).";
     worksheet_write_string(ws, 1, 0, cap, b->F.wrap);
-    worksheet_set_row(ws, 1, sl_rpt_text_height(cap, 130, 0), NULL);
+    worksheet_set_row(ws, 1, sl_rpt_text_height(cap, W_CHART, 0), NULL);
     lxw_chart *ch = workbook_add_chart(b->wb, LXW_CHART_SCATTER);
     char x[120], y[120];
     const struct { int hx, hy; const char *name; lxw_color_t color; uint8_t marker; } s[] = {
@@ -586,11 +583,16 @@ static void chart_sheet(book *b, const sl_report *rep)
     chart_title_set_name(ch, "Available against required clearance");
     chart_axis_set_name(ch->x_axis, "Required clearance at the component's mu, mm");
     chart_axis_set_name(ch->y_axis, "Available clearance, mm");
+    /* both axes 0 to the same round value above every point: the diagonal at 45 degrees */
+    double top = b->diag_mm > 0 ? b->diag_mm : 1, step = pow(10, floor(log10(top)));
+    double axis_max = step * (top <= step ? 1 : top <= 2 * step ? 2 : top <= 5 * step ? 5 : 10);
     chart_axis_set_min(ch->x_axis, 0);
     chart_axis_set_min(ch->y_axis, 0);
+    chart_axis_set_max(ch->x_axis, axis_max);
+    chart_axis_set_max(ch->y_axis, axis_max);
     chart_axis_major_gridlines_set_visible(ch->x_axis, LXW_TRUE);
     chart_legend_set_position(ch, LXW_CHART_LEGEND_BOTTOM);
-    lxw_chart_options co = {.x_scale = 1.85, .y_scale = 1.9};
+    lxw_chart_options co = {.x_scale = 1.5, .y_scale = 1.85};
     worksheet_insert_chart_opt(ws, 3, 0, ch, &co);
     sl_rpt_page_setup(ws, rep, 1, "");
     worksheet_print_area(ws, 0, 0, 32, 0);
@@ -612,6 +614,10 @@ sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, c
     b.vis = SL_COMP_NCOLS + b.n_extra + R_N;
     b.last = CS_FIRST + t->n + SL_COMP_SPARE_ROWS - 1;
     grid_text(r, b.g0, b.g1);
+    for (size_t i = 0; i < t->n; i++) /* the diagonal's end: a little above every point */
+        if (t->rows[i].verdict == SL_COMP_OK || t->rows[i].verdict == SL_COMP_SHORT)
+            b.diag_mm = fmax(b.diag_mm, 1.05 * fmax(t->rows[i].required_mm,
+                                                    t->rows[i].clearance_mm));
     sl_report rep;
     sl_report_init(&rep);
     rep.version = o->version;
