@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "cli.h"
@@ -68,12 +69,14 @@ static int check(void *dst)
 
 static int owns(const char *name) { return sl_comp_owns_name(name); }
 
-sl_status components_write(const char *results, const char *file, const char *dir,
-                           const char *cmdline, time_t created, sl_error *err)
+sl_status components_write(const char *results, const char *shown, const char *file,
+                           const char *dir, const char *cmdline, time_t created, sl_error *err)
 {
     sl_comp_results r;
     sl_comp_table t;
     sl_status st = sl_comp_results_load(results, &r, err);
+    if (!st && strcmp(shown, results) && (st = sl_comp_results_shown(&r, shown, err)))
+        sl_comp_results_free(&r);
     if (st)
         return st;
     if ((st = sl_comp_table_read(file, &r, &t, err))) {
@@ -114,8 +117,8 @@ int cmd_components(int argc, char **argv)
     if (!out)
         goto fail;
     cli_outdir_writing();
-    if (components_write(argv[optind], argv[optind + 1], sl_atomic_dir_path(out), cmdline,
-                         (time_t)a.created, &err) ||
+    if (components_write(argv[optind], argv[optind], argv[optind + 1], sl_atomic_dir_path(out),
+                         cmdline, (time_t)a.created, &err) ||
         cli_outdir_commit(&out, &err))
         goto fail;
     rc = CLI_EXIT_OK;

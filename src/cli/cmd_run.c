@@ -281,7 +281,8 @@ int cmd_run(int argc, char **argv)
     if (a.shard_n ? write_shard(&plant, fresh, &a, &ss, &err)
                   : sl_plant_deliver(&plant, fresh, dop, &err))
         goto fail;
-    if (a.components && components_write(fresh, a.components, fresh, cmdline, dop->created, &err))
+    if (a.components &&
+        components_write(fresh, a.out, a.components, fresh, cmdline, dop->created, &err))
         goto fail;
     /* the default cache travels with the outputs across the swap */
     char moved[4400] = "";

@@ -542,6 +542,33 @@ void sl_comp_results_free(sl_comp_results *r)
     memset(r, 0, sizeof *r);
 }
 
+/* The last part of a path (its trailing slashes left out), malloc'd. */
+static char *last_part(const char *dir)
+{
+    size_t k = strlen(dir);
+    while (k > 1 && dir[k - 1] == '/')
+        k--;
+    size_t s = k;
+    while (s && dir[s - 1] != '/')
+        s--;
+    return sl_text_dup_mem(dir + s, k - s);
+}
+
+sl_status sl_comp_results_shown(sl_comp_results *r, const char *shown, sl_error *err)
+{
+    char *d = dupstr(shown), *s = r->is_plant ? NULL : last_part(shown);
+    if (!d || (!r->is_plant && !s)) {
+        free(d);
+        free(s);
+        return sl_error_set(err, SL_ENOMEM, shown, 0, "out of memory");
+    }
+    free(r->dir);
+    free(r->single);
+    r->dir = d;
+    r->single = s;
+    return SL_OK;
+}
+
 sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *err)
 {
     memset(r, 0, sizeof *r);
@@ -569,13 +596,7 @@ sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *er
             st = add_building(r, "", err);
         if (!st) {
             /* the folder's own name: a row may name it as its building */
-            size_t k = strlen(dir);
-            while (k > 1 && dir[k - 1] == '/')
-                k--;
-            size_t s = k;
-            while (s && dir[s - 1] != '/')
-                s--;
-            if (!(r->single = sl_text_dup_mem(dir + s, k - s)))
+            if (!(r->single = last_part(dir)))
                 st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
         }
         if (!st)
@@ -894,6 +915,12 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
             }
             t->rows = g;
         }
+        int blank = 1; /* a row of empty fields (",,,,": spreadsheets export them) */
+        char bb[64];
+        for (size_t c = 0; c < w.n && blank; c++)
+            blank = !*trimmed(w.f[c], bb, sizeof bb);
+        if (blank)
+            continue;
         sl_comp_row *x = &t->rows[t->n];
         memset(x, 0, sizeof *x);
         if ((st = read_row(r, t, &w, x, err)))

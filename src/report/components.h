@@ -18,7 +18,7 @@
  * building; floor is a floor id or the floor's name (without case). mu,
  * base_m (least base dimension) and cg_height_m (centre of mass above the
  * floor) must be > 0, clearance_mm (the available gap) >= 0; tags unique
- * (without case).
+ * (without case). Blank lines and rows of empty fields are skipped.
  *
  * Per component:
  *   required_clearance_mm  the floor's clearance at mu by linear
@@ -111,6 +111,10 @@ typedef struct sl_comp_results {
  * different grids), SL_ENOMEM. On failure r is empty. */
 sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *err);
 void sl_comp_results_free(sl_comp_results *r);
+/* Name the results `shown` in the outputs and messages (a run that checks
+ * its own fresh folder names the final one); a one-building folder's own
+ * name, which a row may give as its building, becomes shown's last part. */
+sl_status sl_comp_results_shown(sl_comp_results *r, const char *shown, sl_error *err);
 
 /* One component: the input fields and the results. */
 typedef struct sl_comp_row {
