@@ -3,18 +3,16 @@
  * components.h (the workbook: components_book.c). */
 #include "report/components.h"
 
-#include <ctype.h>
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
 #include <zlib.h>
 
 #include "io/atomic.h"
 #include "io/text.h"
+#include "report/csvread.h"
 #include "report/plant_book.h"
 #include "report/sheets.h"
 
@@ -22,185 +20,8 @@ const char *const SL_COMP_COL_NAME[SL_COMP_NCOLS] = {"tag", "building", "floor",
                                                      "cg_height_m", "clearance_mm"};
 const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS] = {"ok", "short", "rocking",
                                                              "outside"};
-/* Largest results CSV read, bytes (a floor table, floors.csv, plant.csv). */
-#define RESULTS_MAX_BYTES (64L << 20)
 /* Room for the list of known buildings or floors in a message. */
 #define KNOWN_MAX 600
-
-/* ---- RFC 4180 records ------------------------------------------------------ */
-
-typedef struct csv_rd {
-    const char *path, *buf;
-    size_t len, pos;
-    long line;               /* the line at pos */
-} csv_rd;
-
-typedef struct csv_rec {
-    char **f;
-    long *fline;             /* the line each field starts on */
-    size_t n, cap;
-    long line;               /* the line the record starts on */
-} csv_rec;
-
-static void rec_clear(csv_rec *r)
-{
-    for (size_t i = 0; i < r->n; i++)
-        free(r->f[i]);
-    r->n = 0;
-}
-
-static void rec_free(csv_rec *r)
-{
-    rec_clear(r);
-    free(r->f);
-    free(r->fline);
-    memset(r, 0, sizeof *r);
-}
-
-static int rec_push(csv_rec *r, char *s, long line)
-{
-    if (r->n == r->cap) {
-        size_t cap = r->cap ? 2 * r->cap : 16;
-        char **f = realloc(r->f, cap * sizeof *f);
-        if (f)
-            r->f = f;
-        long *l = realloc(r->fline, cap * sizeof *l);
-        if (l)
-            r->fline = l;
-        if (!f || !l) {
-            free(s);
-            return -1;
-        }
-        r->cap = cap;
-    }
-    r->f[r->n] = s;
-    r->fline[r->n++] = line;
-    return 0;
-}
-
-/* Skip a line end at pos (LF, CRLF or CR); 1 when there was one. */
-static int line_end(csv_rd *c)
-{
-    if (c->pos < c->len && c->buf[c->pos] == '\r') {
-        c->pos++;
-        if (c->pos < c->len && c->buf[c->pos] == '\n')
-            c->pos++;
-        c->line++;
-        return 1;
-    }
-    if (c->pos < c->len && c->buf[c->pos] == '\n') {
-        c->pos++;
-        c->line++;
-        return 1;
-    }
-    return 0;
-}
-
-/* The next record into r: 1, 0 at the end, or an error status (negated).
- * Blank lines and lines starting with '#' are skipped. */
-static int next_record(csv_rd *c, csv_rec *r, sl_error *err)
-{
-    rec_clear(r);
-    for (;;) { /* skip comment and blank lines */
-        if (c->pos >= c->len)
-            return 0;
-        size_t e = c->pos;
-        while (e < c->len && (c->buf[e] == ' ' || c->buf[e] == '\t'))
-            e++;
-        if (e < c->len && c->buf[e] == '#') {
-            while (c->pos < c->len && c->buf[c->pos] != '\r' && c->buf[c->pos] != '\n')
-                c->pos++;
-            line_end(c);
-            continue;
-        }
-        if (e >= c->len || c->buf[e] == '\r' || c->buf[e] == '\n') {
-            c->pos = e;
-            if (!line_end(c))
-                return 0;
-            continue;
-        }
-        break;
-    }
-    r->line = c->line;
-    for (;;) {
-        long fl = c->line;
-        size_t cap = 64, k = 0;
-        char *s = malloc(cap);
-        if (!s)
-            return -sl_error_set(err, SL_ENOMEM, c->path, 0, "out of memory");
-        int quoted = c->pos < c->len && c->buf[c->pos] == '"';
-        if (quoted)
-            c->pos++;
-        for (;;) {
-            if (c->pos >= c->len) {
-                if (quoted) {
-                    free(s);
-                    return -sl_error_set_at(err, SL_EPARSE, c->path, fl, (long)r->n + 1,
-                                            "a quoted field is not closed before the end of "
-                                            "the file");
-                }
-                break;
-            }
-            char ch = c->buf[c->pos];
-            if (quoted && ch == '"') {
-                if (c->pos + 1 < c->len && c->buf[c->pos + 1] == '"') {
-                    c->pos += 2;
-                } else {
-                    c->pos++;
-                    char nx = c->pos < c->len ? c->buf[c->pos] : '\n';
-                    if (nx != ',' && nx != '\r' && nx != '\n') {
-                        free(s);
-                        return -sl_error_set_at(err, SL_EPARSE, c->path, c->line,
-                                                (long)r->n + 1, "text after the closing quote "
-                                                "of a field (a quote inside a quoted field is "
-                                                "written \"\")");
-                    }
-                    break;
-                }
-            } else if (!quoted && (ch == ',' || ch == '\r' || ch == '\n')) {
-                break;
-            } else if (quoted && (ch == '\r' || ch == '\n')) {
-                line_end(c); /* a line break inside the field: kept as LF */
-                ch = '\n';
-            } else {
-                c->pos++;
-            }
-            if (k + 2 > cap) {
-                char *g = realloc(s, cap *= 2);
-                if (!g) {
-                    free(s);
-                    return -sl_error_set(err, SL_ENOMEM, c->path, 0, "out of memory");
-                }
-                s = g;
-            }
-            s[k++] = ch;
-        }
-        s[k] = '\0';
-        if (rec_push(r, s, fl))
-            return -sl_error_set(err, SL_ENOMEM, c->path, 0, "out of memory");
-        if (c->pos < c->len && c->buf[c->pos] == ',') {
-            c->pos++;
-            continue;
-        }
-        line_end(c);
-        return 1;
-    }
-}
-
-/* Trimmed copy of a field for matching and numbers (into buf). */
-static const char *trimmed(const char *s, char *buf, size_t n)
-{
-    while (*s && sl_text_is_space(*s))
-        s++;
-    size_t k = strlen(s);
-    while (k && sl_text_is_space(s[k - 1]))
-        k--;
-    if (k >= n)
-        k = n - 1;
-    memcpy(buf, s, k);
-    buf[k] = '\0';
-    return buf;
-}
 
 static unsigned long file_crc(const char *buf, size_t len)
 {
@@ -213,404 +34,7 @@ static unsigned long file_crc(const char *buf, size_t len)
     return c;
 }
 
-/* ---- the results of a run -------------------------------------------------- */
-
 static char *dupstr(const char *s) { return sl_text_dup(s); }
-
-/* "# key: value" of a comment line (the run's record); NULL otherwise. */
-static const char *comment_value(const char *line, size_t n, const char *key, char *buf,
-                                 size_t bn)
-{
-    size_t kl = strlen(key);
-    if (n < kl + 4 || strncmp(line, "# ", 2) || strncmp(line + 2, key, kl) ||
-        strncmp(line + 2 + kl, ": ", 2))
-        return NULL;
-    size_t v = n - kl - 4;
-    if (v >= bn)
-        v = bn - 1;
-    memcpy(buf, line + kl + 4, v);
-    buf[v] = '\0';
-    return buf;
-}
-
-/* The column named `name` in a header record, or -1. */
-static int header_col(const csv_rec *h, const char *name)
-{
-    char b[256];
-    for (size_t i = 0; i < h->n; i++)
-        if (!strcasecmp(trimmed(h->f[i], b, sizeof b), name))
-            return (int)i;
-    return -1;
-}
-
-static sl_status load_file(const char *path, long max, sl_text *t, sl_error *err)
-{
-    sl_text_opts o = {.max_bytes = max, .what = "a CSV table", .text_only = 1};
-    return sl_text_load(path, &o, t, err);
-}
-
-/* A header record with the named columns (cols[k] set), after the comment
- * lines; *rd positioned at the first data row. */
-static sl_status table_header(csv_rd *rd, csv_rec *h, const char *const *names, size_t nn,
-                              int *cols, sl_error *err)
-{
-    int got = next_record(rd, h, err);
-    if (got < 0)
-        return (sl_status)-got;
-    if (!got)
-        return sl_error_set(err, SL_EPARSE, rd->path, rd->line, "no header row");
-    for (size_t k = 0; k < nn; k++)
-        if ((cols[k] = header_col(h, names[k])) < 0)
-            return sl_error_set_at(err, SL_EPARSE, rd->path, h->line, 0,
-                                   "no column '%s' in the header (not a table seislide run "
-                                   "wrote)", names[k]);
-    return SL_OK;
-}
-
-static sl_status num_field(const csv_rd *rd, const csv_rec *w, int col, double *v, int empty_nan,
-                           sl_error *err)
-{
-    char b[SL_TEXT_TOKEN_MAX + 1];
-    const char *s = (size_t)col < w->n ? trimmed(w->f[col], b, sizeof b) : "";
-    if (!*s && empty_nan) {
-        *v = NAN;
-        return SL_OK;
-    }
-    sl_num_result nr = sl_text_parse_num(s, strlen(s), v);
-    if (nr != SL_NUM_OK)
-        return sl_error_set_at(err, nr == SL_NUM_BAD ? SL_EPARSE : SL_EINVAL, rd->path,
-                               w->line, col + 1, "%s value '%s'",
-                               nr == SL_NUM_BAD ? "non-numeric" : "non-finite",
-                               sl_text_quote(s, strlen(s)).s);
-    return SL_OK;
-}
-
-/* floor_<id>.csv of a building: the grid, clearance and SE; the floor file's
- * record and (first floor) the run's record. */
-static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *bdir,
-                            sl_error *err)
-{
-    char path[4400], b[1200];
-    snprintf(path, sizeof path, "%s/floor_%s.csv", bdir, fl->id);
-    sl_text t;
-    sl_status st = load_file(path, RESULTS_MAX_BYTES, &t, err);
-    if (st)
-        return st;
-    /* the record: comment lines before the header */
-    const char *s;
-    size_t n;
-    int first = !r->program;
-    while (sl_text_next(&t, &s, &n) && n && s[0] == '#') {
-        const char *v;
-        if ((v = comment_value(s, n, "floor_file_crc32", b, sizeof b))) {
-            char *end;
-            fl->crc32 = strtoul(v, &end, 16);
-            const char *p = strchr(end, '('), *q = strrchr(end, ',');
-            if (p && q && q > p) {
-                free(fl->file);
-                fl->file = sl_text_dup_mem(p + 1, (size_t)(q - p - 1));
-                fl->size_bytes = strtol(q + 1, NULL, 10);
-            }
-        }
-        static const char *const keys[] = {"program", "command", "created", "seed", "project",
-                                           "document", "revision"};
-        char **dst[] = {&r->program, &r->command, &r->created, &r->seed, &r->project,
-                        &r->document, &r->revision};
-        for (size_t k = 0; first && k < sizeof keys / sizeof keys[0]; k++)
-            if (!*dst[k] && (v = comment_value(s, n, keys[k], b, sizeof b)))
-                *dst[k] = dupstr(v);
-    }
-    csv_rd rd = {.path = path, .buf = t.buf, .len = t.len, .line = 1};
-    csv_rec h = {0}, w = {0};
-    static const char *const names[] = {"mu", "clearance_mm", "nltha_design_se_mm"};
-    int col[3];
-    size_t k = 0;
-    st = table_header(&rd, &h, names, 3, col, err);
-    if (!st && !(fl->clearance_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
-        st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-    if (!st && !(fl->se_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
-        st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-    int first_floor = !r->mu;
-    double *mu = first_floor ? calloc(64, sizeof *mu) : NULL;
-    size_t cap = 64;
-    if (!st && first_floor && !mu)
-        st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-    for (int got; !st && (got = next_record(&rd, &w, err)) != 0; k++) {
-        if (got < 0) {
-            st = (sl_status)-got;
-            break;
-        }
-        double m, c, e;
-        if ((st = num_field(&rd, &w, col[0], &m, 0, err)) ||
-            (st = num_field(&rd, &w, col[1], &c, 0, err)) ||
-            (st = num_field(&rd, &w, col[2], &e, 1, err)))
-            break;
-        if (first_floor) {
-            if (k == cap) {
-                double *g[3] = {realloc(mu, 2 * cap * sizeof *mu), NULL, NULL};
-                if (g[0])
-                    mu = g[0];
-                g[1] = realloc(fl->clearance_mm, 2 * cap * sizeof *mu);
-                if (g[1])
-                    fl->clearance_mm = g[1];
-                g[2] = realloc(fl->se_mm, 2 * cap * sizeof *mu);
-                if (g[2])
-                    fl->se_mm = g[2];
-                if (!g[0] || !g[1] || !g[2]) {
-                    st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-                    break;
-                }
-                cap *= 2;
-            }
-            if (k && !(m > mu[k - 1])) {
-                st = sl_error_set_at(err, SL_EPARSE, path, w.line, col[0] + 1, "mu %g is not "
-                                     "above the row before (%g)", m, mu[k - 1]);
-                break;
-            }
-            mu[k] = m;
-        } else if (k >= r->n_mu || m != r->mu[k]) {
-            st = sl_error_set_at(err, SL_EINVAL, path, w.line, col[0] + 1, "mu %g: this floor's "
-                                 "grid is not the other floors' (one run gives every floor the "
-                                 "same grid)", m);
-            break;
-        }
-        fl->clearance_mm[k] = c;
-        fl->se_mm[k] = e;
-    }
-    if (!st && k == 0)
-        st = sl_error_set(err, SL_EPARSE, path, rd.line, "no rows under the header");
-    if (!st && !first_floor && k != r->n_mu)
-        st = sl_error_set(err, SL_EINVAL, path, rd.line, "%zu rows: the other floors have %zu "
-                          "(one run gives every floor the same grid)", k, r->n_mu);
-    if (!st && first_floor) {
-        r->mu = mu;
-        r->n_mu = k;
-        mu = NULL;
-    }
-    free(mu);
-    rec_free(&h);
-    rec_free(&w);
-    sl_text_free(&t);
-    return st;
-}
-
-/* floors.csv of the building folder bdir: its floors appended to r. */
-static sl_status load_building(sl_comp_results *r, const char *building, const char *bdir,
-                               sl_error *err)
-{
-    char path[4400];
-    snprintf(path, sizeof path, "%s/floors.csv", bdir);
-    sl_text t;
-    sl_status st = load_file(path, RESULTS_MAX_BYTES, &t, err);
-    if (st)
-        return st;
-    csv_rd rd = {.path = path, .buf = t.buf, .len = t.len, .line = 1};
-    csv_rec h = {0}, w = {0};
-    static const char *const names[] = {"floor_id", "floor"};
-    int col[2];
-    st = table_header(&rd, &h, names, 2, col, err);
-    for (int got; !st && (got = next_record(&rd, &w, err)) != 0;) {
-        if (got < 0) {
-            st = (sl_status)-got;
-            break;
-        }
-        if ((size_t)col[0] >= w.n || (size_t)col[1] >= w.n || !*w.f[col[0]]) {
-            st = sl_error_set(err, SL_EPARSE, path, w.line, "a row without its floor id or name");
-            break;
-        }
-        sl_comp_floor *g = realloc(r->floors, (r->n_floors + 1) * sizeof *g);
-        if (!g) {
-            st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-            break;
-        }
-        r->floors = g;
-        sl_comp_floor *fl = &r->floors[r->n_floors++];
-        memset(fl, 0, sizeof *fl);
-        fl->building = dupstr(building);
-        fl->id = dupstr(w.f[col[0]]);
-        fl->name = dupstr(w.f[col[1]]);
-        if (!fl->building || !fl->id || !fl->name)
-            st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-        else
-            st = load_floor(r, fl, bdir, err);
-    }
-    if (!st && !r->n_floors)
-        st = sl_error_set(err, SL_EPARSE, path, rd.line, "no floors listed");
-    rec_free(&h);
-    rec_free(&w);
-    sl_text_free(&t);
-    return st;
-}
-
-static int is_file(const char *path)
-{
-    struct stat sb;
-    return stat(path, &sb) == 0 && S_ISREG(sb.st_mode);
-}
-
-static sl_status add_building(sl_comp_results *r, const char *id, sl_error *err)
-{
-    for (size_t b = 0; b < r->n_buildings; b++)
-        if (!strcmp(r->buildings[b], id))
-            return SL_OK;
-    char **g = realloc(r->buildings, (r->n_buildings + 1) * sizeof *g);
-    if (!g || !(g[r->n_buildings] = dupstr(id))) {
-        if (g)
-            r->buildings = g;
-        return sl_error_set(err, SL_ENOMEM, r->dir, 0, "out of memory");
-    }
-    r->buildings = g;
-    r->n_buildings++;
-    return SL_OK;
-}
-
-static int cmp_str(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* A plant: the buildings in plant.csv's order, then any other sub-folder
- * holding floors.csv (sorted). */
-static sl_status plant_buildings(sl_comp_results *r, const char *pcsv, sl_error *err)
-{
-    char path[4400];
-    sl_text t;
-    sl_status st = load_file(pcsv, RESULTS_MAX_BYTES, &t, err);
-    if (st)
-        return st;
-    csv_rd rd = {.path = pcsv, .buf = t.buf, .len = t.len, .line = 1};
-    csv_rec h = {0}, w = {0};
-    static const char *const names[] = {"building"};
-    int col[1];
-    st = table_header(&rd, &h, names, 1, col, err);
-    for (int got; !st && (got = next_record(&rd, &w, err)) != 0;) {
-        if (got < 0) {
-            st = (sl_status)-got;
-            break;
-        }
-        if ((size_t)col[0] >= w.n)
-            continue;
-        snprintf(path, sizeof path, "%s/%s/floors.csv", r->dir, w.f[col[0]]);
-        if (is_file(path))
-            st = add_building(r, w.f[col[0]], err);
-    }
-    rec_free(&h);
-    rec_free(&w);
-    sl_text_free(&t);
-    DIR *d = st ? NULL : opendir(r->dir);
-    if (!st && !d)
-        return sl_error_set(err, SL_EIO, r->dir, 0, "cannot read the folder");
-    size_t n0 = r->n_buildings;
-    for (struct dirent *e; d && !st && (e = readdir(d));) {
-        if (e->d_name[0] == '.')
-            continue;
-        snprintf(path, sizeof path, "%s/%s/floors.csv", r->dir, e->d_name);
-        if (is_file(path))
-            st = add_building(r, e->d_name, err);
-    }
-    if (d)
-        closedir(d);
-    if (!st && r->n_buildings > n0)
-        qsort(r->buildings + n0, r->n_buildings - n0, sizeof *r->buildings, cmp_str);
-    return st;
-}
-
-void sl_comp_results_free(sl_comp_results *r)
-{
-    if (!r)
-        return;
-    for (size_t i = 0; i < r->n_floors; i++) {
-        sl_comp_floor *f = &r->floors[i];
-        free(f->building);
-        free(f->id);
-        free(f->name);
-        free(f->file);
-        free(f->clearance_mm);
-        free(f->se_mm);
-    }
-    for (size_t b = 0; b < r->n_buildings; b++)
-        free(r->buildings[b]);
-    free(r->buildings);
-    free(r->floors);
-    free(r->mu);
-    free(r->dir);
-    free(r->single);
-    char **s[] = {&r->program, &r->command, &r->created, &r->seed, &r->project, &r->document,
-                  &r->revision};
-    for (size_t k = 0; k < sizeof s / sizeof s[0]; k++)
-        free(*s[k]);
-    memset(r, 0, sizeof *r);
-}
-
-/* The last part of a path (its trailing slashes left out), malloc'd. */
-static char *last_part(const char *dir)
-{
-    size_t k = strlen(dir);
-    while (k > 1 && dir[k - 1] == '/')
-        k--;
-    size_t s = k;
-    while (s && dir[s - 1] != '/')
-        s--;
-    return sl_text_dup_mem(dir + s, k - s);
-}
-
-sl_status sl_comp_results_shown(sl_comp_results *r, const char *shown, sl_error *err)
-{
-    char *d = dupstr(shown), *s = r->is_plant ? NULL : last_part(shown);
-    if (!d || (!r->is_plant && !s)) {
-        free(d);
-        free(s);
-        return sl_error_set(err, SL_ENOMEM, shown, 0, "out of memory");
-    }
-    free(r->dir);
-    free(r->single);
-    r->dir = d;
-    r->single = s;
-    return SL_OK;
-}
-
-sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *err)
-{
-    memset(r, 0, sizeof *r);
-    char path[4400];
-    sl_status st = SL_OK;
-    if (!(r->dir = dupstr(dir)))
-        return sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
-    snprintf(path, sizeof path, "%s/%s", dir, SL_PLANT_BOOK_CSV);
-    if (is_file(path)) {
-        r->is_plant = 1;
-        st = plant_buildings(r, path, err);
-        if (!st && !r->n_buildings)
-            st = sl_error_set(err, SL_EIO, dir, 0, "a plant's results without a building "
-                              "folder (<building>/floors.csv)");
-        for (size_t b = 0; !st && b < r->n_buildings; b++) {
-            snprintf(path, sizeof path, "%s/%s", dir, r->buildings[b]);
-            st = load_building(r, r->buildings[b], path, err);
-        }
-    } else {
-        snprintf(path, sizeof path, "%s/floors.csv", dir);
-        if (!is_file(path))
-            st = sl_error_set(err, SL_EIO, dir, 0, "not the output folder of seislide run: "
-                              "neither %s nor floors.csv in it", SL_PLANT_BOOK_CSV);
-        else
-            st = add_building(r, "", err);
-        if (!st) {
-            /* the folder's own name: a row may name it as its building */
-            if (!(r->single = last_part(dir)))
-                st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
-        }
-        if (!st)
-            st = load_building(r, "", dir, err);
-    }
-    char **s[] = {&r->program, &r->command, &r->created, &r->seed, &r->project, &r->document,
-                  &r->revision};
-    for (size_t k = 0; !st && k < sizeof s / sizeof s[0]; k++)
-        if (!*s[k] && !(*s[k] = dupstr("-")))
-            st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
-    if (st)
-        sl_comp_results_free(r);
-    return st;
-}
 
 /* ---- the components -------------------------------------------------------- */
 
@@ -696,11 +120,11 @@ static char *known_buildings(const sl_comp_results *r, char *buf, size_t n)
 }
 
 /* The building of a row: its index, or an error naming the known ones. */
-static sl_status find_building(const sl_comp_results *r, const char *path, const csv_rec *w,
+static sl_status find_building(const sl_comp_results *r, const char *path, const sl_csvrec *w,
                                int col, size_t *bi, sl_error *err)
 {
     char b[512], known[KNOWN_MAX];
-    const char *s = trimmed(w->f[col], b, sizeof b);
+    const char *s = sl_csv_trimmed(w->f[col], b, sizeof b);
     if (!r->is_plant) {
         if (!*s || (r->single && !strcasecmp(s, r->single))) {
             *bi = 0;
@@ -727,11 +151,11 @@ static sl_status find_building(const sl_comp_results *r, const char *path, const
                            known_buildings(r, known, sizeof known));
 }
 
-static sl_status find_floor(const sl_comp_results *r, const char *path, const csv_rec *w,
+static sl_status find_floor(const sl_comp_results *r, const char *path, const sl_csvrec *w,
                             int col, size_t bi, size_t *fi, sl_error *err)
 {
     char b[1024], known[KNOWN_MAX];
-    const char *s = trimmed(w->f[col], b, sizeof b), *bld = r->buildings[bi];
+    const char *s = sl_csv_trimmed(w->f[col], b, sizeof b), *bld = r->buildings[bi];
     for (int by_name = 0; by_name < 2; by_name++)
         for (size_t i = 0; i < r->n_floors; i++)
             if (!strcmp(r->floors[i].building, bld) &&
@@ -749,11 +173,11 @@ static sl_status find_floor(const sl_comp_results *r, const char *path, const cs
 }
 
 /* A number of a row that must be > 0 (or >= 0 with nonneg). */
-static sl_status row_num(const char *path, const csv_rec *w, int col, int nonneg, double *v,
+static sl_status row_num(const char *path, const sl_csvrec *w, int col, int nonneg, double *v,
                          sl_error *err)
 {
     char b[SL_TEXT_TOKEN_MAX + 1];
-    const char *s = trimmed(w->f[col], b, sizeof b);
+    const char *s = sl_csv_trimmed(w->f[col], b, sizeof b);
     sl_num_result nr = sl_text_parse_num(s, strlen(s), v);
     if (!*s)
         return sl_error_set_at(err, SL_EPARSE, path, w->fline[col], col + 1, "empty value");
@@ -786,7 +210,7 @@ void sl_comp_table_free(sl_comp_table *t)
 }
 
 /* Take the fields of record w (moved out of it). */
-static char **take_fields(csv_rec *w)
+static char **take_fields(sl_csvrec *w)
 {
     char **f = malloc((w->n ? w->n : 1) * sizeof *f);
     if (!f)
@@ -796,10 +220,10 @@ static char **take_fields(csv_rec *w)
     return f;
 }
 
-static sl_status read_header(const char *path, csv_rd *rd, csv_rec *h, sl_comp_table *t,
+static sl_status read_header(const char *path, sl_csvread *rd, sl_csvrec *h, sl_comp_table *t,
                              sl_error *err)
 {
-    int got = next_record(rd, h, err);
+    int got = sl_csvread_next(rd, h, err);
     if (got < 0)
         return (sl_status)-got;
     if (!got)
@@ -812,13 +236,13 @@ static sl_status read_header(const char *path, csv_rd *rd, csv_rec *h, sl_comp_t
     for (int k = 0; k < SL_COMP_NCOLS; k++)
         t->col[k] = -1;
     for (size_t c = 0; c < h->n; c++) {
-        const char *s = trimmed(h->f[c], b, sizeof b);
+        const char *s = sl_csv_trimmed(h->f[c], b, sizeof b);
         if (!*s)
             return sl_error_set_at(err, SL_EPARSE, path, h->line, (long)c + 1, "empty column "
                                    "name");
         for (size_t e = 0; e < c; e++) {
             char b2[256];
-            if (!strcasecmp(s, trimmed(h->f[e], b2, sizeof b2)))
+            if (!strcasecmp(s, sl_csv_trimmed(h->f[e], b2, sizeof b2)))
                 return sl_error_set_at(err, SL_EPARSE, path, h->line, (long)c + 1, "column "
                                        "'%s' again (column %zu)", sl_text_quote(s, strlen(s)).s,
                                        e + 1);
@@ -838,7 +262,7 @@ static sl_status read_header(const char *path, csv_rd *rd, csv_rec *h, sl_comp_t
 }
 
 /* One data record w checked and computed into row x. */
-static sl_status read_row(const sl_comp_results *r, sl_comp_table *t, csv_rec *w,
+static sl_status read_row(const sl_comp_results *r, sl_comp_table *t, sl_csvrec *w,
                           sl_comp_row *x, sl_error *err)
 {
     const char *path = t->path;
@@ -848,7 +272,7 @@ static sl_status read_row(const sl_comp_results *r, sl_comp_table *t, csv_rec *w
                                : t->n_cols + 1), "%zu fields; the header has %zu", w->n,
                                t->n_cols);
     char b[512];
-    if (!*trimmed(w->f[col[SL_COMP_TAG]], b, sizeof b))
+    if (!*sl_csv_trimmed(w->f[col[SL_COMP_TAG]], b, sizeof b))
         return sl_error_set_at(err, SL_EPARSE, path, w->fline[col[SL_COMP_TAG]],
                                col[SL_COMP_TAG] + 1, "empty tag");
     size_t bi = 0;
@@ -885,11 +309,11 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
 {
     memset(t, 0, sizeof *t);
     sl_text txt;
-    sl_status st = load_file(path, SL_COMP_MAX_BYTES, &txt, err);
+    sl_status st = sl_csv_load(path, SL_COMP_MAX_BYTES, &txt, err);
     if (st)
         return st;
-    csv_rd rd = {.path = path, .buf = txt.buf, .len = txt.len, .line = 1};
-    csv_rec h = {0}, w = {0};
+    sl_csvread rd = {.path = path, .buf = txt.buf, .len = txt.len, .line = 1};
+    sl_csvrec h = {0}, w = {0};
     t->crc32 = file_crc(txt.mem, strlen(txt.mem));
     t->size_bytes = (long)strlen(txt.mem);
     if (!(t->path = dupstr(path)))
@@ -897,7 +321,7 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
     if (!st)
         st = read_header(path, &rd, &h, t, err);
     size_t cap = 0;
-    for (int got; !st && (got = next_record(&rd, &w, err)) != 0;) {
+    for (int got; !st && (got = sl_csvread_next(&rd, &w, err)) != 0;) {
         if (got < 0) {
             st = (sl_status)-got;
             break;
@@ -918,7 +342,7 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
         int blank = 1; /* a row of empty fields (",,,,": spreadsheets export them) */
         char bb[64];
         for (size_t c = 0; c < w.n && blank; c++)
-            blank = !*trimmed(w.f[c], bb, sizeof bb);
+            blank = !*sl_csv_trimmed(w.f[c], bb, sizeof bb);
         if (blank)
             continue;
         sl_comp_row *x = &t->rows[t->n];
@@ -928,9 +352,9 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
         t->n++;
         /* a repeated tag (without case, as the workbook's COUNTIF compares) */
         char b1[512], b2[512];
-        const char *tag = trimmed(x->field[t->col[SL_COMP_TAG]], b1, sizeof b1);
+        const char *tag = sl_csv_trimmed(x->field[t->col[SL_COMP_TAG]], b1, sizeof b1);
         for (size_t i = 0; i + 1 < t->n; i++)
-            if (!strcasecmp(tag, trimmed(t->rows[i].field[t->col[SL_COMP_TAG]], b2, sizeof b2))) {
+            if (!strcasecmp(tag, sl_csv_trimmed(t->rows[i].field[t->col[SL_COMP_TAG]], b2, sizeof b2))) {
                 st = sl_error_set_at(err, SL_EINVAL, path, x->line, t->col[SL_COMP_TAG] + 1,
                                      "tag '%s' again: first on line %ld",
                                      sl_text_quote(tag, strlen(tag)).s, t->rows[i].line);
@@ -941,8 +365,8 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
     }
     if (!st && t->n == 0)
         st = sl_error_set(err, SL_EPARSE, path, rd.line, "no components under the header");
-    rec_free(&h);
-    rec_free(&w);
+    sl_csvrec_free(&h);
+    sl_csvrec_free(&w);
     sl_text_free(&txt);
     if (st)
         sl_comp_table_free(t);
