@@ -310,7 +310,7 @@ static void test_plant_csv_computed_points(void)
     for (int g = 0; dc && df && g < 2; g++) {
         const sl_design *d = g ? df : dc;
         const sl_plant_book_row rows[1] = {{"B", "f", "floor", 0, 0.6 * SL_G, 2, "fixed", d,
-                                            NULL, 0, 0, 0}};
+                                            NULL, 0, 0, 0, NULL}};
         sl_plant_book b = {.version = "seislide test", .command_line = "-", .n = 1, .rows = rows};
         sl_error e;
         CHECK(sl_plant_book_write_csv(&b, dir, &e) == SL_OK, "plant.csv: %s", e.msg);

@@ -13,6 +13,7 @@
 
 #include "analysis.h"
 #include "cli.h"
+#include "components_out.h"
 #include "outdir.h"
 #include "plant/cache.h"
 #include "plant/plant.h"
@@ -204,7 +205,8 @@ int cmd_run(int argc, char **argv)
     int nargs = optind < argc ? argc - optind : 1;
     const char *const *ops = optind < argc ? (const char *const *)argv + optind : dflt;
     if ((rc = cli_outdir_apart("run", "output folder", a.out, ops, (size_t)nargs)) ||
-        (rc = cli_outdir_apart("run", "output folder", a.out, &a.cache, 1)))
+        (rc = cli_outdir_apart("run", "output folder", a.out, &a.cache, 1)) ||
+        (rc = cli_outdir_apart("run", "output folder", a.out, &a.components, 1)))
         goto done;
     rc = CLI_EXIT_ERROR;
     if (sl_plant_load(&plant, ops, (size_t)nargs, a.force, warn, sizeof warn, &err) ||
@@ -274,6 +276,9 @@ int cmd_run(int argc, char **argv)
     const char *fresh = sl_atomic_dir_path(out);
     if (a.shard_n ? write_shard(&plant, fresh, &a, &ss, &err)
                   : sl_plant_deliver(&plant, fresh, dop, &err))
+        goto fail;
+    if (a.components &&
+        components_write(fresh, a.out, a.components, fresh, cmdline, dop->created, &err))
         goto fail;
     /* the default cache travels with the outputs across the swap */
     char moved[4400] = "";

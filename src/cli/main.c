@@ -25,6 +25,7 @@ static const command commands[] = {
     {"synth", cmd_synth, "spectrum-compatible three-component motions (FFTW)"},
     {"bench", cmd_bench, "speed against error of the engine"},
     {"study", cmd_study, "reproduce the source study from recorded motions (docs/validation.md)"},
+    {"components", cmd_components, "each component of a list checked against a run's floor tables"},
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 

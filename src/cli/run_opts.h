@@ -27,6 +27,7 @@ typedef struct run_args {
     unsigned shard_k, shard_n;              /* 0/0: not sharded */
     const char *cache;                      /* NULL: OUT/.seislide-cache */
     int no_cache;
+    const char *components;                 /* --components FILE (docs/components.md) */
 } run_args;
 
 /* Parse the command line into a (defaults first) and check it; operands

@@ -12,6 +12,7 @@
 #include "core/units.h"
 #include "plant/cache.h"
 #include "report/plant_book.h"
+#include "report/components.h"
 
 static int cmp_str(const void *a, const void *b)
 {
@@ -232,7 +233,7 @@ void sl_plant_free(sl_plant *p)
 int sl_plant_owns_name(const char *name)
 {
     return !strcmp(name, SL_PLANT_BOOK_CSV) || !strcmp(name, SL_PLANT_BOOK_XLSX) ||
-           !strcmp(name, SL_CACHE_DIR_NAME);
+           !strcmp(name, SL_CACHE_DIR_NAME) || sl_comp_owns_name(name);
 }
 
 /* The outputs of building b into folder dir. */

@@ -31,6 +31,16 @@ size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1)
     return k0;
 }
 
+char *sl_rpt_interp_formula(char *buf, size_t n, const char *mu, const char *mu0, const char *mu1,
+                            const char *c0, const char *c1)
+{
+    snprintf(buf, n, "IF(%s=%s,%s,%s+(%s-%s)*(%s-%s)/(%s-%s))", /* c0 + (mu-mu0)(c1-c0)/(mu1-mu0) */
+             mu1, mu0, c0,
+             c0, mu, mu0,
+             c1, c0, mu1, mu0);
+    return buf;
+}
+
 int sl_rpt_lookup_check(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
                         const sl_rpt_lookup_cells *c, const sl_rpt_lookup_test *tests,
                         size_t n_tests, const char *mu_text, double mu, double mu_min,
@@ -115,10 +125,12 @@ double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cac
      * sl_design_clearance_at's interpolation (its value is cached) */
     double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(d, mu) : NAN;
     worksheet_write_string(ws, c->result, 0, "Required clearance, mm", F->title);
-    snprintf(f, sizeof f,
-             "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))", chk,
-             mu1 + 1, mu0 + 1, c0 + 1, c0 + 1, c->mu + 1, mu0 + 1, c1 + 1, c0 + 1, mu1 + 1,
-             mu0 + 1);
+    char ip[300], r[5][16];
+    const int rows[5] = {c->mu, mu0, mu1, c0, c1};
+    for (int k = 0; k < 5; k++)
+        snprintf(r[k], sizeof r[k], "B%d", rows[k] + 1);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"-\",%s)", chk,
+             sl_rpt_interp_formula(ip, sizeof ip, r[0], r[1], r[2], r[3], r[4]));
     sl_rpt_lookup_formula(ws, zero_cache, c->result, f, res, ok ? NULL : "-", F->result);
     worksheet_write_string(ws, c->note, 0, "Note", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"%s\",\"\"))", chk, c->result + 1,

@@ -131,6 +131,12 @@ void sl_rpt_lookup_formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, con
  * grid,1) and the next): returns k0, the last row whose mu is at or below
  * mu (0 when !ok), and sets *k1 to the row after it (k0 at the grid's end). */
 size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1);
+/* The interpolation of the Lookups and of the Components sheet as formula
+ * text (no '='), over the cells named: IF(mu1=mu0,c0,c0+(mu-mu0)*(c1-c0)/
+ * (mu1-mu0)), the rule of sl_design_clearance_at (sl_comp_interp is its C
+ * twin, operation for operation). Into buf of size n; returns buf. */
+char *sl_rpt_interp_formula(char *buf, size_t n, const char *mu, const char *mu0, const char *mu1,
+                            const char *c0, const char *c1);
 /* "Input check": the message of the first of tests[] that holds, else of
  * the mu tests every Lookup shares (mu blank or typed as text `mu_text`:
  * "type mu" / "mu must be a number"; outside [mu_min, mu_max]), else "ok";

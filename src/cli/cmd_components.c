@@ -1,0 +1,134 @@
+/* cmd_components.c - `seislide components RESULTS COMPONENTS.csv -o OUT`: each
+ * component of a plant's list checked against the floor tables of a run
+ * (report/components.h): OUT/components.csv and OUT/components.xlsx, the
+ * folder written whole or not at all (outdir.h). */
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+#include "components_out.h"
+#include "outdir.h"
+#include "report/components.h"
+
+static const char comp_head[] =
+    "usage: seislide components RESULTS COMPONENTS.csv -o OUT [options]\n"
+    "\n"
+    "Check a list of unanchored components against the floor tables of a run:\n"
+    "RESULTS is the output folder of 'seislide run' (one building, or a plant\n"
+    "with <building>/ folders and plant.csv). COMPONENTS.csv has the columns\n"
+    "tag, building, floor, mu, base_m, cg_height_m, clearance_mm (any order,\n"
+    "without case; other columns kept); building may be empty for one building;\n"
+    "floor is a floor id or name. Per component: the required clearance at mu\n"
+    "(linear interpolation on the floor's grid, as the workbook's Lookup), its\n"
+    "standard error, margin_mm = clearance_mm - required and the verdict:\n"
+    "rocking when mu >= b/h = base_m / (2 cg_height_m) (it rocks before it\n"
+    "slides: check rocking, ASCE/SEI 43-05); outside when mu is off the grid;\n"
+    "ok when the margin is >= 0; short otherwise. Writes OUT/" SL_COMP_CSV " and\n"
+    "OUT/" SL_COMP_XLSX " (live formulas: rows typed in below get their verdict)\n"
+    "(docs/components.md).\n"
+    "\n"
+    "options:\n";
+static const char comp_tail[] =
+    "\nExit status: 0 every component computed (short is a result), 1 a malformed\n"
+    "row (file:line:column named; nothing written) or unreadable results,\n"
+    "2 usage error.\n";
+
+typedef struct comp_args {
+    const char *out;
+    double created;
+} comp_args;
+
+enum { O_CREATED = CLI_OPT_ID };
+#define A(f) .off = offsetof(comp_args, f)
+static const cli_opt comp_opts[] = {
+    {"output", 'o', "OUT", "output folder (required); written as a fresh folder swapped\n"
+     "in: OUT must be new, empty or hold only these outputs", .kind = CLI_STRING, A(out)},
+    {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\n"
+     "else now)", .kind = CLI_CALL},
+};
+
+static int take(void *dst, int key, const char *v)
+{
+    comp_args *a = dst;
+    (void)key;
+    if (cli_parse_double(v, &a->created) || a->created < 0 || a->created > 4e12)
+        return cli_usage("components", "bad value '%s' for --created", v);
+    return CLI_EXIT_OK;
+}
+
+static int check(void *dst)
+{
+    const comp_args *a = dst;
+    if (!a->out)
+        return cli_usage("components", "name the output folder with -o OUT");
+    return CLI_EXIT_OK;
+}
+
+sl_status components_write(const char *results, const char *shown, const char *file,
+                           const char *dir, const char *cmdline, time_t created, sl_error *err)
+{
+    sl_comp_results r;
+    sl_comp_table t;
+    sl_status st = sl_comp_results_load(results, &r, err);
+    if (!st && strcmp(shown, results) && (st = sl_comp_results_shown(&r, shown, err)))
+        sl_comp_results_free(&r);
+    if (st)
+        return st;
+    if ((st = sl_comp_table_read(file, &r, &t, err))) {
+        sl_comp_results_free(&r);
+        return st;
+    }
+    sl_comp_opts o = {"seislide " SEISLIDE_VERSION, cmdline, created};
+    st = sl_comp_write(&r, &t, dir, &o, err);
+    if (!st)
+        cli_msg("%zu components: %zu ok, %zu short, %zu rocking, %zu outside", t.n,
+                t.count[SL_COMP_OK], t.count[SL_COMP_SHORT], t.count[SL_COMP_ROCKING],
+                t.count[SL_COMP_OUTSIDE]);
+    sl_comp_table_free(&t);
+    sl_comp_results_free(&r);
+    return st;
+}
+
+int cmd_components(int argc, char **argv)
+{
+    static const cli_command cmd = {"components", comp_head, comp_tail, comp_opts,
+                                    CLI_NOPTS(comp_opts), 22, take, check, 1};
+    const char *sde = getenv("SOURCE_DATE_EPOCH");
+    double v;
+    comp_args a = {.created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v
+                                                                         : (double)time(NULL)};
+    int rc = cli_command_parse(&cmd, argc, argv, &a);
+    if (rc)
+        return rc == CLI_OPT_HELP ? CLI_EXIT_OK : rc;
+    if (argc - optind != 2)
+        return cli_usage("components", "give RESULTS (a run's output folder) and "
+                         "COMPONENTS.csv");
+    /* the output folder apart from the run's folder and the list (exit 2) */
+    const char *inputs[2] = {argv[optind], argv[optind + 1]};
+    if ((rc = cli_outdir_apart("components", "output folder", a.out, inputs, 2)))
+        return rc;
+    char cmdline[8192];
+    cli_command_line(cmdline, sizeof cmdline, argc, argv);
+    sl_error err;
+    sl_error_clear(&err);
+    sl_atomic_dir *out = cli_outdir_open(a.out, "seislide " SEISLIDE_VERSION, NULL, &err);
+    rc = CLI_EXIT_ERROR;
+    if (!out)
+        goto fail;
+    cli_outdir_writing();
+    if (components_write(argv[optind], argv[optind], argv[optind + 1], sl_atomic_dir_path(out),
+                         cmdline, (time_t)a.created, &err) ||
+        cli_outdir_commit(&out, &err))
+        goto fail;
+    rc = CLI_EXIT_OK;
+    goto done;
+fail:
+    if (!cli_outdir_interrupted())
+        cli_print_error(&err);
+done:
+    cli_outdir_finish(out);
+    return rc;
+}

@@ -1,0 +1,642 @@
+/* components_book.c - components.xlsx (components.h): the Components sheet,
+ * whose results are live formulas over the hidden Floors sheet (every
+ * floor's table on the grid), with SL_COMP_SPARE_ROWS empty rows for
+ * components typed in later; the Summary (counts per verdict and per
+ * floor, COUNTIF formulas); the Chart of required against available
+ * clearance. Every formula is written with its value computed here
+ * (components.c), the formula's C twin. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "report/components.h"
+#include "report/sheets.h"
+
+/* Components sheet rows (0-based): title, note, header; components below. */
+enum { CS_TITLE, CS_NOTE, CS_HEAD, CS_FIRST };
+/* Helper columns after the visible ones (hidden, not printed). */
+enum { H_CHK, H_ROW, H_K, H_MU0, H_MU1, H_C0, H_C1, H_S0, H_S1, H_BLD, H_FID, H_OKX, H_OKY,
+       H_SHX, H_SHY, H_N };
+/* Result columns after the inputs. */
+enum { R_BH, R_REQ, R_SE, R_MARGIN, R_VERDICT, R_REASON, R_N };
+/* Floors sheet: A building, B floor id, C floor name, D key by id, E key
+ * by name, then the grid's clearance, then its standard error (row 1: mu). */
+enum { FS_BLD, FS_FID, FS_NAME, FS_KID, FS_KNAME, FS_GRID };
+/* Column widths (characters). */
+#define W_TAG 10.0
+#define W_TEXT 12.0
+#define W_NUM 9.0
+#define W_REASON 30.0
+#define W_EXTRA_MAX 13.0
+#define W_CHART 100.0 /* the Chart sheet's one column: a landscape page */
+
+static const char *const verdict_label[] = {"ok", "short", "rocking", "outside", "check input"};
+static const lxw_color_t verdict_bg[] = {0xC6EFCE, 0xFFC7CE, 0xFFEB9C, 0xD9D9D9, 0xE4DFEC};
+static const lxw_color_t verdict_fg[] = {0x006100, 0x9C0006, 0x9C5700, 0x404040, 0x5B3C88};
+#define N_LABELS 5
+
+typedef struct book {
+    lxw_workbook *wb;
+    sl_rpt_fmts F;
+    lxw_format *in_text, *in_num, *num3, *mm, *reason, *top, *vfmt[N_LABELS];
+    const sl_comp_results *r;
+    const sl_comp_table *t;
+    size_t n_extra, vis, last;   /* extra columns; visible columns; last formula row */
+    int extra[SL_COMP_MAX_COLS]; /* the file's column of each extra column */
+    char g0[48], g1[48];         /* the grid's ends as the reasons show them */
+    double diag_mm;              /* the end of the chart's diagonal (Floors) */
+} book;
+
+static lxw_col_t col_res(const book *b, int k) { return (lxw_col_t)(SL_COMP_NCOLS + b->n_extra + (size_t)k); }
+static lxw_col_t col_h(const book *b, int k) { return (lxw_col_t)(b->vis + (size_t)k); }
+
+/* "$X5": column c of the 0-based row. */
+static char *ref(char *buf, size_t c, lxw_row_t row)
+{
+    char a[8];
+    sl_rpt_col_name(c, a);
+    snprintf(buf, 16, "$%s%u", a, (unsigned)row + 1);
+    return buf;
+}
+
+/* "Components!$X$4:$X$N": column c over every component row. */
+static char *range(const book *b, char *buf, size_t n, size_t c)
+{
+    char a[8];
+    sl_rpt_col_name(c, a);
+    snprintf(buf, n, "Components!$%s$%d:$%s$%zu", a, CS_FIRST + 1, a, b->last + 1);
+    return buf;
+}
+
+/* A text for a formula: quotes doubled, inside quotes. */
+static char *quoted(const char *s, char *buf, size_t n)
+{
+    size_t k = 0;
+    buf[k++] = '"';
+    for (; *s && k + 3 < n; s++) {
+        if (*s == '"')
+            buf[k++] = '"';
+        buf[k++] = *s;
+    }
+    buf[k++] = '"';
+    buf[k] = '\0';
+    return buf;
+}
+
+static void formats(book *b)
+{
+    sl_rpt_formats(b->wb, &b->F);
+    b->in_text = workbook_add_format(b->wb);
+    format_set_bg_color(b->in_text, 0xFFF2CC);
+    format_set_border(b->in_text, LXW_BORDER_THIN);
+    format_set_border_color(b->in_text, 0xBFBFBF);
+    format_set_unlocked(b->in_text);
+    format_set_text_wrap(b->in_text);
+    format_set_align(b->in_text, LXW_ALIGN_VERTICAL_TOP);
+    b->in_num = workbook_add_format(b->wb);
+    format_set_bg_color(b->in_num, 0xFFF2CC);
+    format_set_border(b->in_num, LXW_BORDER_THIN);
+    format_set_border_color(b->in_num, 0xBFBFBF);
+    format_set_unlocked(b->in_num);
+    format_set_align(b->in_num, LXW_ALIGN_VERTICAL_TOP);
+    b->num3 = workbook_add_format(b->wb);
+    format_set_num_format(b->num3, "0.000");
+    format_set_align(b->num3, LXW_ALIGN_VERTICAL_TOP);
+    b->mm = workbook_add_format(b->wb);
+    format_set_num_format(b->mm, "0.0");
+    format_set_align(b->mm, LXW_ALIGN_VERTICAL_TOP);
+    b->top = workbook_add_format(b->wb); /* the verdict: kept off the margin beside it */
+    format_set_align(b->top, LXW_ALIGN_VERTICAL_TOP);
+    format_set_indent(b->top, 1);
+    b->reason = workbook_add_format(b->wb);
+    format_set_text_wrap(b->reason);
+    format_set_align(b->reason, LXW_ALIGN_VERTICAL_TOP);
+    for (int v = 0; v < N_LABELS; v++) {
+        b->vfmt[v] = workbook_add_format(b->wb);
+        format_set_bg_color(b->vfmt[v], verdict_bg[v]);
+        format_set_font_color(b->vfmt[v], verdict_fg[v]);
+        format_set_bold(b->vfmt[v]);
+    }
+}
+
+/* A formula with its cached value: number v, or text s when not NULL. */
+static void fcell(lxw_worksheet *ws, lxw_row_t row, lxw_col_t c, const char *f, double v,
+                  const char *s, lxw_format *fmt)
+{
+    if (s)
+        worksheet_write_formula_str(ws, row, c, f, fmt, s);
+    else
+        worksheet_write_formula_num(ws, row, c, f, fmt, v);
+}
+
+/* The hidden Floors sheet and its names (cmp_grid, cmp_clear, cmp_se,
+ * cmp_key_id, cmp_key_name, cmp_bld, cmp_fid); the diagonal of the chart
+ * below the floors. */
+static void floors_sheet(book *b)
+{
+    const sl_comp_results *r = b->r;
+    lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Floors");
+    size_t n = r->n_mu, nf = r->n_floors;
+    static const char *const head[] = {"building", "floor id", "floor name", "key by id",
+                                       "key by name"};
+    char key[2400], def[200], a[8], z[8];
+    for (int c = 0; c < FS_GRID; c++)
+        worksheet_write_string(ws, 0, (lxw_col_t)c, head[c], b->F.header);
+    for (size_t k = 0; k < n; k++) {
+        worksheet_write_number(ws, 0, (lxw_col_t)(FS_GRID + k), r->mu[k], NULL);
+        worksheet_write_number(ws, 0, (lxw_col_t)(FS_GRID + n + k), r->mu[k], NULL);
+    }
+    for (size_t i = 0; i < nf; i++) {
+        const sl_comp_floor *fl = &r->floors[i];
+        lxw_row_t row = (lxw_row_t)(i + 1);
+        worksheet_write_string(ws, row, FS_BLD, fl->building, NULL);
+        worksheet_write_string(ws, row, FS_FID, fl->id, NULL);
+        worksheet_write_string(ws, row, FS_NAME, fl->name, NULL);
+        snprintf(key, sizeof key, "%s|%s", fl->building, fl->id);
+        worksheet_write_string(ws, row, FS_KID, key, NULL);
+        snprintf(key, sizeof key, "%s|%s", fl->building, fl->name);
+        worksheet_write_string(ws, row, FS_KNAME, key, NULL);
+        for (size_t k = 0; k < n; k++) {
+            worksheet_write_number(ws, row, (lxw_col_t)(FS_GRID + k), fl->clearance_mm[k], NULL);
+            if (isfinite(fl->se_mm[k]))
+                worksheet_write_number(ws, row, (lxw_col_t)(FS_GRID + n + k), fl->se_mm[k], NULL);
+        }
+    }
+    struct { const char *name; size_t c0, c1; int grid; } names[] = {
+        {"cmp_grid", FS_GRID, FS_GRID + n - 1, 1}, {"cmp_clear", FS_GRID, FS_GRID + n - 1, 0},
+        {"cmp_se", FS_GRID + n, FS_GRID + 2 * n - 1, 0}, {"cmp_key_id", FS_KID, FS_KID, 0},
+        {"cmp_key_name", FS_KNAME, FS_KNAME, 0}, {"cmp_bld", FS_BLD, FS_BLD, 0},
+        {"cmp_fid", FS_FID, FS_FID, 0}};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+        sl_rpt_col_name(names[k].c0, a);
+        sl_rpt_col_name(names[k].c1, z);
+        if (names[k].grid)
+            snprintf(def, sizeof def, "=Floors!$%s$1:$%s$1", a, z);
+        else
+            snprintf(def, sizeof def, "=Floors!$%s$2:$%s$%zu", a, z, nf + 1);
+        workbook_define_name(b->wb, names[k].name, def);
+    }
+    /* the chart's diagonal: (0, 0) and (M, M), M a little above every clearance */
+    lxw_row_t d = (lxw_row_t)(nf + 2);
+    char rq[80], cl[80], f[240];
+    worksheet_write_string(ws, d, 0, "chart diagonal, mm", b->F.header);
+    worksheet_write_number(ws, d + 1, 0, 0, NULL);
+    worksheet_write_number(ws, d + 1, 1, 0, NULL);
+    snprintf(f, sizeof f, "=1.05*MAX(%s,%s)", range(b, rq, sizeof rq, col_res(b, R_REQ)),
+             range(b, cl, sizeof cl, SL_COMP_CLEARANCE));
+    fcell(ws, d + 2, 0, f, b->diag_mm, NULL, NULL);
+    snprintf(f, sizeof f, "=A%u", (unsigned)d + 3);
+    fcell(ws, d + 2, 1, f, b->diag_mm, NULL, NULL);
+    worksheet_hide(ws);
+}
+
+/* One row of the Components sheet: inputs (a component, or unlocked blanks
+ * when w is NULL) and every formula with its value. */
+static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_row *w,
+                     const char *dflt_bld, const char *single)
+{
+    const sl_comp_results *r = b->r;
+    const sl_comp_table *t = b->t;
+    char f[4000], A[16], B[16], C[16], D[16], E[16], G[16], Fc[16], h[H_N][16], v[R_N][16],
+        ip[400], reason[600];
+    ref(A, SL_COMP_TAG, row);
+    ref(B, SL_COMP_BUILDING, row);
+    ref(C, SL_COMP_FLOOR, row);
+    ref(D, SL_COMP_MU, row);
+    ref(E, SL_COMP_BASE, row);
+    ref(Fc, SL_COMP_CG, row);
+    ref(G, SL_COMP_CLEARANCE, row);
+    for (int k = 0; k < H_N; k++)
+        ref(h[k], col_h(b, k), row);
+    for (int k = 0; k < R_N; k++)
+        ref(v[k], col_res(b, k), row);
+    double height = 15.0 + 1;
+    /* the inputs */
+    for (int c = 0; c < SL_COMP_NCOLS; c++) {
+        int num = c >= SL_COMP_MU;
+        if (!w) {
+            worksheet_write_blank(ws, row, (lxw_col_t)c, num ? b->in_num : b->in_text);
+            continue;
+        }
+        const double nv[] = {0, 0, 0, w->mu, w->base_m, w->cg_height_m, w->clearance_mm};
+        const char *s = w->field[t->col[c]];
+        if (num) {
+            worksheet_write_number(ws, row, (lxw_col_t)c, nv[c], b->in_num);
+        } else {
+            worksheet_write_string(ws, row, (lxw_col_t)c, s, b->in_text);
+            height = fmax(height, sl_rpt_text_height(s, c == SL_COMP_TAG ? W_TAG : W_TEXT, 0));
+        }
+    }
+    for (size_t e = 0; e < b->n_extra; e++) {
+        lxw_col_t c = (lxw_col_t)(SL_COMP_NCOLS + e);
+        if (!w || !*w->field[b->extra[e]]) {
+            worksheet_write_blank(ws, row, c, b->in_text);
+            continue;
+        }
+        worksheet_write_string(ws, row, c, w->field[b->extra[e]], b->in_text);
+        height = fmax(height, sl_rpt_text_height(w->field[b->extra[e]], W_EXTRA_MAX, 0));
+    }
+    /* the values a component gives (components.c), or a blank row's */
+    int ok = w != NULL, in = ok && isfinite(w->required_mm);
+    size_t k0 = 0, k1 = 0;
+    if (in) {
+        while (k0 + 1 < r->n_mu && r->mu[k0 + 1] <= w->mu)
+            k0++;
+        k1 = k0 + 1 < r->n_mu ? k0 + 1 : k0;
+    }
+    const sl_comp_floor *fl = ok ? &r->floors[w->floor] : NULL;
+    int vi = ok ? (int)w->verdict : -1;
+    /* the building: as typed, or the default */
+    char bexpr[600], q[500];
+    if (single)
+        snprintf(bexpr, sizeof bexpr, "IF(OR(TRIM(%s)=\"\",TRIM(%s)=%s),\"\",TRIM(%s))", B, B,
+                 quoted(single, q, sizeof q), B);
+    else if (dflt_bld)
+        snprintf(bexpr, sizeof bexpr, "IF(TRIM(%s)=\"\",%s,TRIM(%s))", B,
+                 quoted(dflt_bld, q, sizeof q), B);
+    else
+        snprintf(bexpr, sizeof bexpr, "TRIM(%s)", B);
+    char a7[40];
+    snprintf(a7, sizeof a7, "COUNTA(%s:%s)", A, G);
+    /* H_ROW: the floor's row in Floors (0: none) */
+    snprintf(f, sizeof f, "=IF(%s=0,0,IFERROR(MATCH(%s&\"|\"&TRIM(%s),cmp_key_id,0),"
+             "IFERROR(MATCH(%s&\"|\"&TRIM(%s),cmp_key_name,0),0)))", a7, bexpr, C, bexpr, C);
+    fcell(ws, row, col_h(b, H_ROW), f, ok ? (double)w->floor + 1 : 0, NULL, NULL);
+    /* H_CHK: the input check */
+    char tags[80];
+    range(b, tags, sizeof tags, SL_COMP_TAG);
+    snprintf(f, sizeof f,
+             "=IF(%s=0,\"\",IF(TRIM(%s)=\"\",\"tag is empty\",IF(COUNTIF(%s,%s)>1,"
+             "\"tag again\",IF(%s=0,\"unknown building or floor\","
+             "IF(NOT(ISNUMBER(%s)),\"mu is not a number\",IF(%s<=0,\"mu must be > 0\","
+             "IF(NOT(ISNUMBER(%s)),\"base_m is not a number\",IF(%s<=0,\"base_m must be > 0\","
+             "IF(NOT(ISNUMBER(%s)),\"cg_height_m is not a number\",IF(%s<=0,"
+             "\"cg_height_m must be > 0\",IF(NOT(ISNUMBER(%s)),\"clearance_mm is not a number\","
+             "IF(%s<0,\"clearance_mm must be >= 0\",\"ok\"))))))))))))",
+             a7, A, tags + strlen("Components!"), A, h[H_ROW], D, D, E, E, Fc, Fc, G, G);
+    fcell(ws, row, col_h(b, H_CHK), f, 0, ok ? "ok" : "", NULL);
+    /* H_K: the grid row at or below mu; the rows around it */
+    snprintf(f, sizeof f, "=IF(%s<>\"ok\",\"\",IF(OR(%s<INDEX(cmp_grid,1,1),%s>INDEX(cmp_grid,1,"
+             "%zu)),\"\",MATCH(%s,cmp_grid,1)))", h[H_CHK], D, D, r->n_mu, D);
+    fcell(ws, row, col_h(b, H_K), f, (double)k0 + 1, in ? NULL : "", NULL);
+    const struct { int col; const char *what; int next; double val; } look[] = {
+        {H_MU0, "cmp_grid", 0, in ? r->mu[k0] : 0}, {H_MU1, "cmp_grid", 1, in ? r->mu[k1] : 0},
+        {H_C0, "cmp_clear", 0, in ? fl->clearance_mm[k0] : 0},
+        {H_C1, "cmp_clear", 1, in ? fl->clearance_mm[k1] : 0},
+        {H_S0, "cmp_se", 0, in ? fl->se_mm[k0] : 0}, {H_S1, "cmp_se", 1, in ? fl->se_mm[k1] : 0}};
+    for (size_t k = 0; k < sizeof look / sizeof look[0]; k++) {
+        char rowarg[40], colarg[60];
+        snprintf(rowarg, sizeof rowarg, "%s", look[k].col <= H_MU1 ? "1" : h[H_ROW]);
+        if (look[k].next)
+            snprintf(colarg, sizeof colarg, "MIN(%s+1,%zu)", h[H_K], r->n_mu);
+        else
+            snprintf(colarg, sizeof colarg, "%s", h[H_K]);
+        snprintf(f, sizeof f, "=IF(%s=\"\",\"\",INDEX(%s,%s,%s))", h[H_K], look[k].what, rowarg,
+                 colarg);
+        fcell(ws, row, col_h(b, look[k].col), f, isfinite(look[k].val) ? look[k].val : 0,
+              in ? NULL : "", NULL);
+    }
+    /* the resolved building and floor id (the Summary counts by them) */
+    snprintf(f, sizeof f, "=IF(%s=0,\"\",INDEX(cmp_bld,%s))", h[H_ROW], h[H_ROW]);
+    fcell(ws, row, col_h(b, H_BLD), f, 0, ok ? fl->building : "", NULL);
+    snprintf(f, sizeof f, "=IF(%s=0,\"\",INDEX(cmp_fid,%s))", h[H_ROW], h[H_ROW]);
+    fcell(ws, row, col_h(b, H_FID), f, 0, ok ? fl->id : "", NULL);
+    /* the results */
+    snprintf(f, sizeof f, "=IF(%s<>\"ok\",\"\",%s/(2*%s))", h[H_CHK], E, Fc);
+    fcell(ws, row, col_res(b, R_BH), f, ok ? w->b_over_h : 0, ok ? NULL : "", b->num3);
+    snprintf(f, sizeof f, "=IF(%s=\"\",\"\",%s)", h[H_K],
+             sl_rpt_interp_formula(ip, sizeof ip, D, h[H_MU0], h[H_MU1], h[H_C0], h[H_C1]));
+    fcell(ws, row, col_res(b, R_REQ), f, in ? w->required_mm : 0, in ? NULL : "", b->mm);
+    snprintf(f, sizeof f, "=IF(%s=\"\",\"\",%s)", h[H_K],
+             sl_rpt_interp_formula(ip, sizeof ip, D, h[H_MU0], h[H_MU1], h[H_S0], h[H_S1]));
+    fcell(ws, row, col_res(b, R_SE), f, in && isfinite(w->se_mm) ? w->se_mm : 0, in ? NULL : "",
+          b->mm);
+    snprintf(f, sizeof f, "=IF(%s=\"\",\"\",%s-%s)", h[H_K], G, v[R_REQ]);
+    fcell(ws, row, col_res(b, R_MARGIN), f, in ? w->margin_mm : 0, in ? NULL : "", b->mm);
+    snprintf(f, sizeof f, "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input\",IF(%s>=%s,\"rocking\","
+             "IF(%s=\"\",\"outside\",IF(%s>=0,\"ok\",\"short\")))))", h[H_CHK], h[H_CHK], D,
+             v[R_BH], h[H_K], v[R_MARGIN]);
+    fcell(ws, row, col_res(b, R_VERDICT), f, 0, ok ? SL_COMP_VERDICT_NAME[vi] : "", b->top);
+    const char *V = v[R_VERDICT];
+    snprintf(f, sizeof f,
+             "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input: \"&%s,IF(%s=\"rocking\",\"mu \"&"
+             "TEXT(%s,\"0.0##\")&\" >= b/h \"&TEXT(%s,\"0.0##\")&\": rocks before it slides, "
+             "check rocking (ASCE 43-05)\",IF(%s=\"outside\",\"mu \"&TEXT(%s,\"0.0##\")&"
+             "\" outside the computed grid %s-%s: no clearance computed\",\"required \"&"
+             "TEXT(%s,\"0.0\")&\" mm (SE \"&TEXT(%s,\"0.0\")&\") \"&IF(%s=\"ok\",\"<= available "
+             "\"&TEXT(%s,\"0.0\")&\" mm: margin \"&TEXT(%s,\"0.0\")&\" mm\",\"> available \"&"
+             "TEXT(%s,\"0.0\")&\" mm: \"&TEXT(-%s,\"0.0\")&\" mm short\")))))",
+             h[H_CHK], h[H_CHK], h[H_CHK], V, D, v[R_BH], V, D, b->g0, b->g1, v[R_REQ], v[R_SE],
+             V, G, v[R_MARGIN], G, v[R_MARGIN]);
+    fcell(ws, row, col_res(b, R_REASON), f, 0,
+          ok ? sl_comp_reason(r, w, reason, sizeof reason) : "", b->reason);
+    if (ok)
+        height = fmax(height, sl_rpt_text_height(reason, W_REASON, 0));
+    worksheet_set_row(ws, row, height, NULL);
+    /* the chart's points: ok and short, #N/A otherwise (not drawn) */
+    const int pts[4][2] = {{H_OKX, SL_COMP_OK}, {H_OKY, SL_COMP_OK}, {H_SHX, SL_COMP_SHORT},
+                           {H_SHY, SL_COMP_SHORT}};
+    for (int k = 0; k < 4; k++) {
+        int y = pts[k][0] == H_OKY || pts[k][0] == H_SHY;
+        snprintf(f, sizeof f, "=IF(%s=\"%s\",%s,NA())", V, SL_COMP_VERDICT_NAME[pts[k][1]],
+                 y ? G : v[R_REQ]);
+        int on = ok && vi == pts[k][1];
+        fcell(ws, row, col_h(b, pts[k][0]), f, on ? (y ? w->clearance_mm : w->required_mm) : 0,
+              on ? NULL : "#N/A", NULL);
+    }
+}
+
+/* The grid's ends as the reason shows them (TEXT(x, "0.0##")). */
+static void grid_text(const sl_comp_results *r, char *g0, char *g1)
+{
+    sl_comp_row w0 = {.verdict = SL_COMP_OUTSIDE, .mu = 0};
+    char buf[200];
+    sl_comp_reason(r, &w0, buf, sizeof buf); /* "mu 0.0 outside the computed grid A-B: ..." */
+    const char *p = strstr(buf, "grid ");
+    if (p && sscanf(p + 5, "%40[^-]-%40[^:]", g0, g1) == 2)
+        return;
+    strcpy(g0, "?");
+    strcpy(g1, "?");
+}
+
+static void components_sheet(book *b, const sl_report *rep)
+{
+    const sl_comp_table *t = b->t;
+    const sl_comp_results *r = b->r;
+    lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Components");
+    size_t vis = b->vis;
+    /* widths */
+    const double w_in[SL_COMP_NCOLS] = {W_TAG, W_TEXT - 4, W_TEXT, 5, 7, 11, 13};
+    for (int c = 0; c < SL_COMP_NCOLS; c++)
+        worksheet_set_column(ws, (lxw_col_t)c, (lxw_col_t)c, w_in[c], NULL);
+    for (size_t e = 0; e < b->n_extra; e++) {
+        double w = (double)strlen(t->header[b->extra[e]]) + 2;
+        for (size_t i = 0; i < t->n; i++)
+            w = fmax(w, (double)strlen(t->rows[i].field[b->extra[e]]) + 2);
+        worksheet_set_column(ws, (lxw_col_t)(SL_COMP_NCOLS + e), (lxw_col_t)(SL_COMP_NCOLS + e),
+                             fmin(w, W_EXTRA_MAX), NULL);
+    }
+    const double w_res[R_N] = {5, 8, 6, 7, 9, W_REASON};
+    for (int k = 0; k < R_N; k++)
+        worksheet_set_column(ws, col_res(b, k), col_res(b, k), w_res[k], NULL);
+    lxw_row_col_options hid = {.hidden = 1};
+    worksheet_set_column_opt(ws, col_h(b, 0), col_h(b, H_N - 1), 10, NULL, &hid);
+    /* title, note, header */
+    worksheet_write_string(ws, CS_TITLE, 0, "Components: required against available clearance",
+                           b->F.title);
+    char note[2000];
+    snprintf(note, sizeof note,
+             "Required clearance: the floor's table (run in %s, created %s) at the component's "
+             "mu, linear interpolation on the grid %s-%s. Verdict, in this order: rocking when "
+             "mu >= b/h = base_m / (2 cg_height_m) (the block rocks before it slides: check "
+             "rocking, ASCE/SEI 43-05); outside when mu is off the grid; ok when the margin "
+             "(clearance_mm - required) is >= 0; short otherwise. More components: type them in "
+             "the yellow cells below the last one (%d rows are ready); building may be left "
+             "empty %s.", r->dir, r->created, b->g0, b->g1, SL_COMP_SPARE_ROWS,
+             r->is_plant ? (r->n_buildings == 1 ? "(one building)" : "only in a one-building "
+                            "plant") : "(one building)");
+    worksheet_merge_range(ws, CS_NOTE, 0, CS_NOTE, (lxw_col_t)(vis - 1), note, b->F.wrap);
+    double width = 0;
+    for (size_t c = 0; c < vis; c++)
+        width += c < SL_COMP_NCOLS ? w_in[c] : c >= (size_t)col_res(b, 0)
+                 ? w_res[c - col_res(b, 0)] : W_EXTRA_MAX / 2;
+    worksheet_set_row(ws, CS_NOTE, sl_rpt_text_height(note, width, 0), NULL);
+    for (int c = 0; c < SL_COMP_NCOLS; c++)
+        worksheet_write_string(ws, CS_HEAD, (lxw_col_t)c, SL_COMP_COL_NAME[c], b->F.header);
+    for (size_t e = 0; e < b->n_extra; e++)
+        worksheet_write_string(ws, CS_HEAD, (lxw_col_t)(SL_COMP_NCOLS + e),
+                               t->header[b->extra[e]], b->F.header);
+    static const char *const rh[R_N] = {"b/h", "required, mm", "its SE, mm", "margin, mm",
+                                        "verdict", "reason"};
+    for (int k = 0; k < R_N; k++)
+        worksheet_write_string(ws, CS_HEAD, col_res(b, k), rh[k], b->F.header);
+    static const char *const hh[H_N] = {"check", "floor row", "grid k", "mu0", "mu1", "c0", "c1",
+                                        "se0", "se1", "building", "floor id", "ok x", "ok y",
+                                        "short x", "short y"};
+    for (int k = 0; k < H_N; k++)
+        worksheet_write_string(ws, CS_HEAD, col_h(b, k), hh[k], b->F.header);
+    worksheet_set_row(ws, CS_HEAD, 2 * 15.0 + 1, NULL);
+    /* rows */
+    const char *dflt = r->is_plant && r->n_buildings == 1 ? r->buildings[0] : NULL;
+    const char *single = r->is_plant ? NULL : (r->single ? r->single : "");
+    for (size_t row = CS_FIRST; row <= b->last; row++)
+        comp_row(b, ws, (lxw_row_t)row, row - CS_FIRST < t->n ? &t->rows[row - CS_FIRST] : NULL,
+                 dflt, single);
+    /* verdicts coloured */
+    for (int v = 0; v < N_LABELS; v++) {
+        char crit[40];
+        lxw_conditional_format cf;
+        memset(&cf, 0, sizeof cf);
+        cf.type = LXW_CONDITIONAL_TYPE_CELL;
+        cf.criteria = LXW_CONDITIONAL_CRITERIA_EQUAL_TO;
+        snprintf(crit, sizeof crit, "\"%s\"", verdict_label[v]);
+        cf.value_string = crit;
+        cf.format = b->vfmt[v];
+        worksheet_conditional_format_range(ws, CS_FIRST, col_res(b, R_VERDICT),
+                                           (lxw_row_t)b->last, col_res(b, R_VERDICT), &cf);
+    }
+    worksheet_freeze_panes(ws, CS_FIRST, 1);
+    sl_rpt_page_setup(ws, rep, 1, "");
+    worksheet_repeat_rows(ws, CS_HEAD, CS_HEAD);
+    worksheet_print_area(ws, 0, 0, (lxw_row_t)(CS_FIRST + t->n - 1), (lxw_col_t)(vis - 1));
+    worksheet_fit_to_pages(ws, 1, 0);
+    sl_rpt_protect(ws);
+    worksheet_activate(ws);
+}
+
+/* Counts per verdict and per floor: COUNTIF(S) over the Components sheet. */
+static void summary_sheet(book *b, const sl_report *rep)
+{
+    const sl_comp_results *r = b->r;
+    const sl_comp_table *t = b->t;
+    lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Summary");
+    int plant = r->is_plant;
+    lxw_col_t c0 = plant ? 1 : 0; /* the floor id column */
+    const double w_b = 14, w_id = 14, w_name = 30, w_n = 12;
+    if (plant)
+        worksheet_set_column(ws, 0, 0, w_b, NULL);
+    worksheet_set_column(ws, c0, c0, w_id, NULL);
+    worksheet_set_column(ws, c0 + 1, c0 + 1, w_name, NULL);
+    worksheet_set_column(ws, c0 + 2, c0 + 2 + N_LABELS, w_n, NULL);
+    lxw_col_t last = c0 + 2 + N_LABELS;
+    double width = (plant ? w_b : 0) + w_id + w_name + w_n * (N_LABELS + 1);
+    sl_rpt_title_block(ws, &b->F, rep, "Components: counts per verdict and per floor", 0,
+                       last, width);
+    char src[1600];
+    snprintf(src, sizeof src, "Components file %s (%zu components, CRC-32 %08lx); required "
+             "clearances from %s (seislide run, %s, created %s). Counts follow the Components "
+             "sheet, rows typed in later included.", t->path, t->n, t->crc32 & 0xffffffffUL,
+             r->dir, r->is_plant ? "a plant" : "one building", r->created);
+    lxw_row_t row = SL_RPT_TB_ROWS + 1;
+    worksheet_merge_range(ws, row, 0, row, last, src, b->F.wrap);
+    worksheet_set_row(ws, row, sl_rpt_text_height(src, width, 0), NULL);
+    char vr[80], br[80], fr[80], f[600];
+    range(b, vr, sizeof vr, col_res(b, R_VERDICT));
+    range(b, br, sizeof br, col_h(b, H_BLD));
+    range(b, fr, sizeof fr, col_h(b, H_FID));
+    /* per verdict */
+    row += 2;
+    worksheet_write_string(ws, row, 0, "Verdict", b->F.header);
+    worksheet_write_string(ws, row, 1, "Components", b->F.header);
+    lxw_row_t v0 = row + 1;
+    for (int v = 0; v < N_LABELS; v++) {
+        worksheet_write_string(ws, v0 + (lxw_row_t)v, 0, verdict_label[v], b->vfmt[v]);
+        snprintf(f, sizeof f, "=COUNTIF(%s,\"%s\")", vr, verdict_label[v]);
+        fcell(ws, v0 + (lxw_row_t)v, 1, f, v < SL_COMP_NVERDICTS ? (double)t->count[v] : 0, NULL,
+              NULL);
+    }
+    worksheet_write_string(ws, v0 + N_LABELS, 0, "all", b->F.bold);
+    snprintf(f, sizeof f, "=SUM(B%u:B%u)", (unsigned)v0 + 1, (unsigned)v0 + N_LABELS);
+    fcell(ws, v0 + N_LABELS, 1, f, (double)t->n, NULL, b->F.bold);
+    /* per floor */
+    row = v0 + N_LABELS + 2;
+    lxw_row_t head = row;
+    if (plant)
+        worksheet_write_string(ws, row, 0, "Building", b->F.header);
+    worksheet_write_string(ws, row, c0, "Floor", b->F.header);
+    worksheet_write_string(ws, row, c0 + 1, "Floor name", b->F.header);
+    worksheet_write_string(ws, row, c0 + 2, "Components", b->F.header);
+    for (int v = 0; v < N_LABELS; v++)
+        worksheet_write_string(ws, row, c0 + 3 + (lxw_col_t)v, verdict_label[v], b->F.header);
+    for (size_t i = 0; i < r->n_floors; i++) {
+        const sl_comp_floor *fl = &r->floors[i];
+        row++;
+        char crit[300], a[16];
+        if (plant)
+            worksheet_write_string(ws, row, 0, fl->building, b->F.wrap);
+        worksheet_write_string(ws, row, c0, fl->id, b->F.wrap);
+        worksheet_write_string(ws, row, c0 + 1, fl->name, b->F.wrap);
+        worksheet_set_row(ws, row, fmax(sl_rpt_text_height(fl->name, w_name, 0),
+                                        sl_rpt_text_height(fl->id, w_id, 0)), NULL);
+        /* the floor's cells as criteria */
+        ref(a, c0, row);
+        if (plant) {
+            char ab[16];
+            snprintf(crit, sizeof crit, "%s,%s,%s,%s", br, ref(ab, 0, row), fr, a);
+        } else {
+            snprintf(crit, sizeof crit, "%s,%s", fr, a);
+        }
+        size_t cnt[SL_COMP_NVERDICTS] = {0}, all = 0;
+        for (size_t k = 0; k < t->n; k++)
+            if (t->rows[k].floor == i) {
+                cnt[t->rows[k].verdict]++;
+                all++;
+            }
+        snprintf(f, sizeof f, "=COUNTIFS(%s)", crit);
+        fcell(ws, row, c0 + 2, f, (double)all, NULL, NULL);
+        for (int v = 0; v < N_LABELS; v++) {
+            snprintf(f, sizeof f, "=COUNTIFS(%s,%s,\"%s\")", crit, vr, verdict_label[v]);
+            fcell(ws, row, c0 + 3 + (lxw_col_t)v, f, v < SL_COMP_NVERDICTS ? (double)cnt[v] : 0,
+                  NULL, NULL);
+        }
+    }
+    sl_rpt_page_setup(ws, rep, 0, "");
+    worksheet_repeat_rows(ws, head, head);
+    worksheet_print_area(ws, 0, 0, row, last);
+    worksheet_fit_to_pages(ws, 1, 0);
+    sl_rpt_protect(ws);
+}
+
+/* Available against required clearance: a point per ok or short component,
+ * above the diagonal enough gap. */
+static void chart_sheet(book *b, const sl_report *rep)
+{
+    lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Chart");
+    worksheet_set_column(ws, 0, 0, W_CHART, NULL);
+    worksheet_write_string(ws, 0, 0, "Components: available against required clearance",
+                           b->F.title);
+    const char *cap = "One point per component that slides (verdict ok or short): the required "
+                      "clearance at its mu on its floor against the gap it has. Points on or "
+                      "above the dashed line have enough gap; below it they are short. Rocking "
+                      "components and those whose mu is off the grid are not drawn (see the "
+                      "Components sheet).";
+    worksheet_write_string(ws, 1, 0, cap, b->F.wrap);
+    worksheet_set_row(ws, 1, sl_rpt_text_height(cap, W_CHART, 0), NULL);
+    lxw_chart *ch = workbook_add_chart(b->wb, LXW_CHART_SCATTER);
+    char x[120], y[120];
+    const struct { int hx, hy; const char *name; lxw_color_t color; uint8_t marker; } s[] = {
+        {H_OKX, H_OKY, "ok", 0x2E7D32, LXW_CHART_MARKER_CIRCLE},
+        {H_SHX, H_SHY, "short", 0xC00000, LXW_CHART_MARKER_DIAMOND}};
+    for (int k = 0; k < 2; k++) {
+        char xr[80], yr[80];
+        snprintf(x, sizeof x, "=%s", range(b, xr, sizeof xr, col_h(b, s[k].hx)));
+        snprintf(y, sizeof y, "=%s", range(b, yr, sizeof yr, col_h(b, s[k].hy)));
+        lxw_chart_series *se = chart_add_series(ch, x, y);
+        chart_series_set_name(se, s[k].name);
+        chart_series_set_marker_type(se, s[k].marker);
+        chart_series_set_marker_size(se, 6);
+        lxw_chart_fill fill = {.color = s[k].color};
+        lxw_chart_line mline = {.color = s[k].color};
+        chart_series_set_marker_fill(se, &fill);
+        chart_series_set_marker_line(se, &mline);
+    }
+    unsigned d = (unsigned)b->r->n_floors + 4; /* Floors: the diagonal's rows (1-based) */
+    snprintf(x, sizeof x, "=Floors!$A$%u:$A$%u", d, d + 1);
+    snprintf(y, sizeof y, "=Floors!$B$%u:$B$%u", d, d + 1);
+    lxw_chart_series *dg = chart_add_series(ch, x, y);
+    chart_series_set_name(dg, "available = required");
+    lxw_chart_line line = {.color = 0x404040, .width = 1.25, .dash_type = LXW_CHART_LINE_DASH_DASH};
+    chart_series_set_line(dg, &line);
+    chart_series_set_marker_type(dg, LXW_CHART_MARKER_NONE);
+    chart_show_hidden_data(ch); /* the points are in hidden columns */
+    chart_title_set_name(ch, "Available against required clearance");
+    chart_axis_set_name(ch->x_axis, "Required clearance at the component's mu, mm");
+    chart_axis_set_name(ch->y_axis, "Available clearance, mm");
+    /* both axes 0 to the same round value above every point: the diagonal at 45 degrees */
+    double top = b->diag_mm > 0 ? b->diag_mm : 1, step = pow(10, floor(log10(top)));
+    double axis_max = step * (top <= step ? 1 : top <= 2 * step ? 2 : top <= 5 * step ? 5 : 10);
+    chart_axis_set_min(ch->x_axis, 0);
+    chart_axis_set_min(ch->y_axis, 0);
+    chart_axis_set_max(ch->x_axis, axis_max);
+    chart_axis_set_max(ch->y_axis, axis_max);
+    chart_axis_major_gridlines_set_visible(ch->x_axis, LXW_TRUE);
+    chart_legend_set_position(ch, LXW_CHART_LEGEND_BOTTOM);
+    lxw_chart_options co = {.x_scale = 1.5, .y_scale = 1.85};
+    worksheet_insert_chart_opt(ws, 3, 0, ch, &co);
+    sl_rpt_page_setup(ws, rep, 1, "");
+    worksheet_print_area(ws, 0, 0, 32, 0);
+    worksheet_fit_to_pages(ws, 1, 1);
+    sl_rpt_protect(ws);
+}
+
+sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, const char *path,
+                             const sl_comp_opts *o, sl_error *err)
+{
+    book b = {.r = r, .t = t};
+    for (size_t c = 0; c < t->n_cols; c++) {
+        int req = 0;
+        for (int k = 0; k < SL_COMP_NCOLS; k++)
+            req |= t->col[k] == (int)c;
+        if (!req)
+            b.extra[b.n_extra++] = (int)c;
+    }
+    b.vis = SL_COMP_NCOLS + b.n_extra + R_N;
+    b.last = CS_FIRST + t->n + SL_COMP_SPARE_ROWS - 1;
+    grid_text(r, b.g0, b.g1);
+    for (size_t i = 0; i < t->n; i++) /* the diagonal's end: a little above every point */
+        if (t->rows[i].verdict == SL_COMP_OK || t->rows[i].verdict == SL_COMP_SHORT)
+            b.diag_mm = fmax(b.diag_mm, 1.05 * fmax(t->rows[i].required_mm,
+                                                    t->rows[i].clearance_mm));
+    sl_report rep;
+    sl_report_init(&rep);
+    rep.version = o->version;
+    rep.command_line = o->command_line;
+    rep.seed = r->seed;
+    rep.created = o->created;
+    rep.project.project = strcmp(r->project, "-") ? r->project : NULL;
+    rep.project.document = strcmp(r->document, "-") ? r->document : NULL;
+    rep.project.revision = strcmp(r->revision, "-") ? r->revision : NULL;
+    sl_atomic *a;
+    b.wb = sl_rpt_workbook_open(path, "Components: required against available clearance",
+                                "verdict per unanchored component", &rep.project, o->created,
+                                &a, err);
+    if (!b.wb)
+        return err ? err->code : SL_EIO;
+    formats(&b);
+    components_sheet(&b, &rep);
+    summary_sheet(&b, &rep);
+    chart_sheet(&b, &rep);
+    floors_sheet(&b);
+    return sl_rpt_workbook_close(b.wb, a, path, err);
+}
