@@ -27,17 +27,21 @@ size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1)
     return k0;
 }
 
-void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
-                          const sl_rpt_lookup_cells *c, double res, int ok)
+void sl_rpt_lookup_result_text(char *f, size_t n, const sl_rpt_lookup_cells *c)
 {
     /* linear interpolation in mu between the grid rows around it, as
      * sl_design_clearance_at: C0 + (mu - mu0) (C1 - C0) / (mu1 - mu0) */
-    char f[512];
-    worksheet_write_string(ws, c->result, 0, "Required clearance, mm", F->title);
-    snprintf(f, sizeof f,
-             "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
+    snprintf(f, n, "=IF(B%d<>\"ok\",\"-\",IF(B%d=B%d,B%d,B%d+(B%d-B%d)*(B%d-B%d)/(B%d-B%d)))",
              c->check + 1, c->mu1 + 1, c->mu0 + 1, c->c0 + 1, c->c0 + 1, c->mu + 1, c->mu0 + 1,
              c->c1 + 1, c->c0 + 1, c->mu1 + 1, c->mu0 + 1);
+}
+
+void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
+                          const sl_rpt_lookup_cells *c, double res, int ok)
+{
+    char f[SL_RPT_LOOKUP_RESULT_LEN];
+    worksheet_write_string(ws, c->result, 0, "Required clearance, mm", F->title);
+    sl_rpt_lookup_result_text(f, sizeof f, c);
     sl_rpt_lookup_formula(ws, zero_cache, c->result, f, res, ok ? NULL : "-", F->result);
 }
 

@@ -113,6 +113,10 @@ void sl_rpt_lookup_formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, con
  * grid,1) and the next): returns k0, the last row whose mu is at or below
  * mu (0 when !ok), and sets *k1 to the row after it (k0 at the grid's end). */
 size_t sl_rpt_lookup_bracket(const sl_design *d, int ok, double mu, size_t *k1);
+/* The text of the interpolation formula of the result cell (into f, size n;
+ * SL_RPT_LOOKUP_RESULT_LEN is enough): "=IF(B<check><>"ok","-",...)". */
+#define SL_RPT_LOOKUP_RESULT_LEN 512
+void sl_rpt_lookup_result_text(char *f, size_t n, const sl_rpt_lookup_cells *c);
 /* "Required clearance, mm" and its interpolation formula (res: its value). */
 void sl_rpt_lookup_result(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
                           const sl_rpt_lookup_cells *c, double res, int ok);
