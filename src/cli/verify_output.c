@@ -14,7 +14,7 @@ static const char *const columns[] = {"area",     "problem",  "checks",         
                                       "tolerance_basis",  "verdict"};
 #define NCOL 10
 /* column widths of the sheet, characters */
-static const double widths[NCOL] = {8, 7, 34, 12, 38, 12, 9, 9, 34, 7};
+static const double widths[NCOL] = {8, 7, 34, 13, 38, 13, 10, 10, 34, 7};
 
 static void csv_field(FILE *f, const char *s, int last)
 {
@@ -104,7 +104,7 @@ static sl_status write_xlsx(const char *path, const verify_info *info,
     worksheet_set_margins(ws, 0.4, 0.4, 0.6, 0.6);
     worksheet_fit_to_pages(ws, 1, 0);
     char footer[200];
-    snprintf(footer, sizeof footer, "&L&8%s verify&C&8%s&R&8Page &P of &N", info->version,
+    snprintf(footer, sizeof footer, "&L&8 %s verify&C&8 %s&R&8 Page &P of &N", info->version,
              info->date);
     worksheet_set_footer(ws, footer);
 

@@ -170,7 +170,7 @@ static const sl_verify_problem problems[] = {
     {"input", "I03", "a floor whose frequencies fall: refused, line of the error",
      "the file as written: line 8 (status bad input)", "0: exact", 1, sl_verify_i03},
     {"input", "I04", "a CSV floor with a bad number: refused, column of the error",
-     "the file as written: column 3 of line 4", "0: exact", 0, sl_verify_i04},
+     "the file as written: column 3 (of line 6)", "0: exact", 0, sl_verify_i04},
     /* ---- the workbook's lookup ------------------------------------------ */
     {"workbook", "W01", "Lookup formula evaluated on its cells vs sl_design_clearance_at, m",
      "sl_design_clearance_at, the C function the formula twins (W02 checks it by hand)",
@@ -222,8 +222,8 @@ void sl_verify_judge(const sl_verify_problem *p, const sl_verify_value *v, sl_ve
         num_text(r->computed, got);
         break;
     }
-    num_text(r->error_text, r->error);
-    num_text(r->tolerance_text, r->tolerance);
+    snprintf(r->error_text, SL_VERIFY_TEXT, "%.3g", r->error);
+    snprintf(r->tolerance_text, SL_VERIFY_TEXT, "%.3g", r->tolerance);
     r->pass = r->error <= r->tolerance; /* NaN fails */
 }
 

@@ -354,7 +354,7 @@ SL_VERIFY_FN(sl_verify_i02)
 
 /* A refused file: the line (or column) the error names; accepted: fails. */
 static sl_status refused(const sl_verify_ctx *ctx, const char *name, const char *text,
-                         int want_col, long ref, sl_verify_value *v, sl_error *err)
+                         int want_col, long ref, long line, sl_verify_value *v, sl_error *err)
 {
     sl_floor *a = NULL;
     sl_error e;
@@ -371,18 +371,21 @@ static sl_status refused(const sl_verify_ctx *ctx, const char *name, const char 
     }
     if (e.code != SL_EPARSE && e.code != SL_EINVAL)
         return sl_error_set(err, e.code, NULL, 0, "refused for another reason: %s", e.msg);
+    if (e.line != line)
+        return sl_error_set(err, e.code, NULL, 0, "refused at line %ld, not %ld: %s", e.line,
+                            line, e.msg);
     v->computed = (double)(want_col ? e.col : e.line);
     return SL_OK;
 }
 
 SL_VERIFY_FN(sl_verify_i03)
 {
-    return refused(ctx, "verify-bad.ini", floor_bad_ini, 0, 8, v, err);
+    return refused(ctx, "verify-bad.ini", floor_bad_ini, 0, 8, 8, v, err);
 }
 
 SL_VERIFY_FN(sl_verify_i04)
 {
-    return refused(ctx, "verify-bad.csv", floor_bad_csv, 1, 3, v, err);
+    return refused(ctx, "verify-bad.csv", floor_bad_csv, 1, 3, 6, v, err);
 }
 
 /* ---- the workbook's Lookup ---------------------------------------------------- */

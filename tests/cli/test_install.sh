@@ -172,4 +172,17 @@ bad=$(grep -lE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"io/' "$ROOT"/src/s
 big=$(find "$ROOT/src" -name '*.c' -exec wc -l {} + |
       awk '$2 != "total" && $1 > 1000 { sub(".*/src/", "src/", $2); printf " %s (%d lines)", $2, $1 }')
 [ -z "$big" ] && t_pass || t_fail "over 1,000 lines:$big"
+# The installed program verifies itself (docs/verification.md): from an
+# empty folder outside the source tree, without the records
+# (SEISLIDE_SHARED unset), every problem passes and the record is written.
+mkdir -p "$T_TMP/empty" && cd "$T_TMP/empty" || exit 2
+env -u SEISLIDE_SHARED "$D$P/bin/seislide" verify -o rec --checked-by "make test" \
+  >"$T_TMP/verify.out" 2>"$T_TMP/verify.err"
+rc=$?
+[ $rc -eq 0 ] && t_pass || t_fail "installed verify: exit $rc ($(grep -m3 FAIL "$T_TMP/verify.out"))"
+grep -Eq '^[0-9]+ passed, 0 failed$' "$T_TMP/verify.out" && ! grep -q '^FAIL' "$T_TMP/verify.out" &&
+  t_pass || t_fail "installed verify: $(tail -1 "$T_TMP/verify.out")"
+[ -s rec/verification.csv ] && [ -s rec/verification.xlsx ] && t_pass ||
+  t_fail "installed verify: the record is missing ($(ls rec 2>&1))"
+cd "$ROOT" || exit 2
 t_end

@@ -1,0 +1,62 @@
+#!/bin/sh
+# `seislide verify` (docs/verification.md): every problem passes and the
+# summary counts them; the record's CSV has the documented columns, one row
+# per problem, verdicts pass; the workbook is written; --baseline (the
+# baseline vector instances even on an AVX2 CPU) gives the same verdicts and
+# the same computed values; --quick runs a subset of every area; usage
+# errors exit 2; a record that cannot be written exits 1. (The installed
+# copy is run by test_install.sh.)
+. "$(dirname "$0")/lib.sh"
+t_suite cli_verify
+cd "$T_TMP" || exit 2
+t_run verify -o rec --checked-by "Test Engineer"
+t_expect_rc "verify" 0
+t_expect_out "verify: summary" '^[0-9]+ passed, 0 failed$'
+n=$(grep -c '^pass ' "$T_OUT")
+[ "$n" -ge 30 ] && t_pass || t_fail "only $n problems passed"
+areas=$(grep '^pass ' "$T_OUT" | awk '{print $2}' | sort -u | wc -l)
+[ "$areas" -ge 6 ] && t_pass || t_fail "only $areas areas"
+cp "$T_OUT" full.out
+h=$(head -1 rec/verification.csv | tr -d '\r')
+[ "$h" = "area,problem,checks,reference,reference_source,computed,error,tolerance,tolerance_basis,verdict" ] &&
+  t_pass || t_fail "CSV header: $h"
+rows=$(($(wc -l < rec/verification.csv) - 1))
+[ "$rows" -eq "$n" ] && t_pass || t_fail "CSV rows $rows, problems $n"
+bad=$(tail -n +2 rec/verification.csv | grep -vc ',pass$')
+[ "$bad" -eq 0 ] && t_pass || t_fail "$bad CSV rows without the verdict pass"
+[ -s rec/verification.xlsx ] && t_pass || t_fail "no verification.xlsx"
+# The workbook holds the checker's name and the build (its shared strings).
+if command -v unzip >/dev/null 2>&1; then
+  unzip -p rec/verification.xlsx xl/sharedStrings.xml > strings.xml 2>/dev/null
+  grep -q 'Test Engineer' strings.xml && grep -q 'ffp-contract=off' strings.xml &&
+    grep -Eq 'engine (AVX2|baseline)' strings.xml && t_pass ||
+    t_fail "the workbook lacks the checker, the flags or the vector instance"
+fi
+# The baseline instances: the same verdicts and values (the header line, with
+# the instance named, aside).
+t_run verify --baseline
+t_expect_rc "verify --baseline" 0
+tail -n +2 "$T_OUT" > base.out
+tail -n +2 full.out | grep -v '^record:' > full.cmp
+cmp -s full.cmp base.out && t_pass || t_fail "--baseline differs: $(diff full.cmp base.out | head -4)"
+head -1 "$T_OUT" | grep -q 'engine baseline, spectra baseline (--baseline)' && t_pass ||
+  t_fail "--baseline header: $(head -1 "$T_OUT")"
+# The quick subset: fewer problems, every area.
+t_run verify --quick
+t_expect_rc "verify --quick" 0
+q=$(grep -c '^pass ' "$T_OUT")
+qa=$(grep '^pass ' "$T_OUT" | awk '{print $2}' | sort -u | wc -l)
+[ "$q" -lt "$n" ] && [ "$qa" -eq "$areas" ] && t_pass || t_fail "--quick: $q problems over $qa areas"
+t_run verify --help
+t_expect_rc "verify --help" 0
+t_expect_out "verify --help" 'checked-by NAME'
+t_run verify --frobnicate
+t_expect_rc "verify --frobnicate" 2
+t_run verify extra
+t_expect_rc "verify operand" 2
+# A record that cannot be written: exit 1, the problems still reported.
+: > notadir
+t_run verify --quick -o notadir/rec
+t_expect_rc "verify -o under a file" 1
+t_expect_err "verify -o under a file" 'notadir'
+t_end
