@@ -74,11 +74,10 @@ static void on_done(void *ctx, const sl_verify_result *r, size_t k, size_t total
     (void)k;
     (void)total;
     const sl_verify_problem *p = r->problem;
-    printf("%s %-8s %-4s %s: computed %s, reference %s, error %s, tolerance %s\n",
+    printf("%s %-8s %-4s %s: computed %s, reference %s, error %s, tolerance %s%s%s\n",
            r->pass ? "pass" : "FAIL", p->area, p->id, p->checks, r->computed, r->reference,
-           r->error_text, r->tolerance_text);
-    if (r->status != SL_OK)
-        printf("     %s %s: %s\n", p->area, p->id, r->msg);
+           r->error_text, r->tolerance_text, r->status != SL_OK ? "; not computed: " : "",
+           r->status != SL_OK ? r->msg : "");
     fflush(stdout);
 }
 
@@ -170,9 +169,8 @@ int cmd_verify(int argc, char **argv)
              a.checked_by ? a.checked_by : "not given (--checked-by)");
     cli_command_line(info.command, sizeof info.command, argc, argv);
     info.quick = a.quick;
-    printf("# %s verify%s: %s; %s %s; %s; %s\n", info.version, a.quick ? " --quick" : "",
-           info.date, info.compiler, info.flags, info.vector, info.host);
-    fflush(stdout);
+    cli_msg("verify%s: %s, %s; %s %s; %s; %s", a.quick ? " --quick" : "", info.version,
+            info.date, info.compiler, info.flags, info.vector, info.host);
     sl_verify_ctx ctx = {scratch};
     sl_status st = sl_verify_run(tab, n, a.quick, &ctx, res, &n_run, &n_pass, &n_fail, on_done,
                                  NULL);
@@ -189,7 +187,7 @@ int cmd_verify(int argc, char **argv)
             cli_print_error(&err);
             rc = CLI_EXIT_ERROR;
         } else {
-            printf("record: %s/verification.csv, %s/verification.xlsx\n", a.out, a.out);
+            cli_msg("verify: wrote %s/verification.csv and %s/verification.xlsx", a.out, a.out);
         }
     }
     free(res);
