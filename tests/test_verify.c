@@ -165,11 +165,25 @@ static void test_formula(void)
     CHECK(sl_verify_formula_eval("=B99", c, 6, &x, &text, &e) == SL_EPARSE, "a cell not given");
 }
 
+/* FNV-1a 64 (Fowler, Noll, Vo; IETF draft-eastlake-fnv): the empty input
+ * gives the offset basis cbf29ce484222325; the bytes of the doubles {1.0,
+ * -2.5} (IEEE 754, little-endian: 00..f0 3f, 00..04 c0) give
+ * 2f20b4ea1c69d79c, computed byte by byte outside the program (an
+ * implementation that gives the published vector af63dc4c8601ec8c for "a"). */
+static void test_fingerprint(void)
+{
+    const double x[2] = {1.0, -2.5};
+    CHECK(sl_verify_fingerprint(x, 0) == 0xcbf29ce484222325ull, "empty input");
+    CHECK(sl_verify_fingerprint(x, 2) == 0x2f20b4ea1c69d79cull, "{1.0, -2.5}: %016llx",
+          (unsigned long long)sl_verify_fingerprint(x, 2));
+}
+
 int main(void)
 {
     RUN(test_wrong_reference_fails);
     RUN(test_judge);
     RUN(test_table);
     RUN(test_formula);
+    RUN(test_fingerprint);
     return HARNESS_END("verify");
 }
