@@ -586,8 +586,9 @@ int study_report_part5(study_out *o, const sl_study_part5 *p)
             lo, hi, inside ? "lies within that record-to-record scatter" : "lies above it",
             inside ? "so the difference is the records' and their processing's"
             : hp_reach ? "within reach of the high-pass alone"
-                       : "a difference the study's unpublished record processing (its "
-                         "stand-ins, filters and matching) would have to explain");
+                       : "a difference left to the study's records and their processing "
+                         "(four of them stand-ins here; its filtering and matching are not "
+                         "given in the study)");
     return 0;
 }
 
