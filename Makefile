@@ -66,6 +66,10 @@ $(BUILD)/%.o: %.c $(wildcard src/*.h src/*/*.h tests/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(OBJ_CFLAGS) -c $< -o $@
 
+# `seislide verify` records the flags it was built with (docs/verification.md)
+$(BUILD)/src/cli/cmd_verify.o: OBJ_CFLAGS = -DSL_BUILD_FLAGS='"$(strip $(FP) $(OPT) $(CFLAGS))"'
+$(BUILD)/src/cli/cmd_verify.o: Makefile
+
 $(LIB): $(LIB_OBJ)
 	rm -f $@
 	$(AR) rcs $@ $^

@@ -24,6 +24,7 @@ static const command commands[] = {
     {"asce", cmd_asce, "ASCE/SEI 43-05 approximate sliding displacement"},
     {"synth", cmd_synth, "spectrum-compatible three-component motions (FFTW)"},
     {"bench", cmd_bench, "speed against error of the engine"},
+    {"verify", cmd_verify, "verification of this installed program against independent references"},
     {"study", cmd_study, "reproduce the source study from recorded motions (docs/validation.md)"},
     {"components", cmd_components, "each component of a list checked against a run's floor tables"},
 };

@@ -50,6 +50,7 @@ int study_report_part1(study_out *o, const sl_study_part1 *p);
 int study_report_part2(study_out *o, const sl_study_part2 *p);
 int study_report_part3(study_out *o, const sl_study_part3 *p);
 int study_report_part4(study_out *o, const sl_study_part4 *p);
+int study_report_part5(study_out *o, const sl_study_part5 *p);
 /* The claims table; a part not in `parts` (bit k = part k+1) is NULL. */
 void study_report_claims(study_out *o, const sl_study_part1 *p1, const sl_study_part2 *p2,
                          const sl_study_part3 *p3, const sl_study_part4 *p4);

@@ -74,6 +74,18 @@ int sl_rpt_lookup_check(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
     return !strcmp(check, "ok");
 }
 
+void sl_rpt_lookup_result_text(char *f, size_t n, const sl_rpt_lookup_cells *c)
+{
+    /* linear interpolation in mu between the grid rows around it, as
+     * sl_design_clearance_at: C0 + (mu - mu0) (C1 - C0) / (mu1 - mu0) */
+    char ip[300], r[5][16];
+    const int rows[5] = {c->mu, c->steps + 2, c->steps + 3, c->steps + 4, c->steps + 5};
+    for (int k = 0; k < 5; k++)
+        snprintf(r[k], sizeof r[k], "B%d", rows[k] + 1);
+    snprintf(f, n, "=IF(B%d<>\"ok\",\"-\",%s)", c->check + 1,
+             sl_rpt_interp_formula(ip, sizeof ip, r[0], r[1], r[2], r[3], r[4]));
+}
+
 double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
                            const sl_rpt_lookup_cells *c, const sl_rpt_lookup_table *t,
                            const sl_design *d, size_t floor_index, double mu, int ok)
@@ -125,12 +137,7 @@ double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cac
      * sl_design_clearance_at's interpolation (its value is cached) */
     double res = ok ? SL_RPT_MM_PER_M * sl_design_clearance_at(d, mu) : NAN;
     worksheet_write_string(ws, c->result, 0, "Required clearance, mm", F->title);
-    char ip[300], r[5][16];
-    const int rows[5] = {c->mu, mu0, mu1, c0, c1};
-    for (int k = 0; k < 5; k++)
-        snprintf(r[k], sizeof r[k], "B%d", rows[k] + 1);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"-\",%s)", chk,
-             sl_rpt_interp_formula(ip, sizeof ip, r[0], r[1], r[2], r[3], r[4]));
+    sl_rpt_lookup_result_text(f, sizeof f, c);
     sl_rpt_lookup_formula(ws, zero_cache, c->result, f, res, ok ? NULL : "-", F->result);
     worksheet_write_string(ws, c->note, 0, "Note", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"%s\",\"\"))", chk, c->result + 1,

@@ -153,6 +153,11 @@ int sl_rpt_lookup_check(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
 double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cache,
                            const sl_rpt_lookup_cells *c, const sl_rpt_lookup_table *t,
                            const sl_design *d, size_t floor_index, double mu, int ok);
+/* The text of the interpolation formula of the result cell (into f, size n;
+ * SL_RPT_LOOKUP_RESULT_LEN is enough): "=IF(B<check><>"ok","-",...)" over
+ * the steps' cells (mu0, mu1, c0, c1 at rows steps + 2 ... steps + 5). */
+#define SL_RPT_LOOKUP_RESULT_LEN 512
+void sl_rpt_lookup_result_text(char *f, size_t n, const sl_rpt_lookup_cells *c);
 
 /* ---- layout.c ---------------------------------------------------------- */
 void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F);

@@ -90,11 +90,18 @@ const sl_study_group sl_study_groups[SL_STUDY_NGROUPS] = {
 sl_status sl_study_match_rg160(const sl_set *rec, double zeta, double pga_ms2,
                                sl_synth_set *out, sl_error *err)
 {
+    sl_synth_params p;
+    sl_synth_params_default(&p);
+    return sl_study_match_rg160_p(rec, zeta, pga_ms2, &p, out, err);
+}
+
+sl_status sl_study_match_rg160_p(const sl_set *rec, double zeta, double pga_ms2,
+                                 const sl_synth_params *params, sl_synth_set *out, sl_error *err)
+{
     memset(out, 0, sizeof *out);
     if (!rec || !rec->h1 || !rec->h2 || !rec->v)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "matching needs three components");
-    sl_synth_params p;
-    sl_synth_params_default(&p);
+    sl_synth_params p = *params;
     const sl_motion *comp[SL_SYNTH_NCOMP] = {rec->h1, rec->h2, rec->v};
     double dt = sl_synth_match_dt(comp[0]->dt_s); /* SRP 3.7.1: Nyquist >= 50 Hz */
     sl_motion *rs[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};

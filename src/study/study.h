@@ -66,6 +66,11 @@ extern const sl_study_group sl_study_groups[SL_STUDY_NGROUPS];
 sl_status sl_study_match_rg160(const sl_set *rec, double zeta, double pga_ms2,
                                sl_synth_set *out, sl_error *err);
 
+/* As sl_study_match_rg160 with the synthesis parameters p (e.g. without
+ * the high-pass, hp_frac = 0, or another aim). */
+sl_status sl_study_match_rg160_p(const sl_set *rec, double zeta, double pga_ms2,
+                                 const sl_synth_params *p, sl_synth_set *out, sl_error *err);
+
 /* Sliding spectra of a group of sets. */
 typedef struct sl_study_spectra {
     size_t n_sets, n_mu;

@@ -124,4 +124,37 @@ sl_status sl_study_part4_run(const char *records, sl_study_part4 *p,
                              void (*progress)(void *, const char *), void *ctx, sl_error *err);
 void sl_study_part4_free(sl_study_part4 *p);
 
+/* ---- Part 5: where the crossover comes from --------------------------- */
+/* One change at a time from part 3's setting at SL_STUDY_P5_PGA_G, the
+ * crossover of the seven without one record at a time, and the crossover of
+ * SL_STUDY_P5_NDRAWS random seven-record draws (seed SL_STUDY_P5_SEED) from
+ * the records of part 4's groups, each matched to RG 1.60 as in part 3. */
+#define SL_STUDY_P5_PGA_G 0.4
+#define SL_STUDY_P5_NDRAWS 12
+#define SL_STUDY_P5_SEED 5u
+#define SL_STUDY_P5_FLAT_X 0.2 /* the ASCE level is read over x < this */
+enum {
+    SL_STUDY_P5_BASE = 0, SL_STUDY_P5_NO_HP, SL_STUDY_P5_AIM1, SL_STUDY_P5_NO_V,
+    SL_STUDY_P5_SCALE, SL_STUDY_P5_PLASTIC, SL_STUDY_P5_NO_CAP, SL_STUDY_P5_CAP_H1,
+    SL_STUDY_P5_NCHANGES
+};
+extern const char *const sl_study_p5_change_names[SL_STUDY_P5_NCHANGES];
+
+typedef struct sl_study_part5 {
+    double cross[SL_STUDY_P5_NCHANGES];   /* crossover x per change (NAN: none) */
+    double asce_lo_m, asce_hi_m;          /* ASCE best mean over x < SL_STUDY_P5_FLAT_X */
+    double ratio_at_cross;                /* NLTHA mean / ASCE best mean there (base) */
+    double loo[SL_STUDY_NGROUND];         /* without record i */
+    double loo_lo, loo_hi;
+    size_t n_pool;                        /* records matched for the draws */
+    double draw[SL_STUDY_P5_NDRAWS];      /* crossover of each draw (NAN: none) */
+    size_t draws_none;
+    size_t draws_cons;                    /* of those without: ASCE conservative at the lowest x */
+    double draw_lo, draw_hi;              /* over the draws with one */
+} sl_study_part5;
+
+/* p3: part 3 run (its matched sets). */
+sl_status sl_study_part5_run(const char *records, const sl_study_part3 *p3, sl_study_part5 *p,
+                             void (*progress)(void *, const char *), void *ctx, sl_error *err);
+
 #endif

@@ -9,7 +9,7 @@ D=$T_TMP
 
 t_run study --help; t_expect_rc help 0; t_expect_out help-text "usage: seislide study"
 t_run --help; t_expect_out main-help-lists-study "study +reproduce the source study"
-t_run study --parts 5; t_expect_rc bad-part 2; t_expect_err bad-part-msg "--parts '5'"
+t_run study --parts 6; t_expect_rc bad-part 2; t_expect_err bad-part-msg "--parts '6'"
 t_run study --parts x,1; t_expect_rc bad-part-list 2
 t_run study --bogus; t_expect_rc unknown 2; t_expect_err unknown-msg "unknown option '--bogus'"
 t_run study extra; t_expect_rc extra-arg 2
