@@ -333,8 +333,10 @@ static void test_plant_csv_computed_points(void)
                     snprintf(want, sizeof want, "%.3f", 1e3 * d->rows[j].clearance_m);
             if (g) /* every one on the fine grid */
                 CHECK(want[0], "mu %g not on the fine grid", SL_PLANT_BOOK_MU[k]);
-            CHECK(!strcmp(cell, want), "%s grid, mu %g: '%s', expected '%s'",
-                  g ? "fine" : "coarse", SL_PLANT_BOOK_MU[k], cell, want);
+            /* printed to the digit of its standard error (whole mm at most) */
+            CHECK(!cell[0] == !want[0] && (!cell[0] || fabs(atof(cell) - atof(want)) <= 0.5),
+                  "%s grid, mu %g: '%s', expected '%s'", g ? "fine" : "coarse",
+                  SL_PLANT_BOOK_MU[k], cell, want);
             if (!g && k == 0) /* the case a straight line would have filled */
                 CHECK(!isnan(sl_design_clearance_at(d, 0.05)) && !cell[0],
                       "mu 0.05 inside the coarse grid: empty expected");

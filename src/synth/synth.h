@@ -431,7 +431,7 @@ SL_API const double *sl_synth_target_psa(const sl_synth_motion *m);
  * most SL_SYNTH_END_ROUNDOFF x peak (its PGV or PGD), else x. Round-off
  * differs with the libm routines a CPU selects (FMA or not); printed, it
  * would make outputs differ across machines. */
-double sl_synth_end_residual(double x, double peak);
+SL_API double sl_synth_end_residual(double x, double peak);
 
 /* Every check of the best iterate except the correlation (max_corr = NAN,
  * ok_corr = 1), into *out. */
