@@ -194,7 +194,7 @@ static sl_status write_shard(const sl_plant *p, const char *dir, const run_args 
 int cmd_run(int argc, char **argv)
 {
     const char *dflt[] = {"floors"};
-    char cmdline[8192], date[32], warn[4096], cache_dir[4400];
+    char cmdline[8192], date[32], warn[16384], cache_dir[4400];
     static sl_plant plant; /* large: not on the stack */
     unsigned char *mine = NULL;
     sl_atomic_dir *out = NULL;
@@ -218,8 +218,11 @@ int cmd_run(int argc, char **argv)
                       (size_t)nargs, a.force, warn, sizeof warn, &err) ||
         sl_plant_keys(&plant, ao, VERSION_TEXT, &err))
         goto fail;
-    if (warn[0])
-        cli_msg("run: warning (--force): %s", warn);
+    for (const char *w = warn; *w;) { /* one line each: file:line: text */
+        size_t len = strcspn(w, "\n");
+        cli_msg("run: warning: %.*s", (int)len, w);
+        w += len + (w[len] == '\n');
+    }
     if (a.shard_n)
         sl_plant_assign(&plant, a.shard_n);
     owns_plant = &plant;

@@ -91,6 +91,27 @@
  * its highest frequency, at its lowest damping. */
 #define SL_FLOOR_ZPA_END_MIN 0.8
 #define SL_FLOOR_ZPA_END_MAX 1.25
+/* Plausibility of the spectral values (docs/formats-floor.md,
+ * "Plausibility"; thresholds from the worst ratios measured on physical
+ * floor spectra, tools/plausfloors.c, with a margin). A value is refused
+ * when it is more than SL_FLOOR_SPIKE_MAX times the larger of its two
+ * neighbours in its column (at an end: its one neighbour), when the smaller
+ * of its two neighbours is more than SL_FLOOR_DIP_MAX times it, when a lower
+ * damping's value is below SL_FLOOR_ORDER_MIN times a higher damping's at
+ * the same frequency, or above SL_FLOOR_SPREAD_MAX x (z_hi / z_lo) times it
+ * (z_hi / z_lo: the ratio of the two dampings, the steady-state resonance
+ * amplification ratio). */
+#define SL_FLOOR_SPIKE_MAX 4.0
+#define SL_FLOOR_DIP_MAX 4.0
+#define SL_FLOOR_ORDER_MIN 0.8
+#define SL_FLOOR_SPREAD_MAX 1.5
+/* A table without a given ZPA must reach the rigid range, Hz (the ZPA is
+ * read from its end; below this frequency it is not known). */
+#define SL_FLOOR_RIGID_HZ 33.0
+/* A horizontal ZPA outside this band (inside SL_FLOOR_ZPA_MIN_G-MAX_G) is
+ * unusual for a floor: a warning, not an error (sl_floor_zpa_warning). */
+#define SL_FLOOR_ZPA_WARN_MIN_G 0.05
+#define SL_FLOOR_ZPA_WARN_MAX_G 2.0
 /* The damping of the spectra the ASCE/SEI 43-05 method uses. */
 #define SL_FLOOR_ASCE_DAMPING SL_ASCE_DAMPING /* core/standards.h */
 
@@ -143,6 +164,32 @@ sl_floor *sl_floor_load(const char *path, sl_error *err);
  * outside SL_FLOOR_ZPA_MIN_G-SL_FLOOR_ZPA_MAX_G (e.g. units = gal on values
  * in g). The caller decides whether that stops the run. */
 sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
+
+/* An unusual horizontal ZPA (SL_FLOOR_ZPA_WARN_MIN_G-MAX_G; floor.h): when
+ * zpa_h_ms2 lies outside that band, writes into buf (size n) the warning
+ * "units = m/s2 gives a horizontal ZPA of 0.0398 g, unusual for a floor
+ * (...)", naming the units as written (units_text) the way the file of
+ * format fmt writes the key, and returns 1; else buf "" and 0. The run's
+ * stderr and the workbook's Notes both use it. */
+int sl_floor_zpa_warning_text(double zpa_h_ms2, const char *units_text, sl_floor_format fmt,
+                              char *buf, size_t n);
+
+/* The same for a floor read (its larger horizontal ZPA, units and
+ * format). */
+int sl_floor_zpa_warning(const sl_floor *fl, char *buf, size_t n);
+
+/* The worst ratios of a floor's values (the quantities the plausibility
+ * rules bound, above), over every direction, damping and frequency. */
+typedef struct sl_floor_plausibility {
+    double spike;  /* largest value / larger neighbour (ends: the one neighbour) */
+    double dip;    /* largest smaller neighbour / value (interior points) */
+    double order;  /* smallest SA(lower damping) / SA(higher damping), same frequency */
+    double spread; /* largest SA(lower) / SA(higher) / (z_hi / z_lo) */
+    /* where each is: direction, frequency (Hz) and (lower) damping ratio */
+    int at_comp[4];
+    double at_f_hz[4], at_damping[4];
+} sl_floor_plausibility;
+void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p);
 
 /* The format a path names by its extension: SL_FLOOR_CSV for .csv (any
  * case), else SL_FLOOR_INI. */
