@@ -7,7 +7,8 @@
  *
  * Physical floor spectra: every three-component record of the records
  * directory (-r, default $SEISLIDE_SHARED/records or ../shared/records) that
- * passes the rule of study/physfloor.h (at most -n of them, 0 = all),
+ * passes the rule of study/physfloor.h (at most -n of them, 0 = all, after
+ * skipping the first -k),
  * scaled to a larger horizontal PGA of 0.3 g, itself ("floor 0") and through
  * two 3-storey buildings of study/building.h (fundamental frequencies
  * H1/H2/V 3.0/4.2/14 Hz and 5.0/5.8/16 Hz, 5 %) to floors 1-3; the 2, 5 and
@@ -136,15 +137,17 @@ static void free_sets(sl_set *s, size_t n)
 int main(int argc, char **argv)
 {
     const char *rdir = NULL;
-    size_t max_rec = 0;
+    size_t max_rec = 0, skip = 0;
     int opt;
-    while ((opt = getopt(argc, argv, "r:n:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:k:")) != -1) {
         if (opt == 'r')
             rdir = optarg;
         else if (opt == 'n')
             max_rec = (size_t)atol(optarg);
+        else if (opt == 'k')
+            skip = (size_t)atol(optarg);
         else {
-            fprintf(stderr, "usage: plausfloors [-r RECORDS] [-n MAX] [FILE|DIR ...]\n");
+            fprintf(stderr, "usage: plausfloors [-r RECORDS] [-n MAX] [-k SKIP] [FILE|DIR ...]\n");
             return 1;
         }
     }
@@ -162,12 +165,18 @@ int main(int argc, char **argv)
     sl_pf_rule rule;
     sl_pf_rule_default(&rule);
     sl_set *g = calloc(nd ? nd : 1, sizeof *g);
-    size_t nrec = 0;
+    size_t nrec = 0, passed = 0;
+    char **used = calloc(nd ? nd : 1, sizeof *used); /* the name of record r */
     for (size_t i = 0; i < nd && (!max_rec || nrec < max_rec); i++) {
         char d[4096];
         snprintf(d, sizeof d, "%s/%s", rdir, names[i]);
-        if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) == SL_OK)
-            nrec++;
+        if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) != SL_OK)
+            continue;
+        if (passed++ < skip) {
+            sl_set_free_motions(&g[nrec]);
+            continue;
+        }
+        used[nrec++] = names[i];
     }
     printf("records: %zu of %zu folders in %s\n\n", nrec, nd, rdir);
     printf("| floors | count | refused | spike (worst) | dip | order (lowest) | spread |\n"
@@ -193,7 +202,7 @@ int main(int argc, char **argv)
                 for (int br = 0; br < (fl ? 2 : 1); br++) {
                     for (size_t r = 0; r < nrec; r++) {
                         snprintf(label, sizeof label, "%s building %d floor %zu grid %d%s",
-                                 names[r], bi + 1, fl, gi, br ? " broadened" : "");
+                                 used[r], bi + 1, fl, gi, br ? " broadened" : "");
                         if (sl_pf_write_floor(path, "single record", &src[r], 1, f, nf, br, &e))
                             return fprintf(stderr, "plausfloors: %s\n", e.msg), 1;
                         note(&one, path, label);
@@ -223,6 +232,7 @@ int main(int argc, char **argv)
     free_sets(g, nrec);
     free(g);
     free(fm);
+    free(used);
     if (nd)
         sl_pf_names_free(names, nd);
     return 0;
