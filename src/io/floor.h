@@ -111,7 +111,7 @@
 /* A horizontal ZPA outside this band (inside SL_FLOOR_ZPA_MIN_G-MAX_G) is
  * unusual for a floor: a warning, not an error (sl_floor_zpa_warning). */
 #define SL_FLOOR_ZPA_WARN_MIN_G 0.05
-#define SL_FLOOR_ZPA_WARN_MAX_G 2.0
+#define SL_FLOOR_ZPA_WARN_MAX_G 3.0
 /* The damping of the spectra the ASCE/SEI 43-05 method uses. */
 #define SL_FLOOR_ASCE_DAMPING SL_ASCE_DAMPING /* core/standards.h */
 
