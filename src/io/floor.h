@@ -101,9 +101,9 @@
  * the same frequency, or above SL_FLOOR_SPREAD_MAX x (z_hi / z_lo) times it
  * (z_hi / z_lo: the ratio of the two dampings, the steady-state resonance
  * amplification ratio). */
-#define SL_FLOOR_SPIKE_MAX 4.0
-#define SL_FLOOR_DIP_MAX 4.0
-#define SL_FLOOR_ORDER_MIN 0.8
+#define SL_FLOOR_SPIKE_MAX 10.0
+#define SL_FLOOR_DIP_MAX 6.0
+#define SL_FLOOR_ORDER_MIN 0.5
 #define SL_FLOOR_SPREAD_MAX 1.5
 /* A table without a given ZPA must reach the rigid range, Hz (the ZPA is
  * read from its end; below this frequency it is not known). */
