@@ -34,7 +34,12 @@
  * zpa_h1, zpa_h2, zpa_v), then a header row "f_hz,h1_5,h1_10,h2_5,...,v_2"
  * (<h1|h2|v>_<damping in percent>), then one row per frequency. Every cell
  * holds a number (an empty cell is an error). Errors name file:line:column
- * (column = 1-based field of the row).
+ * (column = 1-based field of the row). The first column may be T_s
+ * (periods, s; turned into 1/T in ascending order); a header row with ';'
+ * and no ',' makes ';' the separator and a comma the decimal mark (a
+ * European spreadsheet's CSV). UTF-16 text is refused as such (both
+ * formats), and so, each with how to fix it, a table of one direction and
+ * a row of units under the header.
  *
  * Validation, the same for both formats (one checking path, floor.c; every
  * error names the file and the line): [floor], [h1], [v] (or their
@@ -46,7 +51,10 @@
  * refused before it is read, and a file with a NUL byte is "not a text
  * file"; damping ratios in (0, 1), each once per direction; units known;
  * name not empty; a given ZPA within SL_FLOOR_ZPA_END_MIN-SL_FLOOR_ZPA_END_MAX
- * of the spectrum's high-frequency end (below).
+ * of the spectrum's high-frequency end (below); without a given ZPA the
+ * table reaches SL_FLOOR_RIGID_HZ; every value plausible against its
+ * neighbours and the other dampings of its direction (SL_FLOOR_SPIKE_MAX,
+ * SL_FLOOR_DIP_MAX, SL_FLOOR_ORDER_MIN, SL_FLOOR_SPREAD_MAX).
  *
  * Zero-period acceleration of a component: the `zpa` key (CSV: `# zpa_h1:`)
  * when given, else the largest over its dampings of the value at its
