@@ -161,6 +161,8 @@ static const struct {
                              "there (2.52 g, line 8, column 3)", 2},
     {"bad-csv-spread.csv", 5, "h1_2 at 0.5 Hz: value 4.413 g is 13.4 x the higher damping's "
                               "h1_5 there (0.33 g, line 5, column 3)", 2},
+    {"bad-csv-swapped.csv", 4, "h1_5: on average over the table (geometric mean) 0.782 x the "
+                               "higher damping's h1_10 (line 4, column 3)", 4},
     /* a table short of the rigid range without zpa */
     {"bad-short.ini", 8, "[h1] f_hz: the table ends at 25 Hz, below the rigid range (33 Hz), "
                          "and gives no ZPA, so the floor's ZPA is not known: extend the table "
@@ -369,9 +371,10 @@ static void test_tables_as_saved(void)
 
 /* The plausibility rules at their thresholds: a table whose one value is
  * exactly at the limit loads, a hair beyond it is refused at that cell.
- * Spike (1 Hz) and dip (2 Hz) in v_5; order and spread: the whole h1_2
- * column k x h1_10 (so that only the rule tried can fail), refused at its
- * first row. */
+ * Spike (1 Hz) and dip (2 Hz) in v_5; order: the h1_2 cell at 20 Hz k x
+ * h1_10, its others 2 x; spread and order on average: the whole h1_2 column
+ * k x h1_10 (so that only the rule tried can fail), refused at its first row
+ * and at its header. */
 static void test_plausibility_thresholds(void)
 {
     char dir[] = "/tmp/sl-floor-XXXXXX";
@@ -385,13 +388,16 @@ static void test_plausibility_thresholds(void)
     } c[] = {
         {"spike", SL_FLOOR_SPIKE_MAX, SL_FLOOR_SPIKE_MAX * 1.001, 6, 4},
         {"dip", SL_FLOOR_DIP_MAX, SL_FLOOR_DIP_MAX * 1.001, 7, 4},
-        {"order", SL_FLOOR_ORDER_MIN, SL_FLOOR_ORDER_MIN / 1.001, 5, 2},
+        {"order", SL_FLOOR_ORDER_MIN, SL_FLOOR_ORDER_MIN / 1.001, 8, 2},
         {"spread", SL_FLOOR_SPREAD_MAX * 5, SL_FLOOR_SPREAD_MAX * 5 * 1.001, 5, 2},
+        {"order on average", SL_FLOOR_ORDER_MEAN_MIN, SL_FLOOR_ORDER_MEAN_MIN / 1.001, 4, 2},
     };
     for (size_t i = 0; i < sizeof c / sizeof c[0]; i++)
         for (int beyond = 0; beyond < 2; beyond++) {
             double k = beyond ? c[i].k_bad : c[i].k_ok;
-            double h = i >= 2 ? k : 1.0;                  /* h1_2 against h1_10 = 1 */
+            /* h1_2 against h1_10 = 1: order, one cell (20 Hz) k, the others 2; spread and
+             * order on average, the whole column k */
+            double h = i >= 3 ? k : i == 2 ? 2.0 : 1.0, h20 = i >= 2 ? k : h;
             double v1 = i == 0 ? k : 1.0, v2 = i == 1 ? 1.0 / k : 1.0; /* v_5 */
             FILE *f = fopen(path, "w");
             CHECK(f != NULL, "fopen");
@@ -400,7 +406,7 @@ static void test_plausibility_thresholds(void)
             fprintf(f, "# name: t\n# units: g\n# h2: same_as_h1\nf_hz,h1_2,h1_10,v_5\n"
                        "0.5,%.17g,1,1\n1,%.17g,1,%.17g\n2,%.17g,1,%.17g\n20,%.17g,1,1\n"
                        "33,%.17g,1,1\n",
-                    h, h, v1, h, v2, h, h);
+                    h, h, v1, h, v2, h20, h);
             fclose(f);
             sl_error e;
             sl_error_clear(&e);

@@ -269,6 +269,15 @@ static double spread_ratio(double sa_lo, double z_lo, double sa_hi, double z_hi)
     return sa_lo / sa_hi / (z_hi / z_lo);
 }
 
+/* The geometric mean over n frequencies of lo[j] / hi[j]. */
+static double order_mean(const double *lo, const double *hi, size_t n)
+{
+    double sum = 0.0;
+    for (size_t j = 0; j < n; j++)
+        sum += log(lo[j] / hi[j]);
+    return exp(sum / (double)n);
+}
+
 /* Keep x as the worst (i: which ratio) when it is worse than *w. */
 static void worst(sl_floor_plausibility *p, int i, double *w, double x, int lower_is_worse,
                   int k, const sl_spectrum *a, size_t j)
@@ -285,10 +294,14 @@ void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p)
 {
     memset(p, 0, sizeof *p);
     p->order = INFINITY;
+    p->order_mean = INFINITY;
     for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
         const sl_floor_component *c = &fl->comp[k];
         for (size_t s = 0; s < c->nspec; s++) {
             const sl_spectrum *a = &c->spec[s];
+            for (size_t q = s + 1; q < c->nspec; q++)
+                worst(p, 4, &p->order_mean, order_mean(a->sa_ms2, c->spec[q].sa_ms2, a->n), 1, k,
+                      a, 0);
             for (size_t j = 0; a->n >= 2 && j < a->n; j++) {
                 worst(p, 0, &p->spike, spike_ratio(a->sa_ms2, a->n, j), 0, k, a, j);
                 worst(p, 1, &p->dip, dip_ratio(a->sa_ms2, a->n, j), 0, k, a, j);
@@ -602,6 +615,32 @@ static void check_plausible_values(sl_floor_desc *d, const char *u)
     }
 }
 
+/* A lower damping's column on average below a higher one's (two columns or
+ * keys swapped), named at the lower damping's header or key; checked when
+ * no value was refused on its own (a single wrong value is named at its
+ * cell). */
+static void check_order_means(sl_floor_desc *d)
+{
+    const int csv = d->format == SL_FLOOR_CSV;
+    for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
+        const sl_floor_comp_desc *rc = &d->comp[k];
+        for (size_t s = 0; rc->line && s < rc->nsa; s++)
+            for (size_t q = 0; q < rc->nsa; q++) {
+                const sl_floor_sa_desc *a = &rc->sa[s], *b = &rc->sa[q];
+                double m = b->damping > a->damping ? order_mean(a->sa.v, b->sa.v, rc->f.n)
+                                                   : INFINITY;
+                if (m < SL_FLOOR_ORDER_MEAN_MIN)
+                    fail_first(d, SL_EINVAL, a->line, a->col,
+                               "%s: on average over the table (geometric mean) %.3g x the "
+                               "higher damping's %s (%s); a lower damping gives at least %g x a "
+                               "higher one on average: are the %s of the two dampings swapped?",
+                               spec_name(d, k, a).s, m, spec_name(d, k, b).s,
+                               place(b->line, b->col).s, SL_FLOOR_ORDER_MEAN_MIN,
+                               csv ? "column headers" : "keys");
+            }
+    }
+}
+
 void sl_floor_free(sl_floor *fl)
 {
     if (!fl)
@@ -658,6 +697,8 @@ sl_floor *sl_floor_desc_finish(sl_floor_desc *d)
     }
     if (!d->failed)
         check_plausible_values(d, fl->units_text);
+    if (!d->failed)
+        check_order_means(d);
     if (d->failed) {
         sl_floor_free(fl);
         return NULL;

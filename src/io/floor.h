@@ -108,11 +108,17 @@
  * damping's value is below SL_FLOOR_ORDER_MIN times a higher damping's at
  * the same frequency, or above SL_FLOOR_SPREAD_MAX x (z_hi / z_lo) times it
  * (z_hi / z_lo: the ratio of the two dampings, the steady-state resonance
- * amplification ratio). */
+ * amplification ratio), and when a lower damping's column is on average
+ * (geometric mean over the frequencies) below SL_FLOOR_ORDER_MEAN_MIN times
+ * a higher damping's. */
 #define SL_FLOOR_SPIKE_MAX 10.0
 #define SL_FLOOR_DIP_MAX 6.0
 #define SL_FLOOR_ORDER_MIN 0.5
 #define SL_FLOOR_SPREAD_MAX 1.5
+/* A lower damping's spectrum is refused when the geometric mean over the
+ * table's frequencies of SA(lower) / SA(higher) is below this (the columns
+ * or keys of two dampings swapped). */
+#define SL_FLOOR_ORDER_MEAN_MIN 0.9
 /* A table without a given ZPA must reach the rigid range, Hz (the ZPA is
  * read from its end; below this frequency it is not known). */
 #define SL_FLOOR_RIGID_HZ 33.0
@@ -193,9 +199,11 @@ typedef struct sl_floor_plausibility {
     double dip;    /* largest smaller neighbour / value (interior points) */
     double order;  /* smallest SA(lower damping) / SA(higher damping), same frequency */
     double spread; /* largest SA(lower) / SA(higher) / (z_hi / z_lo) */
-    /* where each is: direction, frequency (Hz) and (lower) damping ratio */
-    int at_comp[4];
-    double at_f_hz[4], at_damping[4];
+    double order_mean; /* smallest geometric mean over frequency of SA(lower) / SA(higher) */
+    /* where each is: direction, frequency (Hz; order_mean: the first) and
+     * (lower) damping ratio */
+    int at_comp[5];
+    double at_f_hz[5], at_damping[5];
 } sl_floor_plausibility;
 void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p);
 
