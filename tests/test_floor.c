@@ -273,14 +273,22 @@ static void test_good_small_csv(void)
     sl_floor_free(fl);
 }
 
+/* A fresh folder (dir, a mkdtemp template) and the path of file `name` in
+ * it; 0 when the folder cannot be made. */
+static int tmp_path(char *dir, char *path, size_t n, const char *name)
+{
+    if (!mkdtemp(dir))
+        return 0;
+    snprintf(path, n, "%s/%s", dir, name);
+    return 1;
+}
+
 /* A file larger than SL_FLOOR_MAX_BYTES is refused before it is read; a
  * CSV line longer than any buffer is read. */
 static void test_sizes(void)
 {
-    char dir[] = "/tmp/sl-floor-XXXXXX";
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
-    char path[64];
-    snprintf(path, sizeof path, "%s/huge.csv", dir);
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "huge.csv"), "mkdtemp");
     int fd = open(path, O_CREAT | O_WRONLY | O_TRUNC, 0600);
     CHECK(fd >= 0, "open");
     if (fd < 0)
@@ -377,10 +385,8 @@ static void test_tables_as_saved(void)
  * and at its header. */
 static void test_plausibility_thresholds(void)
 {
-    char dir[] = "/tmp/sl-floor-XXXXXX";
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
-    char path[64];
-    snprintf(path, sizeof path, "%s/t.csv", dir);
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "t.csv"), "mkdtemp");
     const struct {
         const char *what;
         double k_ok, k_bad;
@@ -455,14 +461,11 @@ static void test_zpa_warning(void)
 }
 
 /* UTF-16 without a byte-order mark, big-endian (the fixtures hold the
- * other forms): named as such at line 1; a file with one NUL byte is still
- * "not a text file". */
+ * other forms): named as such at line 1. */
 static void test_utf16_no_bom(void)
 {
-    char dir[] = "/tmp/sl-floor-XXXXXX";
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
-    char path[64];
-    snprintf(path, sizeof path, "%s/be.csv", dir);
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "be.csv"), "mkdtemp");
     const char *text = "# name: t\n# units: g\n";
     FILE *f = fopen(path, "wb");
     CHECK(f != NULL, "fopen");
