@@ -150,6 +150,40 @@ static const struct {
     {"bad-csv-unknown-key.csv", 4, "unknown comment key 'floor_name'", 0},
     {"bad-csv-zpa-h2-same.csv", 4, "zpa_h2 given but H2 is declared the same as H1", 0},
     {"bad-csv-zpa.csv", 4, "zpa_h1: 1e-300 g is 2.5e-300 x the 5 % spectrum's value", 0},
+    /* implausible values, each refused at its cell (floor.h, SL_FLOOR_SPIKE_MAX ...) */
+    {"bad-spike.ini", 10, "[h1] sa_0.02 at 10 Hz: value 500 g is 147 x the larger of its "
+                          "neighbours (3.4 g at 5 Hz)", 0},
+    {"bad-csv-spike.csv", 9, "h1_2 at 10 Hz: value 500 g is 147 x the larger of its neighbours",
+     2},
+    {"bad-csv-dip.csv", 7, "v_5 at 2 Hz: value 0.0069 g is 1/55.1 of the smaller of its "
+                           "neighbours (0.38 g)", 5},
+    {"bad-csv-order.csv", 8, "h1_2 at 5 Hz: value 0.34 g is 0.135 x the higher damping's h1_5 "
+                             "there (2.52 g, line 8, column 3)", 2},
+    {"bad-csv-spread.csv", 5, "h1_2 at 0.5 Hz: value 4.413 g is 13.4 x the higher damping's "
+                              "h1_5 there (0.33 g, line 5, column 3)", 2},
+    {"bad-csv-swapped.csv", 4, "h1_5: on average over the table (geometric mean) 0.782 x the "
+                               "higher damping's h1_10 (line 4, column 3)", 4},
+    /* a table short of the rigid range without zpa */
+    {"bad-short.ini", 8, "[h1] f_hz: the table ends at 25 Hz, below the rigid range (33 Hz), "
+                         "and gives no ZPA, so the floor's ZPA is not known: extend the table "
+                         "to 33 Hz or more, or give zpa", 0},
+    {"bad-csv-short.csv", 10, "f_hz: the table ends at 25 Hz, below the rigid range (33 Hz), and "
+                              "gives no ZPA, so the floor's ZPA is not known: extend the table "
+                              "to 33 Hz or more, or give zpa ('# zpa_h1: <value>')", 1},
+    /* tables as engineers save them: what is refused says how to fix it */
+    {"bad-csv-utf16.csv", 1, "the file is UTF-16LE text, not UTF-8: save it as UTF-8", 0},
+    {"bad-csv-utf16le.csv", 1, "the file is UTF-16LE text, not UTF-8: save it as UTF-8", 0},
+    {"bad-utf16.ini", 1, "the file is UTF-16BE text, not UTF-8: save it as UTF-8", 0},
+    {"bad-csv-units-row.csv", 5, "a units row under the header row ('Hz', 'g', ...): give the "
+                                 "units once, as '# units: g'", 1},
+    {"bad-csv-per-direction.csv", 3, "column '5%' gives a damping but no direction: a floor "
+                                     "file is one file per floor, not per direction", 2},
+    {"bad-csv-period-zero.csv", 5, "T_s: period 0 s (the zero-period acceleration): give it as "
+                                   "'# zpa_h1: <value>'", 1},
+    {"bad-csv-period-order.csv", 7, "T_s: periods must increase (or decrease) strictly: 0.1 "
+                                    "after 0.2", 1},
+    {"bad-csv-decimal-mixed.csv", 6, "h1_5: '2.520,5' mixes ',' and '.'", 2},
+    {"bad-csv-separators.csv", 4, "the header row holds both ',' and ';'", 0},
 };
 #define N_BAD (sizeof bad / sizeof bad[0])
 
@@ -239,14 +273,22 @@ static void test_good_small_csv(void)
     sl_floor_free(fl);
 }
 
+/* A fresh folder (dir, a mkdtemp template) and the path of file `name` in
+ * it; 0 when the folder cannot be made. */
+static int tmp_path(char *dir, char *path, size_t n, const char *name)
+{
+    if (!mkdtemp(dir))
+        return 0;
+    snprintf(path, n, "%s/%s", dir, name);
+    return 1;
+}
+
 /* A file larger than SL_FLOOR_MAX_BYTES is refused before it is read; a
  * CSV line longer than any buffer is read. */
 static void test_sizes(void)
 {
-    char dir[] = "/tmp/sl-floor-XXXXXX";
-    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
-    char path[64];
-    snprintf(path, sizeof path, "%s/huge.csv", dir);
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "huge.csv"), "mkdtemp");
     int fd = open(path, O_CREAT | O_WRONLY | O_TRUNC, 0600);
     CHECK(fd >= 0, "open");
     if (fd < 0)
@@ -291,6 +333,158 @@ static void test_plausible_units_text(void)
     sl_floor_free(fl);
 }
 
+/* Two floors with the same spectra, bit for bit (values, dampings, ZPAs,
+ * name, units); frequencies within rel_f (0: bit for bit). */
+static void check_same_floor(const char *pa, const char *pb, double rel_f)
+{
+    sl_error e;
+    char buf[2200];
+    sl_floor *a = sl_floor_load(pa, &e);
+    CHECK(a != NULL, "%s", sl_error_format(&e, buf, sizeof buf));
+    sl_floor *b = sl_floor_load(pb, &e);
+    CHECK(b != NULL, "%s", sl_error_format(&e, buf, sizeof buf));
+    if (a && b) {
+        CHECK(!strcmp(a->name, b->name) && a->units == b->units &&
+                  a->elevation_m == b->elevation_m,
+              "%s: header", pb);
+        for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
+            const sl_floor_component *ca = &a->comp[k], *cb = &b->comp[k];
+            CHECK(ca->nspec == cb->nspec && ca->zpa_ms2 == cb->zpa_ms2 &&
+                      ca->zpa_given == cb->zpa_given,
+                  "%s %s: dampings or ZPA", pb, sl_floor_comp_name((sl_floor_comp)k));
+            for (size_t q = 0; q < ca->nspec && q < cb->nspec; q++) {
+                const sl_spectrum *x = &ca->spec[q], *y = &cb->spec[q];
+                CHECK(x->n == y->n && x->damping == y->damping, "%s: spectrum %zu", pb, q);
+                for (size_t j = 0; j < x->n && j < y->n; j++) {
+                    CHECK(x->sa_ms2[j] == y->sa_ms2[j], "%s: value %zu/%zu: %.17g vs %.17g", pb,
+                          q, j, x->sa_ms2[j], y->sa_ms2[j]);
+                    CHECK_CLOSE(y->f_hz[j], x->f_hz[j], 0, rel_f);
+                }
+            }
+        }
+    }
+    sl_floor_free(a);
+    sl_floor_free(b);
+}
+
+/* A table as a European spreadsheet saves it (';', decimal commas, comment
+ * rows padded with empty cells, an empty row, CRLF) is the CSV template bit
+ * for bit; a table of periods (T_s, ascending) is the template with its
+ * frequencies 1/T, sorted ascending (within the rounding of 1/T). */
+static void test_tables_as_saved(void)
+{
+    check_same_floor("templates/floor.csv", FLOORS "good-semicolon.csv", 0);
+    check_same_floor("templates/floor.csv", FLOORS "good-periods.csv", 1e-15);
+}
+
+/* The plausibility rules at their thresholds: a table whose one value is
+ * exactly at the limit loads, a hair beyond it is refused at that cell.
+ * Spike (1 Hz) and dip (2 Hz) in v_5; order: the h1_2 cell at 20 Hz k x
+ * h1_10, its others 2 x; spread and order on average: the whole h1_2 column
+ * k x h1_10 (so that only the rule tried can fail), refused at its first row
+ * and at its header. */
+static void test_plausibility_thresholds(void)
+{
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "t.csv"), "mkdtemp");
+    const struct {
+        const char *what;
+        double k_ok, k_bad;
+        long line, col; /* the cell refused */
+    } c[] = {
+        {"spike", SL_FLOOR_SPIKE_MAX, SL_FLOOR_SPIKE_MAX * 1.001, 6, 4},
+        {"dip", SL_FLOOR_DIP_MAX, SL_FLOOR_DIP_MAX * 1.001, 7, 4},
+        {"order", SL_FLOOR_ORDER_MIN, SL_FLOOR_ORDER_MIN / 1.001, 8, 2},
+        {"spread", SL_FLOOR_SPREAD_MAX * 5, SL_FLOOR_SPREAD_MAX * 5 * 1.001, 5, 2},
+        {"order on average", SL_FLOOR_ORDER_MEAN_MIN, SL_FLOOR_ORDER_MEAN_MIN / 1.001, 4, 2},
+    };
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++)
+        for (int beyond = 0; beyond < 2; beyond++) {
+            double k = beyond ? c[i].k_bad : c[i].k_ok;
+            /* h1_2 against h1_10 = 1: order, one cell (20 Hz) k, the others 2; spread and
+             * order on average, the whole column k */
+            double h = i >= 3 ? k : i == 2 ? 2.0 : 1.0, h20 = i >= 2 ? k : h;
+            double v1 = i == 0 ? k : 1.0, v2 = i == 1 ? 1.0 / k : 1.0; /* v_5 */
+            FILE *f = fopen(path, "w");
+            CHECK(f != NULL, "fopen");
+            if (!f)
+                return;
+            fprintf(f, "# name: t\n# units: g\n# h2: same_as_h1\nf_hz,h1_2,h1_10,v_5\n"
+                       "0.5,%.17g,1,1\n1,%.17g,1,%.17g\n2,%.17g,1,%.17g\n20,%.17g,1,1\n"
+                       "33,%.17g,1,1\n",
+                    h, h, v1, h, v2, h20, h);
+            fclose(f);
+            sl_error e;
+            sl_error_clear(&e);
+            sl_floor *fl = sl_floor_load(path, &e);
+            if (beyond)
+                CHECK(!fl && e.line == c[i].line && e.col == c[i].col,
+                      "%s at %.17g: refused at %ld:%ld (%s)", c[i].what, k, e.line, e.col,
+                      e.msg);
+            else
+                CHECK(fl != NULL, "%s at the limit %.17g refused: %s", c[i].what, k, e.msg);
+            sl_floor_free(fl);
+        }
+    remove(path);
+    rmdir(dir);
+}
+
+/* An unusual ZPA: the warning names the units as written (and the key as
+ * the format writes it) and the ZPA; a usual one gives none. */
+static void test_zpa_warning(void)
+{
+    char w[600];
+    /* a 0.39 g floor in g labelled m/s2; in m/s2 labelled g */
+    CHECK(sl_floor_zpa_warning_text(0.39, "m/s2", SL_FLOOR_INI, w, sizeof w) == 1 &&
+              strstr(w, "units = m/s2 gives a horizontal ZPA of 0.0398 g, unusual for a floor"),
+          "low: '%s'", w);
+    CHECK(sl_floor_zpa_warning_text(0.39 * SL_G * SL_G, "g", SL_FLOOR_CSV, w, sizeof w) == 1 &&
+              strstr(w, "# units: g gives a horizontal ZPA of 3.82 g, unusual for a floor"),
+          "high: '%s'", w);
+    CHECK(sl_floor_zpa_warning_text(0.39 * SL_G, "g", SL_FLOOR_INI, w, sizeof w) == 0 && !w[0],
+          "usual: '%s'", w);
+    CHECK(sl_floor_zpa_warning_text(SL_FLOOR_ZPA_WARN_MIN_G * SL_G, "g", SL_FLOOR_INI, w,
+                                    sizeof w) == 0 &&
+              sl_floor_zpa_warning_text(SL_FLOOR_ZPA_WARN_MAX_G * SL_G, "g", SL_FLOOR_INI, w,
+                                        sizeof w) == 0,
+          "the band's ends are usual");
+    CHECK(sl_floor_zpa_warning_text(SL_FLOOR_ZPA_WARN_MIN_G * SL_G * 0.999, "g", SL_FLOOR_INI,
+                                    w, sizeof w) == 1 &&
+              sl_floor_zpa_warning_text(SL_FLOOR_ZPA_WARN_MAX_G * SL_G * 1.001, "g",
+                                        SL_FLOOR_INI, w, sizeof w) == 1,
+          "just outside the band");
+    /* from a floor read: its larger horizontal ZPA (the template: 0.36 g) */
+    sl_error e;
+    sl_floor *fl = sl_floor_load("templates/floor.ini", &e);
+    CHECK(fl && sl_floor_zpa_warning(fl, w, sizeof w) == 0, "template warned: '%s'", w);
+    sl_floor_free(fl);
+}
+
+/* UTF-16 without a byte-order mark, big-endian (the fixtures hold the
+ * other forms): named as such at line 1. */
+static void test_utf16_no_bom(void)
+{
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "be.csv"), "mkdtemp");
+    const char *text = "# name: t\n# units: g\n";
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL, "fopen");
+    if (!f)
+        return;
+    for (const char *p = text; *p; p++) {
+        fputc(0, f);
+        fputc(*p, f);
+    }
+    fclose(f);
+    sl_error e;
+    sl_error_clear(&e);
+    CHECK(!sl_floor_load(path, &e) && e.line == 1 &&
+              strstr(e.msg, "the file is UTF-16BE text, not UTF-8"),
+          "BE without BOM: %s", e.msg);
+    remove(path);
+    rmdir(dir);
+}
+
 /* Every bad-*.ini fixture is in the table above. */
 static void test_every_fixture_listed(void)
 {
@@ -330,6 +524,10 @@ int main(void)
     RUN(test_good_small_csv);
     RUN(test_sizes);
     RUN(test_plausible_units_text);
+    RUN(test_tables_as_saved);
+    RUN(test_plausibility_thresholds);
+    RUN(test_zpa_warning);
+    RUN(test_utf16_no_bom);
     RUN(test_every_fixture_listed);
     RUN(test_missing_file);
     return HARNESS_END("floor");

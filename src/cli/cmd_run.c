@@ -182,7 +182,7 @@ static sl_status write_shard(const sl_plant *p, const char *dir, const run_args 
 int cmd_run(int argc, char **argv)
 {
     const char *dflt[] = {"floors"};
-    char cmdline[8192], date[32], warn[4096], cache_dir[4400];
+    char cmdline[8192], date[32], warn[16384], cache_dir[4400];
     static sl_plant plant; /* large: not on the stack */
     unsigned char *mine = NULL;
     sl_atomic_dir *out = NULL;
@@ -216,8 +216,11 @@ int cmd_run(int argc, char **argv)
         if ((rc = cli_outdir_apart_floor("run", a.out, plant.floors[i].path, plant.is_plant)))
             goto done;
     rc = CLI_EXIT_ERROR;
-    if (warn[0])
-        cli_msg("run: warning (--force): %s", warn);
+    for (const char *w = warn; *w;) { /* one line each: file:line: text */
+        size_t len = strcspn(w, "\n");
+        cli_msg("run: warning: %.*s", (int)len, w);
+        w += len + (w[len] == '\n');
+    }
     if (a.shard_n)
         sl_plant_assign(&plant, a.shard_n);
     /* a run killed just before its swap left the cache in its fresh folder */

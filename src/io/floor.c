@@ -248,6 +248,75 @@ int sl_floor_desc_set_zpa(sl_floor_desc *d, sl_floor_comp c, const char *key, co
     return sl_floor_desc_number(d, key, tok, line, col, &rc->zpa);
 }
 
+/* ---- plausibility ratios (floor.h, SL_FLOOR_SPIKE_MAX ...) ----------- */
+
+/* v[j] over the larger of its neighbours (at an end: its one neighbour). */
+static double spike_ratio(const double *v, size_t n, size_t j)
+{
+    double nb = j == 0 ? v[1] : j == n - 1 ? v[n - 2] : fmax(v[j - 1], v[j + 1]);
+    return v[j] / nb;
+}
+
+/* The smaller neighbour of v[j] over v[j] (interior points; 0 at an end). */
+static double dip_ratio(const double *v, size_t n, size_t j)
+{
+    return j == 0 || j == n - 1 ? 0.0 : fmin(v[j - 1], v[j + 1]) / v[j];
+}
+
+/* SA(lower damping z_lo) / SA(higher damping z_hi), over z_hi / z_lo. */
+static double spread_ratio(double sa_lo, double z_lo, double sa_hi, double z_hi)
+{
+    return sa_lo / sa_hi / (z_hi / z_lo);
+}
+
+/* The geometric mean over n frequencies of lo[j] / hi[j]. */
+static double order_mean(const double *lo, const double *hi, size_t n)
+{
+    double sum = 0.0;
+    for (size_t j = 0; j < n; j++)
+        sum += log(lo[j] / hi[j]);
+    return exp(sum / (double)n);
+}
+
+/* Keep x as the worst (i: which ratio) when it is worse than *w. */
+static void worst(sl_floor_plausibility *p, int i, double *w, double x, int lower_is_worse,
+                  int k, const sl_spectrum *a, size_t j)
+{
+    if (lower_is_worse ? x < *w : x > *w) {
+        *w = x;
+        p->at_comp[i] = k;
+        p->at_f_hz[i] = a->f_hz[j];
+        p->at_damping[i] = a->damping;
+    }
+}
+
+void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p)
+{
+    memset(p, 0, sizeof *p);
+    p->order = INFINITY;
+    p->order_mean = INFINITY;
+    for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
+        const sl_floor_component *c = &fl->comp[k];
+        for (size_t s = 0; s < c->nspec; s++) {
+            const sl_spectrum *a = &c->spec[s];
+            for (size_t q = s + 1; q < c->nspec; q++)
+                worst(p, 4, &p->order_mean, order_mean(a->sa_ms2, c->spec[q].sa_ms2, a->n), 1, k,
+                      a, 0);
+            for (size_t j = 0; a->n >= 2 && j < a->n; j++) {
+                worst(p, 0, &p->spike, spike_ratio(a->sa_ms2, a->n, j), 0, k, a, j);
+                worst(p, 1, &p->dip, dip_ratio(a->sa_ms2, a->n, j), 0, k, a, j);
+                for (size_t q = s + 1; q < c->nspec; q++) { /* ascending damping */
+                    const sl_spectrum *b = &c->spec[q];
+                    worst(p, 2, &p->order, a->sa_ms2[j] / b->sa_ms2[j], 1, k, a, j);
+                    worst(p, 3, &p->spread,
+                          spread_ratio(a->sa_ms2[j], a->damping, b->sa_ms2[j], b->damping), 0, k,
+                          a, j);
+                }
+            }
+        }
+    }
+}
+
 /* ---- the checks (one path for every format) ------------------------- */
 
 /* H2 is given as its own spectra (INI [h2], CSV h2_ columns). */
@@ -447,6 +516,131 @@ static int build_comp(sl_floor_desc *d, const sl_floor_comp_desc *rc, sl_floor_c
     return 1;
 }
 
+/* "h1_2" (CSV) or "[h1] sa_0.02" (INI): the column or key of a spectrum. */
+static where spec_name(const sl_floor_desc *d, int k, const sl_floor_sa_desc *sa)
+{
+    where w;
+    if (d->format == SL_FLOOR_CSV)
+        snprintf(w.s, sizeof w.s, "%s", sa->key);
+    else
+        snprintf(w.s, sizeof w.s, "[%s] %s", comp_names[k], sa->key);
+    return w;
+}
+
+/* The rigid range and the plausibility of the values against their own
+ * column and the other dampings of their direction (floor.h,
+ * SL_FLOOR_SPIKE_MAX ...); the earliest refusal in the file wins. */
+static void check_plausible_values(sl_floor_desc *d, const char *u)
+{
+    const int csv = d->format == SL_FLOOR_CSV;
+    for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
+        const sl_floor_comp_desc *rc = &d->comp[k];
+        if (!rc->line)
+            continue; /* H2 declared the same as H1 */
+        const size_t n = rc->f.n;
+        const double *f = rc->f.v;
+        char period[64] = "";
+        if (d->periods)
+            snprintf(period, sizeof period, " (its shortest period is %g s)", 1 / f[n - 1]);
+        if (!rc->zpa_line && f[n - 1] < SL_FLOOR_RIGID_HZ)
+            fail_first(d, SL_EINVAL, rc->f.line[n - 1], rc->f.col[n - 1],
+                       "%s%s%s: the table ends at %g Hz%s, below the rigid range (%g Hz), "
+                       "and gives no ZPA, so the floor's ZPA is not known: extend the table to "
+                       "%g Hz or more, or give zpa (%s)",
+                       csv ? "" : "[", csv ? (d->periods ? "T_s" : "f_hz") : comp_names[k],
+                       csv ? "" : "] f_hz", f[n - 1], period, SL_FLOOR_RIGID_HZ,
+                       SL_FLOOR_RIGID_HZ,
+                       csv ? (k == SL_FLOOR_H1 ? "'# zpa_h1: <value>'"
+                              : k == SL_FLOOR_H2 ? "'# zpa_h2: <value>'" : "'# zpa_v: <value>'")
+                           : "'zpa = <value>' in the section");
+        for (size_t s = 0; s < rc->nsa; s++) {
+            const sl_floor_sa_desc *a = &rc->sa[s];
+            const double *v = a->sa.v;
+            where name = spec_name(d, k, a);
+            for (size_t j = 0; j < n; j++) {
+                const long line = a->sa.line[j], col = a->sa.col[j];
+                double r = spike_ratio(v, n, j);
+                if (r > SL_FLOOR_SPIKE_MAX) {
+                    fail_first(d, SL_EINVAL, line, col,
+                               "%s at %g Hz: value %g %s is %.3g x %s (%g %s at %g Hz); a "
+                               "floor spectrum does not jump more than %g x from one frequency "
+                               "of its table to the next: check the value (a typo or a "
+                               "misplaced decimal point)",
+                               name.s, f[j], v[j], u, r,
+                               j == 0 || j == n - 1 ? "its neighbour" : "the larger of its "
+                                                                        "neighbours",
+                               v[j] / r, u,
+                               j == 0 ? f[1]
+                               : j == n - 1 ? f[n - 2]
+                               : v[j - 1] > v[j + 1] ? f[j - 1] : f[j + 1],
+                               SL_FLOOR_SPIKE_MAX);
+                    continue;
+                }
+                r = dip_ratio(v, n, j);
+                if (r > SL_FLOOR_DIP_MAX)
+                    fail_first(d, SL_EINVAL, line, col,
+                               "%s at %g Hz: value %g %s is 1/%.3g of the smaller of its "
+                               "neighbours (%g %s); a floor spectrum does not drop more than "
+                               "%g x between neighbouring frequencies of its table: check the "
+                               "value (a typo or a misplaced decimal point)",
+                               name.s, f[j], v[j], u, r, v[j] * r, u, SL_FLOOR_DIP_MAX);
+                for (size_t q = 0; q < rc->nsa; q++) {
+                    const sl_floor_sa_desc *b = &rc->sa[q];
+                    if (!(b->damping > a->damping))
+                        continue;
+                    const double w = b->sa.v[j];
+                    where bn = spec_name(d, k, b);
+                    if (v[j] < SL_FLOOR_ORDER_MIN * w)
+                        fail_first(d, SL_EINVAL, line, col,
+                                   "%s at %g Hz: value %g %s is %.3g x the higher damping's "
+                                   "%s there (%g %s, %s); a lower damping gives at least %g x "
+                                   "a higher one: check the value and the %s",
+                                   name.s, f[j], v[j], u, v[j] / w, bn.s, w, u,
+                                   place(b->sa.line[j], b->sa.col[j]).s, SL_FLOOR_ORDER_MIN,
+                                   csv ? "column headers" : "keys");
+                    else if (spread_ratio(v[j], a->damping, w, b->damping) > SL_FLOOR_SPREAD_MAX)
+                        fail_first(d, SL_EINVAL, line, col,
+                                   "%s at %g Hz: value %g %s is %.3g x the higher damping's "
+                                   "%s there (%g %s, %s); a floor spectrum at damping %g %% is "
+                                   "at most %g x (%g / %g) = %.3g x that at %g %%: check the "
+                                   "value and the units of the %s",
+                                   name.s, f[j], v[j], u, v[j] / w, bn.s, w, u,
+                                   place(b->sa.line[j], b->sa.col[j]).s, 100 * a->damping,
+                                   SL_FLOOR_SPREAD_MAX, 100 * b->damping, 100 * a->damping,
+                                   SL_FLOOR_SPREAD_MAX * b->damping / a->damping,
+                                   100 * b->damping, csv ? "column" : "list");
+                }
+            }
+        }
+    }
+}
+
+/* A lower damping's column on average below a higher one's (two columns or
+ * keys swapped), named at the lower damping's header or key; checked when
+ * no value was refused on its own (a single wrong value is named at its
+ * cell). */
+static void check_order_means(sl_floor_desc *d)
+{
+    const int csv = d->format == SL_FLOOR_CSV;
+    for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
+        const sl_floor_comp_desc *rc = &d->comp[k];
+        for (size_t s = 0; rc->line && s < rc->nsa; s++)
+            for (size_t q = 0; q < rc->nsa; q++) {
+                const sl_floor_sa_desc *a = &rc->sa[s], *b = &rc->sa[q];
+                double m = b->damping > a->damping ? order_mean(a->sa.v, b->sa.v, rc->f.n)
+                                                   : INFINITY;
+                if (m < SL_FLOOR_ORDER_MEAN_MIN)
+                    fail_first(d, SL_EINVAL, a->line, a->col,
+                               "%s: on average over the table (geometric mean) %.3g x the "
+                               "higher damping's %s (%s); a lower damping gives at least %g x a "
+                               "higher one on average: are the %s of the two dampings swapped?",
+                               spec_name(d, k, a).s, m, spec_name(d, k, b).s,
+                               place(b->line, b->col).s, SL_FLOOR_ORDER_MEAN_MIN,
+                               csv ? "column headers" : "keys");
+            }
+    }
+}
+
 void sl_floor_free(sl_floor *fl)
 {
     if (!fl)
@@ -501,6 +695,10 @@ sl_floor *sl_floor_desc_finish(sl_floor_desc *d)
         int src = (k == SL_FLOOR_H2 && fl->h2_same_as_h1) ? SL_FLOOR_H1 : k;
         build_comp(d, &d->comp[src], &fl->comp[k], fl->units, fl->units_text);
     }
+    if (!d->failed)
+        check_plausible_values(d, fl->units_text);
+    if (!d->failed)
+        check_order_means(d);
     if (d->failed) {
         sl_floor_free(fl);
         return NULL;
@@ -564,6 +762,34 @@ sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err)
                             SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G);
     }
     return SL_OK;
+}
+
+int sl_floor_zpa_warning_text(double zpa_h_ms2, const char *units_text, sl_floor_format fmt,
+                              char *buf, size_t n)
+{
+    const double h = zpa_h_ms2 / SL_G;
+    if (n)
+        buf[0] = '\0';
+    if (!(h < SL_FLOOR_ZPA_WARN_MIN_G || h > SL_FLOOR_ZPA_WARN_MAX_G))
+        return 0;
+    const int low = h < SL_FLOOR_ZPA_WARN_MIN_G;
+    snprintf(buf, n,
+             "%s %s gives a horizontal ZPA of %.3g g, unusual for a floor (a floor's ZPA is "
+             "usually %g-%g g): check that the values are in %s%s",
+             fmt == SL_FLOOR_CSV ? "# units:" : "units =", units_text, h,
+             SL_FLOOR_ZPA_WARN_MIN_G, SL_FLOOR_ZPA_WARN_MAX_G, units_text,
+             low ? " (values in g labelled m/s2 give 1/9.81 of the ZPA)"
+                 : " (values in m/s2 labelled g give 9.81 x the ZPA)");
+    return 1;
+}
+
+int sl_floor_zpa_warning(const sl_floor *fl, char *buf, size_t n)
+{
+    const char *u = fl->units_text && fl->units_text[0] ? fl->units_text
+                                                        : sl_unit_name(fl->units);
+    return sl_floor_zpa_warning_text(
+        fmax(fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2), u, fl->format, buf,
+        n);
 }
 
 /* A floor file in a folder listing: *.ini or *.csv (any case), not hidden. */

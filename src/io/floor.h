@@ -34,7 +34,12 @@
  * zpa_h1, zpa_h2, zpa_v), then a header row "f_hz,h1_5,h1_10,h2_5,...,v_2"
  * (<h1|h2|v>_<damping in percent>), then one row per frequency. Every cell
  * holds a number (an empty cell is an error). Errors name file:line:column
- * (column = 1-based field of the row).
+ * (column = 1-based field of the row). The first column may be T_s
+ * (periods, s; turned into 1/T in ascending order); a header row with ';'
+ * and no ',' makes ';' the separator and a comma the decimal mark (a
+ * European spreadsheet's CSV). UTF-16 text is refused as such (both
+ * formats), and so, each with how to fix it, a table of one direction and
+ * a row of units under the header.
  *
  * Validation, the same for both formats (one checking path, floor.c; every
  * error names the file and the line): [floor], [h1], [v] (or their
@@ -46,7 +51,10 @@
  * refused before it is read, and a file with a NUL byte is "not a text
  * file"; damping ratios in (0, 1), each once per direction; units known;
  * name not empty; a given ZPA within SL_FLOOR_ZPA_END_MIN-SL_FLOOR_ZPA_END_MAX
- * of the spectrum's high-frequency end (below).
+ * of the spectrum's high-frequency end (below); without a given ZPA the
+ * table reaches SL_FLOOR_RIGID_HZ; every value plausible against its
+ * neighbours and the other dampings of its direction (SL_FLOOR_SPIKE_MAX,
+ * SL_FLOOR_DIP_MAX, SL_FLOOR_ORDER_MIN, SL_FLOOR_SPREAD_MAX).
  *
  * Zero-period acceleration of a component: the `zpa` key (CSV: `# zpa_h1:`)
  * when given, else the largest over its dampings of the value at its
@@ -92,6 +100,33 @@
  * its highest frequency, at its lowest damping. */
 #define SL_FLOOR_ZPA_END_MIN 0.8
 #define SL_FLOOR_ZPA_END_MAX 1.25
+/* Plausibility of the spectral values (docs/formats-floor.md,
+ * "Plausibility"; thresholds from the worst ratios measured on physical
+ * floor spectra, tools/plausfloors.c, with a margin). A value is refused
+ * when it is more than SL_FLOOR_SPIKE_MAX times the larger of its two
+ * neighbours in its column (at an end: its one neighbour), when the smaller
+ * of its two neighbours is more than SL_FLOOR_DIP_MAX times it, when a lower
+ * damping's value is below SL_FLOOR_ORDER_MIN times a higher damping's at
+ * the same frequency, or above SL_FLOOR_SPREAD_MAX x (z_hi / z_lo) times it
+ * (z_hi / z_lo: the ratio of the two dampings, the steady-state resonance
+ * amplification ratio), and when a lower damping's column is on average
+ * (geometric mean over the frequencies) below SL_FLOOR_ORDER_MEAN_MIN times
+ * a higher damping's. */
+#define SL_FLOOR_SPIKE_MAX 10.0
+#define SL_FLOOR_DIP_MAX 6.0
+#define SL_FLOOR_ORDER_MIN 0.5
+#define SL_FLOOR_SPREAD_MAX 1.5
+/* A lower damping's spectrum is refused when the geometric mean over the
+ * table's frequencies of SA(lower) / SA(higher) is below this (the columns
+ * or keys of two dampings swapped). */
+#define SL_FLOOR_ORDER_MEAN_MIN 0.9
+/* A table without a given ZPA must reach the rigid range, Hz (the ZPA is
+ * read from its end; below this frequency it is not known). */
+#define SL_FLOOR_RIGID_HZ 33.0
+/* A horizontal ZPA outside this band (inside SL_FLOOR_ZPA_MIN_G-MAX_G) is
+ * unusual for a floor: a warning, not an error (sl_floor_zpa_warning). */
+#define SL_FLOOR_ZPA_WARN_MIN_G 0.05
+#define SL_FLOOR_ZPA_WARN_MAX_G 3.0
 /* The damping of the spectra the ASCE/SEI 43-05 method uses. */
 #define SL_FLOOR_ASCE_DAMPING SL_ASCE_DAMPING /* core/standards.h */
 
@@ -144,6 +179,34 @@ SL_API sl_floor *sl_floor_load(const char *path, sl_error *err);
  * outside SL_FLOOR_ZPA_MIN_G-SL_FLOOR_ZPA_MAX_G (e.g. units = gal on values
  * in g). The caller decides whether that stops the run. */
 SL_API sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
+
+/* An unusual horizontal ZPA (SL_FLOOR_ZPA_WARN_MIN_G-MAX_G; floor.h): when
+ * zpa_h_ms2 lies outside that band, writes into buf (size n) the warning
+ * "units = m/s2 gives a horizontal ZPA of 0.0398 g, unusual for a floor
+ * (...)", naming the units as written (units_text) the way the file of
+ * format fmt writes the key, and returns 1; else buf "" and 0. The run's
+ * stderr and the workbook's Notes both use it. */
+int sl_floor_zpa_warning_text(double zpa_h_ms2, const char *units_text, sl_floor_format fmt,
+                              char *buf, size_t n);
+
+/* The same for a floor read (its larger horizontal ZPA, units and
+ * format). */
+int sl_floor_zpa_warning(const sl_floor *fl, char *buf, size_t n);
+
+/* The worst ratios of a floor's values (the quantities the plausibility
+ * rules bound, above), over every direction, damping and frequency. */
+typedef struct sl_floor_plausibility {
+    double spike;  /* largest value / larger neighbour (ends: the one neighbour) */
+    double dip;    /* largest smaller neighbour / value (interior points) */
+    double order;  /* smallest SA(lower damping) / SA(higher damping), same frequency */
+    double spread; /* largest SA(lower) / SA(higher) / (z_hi / z_lo) */
+    double order_mean; /* smallest geometric mean over frequency of SA(lower) / SA(higher) */
+    /* where each is: direction, frequency (Hz; order_mean: the first) and
+     * (lower) damping ratio */
+    int at_comp[5];
+    double at_f_hz[5], at_damping[5];
+} sl_floor_plausibility;
+void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p);
 
 /* The format a path names by its extension: SL_FLOOR_CSV for .csv (any
  * case), else SL_FLOOR_INI. */

@@ -25,6 +25,8 @@ typedef struct csv {
     const char *b;
     size_t len, pos;
     long line;         /* line of b[pos] */
+    char sep;          /* the field separator: ',' or ';' (from the header row) */
+    int periods;       /* 1: the first column is T_s (periods, s) */
 } csv;
 
 /* One parsed record: n fields, each a NUL-terminated copy in buf. */
@@ -147,13 +149,13 @@ static int read_record(csv *c, record *r)
             }
             while (c->pos < c->len && (c->b[c->pos] == ' ' || c->b[c->pos] == '\t'))
                 c->pos++;
-            if (!at_eol(c) && c->b[c->pos] != ',')
+            if (!at_eol(c) && c->b[c->pos] != c->sep)
                 return sl_floor_desc_fail(c->d, SL_EPARSE, c->line, col,
                                           "text after the closing quote of a field (a quote "
                                           "inside a quoted field is written \"\")");
         } else {
             size_t start = c->pos;
-            while (!at_eol(c) && c->b[c->pos] != ',') {
+            while (!at_eol(c) && c->b[c->pos] != c->sep) {
                 if (c->b[c->pos] == '"')
                     return sl_floor_desc_fail(c->d, SL_EPARSE, c->line, col,
                                               "a quote inside an unquoted field (quote the "
@@ -169,7 +171,7 @@ static int read_record(csv *c, record *r)
         }
         if (!put(c, r, '\0'))
             return 0;
-        if (c->pos < c->len && c->b[c->pos] == ',') {
+        if (c->pos < c->len && c->b[c->pos] == c->sep) {
             c->pos++;
             continue;
         }
@@ -190,10 +192,11 @@ static void take_line(csv *c, const char **s, size_t *n)
     eat_eol(c);
 }
 
-static int blank_line(const char *s, size_t n)
+/* Blank, or only separators and blanks (a spreadsheet's empty row). */
+static int blank_line(const csv *c, const char *s, size_t n)
 {
     for (size_t i = 0; i < n; i++)
-        if (s[i] != ' ' && s[i] != '\t')
+        if (s[i] != ' ' && s[i] != '\t' && s[i] != c->sep)
             return 0;
     return 1;
 }
@@ -236,6 +239,31 @@ static int check_bytes(csv *c)
     return 1;
 }
 
+/* A number written with a decimal comma (a table separated by ';', as a
+ * European spreadsheet saves it): the comma becomes a point in place. 1, or
+ * 0 when the token holds both a comma and a point, or two commas (a
+ * thousands separator: ambiguous, refused by the caller). */
+static int decimal_comma(char *tok)
+{
+    char *comma = strchr(tok, ',');
+    if (!comma)
+        return 1;
+    if (strchr(tok, '.') || strchr(comma + 1, ','))
+        return 0;
+    *comma = '.';
+    return 1;
+}
+
+static int fail_decimal(csv *c, const char *key, const char *tok, long line, long col)
+{
+    sl_quoted q = sl_text_quote(tok, strlen(tok));
+    return sl_floor_desc_fail(c->d, SL_EPARSE, line, col,
+                              "%s: '%s' mixes ',' and '.' (or holds two commas): in a table "
+                              "separated by ';' write numbers with one decimal comma and no "
+                              "thousands separator, e.g. 0,36",
+                              key, q.s);
+}
+
 /* A "# ..." line before the header: "# key: value" sets a key (an unknown
  * key is an error); a comment whose first word is not followed by ':' is
  * free text. */
@@ -257,12 +285,17 @@ static int comment_line(csv *c, const char *s, size_t n, long line)
     const char *v = s + i + 1;
     size_t vn = n - i - 1;
     sl_text_trim(&v, &vn);
+    while (vn > 0 && (v[vn - 1] == c->sep || v[vn - 1] == ' ' || v[vn - 1] == '\t'))
+        vn--; /* a spreadsheet pads a comment row with empty cells: "# units: g;;;" */
     char *value = sl_text_dup_mem(v, vn);
     if (!value)
         return sl_floor_desc_fail(c->d, SL_ENOMEM, line, 0, "out of memory");
     int ok;
     sl_floor_key fk = sl_floor_desc_key(key);
-    if (fk != SL_FK_COUNT) {
+    int numeric = fk == SL_FK_ELEV || !strncmp(key, "zpa_", 4);
+    if (numeric && c->sep == ';' && !decimal_comma(value)) {
+        ok = fail_decimal(c, key, value, line, 0);
+    } else if (fk != SL_FK_COUNT) {
         ok = sl_floor_desc_set(c->d, fk, value, line, 0);
     } else {
         int z = -1;
@@ -291,6 +324,22 @@ static int comment_line(csv *c, const char *s, size_t n, long line)
     return ok;
 }
 
+/* A column name that gives a damping and no direction: "5", "5%", "5 %",
+ * "sa_5", "SA 5%", "damping_5", "zeta=0.05" (a table of one direction). */
+static int bare_damping(const char *name)
+{
+    const char *p = name;
+    while (isalpha((unsigned char)*p))
+        p++;
+    while (*p == '_' || *p == ' ' || *p == '-' || *p == '=' || *p == '(' || *p == '[')
+        p++;
+    size_t n = strlen(p);
+    while (n > 0 && (p[n - 1] == '%' || p[n - 1] == ' ' || p[n - 1] == ')' || p[n - 1] == ']'))
+        n--;
+    double x;
+    return n > 0 && sl_text_parse_num(p, n, &x) == SL_NUM_OK;
+}
+
 /* The header row: f_hz first, then <h1|h2|v>_<damping %> columns.
  * sa[k] is the spectrum of column k (NULL for f_hz). */
 static int header_row(csv *c, const record *r, long line, sl_floor_sa_desc **sa,
@@ -302,16 +351,20 @@ static int header_row(csv *c, const record *r, long line, sl_floor_sa_desc **sa,
         sa[k] = NULL;
         if (!*name)
             return sl_floor_desc_fail(c->d, SL_EPARSE, line, col, "empty column name");
-        if (!strcasecmp(name, "f_hz")) {
+        if (!strcasecmp(name, "f_hz") || !strcasecmp(name, "t_s")) {
             if (k != 0)
                 return sl_floor_desc_fail(c->d, SL_EPARSE, line, col,
-                                          "column 'f_hz' again (the first column is the only "
-                                          "frequency column)");
+                                          "column '%s' again (the first column is the only "
+                                          "frequency or period column)",
+                                          name);
+            c->periods = !strcasecmp(name, "t_s");
+            c->d->periods = c->periods;
             continue;
         }
         if (k == 0)
             return sl_floor_desc_fail(c->d, SL_EPARSE, line, col,
-                                      "first column '%s': it must be 'f_hz' (frequency, Hz)",
+                                      "first column '%s': it must be 'f_hz' (frequency, Hz) or "
+                                      "'T_s' (period, s)",
                                       sl_text_quote(name, strlen(name)).s);
         const char *us = strchr(name, '_');
         int q = -1;
@@ -321,6 +374,15 @@ static int header_row(csv *c, const record *r, long line, sl_floor_sa_desc **sa,
                 q = j;
         }
         sl_quoted qn = sl_text_quote(name, strlen(name));
+        if (q < 0 && bare_damping(name))
+            return sl_floor_desc_fail(c->d, SL_EPARSE, line, col,
+                                      "column '%s' gives a damping but no direction: a floor "
+                                      "file is one file per floor, not per direction; put the "
+                                      "H1, H2 and V tables of the floor side by side in one "
+                                      "file, the columns named h1_<damping %%>, h2_<damping %%> "
+                                      "and v_<damping %%> (e.g. h1_5, h2_5, v_5), or declare "
+                                      "'# h2: same_as_h1'",
+                                      qn.s);
         if (q < 0)
             return sl_floor_desc_fail(c->d, SL_EPARSE, line, col,
                                       "unknown column '%s' (expected h1_<damping %%>, "
@@ -358,7 +420,30 @@ static int header_row(csv *c, const record *r, long line, sl_floor_sa_desc **sa,
 }
 
 /* One row per frequency: as many cells as header columns, each a number. */
-static int data_row(csv *c, const record *r, size_t ncol, sl_floor_sa_desc **sa)
+/* The first row under the header names units rather than numbers: its
+ * first cell is not a number and some cell reads as a unit ("Hz", "(g)",
+ * "[m/s2]", "s"). */
+static int units_row(const record *r)
+{
+    double x;
+    const char *c0 = field(r, 0);
+    if (!*c0 || sl_text_parse_num(c0, strlen(c0), &x) == SL_NUM_OK)
+        return 0;
+    for (size_t k = 0; k < r->n; k++) {
+        const char *s = field(r, k);
+        size_t n = strlen(s);
+        while (n > 0 && (*s == '(' || *s == '[' || *s == ' '))
+            s++, n--;
+        while (n > 0 && (s[n - 1] == ')' || s[n - 1] == ']' || s[n - 1] == ' '))
+            n--;
+        if ((n == 2 && !strncasecmp(s, "hz", 2)) || (n == 1 && (*s == 's' || *s == 'S')) ||
+            (n > 0 && sl_text_unit(s, n) != SL_UNIT_NONE))
+            return 1;
+    }
+    return 0;
+}
+
+static int data_row(csv *c, const record *r, size_t ncol, sl_floor_sa_desc **sa, int first)
 {
     long line = r->line[0];
     if (r->n != ncol) {
@@ -367,17 +452,40 @@ static int data_row(csv *c, const record *r, size_t ncol, sl_floor_sa_desc **sa)
                                   (long)at + 1,
                                   "ragged row: %zu cells, the header row has %zu", r->n, ncol);
     }
+    if (first && units_row(r))
+        return sl_floor_desc_fail(c->d, SL_EPARSE, line, 1,
+                                  "a units row under the header row ('%s', '%s', ...): give the "
+                                  "units once, as '# units: g' (or m/s2, cm/s2, gal, mm/s2) "
+                                  "above the header row, and delete this row (frequencies are "
+                                  "in Hz in column f_hz, periods in s in column T_s)",
+                                  sl_text_quote(field(r, 0), strlen(field(r, 0))).s,
+                                  sl_text_quote(field(r, 1), strlen(field(r, 1))).s);
     for (size_t k = 0; k < r->n; k++) {
-        const char *cell = field(r, k);
+        char *cell = r->buf + r->off[k];
         long col = (long)k + 1;
-        const char *key = sa[k] ? sa[k]->key : "f_hz";
+        const char *key = sa[k] ? sa[k]->key : c->periods ? "T_s" : "f_hz";
         if (!*cell)
             return sl_floor_desc_fail(c->d, SL_EPARSE, r->line[k], col,
                                       "%s: empty cell (every row gives every column a value)",
                                       key);
+        if (c->sep == ';' && !decimal_comma(cell))
+            return fail_decimal(c, key, cell, r->line[k], col);
         double x;
         if (!sl_floor_desc_number(c->d, key, cell, r->line[k], col, &x))
             return 0;
+        if (!sa[k] && c->periods) {
+            if (x == 0)
+                return sl_floor_desc_fail(c->d, SL_EINVAL, r->line[k], col,
+                                          "T_s: period 0 s (the zero-period acceleration): give "
+                                          "it as '# zpa_h1: <value>' (zpa_h2, zpa_v) lines above "
+                                          "the header row and delete this row");
+            if (!(x >= 1 / SL_FLOOR_F_MAX_HZ && x <= 1 / SL_FLOOR_F_MIN_HZ))
+                return sl_floor_desc_fail(c->d, SL_EINVAL, r->line[k], col,
+                                          "T_s: period %g s outside %g-%g s (frequencies "
+                                          "%g-%g Hz)",
+                                          x, 1 / SL_FLOOR_F_MAX_HZ, 1 / SL_FLOOR_F_MIN_HZ,
+                                          SL_FLOOR_F_MIN_HZ, SL_FLOOR_F_MAX_HZ);
+        }
         int ok = 1;
         if (sa[k]) {
             ok = sl_floor_desc_push(c->d, &sa[k]->sa, x, r->line[k], col);
@@ -392,11 +500,98 @@ static int data_row(csv *c, const record *r, size_t ncol, sl_floor_sa_desc **sa)
     return 1;
 }
 
+/* The separator, from the header row (the first line that is neither
+ * blank nor a comment): ';' when it holds ';' and no ',' outside quotes
+ * (a European spreadsheet's CSV, with decimal commas), else ','. Both: an
+ * error naming the row. */
+static int find_separator(csv *c)
+{
+    c->sep = ',';
+    size_t i = 0;
+    long line = 1;
+    while (i < c->len) {
+        size_t e = i;
+        while (e < c->len && c->b[e] != '\n' && c->b[e] != '\r')
+            e++;
+        size_t k = i;
+        while (k < e && (c->b[k] == ' ' || c->b[k] == '\t'))
+            k++;
+        if (k < e && c->b[k] != '#') {
+            size_t commas = 0, semis = 0;
+            int quoted = 0;
+            for (size_t j = k; j < e; j++) {
+                quoted ^= c->b[j] == '"';
+                commas += !quoted && c->b[j] == ',';
+                semis += !quoted && c->b[j] == ';';
+            }
+            if (commas && semis)
+                return sl_floor_desc_fail(c->d, SL_EPARSE, line, 0,
+                                          "the header row holds both ',' and ';': separate the "
+                                          "columns with one of them (',' with decimal points, "
+                                          "or ';' with decimal commas)");
+            if (semis)
+                c->sep = ';';
+            return 1;
+        }
+        i = e;
+        if (i < c->len && c->b[i] == '\r')
+            i++;
+        if (i < c->len && c->b[i] == '\n')
+            i++;
+        line++;
+    }
+    return 1;
+}
+
+/* The reverse of a list of values with their places. */
+static void reverse(sl_floor_vals *l)
+{
+    for (size_t i = 0, j = l->n ? l->n - 1 : 0; i < j; i++, j--) {
+        double v = l->v[i];
+        l->v[i] = l->v[j];
+        l->v[j] = v;
+        long a = l->line[i];
+        l->line[i] = l->line[j];
+        l->line[j] = a;
+        a = l->col[i];
+        l->col[i] = l->col[j];
+        l->col[j] = a;
+    }
+}
+
+/* A T_s table: periods strictly monotone (either way), turned into
+ * frequencies 1/T in ascending order, the rows' values with them. */
+static int periods_to_frequencies(csv *c)
+{
+    sl_floor_desc *d = c->d;
+    for (int q = 0; q < SL_FLOOR_NCOMP; q++) {
+        sl_floor_comp_desc *rc = &d->comp[q];
+        sl_floor_vals *f = &rc->f;
+        if (!rc->line || f->n < 2)
+            continue;
+        const int up = f->v[1] > f->v[0];
+        for (size_t j = 1; j < f->n; j++)
+            if (!(up ? f->v[j] > f->v[j - 1] : f->v[j] < f->v[j - 1]))
+                return sl_floor_desc_fail(d, SL_EINVAL, f->line[j], f->col[j],
+                                          "T_s: periods must increase (or decrease) strictly: "
+                                          "%g after %g",
+                                          f->v[j], f->v[j - 1]);
+        for (size_t j = 0; j < f->n; j++)
+            f->v[j] = 1 / f->v[j];
+        if (up) {
+            reverse(f);
+            for (size_t s = 0; s < rc->nsa; s++)
+                reverse(&rc->sa[s].sa);
+        }
+    }
+    return 1;
+}
+
 int sl_floor_read_csv(sl_floor_desc *d, sl_text *t)
 {
-    csv c = {d, t->buf, t->len, 0, 1};
+    csv c = {d, t->buf, t->len, 0, 1, ',', 0};
     d->floor_line = 1;
-    if (!check_bytes(&c))
+    if (!check_bytes(&c) || !find_separator(&c))
         return 0;
     record r = {0};
     sl_floor_sa_desc **sa = NULL;
@@ -404,13 +599,14 @@ int sl_floor_read_csv(sl_floor_desc *d, sl_text *t)
     size_t ncol = 0;
     int ok = 1;
     long header_line = 0;
+    int first_row = 1;
     while (ok && c.pos < c.len) {
         long line = c.line;
         size_t save = c.pos;
         const char *s;
         size_t n;
         take_line(&c, &s, &n);
-        if (blank_line(s, n))
+        if (blank_line(&c, s, n))
             continue;
         if (s[0] == '#') {
             if (header_line)
@@ -435,7 +631,8 @@ int sl_floor_read_csv(sl_floor_desc *d, sl_text *t)
             else
                 ok = header_row(&c, &r, line, sa, comp);
         } else {
-            ok = data_row(&c, &r, ncol, sa);
+            ok = data_row(&c, &r, ncol, sa, first_row);
+            first_row = 0;
         }
     }
     d->eof_line = c.line;
@@ -444,6 +641,8 @@ int sl_floor_read_csv(sl_floor_desc *d, sl_text *t)
                                 "no header row (f_hz,h1_5,...,v_5) and no data");
     if (header_line)
         d->floor_line = header_line; /* where a missing key or column is reported */
+    if (ok && c.periods)
+        ok = periods_to_frequencies(&c);
     record_free(&r);
     free(sa);
     free(comp);

@@ -65,6 +65,7 @@ typedef struct sl_floor_desc {
     unsigned long long seed;
     sl_floor_comp_desc comp[SL_FLOOR_NCOMP];
     long fail_line, fail_col; /* where the recorded error is */
+    int periods;            /* CSV: the first column was T_s (periods, s), now 1/T */
 } sl_floor_desc;
 
 void sl_floor_desc_init(sl_floor_desc *d, const char *path, sl_floor_format fmt,

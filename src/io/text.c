@@ -229,6 +229,28 @@ static long line_of(const char *buf, size_t at)
     return line;
 }
 
+/* UTF-16 text: a byte-order mark FF FE (little-endian) or FE FF
+ * (big-endian), or, without one, NUL bytes at one parity of the first
+ * SL_TEXT_UTF16_SCAN bytes (at least a quarter of them) and none at the
+ * other: the ASCII of a table saved as "Unicode text". "UTF-16LE",
+ * "UTF-16BE" or NULL. */
+#define SL_TEXT_UTF16_SCAN 512
+static const char *utf16_kind(const unsigned char *b, size_t n)
+{
+    if (n >= 2 && b[0] == 0xff && b[1] == 0xfe)
+        return "UTF-16LE";
+    if (n >= 2 && b[0] == 0xfe && b[1] == 0xff)
+        return "UTF-16BE";
+    size_t m = n < SL_TEXT_UTF16_SCAN ? n : SL_TEXT_UTF16_SCAN, nul[2] = {0, 0};
+    for (size_t i = 0; i < m; i++)
+        nul[i & 1] += b[i] == 0;
+    if (m >= 4 && nul[0] == 0 && 4 * nul[1] >= m / 2)
+        return "UTF-16LE";
+    if (m >= 4 && nul[1] == 0 && 4 * nul[0] >= m / 2)
+        return "UTF-16BE";
+    return NULL;
+}
+
 sl_status sl_text_load(const char *path, const sl_text_opts *o, sl_text *t, sl_error *err)
 {
     memset(t, 0, sizeof *t);
@@ -281,6 +303,15 @@ sl_status sl_text_load(const char *path, const sl_text_opts *o, sl_text *t, sl_e
     }
     fclose(f);
     buf[n] = '\0';
+    const char *u16 = o->text_only ? utf16_kind((const unsigned char *)buf, n) : NULL;
+    if (u16) {
+        free(buf);
+        return sl_error_set(err, SL_EPARSE, path, 1,
+                            "the file is %s text, not UTF-8: save it as UTF-8 (a spreadsheet: "
+                            "Save As 'CSV UTF-8'; a text editor: encoding UTF-8) or convert it "
+                            "with iconv -f UTF-16 -t UTF-8",
+                            u16);
+    }
     if (o->text_only) {
         const char *nul = memchr(buf, '\0', n);
         if (nul) {

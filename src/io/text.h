@@ -43,7 +43,9 @@ typedef struct sl_text_opts {
     long max_bytes;    /* larger files are refused before reading */
     const char *what;  /* "a motion file", "a floor file": named in the size message */
     const char *limit_name; /* the constant behind the limit, or NULL */
-    int text_only;     /* 1: a NUL byte is "not a text file: NUL byte at line L" */
+    int text_only;     /* 1: a NUL byte is "not a text file: NUL byte at line L", and
+                          UTF-16 text (a byte-order mark FF FE / FE FF, or NUL bytes
+                          at every other position) is refused as such, at line 1 */
 } sl_text_opts;
 
 /* Read `path` whole into t (NUL-terminated; BOM skipped). SL_EIO (cannot

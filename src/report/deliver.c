@@ -223,10 +223,16 @@ sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args,
         if (!(in->floors[i] = sl_floor_load(in->paths[i], err)))
             return err ? err->code : SL_EINVAL;
         sl_error w;
+        char zw[600];
         if ((st = sl_floor_check_plausible(in->floors[i], force ? &w : err)) && force) {
             size_t used = strlen(warnings);
-            snprintf(warnings + used, nw - used, "%s:%ld: %s\n", w.file, w.line, w.msg);
+            snprintf(warnings + used, nw - used, "%s:%ld: %s; run anyway (--force)\n", w.file,
+                     w.line, w.msg);
             st = SL_OK;
+        } else if (!st && nw && sl_floor_zpa_warning(in->floors[i], zw, sizeof zw)) {
+            size_t used = strlen(warnings);
+            snprintf(warnings + used, nw - used, "%s:%ld: %s\n", in->floors[i]->path,
+                     in->floors[i]->units_line, zw);
         }
         in->idp[i] = sl_report_floor_id(in->paths[i], in->ids[i], sizeof in->ids[i]);
         rf[i] = (sl_report_floor){.id = in->idp[i], .name = in->floors[i]->name,

@@ -44,7 +44,8 @@ typedef struct sl_deliver_inputs {
 
 /* Read every floor file named by args (files or folders of *.ini;
  * sl_floor_list), check each (sl_floor_check_plausible: an error, or with
- * `force` a line appended to `warnings`, size nw) and the uniqueness of
+ * `force` a line appended to `warnings`, size nw; an unusual ZPA,
+ * sl_floor_zpa_warning, appends "file:line: text\n") and the uniqueness of
  * their ids and names (sl_report_check_floors). in must be zeroed; free it
  * with sl_deliver_inputs_free() whatever the result. */
 sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args, size_t nargs,

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "io/floor.h"
 #include "report/sheets.h"
 
 #define W_TEXT 64.0   /* the one column: a portrait A4 page at 100 % */
@@ -49,6 +50,14 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         const sl_report_floor *fl = &r->floors[i];
         if (fl->n_failed_motions)
             sl_rpt_failed_text(r, fl, add(&s, 1), NOTE_MAX);
+    }
+    for (size_t i = 0; i < r->n_floors; i++) { /* an unusual ZPA: as the run's stderr said */
+        const sl_report_floor *fl = &r->floors[i];
+        char zw[600];
+        if (fl->units && fl->path &&
+            sl_floor_zpa_warning_text(fl->zpa_h_ms2, fl->units, sl_floor_format_of(fl->path), zw,
+                                      sizeof zw))
+            snprintf(add(&s, 1), NOTE_MAX, "Floor %s (%s): %s.", fl->id, fl->path, zw);
     }
     snprintf(add(&s, 0), NOTE_MAX, "Model: a rigid block standing on a level floor, free to "
              "slide in both horizontal directions at once; the floor moves in three components "

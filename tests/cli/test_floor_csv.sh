@@ -84,4 +84,65 @@ t_expect_err zpa-end-msg "bad-zpa-end.ini:15: zpa: 1e-300 m/s2 is"
 t_run run tests/data/floors/implausible-gal.ini -o "$D/bad" $FAST --sets 2; t_expect_rc gal 1
 t_expect_err gal-msg "implausible-gal.ini:4: units = gal gives"
 [ ! -e "$D/bad" ] && t_pass || t_fail "bad INI: output written"
+# implausible values and a table short of 33 Hz without zpa, as INI (the CSV ones in 3.)
+for f in tests/data/floors/bad-spike.ini tests/data/floors/bad-utf16.ini tests/data/floors/bad-short.ini; do
+  t_run run "$f" -o "$D/bad" --sets 2 $FAST; t_expect_rc "$f" 1
+  t_expect_err "$f message" "^seislide: $f:[0-9]+: "
+  [ ! -e "$D/bad" ] && t_pass || { t_fail "$f: output written"; rm -rf "$D/bad"; }
+done
+t_expect_err short-says-what-to-do "bad-short.ini:8: .*extend the table to 33 Hz or more, or give zpa"
+
+# 4. tables as engineers save them: a European spreadsheet's (';', decimal commas) and a
+#    table of periods (T_s) give the template's results
+t_run run templates/floor.csv -o "$D/out-tpl" --sets 2 $FAST; t_expect_rc "run template" 0
+t_run run tests/data/floors/good-semicolon.csv -o "$D/out-semi" --sets 2 $FAST; t_expect_rc "run ;" 0
+t_run run tests/data/floors/good-periods.csv -o "$D/out-per" --sets 2 $FAST; t_expect_rc "run T_s" 0
+dat() { grep -v '^#' "$1" | tail -n +2; } # the data rows (the header names the floor)
+[ -s "$D/out-semi/summary.csv" ] && [ "$(dat "$D/out-tpl/summary.csv")" = "$(dat "$D/out-semi/summary.csv")" ] &&
+  t_pass || t_fail "';' table: other results than the template: $(diff "$D/out-tpl/summary.csv" "$D/out-semi/summary.csv" | head -4)"
+[ -s "$D/out-per/summary.csv" ] && t_pass || t_fail "T_s table: no summary"
+
+# 5. an unusual ZPA (inside 0.01-5 g): runs, warns on stderr naming file:line and the unit as
+#    written, and the workbook's Notes say it again; a usual one gives no warning
+sed 's/^# units: g$/# units: m\/s2/' templates/floor.csv > "$D/g-as-ms2.csv"
+awk -F, -v OFS=, '/^# zpa_h1:/ { print "# zpa_h1: " 0.36 * 9.80665; next }
+  /^#/ || /^f_hz/ { print; next } { for (i = 2; i <= NF; i++) $i = $i * 9.80665; print }' \
+  templates/floor.csv > "$D/ms2-as-g.csv"
+L=$(grep -n '^# units' "$D/g-as-ms2.csv" | cut -d: -f1)
+t_run run "$D/g-as-ms2.csv" -o "$D/out-low" --sets 2 $FAST; t_expect_rc "g labelled m/s2" 0
+t_expect_err low-warning "run: warning: $D/g-as-ms2.csv:$L: # units: m/s2 gives a horizontal ZPA of 0.0367 g, unusual for a floor"
+t_run run "$D/ms2-as-g.csv" -o "$D/out-high" --sets 2 $FAST; t_expect_rc "m/s2 labelled g" 0
+t_expect_err high-warning "ms2-as-g.csv:$L: # units: g gives a horizontal ZPA of 3.53 g, unusual for a floor"
+notes() { python3 -c 'import sys, zipfile; sys.stdout.write(zipfile.ZipFile(sys.argv[1]).read("xl/sharedStrings.xml").decode())' "$1/seislide-clearance.xlsx"; }
+notes "$D/out-low" | grep -q "units: m/s2 gives a horizontal ZPA of 0.0367 g, unusual for a floor" &&
+  t_pass || t_fail "the low-ZPA warning is not in the workbook's Notes"
+notes "$D/out-high" | grep -q "units: g gives a horizontal ZPA of 3.53 g, unusual for a floor" &&
+  t_pass || t_fail "the high-ZPA warning is not in the workbook's Notes"
+grep -q "unusual for a floor" "$T_ERR" && t_pass || t_fail "no warning"
+t_run run templates/floor.csv -o "$D/out-tpl2" --sets 2 $FAST; t_expect_rc "usual ZPA" 0
+! grep -q "unusual" "$T_ERR" && t_pass || t_fail "a usual ZPA warned: $(cat "$T_ERR")"
+notes "$D/out-tpl2" | grep -q "unusual for a floor" && t_fail "a usual ZPA noted in the workbook" || t_pass
+
+# 6. no physical floor spectrum is refused by the plausibility rules (docs/formats-floor.md,
+#    "Plausibility"): the bench plant's 100 floors, the example, template and sharp floors,
+#    and, when the records are there, single-record and mean floors of 3 records
+#    (tools/plausfloors.c: one row per family, its third column the floors refused)
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+BUILDDIR=$(echo "$SEISLIDE_MAKEVARS" | tr ' ' '\n' | sed -n 's/^BUILD=//p'); BUILDDIR=${BUILDDIR:-build}
+# shellcheck disable=SC2086
+if make -s -C "$ROOT" $SEISLIDE_MAKEVARS LDFLAGS="$SEISLIDE_LDFLAGS" "$BUILDDIR/tools/benchplant" \
+     "$BUILDDIR/tools/plausfloors" > "$D/pf.make" 2>&1; then
+  "$SEISLIDE_BIN" synth --rg160 1 --count 3 --seed 1 -o "$D/pfground" -q > /dev/null 2>&1
+  "$ROOT/$BUILDDIR/tools/benchplant" "$D/pfground" 100 "$D/pfplant" > /dev/null 2>&1 || t_fail "benchplant failed"
+  REC=${SEISLIDE_SHARED:-../shared}/records
+  if [ -d "$REC" ]; then RECS="-r $REC -n 3"; else RECS="-r $D/none"; t_skip "no records: single-record floors not tried"; fi
+  # shellcheck disable=SC2086
+  "$ROOT/$BUILDDIR/tools/plausfloors" $RECS "$D/pfplant" floors templates tests/data/floors/sharp-8.ini > "$D/pf.txt" 2>&1
+  fam() { awk -F'|' -v c="$1" '$3 ~ /^ *[0-9]+ *$/ { s += $c; k++ } END { print (c ? s : k) + 0 }' "$D/pf.txt"; }
+  rows=$(fam 0); n=$(fam 3); refused=$(fam 4)
+  [ "$rows" -ge 4 ] && [ "$n" -ge 107 ] && [ "$refused" -eq 0 ] && t_pass ||
+    t_fail "physical floors: $refused of $n refused ($rows families): $(grep -A1 '^| ' "$D/pf.txt" | grep 'first refused' | head -c 600)"
+else
+  t_fail "make plausfloors: $(head -c 400 "$D/pf.make")"
+fi
 t_end

@@ -142,18 +142,19 @@ fi
 # skipped friction values in words a reader can use, not "slide at no intensity"
 t_expect_err skipped-words "floor 2/2 'Roof el. 36 m': ZPA 0.630 g; (every one of the 3 friction values slides \(each from NLTHA\)|[0-9]+ of 3 friction values \(the largest\) never slide)"
 grep -q "slide at no intensity" "$T_ERR" && t_fail "old wording 'slide at no intensity' on stderr" || t_pass
-# a doctored 10 % table (x 1.5 in a copy; both copies pin the floor's seed,
-# so the motions are the same): the motions' own 10 % spectra are then 1/1.5
-# of it: OUTSIDE at every component, exit status unchanged; a file with the
-# 5 % table only: none
+# a doctored 10 % table (x 1.2 in a copy, inside the plausibility rules of
+# docs/formats-floor.md, which refuse x 1.5: a 10 % table on average above the
+# 5 % one; both copies pin the floor's seed, so the motions are the same): the
+# motions' own 10 % spectra are then 1/1.2 of it: OUTSIDE at every component,
+# exit status unchanged; a file with the 5 % table only: none
 mkdir -p "$D/doct" "$D/one" "$D/orig"
 sed 's/^\[floor\]$/[floor]\nseed = 11/' floors/04-roof36.ini > "$D/orig/04-roof36.ini"
 awk '/^sa_0\.1 =/ { t = 1 } /^[a-z]/ && !/^sa_0\.1 =/ { t = 0 }
-     t { s = $0; o = ""; if (s ~ /^sa_0\.1 =/) { o = "sa_0.1 ="; s = substr(s, 9) }; while (match(s, /[0-9]+\.[0-9]+/)) { o = o substr(s, 1, RSTART - 1) sprintf("%.4f", 1.5 * substr(s, RSTART, RLENGTH)); s = substr(s, RSTART + RLENGTH) } print o s; next } { print }' \
+     t { s = $0; o = ""; if (s ~ /^sa_0\.1 =/) { o = "sa_0.1 ="; s = substr(s, 9) }; while (match(s, /[0-9]+\.[0-9]+/)) { o = o substr(s, 1, RSTART - 1) sprintf("%.4f", 1.2 * substr(s, RSTART, RLENGTH)); s = substr(s, RSTART + RLENGTH) } print o s; next } { print }' \
   "$D/orig/04-roof36.ini" > "$D/doct/04-roof36.ini"
 awk '/^sa_0\.(02|1) =/ { t = 1; next } /^[a-z]/ { t = 0 } t && /^[ \t]/ { next } { print }' \
   floors/04-roof36.ini > "$D/one/04-roof36.ini"
-grep -q "^sa_0.1 = 0.0282, 0.0633," "$D/doct/04-roof36.ini" && ! grep -q "^sa_0.1\|^sa_0.02" "$D/one/04-roof36.ini" \
+grep -q "^sa_0.1 = 0.0226, 0.0506," "$D/doct/04-roof36.ini" && ! grep -q "^sa_0.1\|^sa_0.02" "$D/one/04-roof36.ini" \
   && t_pass || t_fail "doctored floor files: $(grep -A1 '^sa_0.1' "$D/doct/04-roof36.ini" | head -2)"
 # (seed 11: H1 of set 1 needs more than ten attempts; docs/synthesis.md 3.4)
 t_run run "$D/doct" -o "$D/outd" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc doctored 0
@@ -162,13 +163,13 @@ for c in H1 H2 V; do
 done
 tr -d '\r' < "$D/outd/floors.csv" | grep -v "^#" | awk -F, 'NR == 2 { exit !($(NF-1) == "outside" && $(NF-3) + 0 < 0.9 && $(NF-3) + 0 > 0.5) }' \
   && t_pass || t_fail "doctored 10 % table not reported outside: $(tail -1 "$D/outd/floors.csv")"
-# the 10 % set mean falls by the factor: doctored / original = 1 / 1.5 (same motions),
+# the 10 % set mean falls by the factor: doctored / original = 1 / 1.2 (same motions),
 # within the rounding of the two printed digits (0.005 on 0.6: 0.8 %, on both: 1.5 %)
 r1=$(sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p" "$T_ERR")
 t_run run "$D/orig" -o "$D/outo" --sets 3 --mu-range 0.1:0.3:0.1 --created 0
 r0=$(grep "Roof el. 36" "$T_ERR" | sed -n "s/.*H1 10 %: \([0-9.]*\)-\([0-9.]*\) .*/\1 \2/p")
-awk -v a="$r1" -v b="$r0" 'BEGIN { split(a, x, " "); split(b, y, " "); for (i = 1; i <= 2; i++) { e = x[i] * 1.5 / y[i] - 1; if (e < 0) e = -e; if (!(e < 0.015)) exit 1 } }' \
-  && t_pass || t_fail "doctored 10 % set mean ($r1) is not original ($r0) / 1.5"
+awk -v a="$r1" -v b="$r0" 'BEGIN { split(a, x, " "); split(b, y, " "); for (i = 1; i <= 2; i++) { e = x[i] * 1.2 / y[i] - 1; if (e < 0) e = -e; if (!(e < 0.015)) exit 1 } }' \
+  && t_pass || t_fail "doctored 10 % set mean ($r1) is not original ($r0) / 1.2"
 t_run run "$D/one" -o "$D/out1d" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_expect_rc one-damping 0
 t_expect_err one-damping-msg "floor 'Roof el. 36 m': other dampings: none"
 # no 10 % table: a warning naming the file (the ASCE estimate on the motions' mean spectrum)

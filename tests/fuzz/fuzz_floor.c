@@ -45,6 +45,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (fl) {
         check_floor(fl);
         sl_floor_check_plausible(fl, &err);
+        /* a floor read keeps within the plausibility rules (floor.h) */
+        sl_floor_plausibility p;
+        sl_floor_plausibility_of(fl, &p);
+        fuzz_require(p.spike <= SL_FLOOR_SPIKE_MAX && p.dip <= SL_FLOOR_DIP_MAX);
+        fuzz_require(p.order >= SL_FLOOR_ORDER_MIN && p.spread <= SL_FLOOR_SPREAD_MAX);
+        fuzz_require(p.order_mean >= SL_FLOOR_ORDER_MEAN_MIN * (1 - 1e-12));
+        char w[600];
+        fuzz_require(sl_floor_zpa_warning(fl, w, sizeof w) == (w[0] != '\0'));
         for (int c = 0; c < SL_FLOOR_NCOMP; c++)
             (void)sl_floor_sa10(fl, (sl_floor_comp)c);
     } else {
