@@ -461,8 +461,10 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
             goto fail;
         a->n_sets = want;
         for (size_t s = n; s < want; s++)
-            for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+            for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
                 a->n_failed_motions += !a->sets[s].check[c].pass;
+                a->n_extra_attempts += a->sets[s].check[c].attempt;
+            }
         a->time_synth_s += sl_clock_s() - t0;
 
         t0 = sl_clock_s();
@@ -521,7 +523,8 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
     double t0 = sl_clock_s();
     if (store_dampings(a, plan, fl, &sp, err))
         goto fail;
-    a->time_synth_s += sl_clock_s() - t0;
+    a->time_checks_s = sl_clock_s() - t0;
+    a->time_synth_s += a->time_checks_s;
 
     t0 = sl_clock_s();
     if (conv_band(a, peak, n, o, err))
