@@ -74,9 +74,9 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
      * record match) whose best coarse iterate already fails the D5-75 check
      * is given up there instead of after its full-accuracy iterations. The
      * strong-motion duration is set by the first corrections and moves
-     * little afterwards: on floor and RG 1.60 targets (210 sets, 1,180
-     * attempts) 127 attempts left the coarse phase below 6 s and 8 of them
-     * ended at or above it (none from below 5 s); docs/synthesis.md 3.4. */
+     * little afterwards: on floor and RG 1.60 targets (210 sets), 126 of
+     * 886 attempts left the coarse phase below 6 s and 8 of them ended at
+     * or above it (none from below 5 s); docs/synthesis.md 3.4. */
     const int last = jb->rec || jb->attempt + 1 >= s->p.max_attempts;
     while (!jb->st && !sl_synth_test(m) && sl_synth_iterations(m) < s->p.max_iter &&
            sl_synth_iterations(m) < m->best_iter + SYNTH_STALL) {
