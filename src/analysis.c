@@ -436,6 +436,7 @@ sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *o, sl_e
 
     sl_synth_params sp;
     sl_synth_params_default(&sp);
+    sp.psd_report = 0; /* the App. B PSD (psd_frac 0: reported only) is shown nowhere here */
     sl_synth_target tgt[SL_SYNTH_NCOMP];
     if (sl_synth_targets_floor(fl, 0.0, tgt, err))
         goto fail;

@@ -209,7 +209,7 @@ static sl_status collect(const sl_synth *s, job *jobs, size_t count, const char 
 #pragma omp parallel for schedule(dynamic, 1)
     for (long long i = 0; i < nj; i++) {
         job *jb = &jobs[i];
-        if (jb->acc && !jb->psd_done && !jb->st) {
+        if (jb->acc && !jb->psd_done && !jb->st && s->p.psd_report) {
             sl_synth_check_psd(jb->acc, s->n, s->dt, jb->tspec, s->p.psd_frac, &jb->check);
             jb->psd_done = 1;
         }
