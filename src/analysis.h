@@ -175,6 +175,11 @@ typedef struct sl_analysis {
     double time_stats_s;        /* wall time of the convergence statistics, the band and the
                                    variance-reduction diagnostic, s (each step timed once:
                                    time_asce_s is the ASCE method and the design only) */
+    double time_checks_s;       /* wall time of the other dampings' checks, s (part of
+                                 * time_synth_s, which also holds the checks made while
+                                 * synthesizing) */
+    size_t n_extra_attempts;    /* synthesis attempts beyond the first, summed over every
+                                 * component of every set (sl_synth_check.attempt) */
     char note[512];             /* what a reader must know ("" when nothing) */
     /* every damping of the floor file other than the one matched, per
      * component in file order (n_dampings = 0: the file gives one) */

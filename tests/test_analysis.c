@@ -142,7 +142,9 @@ static void test_batches_and_threads(void)
     sl_error err;
     sl_analysis *ad = sl_analysis_run(fl, &o, &err);
     o.n_sets = 5;
+    double t_fx = sl_clock_s();
     sl_analysis *fx = sl_analysis_run(fl, &o, &err);
+    t_fx = sl_clock_s() - t_fx;
     int saved = omp_get_max_threads();
     omp_set_num_threads(1);
     sl_analysis *one = sl_analysis_run(fl, &o, &err);
@@ -183,6 +185,22 @@ static void test_batches_and_threads(void)
         }
         CHECK(fx->damping_lim_lo == 0.9 && fx->damping_lim_hi == 1.3, "limits %g %g",
               fx->damping_lim_lo, fx->damping_lim_hi);
+        /* the extra synthesis attempts the run reports: every motion's own
+         * attempt number, summed; the same over the batches (2, 4, 5) */
+        size_t extra = 0;
+        for (size_t k = 0; k < fx->n_sets; k++)
+            for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+                extra += fx->sets[k].check[c].attempt;
+        /* the App. B PSD (reported only) is not computed by a run */
+        CHECK(isnan(fx->sets[0].check[0].psd_min_ratio) && fx->sets[0].check[0].ok_psd,
+              "run: PSD %g", fx->sets[0].check[0].psd_min_ratio);
+        CHECK(fx->n_extra_attempts == extra && ad->n_extra_attempts == extra,
+              "extra attempts: fixed %zu, adaptive %zu, the motions' %zu", fx->n_extra_attempts,
+              ad->n_extra_attempts, extra);
+        CHECK(fx->time_checks_s >= 0 && fx->time_checks_s <= fx->time_synth_s &&
+                  fx->time_synth_s <= t_fx,
+              "checks %g s of synthesis %g s, the run %g s", fx->time_checks_s,
+              fx->time_synth_s, t_fx);
         /* the set mean is over every set: the same call on all 5 sets of the
          * run (a plan as analysis.c makes it) gives the stored values */
         sl_synth_params sp;

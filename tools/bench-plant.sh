@@ -4,7 +4,11 @@
 # 2 OpenMP threads and as 2 shards of 1 thread each (GNU parallel) plus
 # merge; prints a markdown table: wall time, CPU time, sets, CPU per set,
 # sets per floor, speed-up and efficiency against 1 thread; then a run with
-# a fresh cache and an unchanged rerun that reads every floor from it.
+# a fresh cache and an unchanged rerun that reads every floor from it; then the
+# time split of the 1-thread run (synthesis, of which the other dampings'
+# checks, NLTHA, statistics, ASCE) with the extra synthesis attempts per set,
+# the example facility (floors/) on 2 threads in the same run, the plant /
+# facility wall-time ratio and the projection to 500 floors.
 #   BENCH_PLANT_FLOORS=N (default 12), BENCH_PLANT_OPTS="run options"
 #   (default: the program's defaults, converged sets), BENCH_PLANT_DIR (scratch folder).
 set -eu
@@ -26,7 +30,8 @@ run() { # label, then the command; prints "wall cpu"
 # the sets column, counted from the end of the line (a floor's name may hold commas)
 sets() { grep -v '^#' "$1/plant.csv" | awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "sets") k = NF - i; next }
                                               { s += $(NF - k) } END { print s }'; }
-r1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" -o "$W/out1" --no-cache -q $OPTS)
+# (the 1-thread run without -q: its per-floor lines give the time split)
+r1=$(OMP_NUM_THREADS=1 run sh -c '"$0" run "$1" -o "$2" --no-cache $3 2>"$4"' "$BIN" "$W/plant" "$W/out1" "$OPTS" "$W/out1.log")
 r2=$(OMP_NUM_THREADS=2 run "$BIN" run "$W/plant" -o "$W/out2" --no-cache -q $OPTS)
 mkdir -p "$W/parts"
 rs=$(OMP_NUM_THREADS=1 run parallel -j 2 "$BIN" run "$W/plant" --shard {}/2 -o "$W/parts/{}" --no-cache -q $OPTS ::: 1 2)
@@ -37,6 +42,10 @@ c2=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" --shard 2/2 -o "$W/parts/2" --n
 # a run that fills a cache, then the unchanged rerun that reuses it
 k1=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" -o "$W/outc" -q $OPTS)
 k2=$(OMP_NUM_THREADS=1 run "$BIN" run "$W/plant" -o "$W/outc" -q $OPTS)
+# the example facility, 2 threads, in the same run (BENCH_PLANT_FACILITY: its folder)
+FAC=${BENCH_PLANT_FACILITY:-floors}
+rm -rf "$W/fac"
+rf=$(OMP_NUM_THREADS=2 run "$BIN" run "$FAC" -o "$W/fac" --no-cache -q)
 S=$(sets "$W/out1")
 # the same CSV but for the lines that record the command and the time of the run
 data() { grep -v -e '^# command: ' -e '^# created: ' "$1"; }
@@ -60,3 +69,16 @@ echo "$c1 $c2 ${r1#* }" | awk '{ m = $2 > $4 ? $2 : $4; printf "shards alone: CP
 echo "CPU of 2 threads / CPU of 1 thread: $(echo "${r2#* } ${r1#* }" | awk '{ printf "%.3f", $1 / $2 }') (threading overhead); load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "merge of the 2 shards: $(echo "$rm_" | awk '{ printf "%.2f s wall", $1 }'); CSV outputs of all three runs identical (but for the command and time lines): $same"
 echo "cache: the first run $(echo "$k1" | awk '{ printf "%.2f s wall", $1 }'), the unchanged rerun (every floor reused) $(echo "$k2 $k1" | awk '{ if ($1 >= 0.01) printf "%.2f s wall, %.0f x less", $1, $3 / $1; else printf "under 0.01 s wall" }')"
+echo
+# the split: the per-floor "wall time:" lines of the 1-thread run
+split() { grep "wall time: synthesis" "$W/out1.log" | sed 's/.*synthesis \([0-9.]*\) s (of which the other dampings. checks \([0-9.]*\) s), NLTHA \([0-9.]*\) s, statistics \([0-9.]*\) s, ASCE and design \([0-9.]*\) s.*; \([0-9.]*\) extra synthesis attempts per set/\1 \2 \3 \4 \5 \6/'; }
+nsets() { grep "motion sets" "$W/out1.log" | sed 's/.* \([0-9][0-9]*\) motion sets.*/\1/'; }
+paste -d' ' <(split) <(nsets) | awk -v s="$S" -v c="${r1#* }" '
+  { sy += $1; ck += $2; nl += $3; st += $4; as += $5; xa += $6 * $7; ns += $7 }
+  END { t = sy + nl + st + as; if (t <= 0) t = 1
+        printf "1 thread: CPU per set %.3f s; extra synthesis attempts per set %.2f; wall time split (summed over the floors): synthesis %.1f s (%.0f %%; of it the other dampings\047 checks %.1f s), NLTHA %.1f s (%.0f %%), statistics %.1f s (%.1f %%), ASCE and design %.1f s\n",
+               c / s, ns ? xa / ns : 0, sy, 100 * sy / t, ck, nl, 100 * nl / t, st, 100 * st / t, as }'
+w2=${r2% *}
+wf=${rf% *}
+echo "example facility ($FAC, 2 threads, the same run): $(echo "$rf" | awk '{ printf "%.2f s wall, %.1f s CPU", $1, $2 }'); plant / facility wall time (2 threads): $(echo "$w2 $wf" | awk '{ printf "%.1f", $1 / $2 }') (aim: at most 17, the facility under 10 s)"
+echo "projection to 500 floors (2 threads, wall time x 500 / $N): $(echo "$w2 $N" | awk '{ printf "%.1f min", $1 * 500 / $2 / 60 }'); load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -83,11 +83,13 @@ void run_report_floor(size_t i, size_t n, const char *name, const sl_analysis *q
                                                       : "NOT converged, --max-sets reached",
                 100 * q->worst_rel_se);
     report_dampings(name, q);
-    cli_msg("run: floor '%s': wall time: synthesis %.2f s, NLTHA %.2f s, statistics "
-            "%.3f s, ASCE and design %.3f s (%.3f s per set)", name, q->time_synth_s,
-            q->time_nltha_s, q->time_stats_s, q->time_asce_s,
+    cli_msg("run: floor '%s': wall time: synthesis %.2f s (of which the other dampings' "
+            "checks %.2f s), NLTHA %.2f s, statistics %.3f s, ASCE and design %.3f s (%.3f s "
+            "per set); %.2f extra synthesis attempts per set", name, q->time_synth_s,
+            q->time_checks_s, q->time_nltha_s, q->time_stats_s, q->time_asce_s,
             (q->time_synth_s + q->time_nltha_s + q->time_stats_s + q->time_asce_s) /
-                (double)q->n_sets);
+                (double)q->n_sets,
+            q->n_sets ? (double)q->n_extra_attempts / (double)q->n_sets : 0.0);
 }
 
 /* ---- The SRP 3.7.1 checks of a floor's motions -------------------------- */

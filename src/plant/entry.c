@@ -29,7 +29,8 @@ static const field f_analysis[] = {
     FD(sl_analysis, time_synth_s, F_F64),   FD(sl_analysis, time_nltha_s, F_F64),
     FD(sl_analysis, time_asce_s, F_F64),    FD(sl_analysis, time_stats_s, F_F64),
     FD(sl_analysis, note, F_STR),           FD(sl_analysis, damping_lim_lo, F_F64),
-    FD(sl_analysis, damping_lim_hi, F_F64), FD(sl_analysis, dampings_ok, F_INT)};
+    FD(sl_analysis, damping_lim_hi, F_F64), FD(sl_analysis, dampings_ok, F_INT),
+    FD(sl_analysis, time_checks_s, F_F64),  FD(sl_analysis, n_extra_attempts, F_SIZE)};
 
 static const field f_design[] = {
     FD(sl_design, zpa_h_ms2, F_F64),  FD(sl_design, cap_m, F_F64),

@@ -47,6 +47,7 @@ void sl_synth_params_default(sl_synth_params *p)
     p->hp_frac = SL_SYNTH_HP_FRAC;
     p->hp_order = SL_SYNTH_HP_ORDER;
     p->match_margin = SL_SYNTH_MATCH_MARGIN;
+    p->psd_report = 1;
 }
 
 sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)

@@ -256,6 +256,11 @@ typedef struct sl_synth_params {
     /* records: when > 0, no correction where S/T is in [1 + match_margin,
      * 1 + tol_above - match_margin] (SL_SYNTH_MATCH_MARGIN; 0: none) */
     double match_margin;
+    /* 1 (default): the App. B PSD of every motion kept is computed and
+     * reported (sl_synth_check.psd_min_ratio) even when psd_frac = 0; 0: it
+     * is computed only when psd_frac > 0 (else those fields are NAN and
+     * ok_psd is 1), as `seislide run` does, which shows it nowhere */
+    int psd_report;
 } sl_synth_params;
 
 /* Fill p with the defaults above (grid: SL_SPECTRUM_FMIN_HZ..FMAX_HZ at
