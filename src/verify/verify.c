@@ -139,7 +139,7 @@ static const sl_verify_problem problems[] = {
      sl_verify_y06},
     {"synth", "Y07", "the same motion's exact bits (FNV-1a 64 of the H1 samples)",
      "recorded at release 0.1.0 (GCC 12.2, -O2 -ffp-contract=off, x86-64, AVX2 and baseline "
-     "alike)",
+     "alike; glibc 2.36 libm with and without FMA: a81521776e5490f1, 720d9329d435974b)",
      "0: any change of compiler, library or CPU path that moves a bit shows", 1,
      sl_verify_y07},
     /* ---- statistics ------------------------------------------------------ */
