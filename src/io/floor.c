@@ -26,7 +26,7 @@ const char *sl_floor_comp_name(sl_floor_comp c)
     return (unsigned)c < SL_FLOOR_NCOMP ? comp_names[c] : "?";
 }
 
-/* Keys of a floor, declared once (STYLE 9): INI [floor] keys and CSV
+/* Keys of a floor, declared once: INI [floor] keys and CSV
  * "# key:" lines. */
 const char *const sl_floor_key_names[SL_FK_COUNT] = {
     [SL_FK_NAME] = "name",         /* the floor's name (required) */

@@ -12,7 +12,7 @@
  *    "N points of accel data equally spaced at D sec, in UNIT. (8f10.6)"
  *    (older files: "... (UNITS: CM/SEC/SEC)" and no format, read as 8f10);
  *    the component from the "Chan k: NAME" line.
- *  - CWA/TSMIP ".acc" as distributed in ../shared: one component a file, two
+ *  - CWA/TSMIP ".acc" as the Central Weather Administration distributes it: one component a file, two
  *    columns time (s) + acceleration in m/s^2, no header (the unit is the
  *    distribution's, MANIFEST.tsv "TWOCOL_MS2"); the component from the
  *    file name (_E, _N, _Z).
