@@ -4,7 +4,6 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,25 +29,6 @@ void cli_msg(const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     va_end(ap);
     fputc('\n', stderr);
-}
-
-static char interrupt_line[4600];
-
-/* Async-signal-safe: write, signal, raise. */
-static void on_interrupt(int s)
-{
-    ssize_t w = write(STDERR_FILENO, interrupt_line, strlen(interrupt_line));
-    (void)w;
-    signal(s, SIG_DFL);
-    raise(s);
-}
-
-void cli_on_interrupt(const char *what)
-{
-    snprintf(interrupt_line, sizeof interrupt_line, "seislide: interrupted; %s\n", what);
-    signal(SIGINT, on_interrupt);
-    signal(SIGTERM, on_interrupt);
-    signal(SIGHUP, on_interrupt);
 }
 
 int cli_usage(const char *cmd, const char *fmt, ...)

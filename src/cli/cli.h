@@ -175,10 +175,6 @@ void cli_msg(const char *fmt, ...)
     __attribute__((format(printf, 1, 2)))
 #endif
     ;
-/* From now on SIGINT, SIGTERM and SIGHUP print "seislide: interrupted; "
- * + what (what the command leaves behind) and the process dies of the
- * signal. Call again to change what. (`run` uses outdir.h instead.) */
-void cli_on_interrupt(const char *what);
 /* Print a usage error "seislide CMD: message (try 'seislide CMD --help')";
  * returns CLI_EXIT_USAGE. */
 int cli_usage(const char *cmd, const char *fmt, ...)

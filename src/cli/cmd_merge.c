@@ -78,6 +78,94 @@ static sl_status copy_entry(const char *from, const char *dir, const char *hash,
     return bad ? sl_error_set(err, SL_EIO, to, 0, "cannot write: %s", strerror(errno)) : SL_OK;
 }
 
+/* Read the n shard folders: all of one plant, settings and version, every
+ * shard 1..N once (by_k[K]: shard K's folder). */
+static sl_status read_shards(char *const *dirs, size_t ns, sl_shard *sh, const char **by_k,
+                             sl_error *err)
+{
+    for (size_t i = 0; i < ns; i++) {
+        sl_status st = sl_shard_read(dirs[i], &sh[i], err);
+        if (st)
+            return st;
+        if (sh[i].n != sh[0].n || sh[i].body_len != sh[0].body_len ||
+            memcmp(sh[i].body, sh[0].body, sh[0].body_len) != 0)
+            return sl_error_set(err, SL_EINVAL, dirs[i], 0, "shard %u/%u is not of the same plant "
+                                "and settings as %s (shard %u/%u): every shard must come from the "
+                                "same command but for --shard and -o", sh[i].k, sh[i].n, dirs[0],
+                                sh[0].k, sh[0].n);
+        if (by_k[sh[i].k])
+            return sl_error_set(err, SL_EINVAL, dirs[i], 0, "shard %u/%u given twice: %s and %s",
+                                sh[i].k, sh[i].n, by_k[sh[i].k], dirs[i]);
+        by_k[sh[i].k] = dirs[i];
+    }
+    for (unsigned k = 1; k <= sh[0].n; k++)
+        if (!by_k[k])
+            return sl_error_set(err, SL_EINVAL, NULL, 0, "shard %u/%u missing (given: %zu of %u "
+                                "shard folders)", k, sh[0].n, ns, sh[0].n);
+    if (strcmp(sh[0].set.version, VERSION_TEXT) != 0)
+        return sl_error_set(err, SL_EINVAL, dirs[0], 0, "the shards were computed by %s, this is "
+                            "%s", sh[0].set.version, VERSION_TEXT);
+    return SL_OK;
+}
+
+/* Every floor's result from its shard's folder, checked (dir0: the first
+ * folder given, named when a floor is in no shard). */
+static sl_status read_results(const sl_shard *sh0, sl_plant *p, const char *const *by_k,
+                              const char *dir0, sl_error *err)
+{
+    char path[4400], why[256];
+    for (size_t i = 0; i < p->n; i++) {
+        sl_plant_floor *f = &p->floors[i];
+        const char *dir = f->shard ? by_k[f->shard] : NULL;
+        if (!dir)
+            return sl_error_set(err, SL_EINVAL, dir0, 0, "floor '%s' is in no shard", f->id);
+        snprintf(path, sizeof path, "%s/%s/%s" SL_CACHE_SUFFIX, dir, SL_SHARD_RESULTS, f->key.hash);
+        sl_cache_read_result c = sl_cache_read_path(path, f->key.hash, sh0->set.n_mu, &f->an,
+                                                    why, sizeof why);
+        if (c != SL_CACHE_HIT)
+            return sl_error_set(err, SL_EINVAL, path, 0, "the result of floor '%s%s%s' (shard "
+                                "%u/%u) %s%s: rerun that shard",
+                                p->is_plant ? p->building[f->building] : "",
+                                p->is_plant ? "/" : "", f->id, f->shard, sh0->n,
+                                c == SL_CACHE_MISS ? "is missing" : "failed its check: ",
+                                c == SL_CACHE_MISS ? "" : why);
+    }
+    return SL_OK;
+}
+
+/* The outputs of one run, and every result in the cache, into the fresh
+ * folder (argc, argv: the recorded command line); from the first write on a
+ * signal is only noted (outdir.h). */
+static sl_status write_outputs(const sl_shard *sh0, const char *const *by_k, const char *fresh,
+                               const merge_args *a, int argc, char **argv, sl_error *err)
+{
+    const sl_plant *p = &sh0->plant;
+    char cmdline[8192], date[32], path[4400];
+    cli_command_line(cmdline, sizeof cmdline, argc, argv);
+    sl_deliver_opts dop = {.version = VERSION_TEXT, .command_line = cmdline,
+                           .created = (time_t)a->created, .project = sh0->set.project,
+                           .seed = sh0->set.seed, .substeps = sh0->set.substeps,
+                           .accuracy = sh0->set.accuracy};
+    if (!dop.project.date && strftime(date, sizeof date, "%Y-%m-%d", gmtime(&dop.created)))
+        dop.project.date = date;
+    cli_outdir_writing(); /* a signal now is noted, and the fresh folder dropped */
+    sl_status st = sl_plant_deliver(p, fresh, &dop, err);
+    if (st)
+        return st;
+    char cache[4400];
+    snprintf(cache, sizeof cache, "%s/%s", fresh, SL_CACHE_DIR_NAME);
+    if (mkdir(cache, 0777) != 0)
+        return sl_error_set(err, SL_EIO, cache, 0, "cannot create: %s", strerror(errno));
+    for (size_t i = 0; i < p->n; i++) {
+        const sl_plant_floor *f = &p->floors[i];
+        snprintf(path, sizeof path, "%s/%s/%s" SL_CACHE_SUFFIX, by_k[f->shard], SL_SHARD_RESULTS,
+                 f->key.hash);
+        if ((st = copy_entry(path, cache, f->key.hash, err)))
+            return st;
+    }
+    return SL_OK;
+}
+
 int cmd_merge(int argc, char **argv)
 {
     static const cli_command cmd = {"merge", merge_head, merge_tail, opts, CLI_NOPTS(opts), 20,
@@ -108,35 +196,8 @@ int cmd_merge(int argc, char **argv)
         sl_error_set(&err, SL_ENOMEM, NULL, 0, "out of memory");
         goto fail;
     }
-    for (size_t i = 0; i < ns; i++) {
-        if (sl_shard_read(dirs[i], &sh[i], &err))
-            goto fail;
-        if (sh[i].n != sh[0].n || sh[i].body_len != sh[0].body_len ||
-            memcmp(sh[i].body, sh[0].body, sh[0].body_len) != 0) {
-            sl_error_set(&err, SL_EINVAL, dirs[i], 0, "shard %u/%u is not of the same plant "
-                         "and settings as %s (shard %u/%u): every shard must come from the same "
-                         "command but for --shard and -o", sh[i].k, sh[i].n, dirs[0], sh[0].k,
-                         sh[0].n);
-            goto fail;
-        }
-        if (by_k[sh[i].k]) {
-            sl_error_set(&err, SL_EINVAL, dirs[i], 0, "shard %u/%u given twice: %s and %s",
-                         sh[i].k, sh[i].n, by_k[sh[i].k], dirs[i]);
-            goto fail;
-        }
-        by_k[sh[i].k] = dirs[i];
-    }
-    for (unsigned k = 1; k <= sh[0].n; k++)
-        if (!by_k[k]) {
-            sl_error_set(&err, SL_EINVAL, NULL, 0, "shard %u/%u missing (given: %zu of %u "
-                         "shard folders)", k, sh[0].n, ns, sh[0].n);
-            goto fail;
-        }
-    if (strcmp(sh[0].set.version, VERSION_TEXT) != 0) {
-        sl_error_set(&err, SL_EINVAL, dirs[0], 0, "the shards were computed by %s, this is %s",
-                     sh[0].set.version, VERSION_TEXT);
+    if (read_shards(dirs, ns, sh, by_k, &err))
         goto fail;
-    }
     sl_plant *p = &sh[0].plant;
     for (size_t i = 0; i < p->n; i++) /* the floor files the shards were computed from */
         if ((rc = cli_outdir_apart_floor("merge", a.out, p->floors[i].path, p->is_plant)))
@@ -144,52 +205,10 @@ int cmd_merge(int argc, char **argv)
     rc = CLI_EXIT_ERROR;
     if (!(out = cli_outdir_open(a.out, VERSION_TEXT, NULL, &err)))
         goto fail;
-    /* every result, checked */
-    char path[4400], why[256];
-    for (size_t i = 0; i < p->n; i++) {
-        sl_plant_floor *f = &p->floors[i];
-        const char *dir = f->shard ? by_k[f->shard] : NULL;
-        if (!dir) {
-            sl_error_set(&err, SL_EINVAL, dirs[0], 0, "floor '%s' is in no shard", f->id);
-            goto fail;
-        }
-        snprintf(path, sizeof path, "%s/%s/%s" SL_CACHE_SUFFIX, dir, SL_SHARD_RESULTS, f->key.hash);
-        sl_cache_read_result c = sl_cache_read_path(path, f->key.hash, sh[0].set.n_mu, &f->an,
-                                                    why, sizeof why);
-        if (c != SL_CACHE_HIT) {
-            sl_error_set(&err, SL_EINVAL, path, 0, "the result of floor '%s%s%s' (shard %u/%u) "
-                         "%s%s: rerun that shard", p->is_plant ? p->building[f->building] : "",
-                         p->is_plant ? "/" : "", f->id, f->shard, sh[0].n,
-                         c == SL_CACHE_MISS ? "is missing" : "failed its check: ",
-                         c == SL_CACHE_MISS ? "" : why);
-            goto fail;
-        }
-    }
-    char cmdline[8192], date[32];
-    cli_command_line(cmdline, sizeof cmdline, argc, argv);
-    sl_deliver_opts dop = {.version = VERSION_TEXT, .command_line = cmdline,
-                           .created = (time_t)a.created, .project = sh[0].set.project,
-                           .seed = sh[0].set.seed, .substeps = sh[0].set.substeps,
-                           .accuracy = sh[0].set.accuracy};
-    if (!dop.project.date && strftime(date, sizeof date, "%Y-%m-%d", gmtime(&dop.created)))
-        dop.project.date = date;
-    cli_outdir_writing();
-    const char *fresh = sl_atomic_dir_path(out);
-    if (sl_plant_deliver(p, fresh, &dop, &err))
+    if (read_results(&sh[0], p, by_k, dirs[0], &err))
         goto fail;
-    char cache[4400];
-    snprintf(cache, sizeof cache, "%s/%s", fresh, SL_CACHE_DIR_NAME);
-    if (mkdir(cache, 0777) != 0) {
-        sl_error_set(&err, SL_EIO, cache, 0, "cannot create: %s", strerror(errno));
+    if (write_outputs(&sh[0], by_k, sl_atomic_dir_path(out), &a, argc, argv, &err))
         goto fail;
-    }
-    for (size_t i = 0; i < p->n; i++) {
-        sl_plant_floor *f = &p->floors[i];
-        snprintf(path, sizeof path, "%s/%s/%s" SL_CACHE_SUFFIX, by_k[f->shard], SL_SHARD_RESULTS,
-                 f->key.hash);
-        if (copy_entry(path, cache, f->key.hash, &err))
-            goto fail;
-    }
     if (cli_outdir_commit(&out, &err))
         goto fail;
     if (!a.quiet)

@@ -174,6 +174,19 @@ static int check(void *dst)
     return cli_mu_check(r, &a->mu);
 }
 
+/* The options the table cannot put into the analysis options directly
+ * (units, types, the friction grid), converted into them. */
+static void settings(run_args *a)
+{
+    sl_analysis_opts *ao = &a->ao; /* rel_se, rtol, seed, policy: set by the options */
+    ao->substeps = (unsigned)a->substeps; /* 0: error-controlled by rtol (docs/integrators.md) */
+    ao->n_sets = a->sets; /* 0: adaptive */
+    ao->abs_se_m = 1e-3 * a->abs_se_mm;
+    ao->max_sets = a->max_sets;
+    ao->mu = a->mu.v;
+    ao->n_mu = a->mu.n;
+}
+
 int run_parse(int argc, char **argv, run_args *a)
 {
     static const cli_command cmd = {"run", run_head, run_tail, opts, CLI_NOPTS(opts), 22, take,
@@ -185,5 +198,8 @@ int run_parse(int argc, char **argv, run_args *a)
                     .created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL),
                     .dop = {.version = "seislide " SEISLIDE_VERSION}};
     sl_analysis_opts_default(&a->ao);
-    return cli_command_parse(&cmd, argc, argv, a);
+    int rc = cli_command_parse(&cmd, argc, argv, a);
+    if (rc == CLI_EXIT_OK)
+        settings(a);
+    return rc;
 }

@@ -1,7 +1,8 @@
 /* run_opts.h - the settings of `seislide run` from its command line: one
  * option table (run_opts.c), --help generated from it, the rules across
- * options. The analysis options and the workbook's record are filled where
- * the table can (ao, dop); run.c converts the rest. */
+ * options. The analysis options are complete after run_parse (ao: what the
+ * table cannot fill is converted there); the workbook's record is filled
+ * where the table can (dop), run_deliver.h adds the rest. */
 #ifndef SL_CLI_RUN_OPTS_H
 #define SL_CLI_RUN_OPTS_H
 
@@ -30,7 +31,8 @@ typedef struct run_args {
     const char *components;                 /* --components FILE (docs/components.md) */
 } run_args;
 
-/* Parse the command line into a (defaults first) and check it; operands
+/* Parse the command line into a (defaults first), check it and complete
+ * a->ao (with a->mu.v as its friction grid); operands
  * (floor files or folders) start at optind. Returns CLI_EXIT_OK,
  * CLI_OPT_HELP after printing the help, CLI_EXIT_USAGE (message printed)
  * or CLI_EXIT_ERROR (out of memory). a->mu.v is owned by the caller either

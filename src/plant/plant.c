@@ -230,12 +230,6 @@ void sl_plant_free(sl_plant *p)
     memset(p, 0, sizeof *p);
 }
 
-int sl_plant_owns_name(const char *name)
-{
-    return !strcmp(name, SL_PLANT_BOOK_CSV) || !strcmp(name, SL_PLANT_BOOK_XLSX) ||
-           !strcmp(name, SL_CACHE_DIR_NAME) || sl_comp_owns_name(name);
-}
-
 /* The outputs of building b into folder dir. */
 static sl_status deliver_building(const sl_plant *p, size_t b, const char *dir,
                                   const sl_deliver_opts *o, sl_error *err)

@@ -73,10 +73,6 @@ sl_status sl_plant_keys(sl_plant *p, const sl_analysis_opts *o, const char *vers
 void sl_plant_assign(sl_plant *p, unsigned n_shards);
 void sl_plant_free(sl_plant *p);
 
-/* Nonzero when name is an entry a plant run writes into its output folder
- * besides the building folders (plant.csv, plant.xlsx, the cache). */
-int sl_plant_owns_name(const char *name);
-
 /* Write the outputs of a whole plant (every floor's an set) into dir:
  * one building: deliver.h's files in dir itself; a plant: dir/<building>/
  * with them and dir/plant.csv, dir/plant.xlsx (report/plant_book.h). */

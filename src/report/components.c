@@ -375,11 +375,6 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
 
 /* ---- components.csv -------------------------------------------------------- */
 
-int sl_comp_owns_name(const char *name)
-{
-    return !strcmp(name, SL_COMP_CSV) || !strcmp(name, SL_COMP_XLSX);
-}
-
 static void csv_num(FILE *f, double v, const char *fmt)
 {
     if (isfinite(v))

@@ -169,7 +169,4 @@ sl_status sl_comp_write(const sl_comp_results *r, const sl_comp_table *t, const 
 sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, const char *path,
                              const sl_comp_opts *o, sl_error *err);
 
-/* Nonzero for a name the components outputs put in an output folder. */
-int sl_comp_owns_name(const char *name);
-
 #endif

@@ -114,20 +114,6 @@ sl_status sl_report_check_floors(const sl_report *r, sl_error *err)
     return SL_OK;
 }
 
-int sl_report_owns_name(const char *name)
-{
-    static const char *const fixed[] = {SL_RPT_WORKBOOK, "summary.csv", "floors.csv",
-                                        "asce_below_nltha.csv", "motion_quality.csv", "motions"};
-    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
-        if (!strcmp(name, fixed[i]))
-            return 1;
-    size_t n = strlen(name);
-    if (!strncmp(name, "floor_", 6) && n > 10 && !strcmp(name + n - 4, ".csv"))
-        return 1;
-    /* a temporary file of an interrupted older version */
-    return name[0] == '.' && strstr(name, ".tmp-") != NULL;
-}
-
 char *sl_report_flags(unsigned flags, char *buf, size_t n)
 {
     static const struct {

@@ -169,10 +169,6 @@ SL_API size_t sl_report_utf8_len(const char *s);
  * case, as the workbook's MATCH does). SL_EINVAL naming both files. */
 SL_API sl_status sl_report_check_floors(const sl_report *r, sl_error *err);
 
-/* Nonzero when `name` is a file or folder `seislide run` writes into its
- * output folder (for sl_outdir_check). */
-SL_API int sl_report_owns_name(const char *name);
-
 /* Write the workbook to path. Returns SL_OK, or SL_EIO/SL_EINVAL with the
  * path and libxlsxwriter's message. All floors must share the mu grid. */
 SL_API sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *err);
