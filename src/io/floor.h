@@ -190,12 +190,12 @@ SL_API sl_status sl_floor_check_plausible(const sl_floor *fl, sl_error *err);
  * (...)", naming the units as written (units_text) the way the file of
  * format fmt writes the key, and returns 1; else buf "" and 0. The run's
  * stderr and the workbook's Notes both use it. */
-int sl_floor_zpa_warning_text(double zpa_h_ms2, const char *units_text, sl_floor_format fmt,
-                              char *buf, size_t n);
+SL_API int sl_floor_zpa_warning_text(double zpa_h_ms2, const char *units_text,
+                                     sl_floor_format fmt, char *buf, size_t n);
 
 /* The same for a floor read (its larger horizontal ZPA, units and
  * format). */
-int sl_floor_zpa_warning(const sl_floor *fl, char *buf, size_t n);
+SL_API int sl_floor_zpa_warning(const sl_floor *fl, char *buf, size_t n);
 
 /* The worst ratios of a floor's values (the quantities the plausibility
  * rules bound, above), over every direction, damping and frequency. */
@@ -210,7 +210,7 @@ typedef struct sl_floor_plausibility {
     int at_comp[5];
     double at_f_hz[5], at_damping[5];
 } sl_floor_plausibility;
-void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p);
+SL_API void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p);
 
 /* The format a path names by its extension: SL_FLOOR_CSV for .csv (any
  * case), else SL_FLOOR_INI. */
