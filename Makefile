@@ -120,7 +120,7 @@ physfloors: $(BUILD)/tools/physfloors
 # The worst ratios of physical floor spectra behind the plausibility rules of floor
 # files (docs/formats-floor.md, "Plausibility"; minutes).
 plausfloors: $(BUILD)/tools/plausfloors
-	nice $(BUILD)/tools/plausfloors floors templates tests/data/floors/sharp-8.ini
+	nice $(BUILD)/tools/plausfloors floors templates/floor.ini templates/floor.csv tests/data/floors/sharp-8.ini
 
 $(BUILD)/tools/%: tools/%.c $(STUDY_LIB) $(LIB)
 	@mkdir -p $(dir $@)

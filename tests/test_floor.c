@@ -5,6 +5,7 @@
  * repository root (make test does). */
 #include <dirent.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -429,6 +430,54 @@ static void test_plausibility_thresholds(void)
     rmdir(dir);
 }
 
+/* A given ZPA against the lowest damping's value at the table's last
+ * frequency (5 m/s2 at 50 Hz, 2 %): accepted at SL_FLOOR_ZPA_END_MIN and
+ * _MAX, refused just beyond them naming the zpa line; the worst physical
+ * floor (0.255: a 2 % table ending near a vertical mode, docs/formats-floor.md)
+ * accepted; the slips refused: a ZPA in g under a table in m/s2 (1/9.81), in
+ * m/s2 under one in g (9.81), typed x10 or /10, a table ending on a peak 6 x
+ * the ZPA. */
+static void test_zpa_end_thresholds(void)
+{
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "z.csv"), "mkdtemp");
+    const struct {
+        double r;
+        int ok;
+    } c[] = {
+        {SL_FLOOR_ZPA_END_MIN, 1},          {SL_FLOOR_ZPA_END_MIN / 1.001, 0},
+        {SL_FLOOR_ZPA_END_MAX, 1},          {SL_FLOOR_ZPA_END_MAX * 1.001, 0},
+        {0.255, 1},                         {1.001, 1},
+        {1.0 / 9.80665, 0},                 {9.80665, 0},
+        {10.0, 0},                          {0.1, 0},
+        {1.0 / 6.0, 0},                     {0.199, 0},
+        {1.26, 0},
+    };
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+        FILE *f = fopen(path, "w");
+        CHECK(f != NULL, "fopen");
+        if (!f)
+            return;
+        fprintf(f, "# name: t\n# units: m/s2\n# h2: same_as_h1\n# zpa_h1: %.17g\n"
+                   "f_hz,h1_2,h1_10,v_5\n0.5,5,4,1\n1,6,4,1\n2,7,4,1\n10,6,4,1\n50,5,4,1\n",
+                5.0 * c[i].r);
+        fclose(f);
+        sl_error e;
+        sl_error_clear(&e);
+        sl_floor *fl = sl_floor_load(path, &e);
+        if (c[i].ok)
+            CHECK(fl != NULL && fabs(fl->comp[0].zpa_ms2 - 5.0 * c[i].r) < 1e-12,
+                  "ZPA %.17g x the end refused: %s", c[i].r, e.msg);
+        else
+            CHECK(!fl && e.line == 4 && strstr(e.msg, "zpa_h1") &&
+                      strstr(e.msg, "x the 2 % spectrum's value at its highest frequency"),
+                  "ZPA %.17g x the end: refused at line %ld (%s)", c[i].r, e.line, e.msg);
+        sl_floor_free(fl);
+    }
+    remove(path);
+    rmdir(dir);
+}
+
 /* An unusual ZPA: the warning names the units as written (and the key as
  * the format writes it) and the ZPA; a usual one gives none. */
 static void test_zpa_warning(void)
@@ -527,6 +576,7 @@ int main(void)
     RUN(test_tables_as_saved);
     RUN(test_plausibility_thresholds);
     RUN(test_zpa_warning);
+    RUN(test_zpa_end_thresholds);
     RUN(test_utf16_no_bom);
     RUN(test_every_fixture_listed);
     RUN(test_missing_file);

@@ -22,7 +22,8 @@
  * the plausibility rules (must be 0) and by any other rule (the ZPA's
  * agreement with the table's end), and the worst of each ratio of
  * sl_floor_plausibility_of() with the floor that has it (over the floors
- * read). Exit 0, or 1 on bad input.
+ * read), and the range of a given ZPA over the lowest damping's value at
+ * the table's last frequency (SL_FLOOR_ZPA_END_MIN/_MAX). Exit 0, or 1 on bad input.
  */
 #include <math.h>
 #include <stdio.h>
@@ -40,6 +41,10 @@
 #define PGA_G 0.3
 #define NGRID 4
 #define NF_MAX 200
+/* The bins of the given ZPA's ratio to the table's end: below each edge,
+ * the last one above the last edge. */
+#define ZBINS 9
+static const double zedge[ZBINS - 1] = {0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 0.95, 1.0 + 1e-9};
 
 /* The worst of each ratio over a family, with where. */
 typedef struct family {
@@ -48,6 +53,9 @@ typedef struct family {
     sl_floor_plausibility w;
     char at[5][260];
     char refusal[2400];
+    double zlo, zhi; /* given ZPA / lowest damping's SA at the last frequency */
+    size_t zbin[ZBINS];
+    char zlo_at[260], zhi_at[260];
 } family;
 
 static void family_init(family *f, const char *name)
@@ -56,6 +64,35 @@ static void family_init(family *f, const char *name)
     f->name = name;
     f->w.order = INFINITY;
     f->w.order_mean = INFINITY;
+    f->zlo = INFINITY;
+    f->zhi = 0;
+}
+
+/* The ratio of each given ZPA to the lowest damping's value at the
+ * table's last frequency (io/floor.h, SL_FLOOR_ZPA_END_MIN/_MAX). */
+static void note_zpa(family *f, const sl_floor *fl, const char *who)
+{
+    for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
+        const sl_floor_component *c = &fl->comp[k];
+        if (!c->zpa_given || !c->nspec)
+            continue;
+        const sl_spectrum *s = &c->spec[0];
+        const double r = c->zpa_ms2 / s->sa_ms2[s->n - 1];
+        size_t b = 0;
+        while (b < ZBINS - 1 && r >= zedge[b])
+            b++;
+        f->zbin[b]++;
+        if (r < f->zlo) {
+            f->zlo = r;
+            snprintf(f->zlo_at, sizeof f->zlo_at, "%s, %s %g %% at %.3g Hz", who,
+                     sl_floor_comp_name((sl_floor_comp)k), 100 * s->damping, s->f_hz[s->n - 1]);
+        }
+        if (r > f->zhi) {
+            f->zhi = r;
+            snprintf(f->zhi_at, sizeof f->zhi_at, "%s, %s %g %% at %.3g Hz", who,
+                     sl_floor_comp_name((sl_floor_comp)k), 100 * s->damping, s->f_hz[s->n - 1]);
+        }
+    }
 }
 
 static void note(family *f, const char *path, const char *label)
@@ -74,6 +111,7 @@ static void note(family *f, const char *path, const char *label)
     sl_floor_plausibility p;
     sl_floor_plausibility_of(fl, &p);
     const char *who = label ? label : path;
+    note_zpa(f, fl, who);
     const int worse[5] = {p.spike > f->w.spike, p.dip > f->w.dip, p.order < f->w.order,
                           p.spread > f->w.spread, p.order_mean < f->w.order_mean};
     const double v[5] = {p.spike, p.dip, p.order, p.spread, p.order_mean};
@@ -94,6 +132,17 @@ static void print_family(const family *f)
            "|\n",
            f->name, f->n, f->refused, f->refused_other, f->w.spike, f->at[0], f->w.dip, f->at[1],
            f->w.order, f->at[2], f->w.spread, f->at[3], f->w.order_mean, f->at[4]);
+    if (f->zhi > 0)
+        printf("  given ZPA / lowest damping's SA at the last frequency: %.3f (%s) to %.3f "
+               "(%s)\n",
+               f->zlo, f->zlo_at, f->zhi, f->zhi_at);
+    if (f->zhi > 0) {
+        printf("  directions with a given ZPA per ratio:");
+        for (size_t b = 0; b < ZBINS; b++)
+            printf(" %s%.3g: %zu", b == ZBINS - 1 ? ">= " : "< ",
+                   zedge[b < ZBINS - 1 ? b : ZBINS - 2], f->zbin[b]);
+        printf("\n");
+    }
     if (f->refused || f->refused_other)
         printf("  first refused: %s\n", f->refusal);
 }

@@ -60,8 +60,9 @@
  * when given, else the largest over its dampings of the value at its
  * highest frequency. A given ZPA is checked against the value at the
  * highest frequency of the table at its lowest damping (the spectrum that
- * is last to reach the ZPA): a ratio outside 0.8-1.25 is an input error
- * naming the zpa line (a typo or a units slip, e.g. zpa = 1e-300).
+ * is last to reach the ZPA): a ratio outside 0.2-1.25 is an input error
+ * naming the zpa line (a typo or a units slip, e.g. zpa = 1e-300; a ZPA in
+ * g under a table in m/s^2 gives 0.102, in m/s^2 under one in g 9.81).
  *
  * Memory: sl_floor_load() returns a floor the caller frees with
  * sl_floor_free(). The struct is plain data; its spectra are owned by it.
@@ -97,8 +98,11 @@
 #define SL_FLOOR_ZPA_MIN_G 0.01
 #define SL_FLOOR_ZPA_MAX_G 5.0
 /* A given ZPA must lie within these multiples of the spectrum's value at
- * its highest frequency, at its lowest damping. */
-#define SL_FLOOR_ZPA_END_MIN 0.8
+ * its highest frequency, at its lowest damping. A spectrum approaches the
+ * ZPA from above: a table ending near a mode of the floor ends well above
+ * it (physical floors, tools/plausfloors.c: 0.255-1.001; docs/formats-floor.md,
+ * "Zero-period acceleration"), hardly ever below it. */
+#define SL_FLOOR_ZPA_END_MIN 0.2
 #define SL_FLOOR_ZPA_END_MAX 1.25
 /* Plausibility of the spectral values (docs/formats-floor.md,
  * "Plausibility"; thresholds from the worst ratios measured on physical

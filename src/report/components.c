@@ -94,6 +94,45 @@ char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, 
     return buf;
 }
 
+/* A full list buf of n bytes ends in "...", cut at a character's start. */
+static void ellipsis(char *buf, size_t n)
+{
+    size_t k = n - 4;
+    while (k > 0 && ((unsigned char)buf[k] & 0xC0) == 0x80)
+        k--;
+    strcpy(buf + k, "...");
+}
+
+/* A name or tag of the components file for a message, as written: UTF-8
+ * characters kept, a control byte or a byte that is not UTF-8 shown as
+ * '?', whole characters up to NAME_SHOWN bytes. */
+#define NAME_SHOWN 160
+typedef struct shown_name {
+    char s[NAME_SHOWN + 4];
+} shown_name;
+
+static shown_name as_written(const char *s)
+{
+    shown_name q;
+    size_t k = 0;
+    for (size_t i = 0; s[i];) {
+        size_t c = sl_report_utf8_len(s + i), w = c ? c : 1;
+        if (k + w > NAME_SHOWN) {
+            memcpy(q.s + k, "...", 3);
+            k += 3;
+            break;
+        }
+        if (c > 1 || (c == 1 && (unsigned char)s[i] >= 0x20 && s[i] != 0x7f))
+            memcpy(q.s + k, s + i, c);
+        else
+            q.s[k] = '?';
+        k += c > 1 ? c : 1;
+        i += w;
+    }
+    q.s[k] = '\0';
+    return q;
+}
+
 /* The known floors of building b (or the buildings) as a list for a message. */
 static char *known_floors(const sl_comp_results *r, const char *b, char *buf, size_t n)
 {
@@ -104,7 +143,7 @@ static char *known_floors(const sl_comp_results *r, const char *b, char *buf, si
             k += (size_t)snprintf(buf + k, n - k, "%s%s (%s)", k ? ", " : "", r->floors[i].id,
                                   r->floors[i].name);
     if (k >= n - 1 && n > 4)
-        strcpy(buf + n - 4, "...");
+        ellipsis(buf, n);
     return buf;
 }
 
@@ -115,7 +154,7 @@ static char *known_buildings(const sl_comp_results *r, char *buf, size_t n)
     for (size_t b = 0; b < r->n_buildings && k + 1 < n; b++)
         k += (size_t)snprintf(buf + k, n - k, "%s%s", k ? ", " : "", r->buildings[b]);
     if (k >= n - 1 && n > 4)
-        strcpy(buf + n - 4, "...");
+        ellipsis(buf, n);
     return buf;
 }
 
@@ -132,7 +171,7 @@ static sl_status find_building(const sl_comp_results *r, const char *path, const
         }
         return sl_error_set_at(err, SL_EINVAL, path, w->fline[col], col + 1,
                                "unknown building '%s': the results are one building (folder "
-                               "'%s'): leave building empty", sl_text_quote(s, strlen(s)).s,
+                               "'%s'): leave building empty", as_written(s).s,
                                r->single ? r->single : "");
     }
     if (!*s && r->n_buildings == 1) {
@@ -147,7 +186,7 @@ static sl_status find_building(const sl_comp_results *r, const char *path, const
     return sl_error_set_at(err, SL_EINVAL, path, w->fline[col], col + 1,
                            *s ? "unknown building '%s'; the buildings: %s"
                               : "no building%s; the buildings: %s",
-                           *s ? sl_text_quote(s, strlen(s)).s : "",
+                           *s ? as_written(s).s : "",
                            known_buildings(r, known, sizeof known));
 }
 
@@ -168,7 +207,7 @@ static sl_status find_floor(const sl_comp_results *r, const char *path, const sl
         snprintf(in, sizeof in, " in building %s", bld);
     return sl_error_set_at(err, SL_EINVAL, path, w->fline[col], col + 1,
                            "unknown floor '%s'%s; its floors (id (name)): %s",
-                           sl_text_quote(s, strlen(s)).s, in,
+                           as_written(s).s, in,
                            known_floors(r, bld, known, sizeof known));
 }
 
@@ -357,7 +396,7 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
             if (!strcasecmp(tag, sl_csv_trimmed(t->rows[i].field[t->col[SL_COMP_TAG]], b2, sizeof b2))) {
                 st = sl_error_set_at(err, SL_EINVAL, path, x->line, t->col[SL_COMP_TAG] + 1,
                                      "tag '%s' again: first on line %ld",
-                                     sl_text_quote(tag, strlen(tag)).s, t->rows[i].line);
+                                     as_written(tag).s, t->rows[i].line);
                 break;
             }
         if (!st)

@@ -96,7 +96,10 @@ typedef struct sl_comp_results {
     char *dir;
     int is_plant;
     size_t n_buildings;
-    char **buildings;        /* ids, in plant order; one "" for a building folder */
+    char **buildings;        /* names as written (plant.csv), in plant order; one "" for a
+                                building folder */
+    char **folders;          /* each building's output folder under dir
+                                (sl_report_file_name of its name); "" for a building folder */
     char *single;            /* a building folder's own name (its last path part) */
     size_t n_floors;
     sl_comp_floor *floors;   /* grouped by building */

@@ -12,6 +12,8 @@
 
 #include "report/csvread.h"
 #include "report/plant_book.h"
+#include "report/report.h"
+#include "report/sheets.h"
 
 /* Largest results CSV read, bytes (a floor table, floors.csv, plant.csv). */
 #define RESULTS_MAX_BYTES (64L << 20)
@@ -38,13 +40,15 @@ static const char *comment_value(const char *line, size_t n, const char *key, ch
 
 
 
-/* floor_<id>.csv of a building: the grid, clearance and SE; the floor file's
- * record and (first floor) the run's record. */
+/* floor_<id>.csv of a building (the id made a file name, as report/csv.c
+ * names it): the grid, clearance and SE; the floor file's record and (first
+ * floor) the run's record. */
 static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *bdir,
                             sl_error *err)
 {
-    char path[4400], b[1200];
-    snprintf(path, sizeof path, "%s/floor_%s.csv", bdir, fl->id);
+    char path[4400], b[1200], file[4 * SL_RPT_ID_MAX + 1];
+    snprintf(path, sizeof path, "%s/floor_%s.csv", bdir,
+             sl_report_file_name(fl->id, file, sizeof file));
     sl_text t;
     sl_status st = sl_csv_load(path, RESULTS_MAX_BYTES, &t, err);
     if (st)
@@ -201,18 +205,26 @@ static int is_file(const char *path)
     return stat(path, &sb) == 0 && S_ISREG(sb.st_mode);
 }
 
-static sl_status add_building(sl_comp_results *r, const char *id, sl_error *err)
+/* A building named as written, its results in the folder dir/folder (a
+ * folder already listed is not added twice). */
+static sl_status add_building(sl_comp_results *r, const char *name, const char *folder,
+                              sl_error *err)
 {
     for (size_t b = 0; b < r->n_buildings; b++)
-        if (!strcmp(r->buildings[b], id))
+        if (!strcmp(r->folders[b], folder))
             return SL_OK;
     char **g = realloc(r->buildings, (r->n_buildings + 1) * sizeof *g);
-    if (!g || !(g[r->n_buildings] = dupstr(id))) {
-        if (g)
-            r->buildings = g;
+    if (g)
+        r->buildings = g;
+    char **h = g ? realloc(r->folders, (r->n_buildings + 1) * sizeof *h) : NULL;
+    if (h)
+        r->folders = h;
+    if (!g || !h || !(g[r->n_buildings] = dupstr(name)))
+        return sl_error_set(err, SL_ENOMEM, r->dir, 0, "out of memory");
+    if (!(h[r->n_buildings] = dupstr(folder))) {
+        free(g[r->n_buildings]);
         return sl_error_set(err, SL_ENOMEM, r->dir, 0, "out of memory");
     }
-    r->buildings = g;
     r->n_buildings++;
     return SL_OK;
 }
@@ -222,11 +234,13 @@ static int cmp_str(const void *a, const void *b)
     return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
-/* A plant: the buildings in plant.csv's order, then any other sub-folder
- * holding floors.csv (sorted). */
+/* A plant: the buildings of plant.csv, named as written there, in its
+ * order (each in the folder its name makes, sl_report_file_name, as
+ * plant/plant.c names it), then any other sub-folder holding floors.csv
+ * (sorted, named by the folder). */
 static sl_status plant_buildings(sl_comp_results *r, const char *pcsv, sl_error *err)
 {
-    char path[4400];
+    char path[4400], folder[4 * SL_RPT_ID_MAX + 1];
     sl_text t;
     sl_status st = sl_csv_load(pcsv, RESULTS_MAX_BYTES, &t, err);
     if (st)
@@ -243,9 +257,10 @@ static sl_status plant_buildings(sl_comp_results *r, const char *pcsv, sl_error 
         }
         if ((size_t)col[0] >= w.n)
             continue;
-        snprintf(path, sizeof path, "%s/%s/floors.csv", r->dir, w.f[col[0]]);
+        sl_report_file_name(w.f[col[0]], folder, sizeof folder);
+        snprintf(path, sizeof path, "%s/%s/floors.csv", r->dir, folder);
         if (is_file(path))
-            st = add_building(r, w.f[col[0]], err);
+            st = add_building(r, w.f[col[0]], folder, err);
     }
     sl_csvrec_free(&h);
     sl_csvrec_free(&w);
@@ -259,12 +274,20 @@ static sl_status plant_buildings(sl_comp_results *r, const char *pcsv, sl_error 
             continue;
         snprintf(path, sizeof path, "%s/%s/floors.csv", r->dir, e->d_name);
         if (is_file(path))
-            st = add_building(r, e->d_name, err);
+            st = add_building(r, e->d_name, e->d_name, err);
     }
     if (d)
         closedir(d);
-    if (!st && r->n_buildings > n0)
+    if (!st && r->n_buildings > n0) { /* here each name is its folder's */
         qsort(r->buildings + n0, r->n_buildings - n0, sizeof *r->buildings, cmp_str);
+        for (size_t b = n0; b < r->n_buildings; b++) {
+            char *c = dupstr(r->buildings[b]);
+            if (!c)
+                return sl_error_set(err, SL_ENOMEM, r->dir, 0, "out of memory");
+            free(r->folders[b]);
+            r->folders[b] = c;
+        }
+    }
     return st;
 }
 
@@ -281,9 +304,12 @@ void sl_comp_results_free(sl_comp_results *r)
         free(f->clearance_mm);
         free(f->se_mm);
     }
-    for (size_t b = 0; b < r->n_buildings; b++)
+    for (size_t b = 0; b < r->n_buildings; b++) {
         free(r->buildings[b]);
+        free(r->folders[b]);
+    }
     free(r->buildings);
+    free(r->folders);
     free(r->floors);
     free(r->mu);
     free(r->dir);
@@ -337,7 +363,7 @@ sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *er
             st = sl_error_set(err, SL_EIO, dir, 0, "a plant's results without a building "
                               "folder (<building>/floors.csv)");
         for (size_t b = 0; !st && b < r->n_buildings; b++) {
-            snprintf(path, sizeof path, "%s/%s", dir, r->buildings[b]);
+            snprintf(path, sizeof path, "%s/%s", dir, r->folders[b]);
             st = load_building(r, r->buildings[b], path, err);
         }
     } else {
@@ -346,7 +372,7 @@ sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *er
             st = sl_error_set(err, SL_EIO, dir, 0, "not the output folder of seislide run: "
                               "neither %s nor floors.csv in it", SL_PLANT_BOOK_CSV);
         else
-            st = add_building(r, "", err);
+            st = add_building(r, "", "", err);
         if (!st) {
             /* the folder's own name: a row may name it as its building */
             if (!(r->single = last_part(dir)))

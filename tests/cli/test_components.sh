@@ -311,4 +311,64 @@ PY
 else
   t_skip "soffice (LibreOffice) not found: the Components sheet is not recalculated; install libreoffice-calc-nogui"
 fi
+# names as written (UTF-8): a plant whose building and floor carry non-ASCII
+# names (tests/cli/test_plant.sh's construction; here the floor's name differs
+# from its id), while its output folder and floor CSV are named by
+# sl_report_file_name ("Bâtiment_réacteur/floor_Niveau_−3_m.csv")
+U="$D/plantu"; RB='Bâtiment réacteur'; NV='Niveau −3 m'; NN='Salle des pompes −3 m'
+mkdir -p "$U/$RB" "$U/Aux"
+sed -e "s/^name = .*/name = $NN/" floors/01-ground.ini > "$U/$RB/$NV.ini"
+cp floors/02-el12.ini "$U/Aux/"
+t_run run "$U" -o "$D/resu" $OPTS; t_expect_rc utf8-run 0
+printf 'tag,building,floor,mu,base_m,cg_height_m,clearance_mm,room\n' > "$D/u.csv"
+printf 'U-1,%s,%s,0.3,3,0.5,900,salle −3\nU-2,%s,%s,0.2,3,0.5,1,\nU-3,Aux,02-el12,0.3,3,0.5,900,\n' \
+  "$RB" "$NV" "$RB" "$NN" >> "$D/u.csv"
+t_run components "$D/resu" "$D/u.csv" -o "$D/coutu" --created 1700000000; t_expect_rc utf8-components 0
+t_expect_err utf8-summary '3 components: 2 ok, 1 short, 0 rocking, 0 outside'
+# each row's required clearance is its floor table's at its mu, the building and
+# floor written back as given, the extra column kept
+python3 - "$D" "$RB" "$NV" "$NN" > "$D/u.txt" 2>&1 <<'PY'
+import csv, sys
+d, rb, nv, nn = sys.argv[1:5]
+def table(path):
+    rows = [l for l in open(path, encoding='utf-8') if not l.startswith('#')]
+    return {float(r['mu']): float(r['clearance_mm']) for r in csv.DictReader(rows)}
+t = table(d + '/resu/Bâtiment_réacteur/floor_Niveau_−3_m.csv')
+a = table(d + '/resu/Aux/floor_02-el12.csv')
+rows = [l for l in open(d + '/coutu/components.csv', encoding='utf-8') if not l.startswith('#')]
+out = {r['tag']: r for r in csv.DictReader(rows)}
+def ok(c, what):
+    print(('ok ' if c else 'FAIL ') + what)
+for tag, ref, b, f in (('U-1', t[0.3], rb, nv), ('U-2', t[0.2], rb, nn), ('U-3', a[0.3], 'Aux', '02-el12')):
+    r = out.get(tag, {})
+    ok(abs(float(r.get('required_clearance_mm', 'nan')) - ref) <= 0.006 * ref + 0.05,  # as printed
+       '%s: required %s against the floor table %g' % (tag, r.get('required_clearance_mm'), ref))
+    ok(r.get('building') == b and r.get('floor') == f, '%s: building and floor as given: %s, %s' % (tag, r.get('building'), r.get('floor')))
+ok(out.get('U-1', {}).get('room') == 'salle −3', 'extra column kept as written')
+ok(out.get('U-2', {}).get('verdict') == 'short', 'U-2 short (1 mm gap)')
+PY
+! grep -q '^FAIL' "$D/u.txt" && [ "$(grep -c '^ok ' "$D/u.txt")" -eq 8 ] && t_pass || t_fail "non-ASCII names: $(grep -v '^ok ' "$D/u.txt" | head -3)"
+# unknown names: the known ones listed as written, the name given shown as written
+printf 'tag,building,floor,mu,base_m,cg_height_m,clearance_mm\nV-1,Batiment reacteur,%s,0.3,3,0.5,9\n' "$NV" > "$D/bu1.csv"
+t_run components "$D/resu" "$D/bu1.csv" -o "$D/badu"; t_expect_rc utf8-unknown-building 1
+t_expect_err utf8-unknown-building "bu1.csv:2:2: unknown building 'Batiment reacteur'; the buildings: Aux, $RB"
+printf 'tag,building,floor,mu,base_m,cg_height_m,clearance_mm\nV-1,%s,Niveau −4 m,0.3,3,0.5,9\n' "$RB" > "$D/bu2.csv"
+t_run components "$D/resu" "$D/bu2.csv" -o "$D/badu"; t_expect_rc utf8-unknown-floor 1
+t_expect_err utf8-unknown-floor "bu2.csv:2:3: unknown floor 'Niveau −4 m' in building $RB; its floors \\(id \\(name\\)\\): $NV \\($NN\\)"
+[ -e "$D/badu" ] && t_fail "a refused list wrote $D/badu" || t_pass
+# run --components on that plant, then a rerun into the same folder: the
+# manifest names components.csv and .xlsx, the rerun replaces them, a user's
+# file in the folder survives
+t_run run "$U" -o "$D/runu" $OPTS --components "$D/u.csv"; t_expect_rc utf8-run-components 0
+grep -qx 'components.csv' "$D/runu/.seislide-manifest" && grep -qx 'components.xlsx' "$D/runu/.seislide-manifest" &&
+  t_pass || t_fail "manifest lacks the components outputs: $(cat "$D/runu/.seislide-manifest" | tr '\n' ' ')"
+grep -v '^#' "$D/runu/components.csv" > "$D/cu1"; grep -v '^#' "$D/coutu/components.csv" > "$D/cu2"
+cmp -s "$D/cu1" "$D/cu2" && t_pass || t_fail "run --components gives other rows than seislide components"
+echo 'my notes' > "$D/runu/notes.txt"
+sed -e 's/,900,/,0,/' "$D/u.csv" > "$D/u2.csv"
+t_run run "$U" -o "$D/runu" $OPTS --components "$D/u2.csv"; t_expect_rc utf8-rerun-components 0
+[ "$(cat "$D/runu/notes.txt" 2>/dev/null)" = 'my notes' ] && t_pass || t_fail "the rerun lost the user's notes.txt"
+grep -q '^U-1,.*,short,' "$D/runu/components.csv" && t_pass || t_fail "the rerun did not replace components.csv: $(grep '^U-1' "$D/runu/components.csv")"
+grep -qx 'notes.txt' "$D/runu/.seislide-manifest" && t_fail "the manifest claims the user's file" || t_pass
+
 t_end
