@@ -1,8 +1,9 @@
 /*
  * oracle.h - independent references shared by the tests: the ground
- * velocity and displacement of a piecewise-linear record, integrated here
- * and not by the library, a motion over a caller-owned array, and a design
- * input over hand-chosen numbers (the tests give the expected design values).
+ * velocity and displacement of a piecewise-linear record, integrated by
+ * hand (src/verify/closed_forms.h) and not by the library, a motion over a
+ * caller-owned array, and a design input over hand-chosen numbers (the
+ * tests give the expected design values).
  */
 #ifndef SL_TEST_ORACLE_H
 #define SL_TEST_ORACLE_H
@@ -11,6 +12,7 @@
 
 #include "io/motion.h"
 #include "method/design.h"
+#include "verify/closed_forms.h"
 
 /* A motion over a caller-owned array (no file, nothing to free). */
 static inline sl_motion oracle_motion(double *a, size_t n, double dt)
@@ -20,24 +22,13 @@ static inline sl_motion oracle_motion(double *a, size_t n, double dt)
 }
 
 /* Ground velocity *v and displacement *d at time t of the samples a (taken
- * as piecewise linear; after the last sample the ground keeps its velocity). */
+ * as piecewise linear; after the last sample the ground keeps its velocity):
+ * the closed form of src/verify/closed_forms.h, which the verification
+ * problems use too. */
 static inline void oracle_ground_vd(const double *a, size_t n, double dt, double t, double *v,
                                     double *d)
 {
-    double V = 0, D = 0;
-    for (size_t i = 0; i + 1 < n; i++) {
-        double t0 = (double)i * dt;
-        if (t <= t0)
-            break;
-        double h = t - t0 < dt ? t - t0 : dt, s = (a[i + 1] - a[i]) / dt;
-        D += V * h + a[i] * h * h / 2 + s * h * h * h / 6;
-        V += a[i] * h + s * h * h / 2;
-    }
-    double tend = (double)(n - 1) * dt;
-    if (t > tend)
-        D += V * (t - tend);
-    *v = V;
-    *d = D;
+    sl_closed_ground_vd(a, n, dt, t, v, d);
 }
 
 /* A design input over caller-owned arrays: n_mu friction values mu, the

@@ -6,30 +6,10 @@
 
 #include "core/units.h"
 #include "slide/slide.h"
+#include "verify/closed_forms.h"
 #include "verify/verify_problems.h"
 
 /* ---- references ---------------------------------------------------------- */
-
-/* Ground velocity *v and displacement *d at time t of samples a[0..n-1]
- * at step dt read as piecewise linear (the exact integral, segment by
- * segment; after the last sample the ground keeps its velocity). */
-static void ground_vd(const double *a, size_t n, double dt, double t, double *v, double *d)
-{
-    double V = 0, D = 0;
-    for (size_t i = 0; i + 1 < n; i++) {
-        double t0 = (double)i * dt;
-        if (t <= t0)
-            break;
-        double h = t - t0 < dt ? t - t0 : dt, s = (a[i + 1] - a[i]) / dt;
-        D += V * h + a[i] * h * h / 2 + s * h * h * h / 6;
-        V += a[i] * h + s * h * h / 2;
-    }
-    double tend = (double)(n - 1) * dt;
-    if (t > tend)
-        D += V * (t - tend);
-    *v = V;
-    *d = D;
-}
 
 /* The pulse of E01: A on samples 0..m-1, zero after (the last interval
  * ramps A -> 0). The block slides toward -x from t = 0 until the ground
@@ -180,10 +160,10 @@ SL_VERIFY_FN(sl_verify_e05_one_way)
             a[k * gap + i] = k == 1 ? -A : A;
     /* one pulse alone, from the reference integral */
     double ton = dt * mu * g / A, Von, Don, Vend, Dend, Vs, Ds;
-    ground_vd(a, gap, dt, ton, &Von, &Don);
-    ground_vd(a, gap, dt, 1e9, &Vend, &Dend);
+    sl_closed_ground_vd(a, gap, dt, ton, &Von, &Don);
+    sl_closed_ground_vd(a, gap, dt, 1e9, &Vend, &Dend);
     double ts = ton + (Vend - Von) / (mu * g);
-    ground_vd(a, gap, dt, ts, &Vs, &Ds);
+    sl_closed_ground_vd(a, gap, dt, ts, &Vs, &Ds);
     double U = Ds - Don - Von * (ts - ton) - mu * g * (ts - ton) * (ts - ton) / 2;
     sl_slide_opts o;
     sl_slide_opts_default(&o);
