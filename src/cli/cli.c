@@ -55,6 +55,22 @@ int cli_parse_double(const char *s, double *out)
     return 0;
 }
 
+int cli_parse_created(const char *s, double *out)
+{
+    double v;
+    if (cli_parse_double(s, &v) || v < 0 || v > 4e12)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+double cli_created_default(void)
+{
+    const char *sde = getenv("SOURCE_DATE_EPOCH");
+    double v;
+    return (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL);
+}
+
 int cli_parse_ulong(const char *s, unsigned long *out)
 {
     if (!s || !(*s >= '0' && *s <= '9')) /* strtoul would take " 5", "+5" and "-5" */

@@ -203,6 +203,15 @@ int cli_stdout_done(void);
 
 /* Strict parse of a finite double (whole string). Returns 0 on success. */
 int cli_parse_double(const char *s, double *out);
+/* The --created option (a workbook date, s since 1970) of the commands that
+ * write workbooks, its value and its default. */
+#define CLI_OPT_CREATED(key)                                                                    \
+    {"created", (key), "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\n"  \
+     "else now)", .kind = CLI_CALL}
+/* Parse a --created value: a number 0..4e12. Returns 0 on success. */
+int cli_parse_created(const char *s, double *out);
+/* The default date: SOURCE_DATE_EPOCH when it is a number >= 0, else now. */
+double cli_created_default(void);
 /* Parse option `opt` of command `cmd` as a finite number > 0 (in `unit`,
  * NULL if dimensionless) into *out. Returns CLI_EXIT_OK, or prints a usage
  * error naming the option and value and returns CLI_EXIT_USAGE. */

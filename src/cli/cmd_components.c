@@ -46,15 +46,14 @@ enum { O_CREATED = CLI_OPT_ID };
 static const cli_opt comp_opts[] = {
     {"output", 'o', "OUT", "output folder (required); written as a fresh folder swapped\n"
      "in: OUT must be new, empty or hold only these outputs", .kind = CLI_STRING, A(out)},
-    {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\n"
-     "else now)", .kind = CLI_CALL},
+    CLI_OPT_CREATED(O_CREATED),
 };
 
 static int take(void *dst, int key, const char *v)
 {
     comp_args *a = dst;
     (void)key;
-    if (cli_parse_double(v, &a->created) || a->created < 0 || a->created > 4e12)
+    if (cli_parse_created(v, &a->created))
         return cli_usage("components", "bad value '%s' for --created", v);
     return CLI_EXIT_OK;
 }
@@ -96,10 +95,7 @@ int cmd_components(int argc, char **argv)
 {
     static const cli_command cmd = {"components", comp_head, comp_tail, comp_opts,
                                     CLI_NOPTS(comp_opts), 22, take, check, 1};
-    const char *sde = getenv("SOURCE_DATE_EPOCH");
-    double v;
-    comp_args a = {.created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v
-                                                                         : (double)time(NULL)};
+    comp_args a = {.created = cli_created_default()};
     int rc = cli_command_parse(&cmd, argc, argv, &a);
     if (rc)
         return rc == CLI_OPT_HELP ? CLI_EXIT_OK : rc;

@@ -47,14 +47,13 @@ static const cli_opt opts[] = {
      "as by run (not a shard folder)",
      .kind = CLI_STRING, A(out)},
     {"quiet", 'q', NULL, "no messages on stderr", .kind = CLI_FLAG, A(quiet)},
-    {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\n"
-     "else now)", .kind = CLI_CALL}};
+    CLI_OPT_CREATED(O_CREATED)};
 
 static int take(void *dst, int key, const char *v)
 {
     merge_args *a = dst;
     (void)key;
-    if (cli_parse_double(v, &a->created) || a->created < 0 || a->created > 4e12)
+    if (cli_parse_created(v, &a->created))
         return cli_usage("merge", "bad value '%s' for --created", v);
     return CLI_EXIT_OK;
 }
@@ -170,11 +169,7 @@ int cmd_merge(int argc, char **argv)
 {
     static const cli_command cmd = {"merge", merge_head, merge_tail, opts, CLI_NOPTS(opts), 20,
                                     take, NULL, 1};
-    const char *sde = getenv("SOURCE_DATE_EPOCH");
-    double v;
-    merge_args a = {.out = "output",
-                    .created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v
-                                                                             : (double)time(NULL)};
+    merge_args a = {.out = "output", .created = cli_created_default()};
     int rc = cli_command_parse(&cmd, argc, argv, &a);
     if (rc)
         return rc == CLI_OPT_HELP ? CLI_EXIT_OK : rc;

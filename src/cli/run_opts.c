@@ -70,8 +70,7 @@ static const cli_opt opts[] = {
      .kind = CLI_COUNT1, A(substeps)},
     {"motions", O_MOTIONS, NULL, "also write every motion to DIR/motions/<floor id>/*.AT2",
      .kind = CLI_FLAG, A(dop.write_motions)},
-    {"created", O_CREATED, "EPOCH", "workbook date, s since 1970 (default SOURCE_DATE_EPOCH,\nelse now)",
-     .kind = CLI_CALL},
+    CLI_OPT_CREATED(O_CREATED),
     {"force", O_FORCE, NULL, "run a floor whose horizontal ZPA is outside %g-%g g (warning)",
      {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_FLAG, A(force)},
     {"accept-failed-checks", O_ACCEPT, NULL, "write the outputs although some motions failed\n"
@@ -114,7 +113,7 @@ static int take(void *dst, int key, const char *v)
     }
     int p = key == O_POLICY ? sl_clearance_policy_parse(v) : 0;
     int bad = key == O_SEED ? cli_parse_ulong(v, &ul) : key == O_POLICY ? p < 0
-              : cli_parse_double(v, &a->created) || a->created < 0 || a->created > 4e12;
+              : cli_parse_created(v, &a->created);
     if (bad)
         return cli_usage("run", "bad value '%s' for --%s", v, key == O_SEED ? "seed"
                          : key == O_POLICY ? "policy (nltha, asce, envelope)" : "created");
@@ -191,11 +190,9 @@ int run_parse(int argc, char **argv, run_args *a)
 {
     static const cli_command cmd = {"run", run_head, run_tail, opts, CLI_NOPTS(opts), 22, take,
                                     check, 1};
-    const char *sde = getenv("SOURCE_DATE_EPOCH");
-    double v;
     *a = (run_args){.out = "output", .abs_se_mm = 1e3 * SL_ANALYSIS_ABS_SE_M,
                     .max_sets = SL_ANALYSIS_MAX_SETS,
-                    .created = (sde && !cli_parse_double(sde, &v) && v >= 0) ? v : (double)time(NULL),
+                    .created = cli_created_default(),
                     .dop = {.version = "seislide " SEISLIDE_VERSION}};
     sl_analysis_opts_default(&a->ao);
     int rc = cli_command_parse(&cmd, argc, argv, a);
