@@ -122,8 +122,7 @@ int cmd_components(int argc, char **argv)
     rc = CLI_EXIT_OK;
     goto done;
 fail:
-    if (!cli_outdir_interrupted())
-        cli_print_error(&err);
+    cli_outdir_error(&err);
 done:
     cli_outdir_finish(out);
     return rc;

@@ -212,8 +212,7 @@ int cmd_merge(int argc, char **argv)
     rc = CLI_EXIT_OK;
     goto done;
 fail:
-    if (!cli_outdir_interrupted())
-        cli_print_error(&err);
+    cli_outdir_error(&err);
 done:
     for (size_t i = 0; sh && i < ns; i++)
         sl_shard_free(&sh[i]);

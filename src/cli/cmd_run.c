@@ -108,8 +108,7 @@ int cmd_run(int argc, char **argv)
     rc = CLI_EXIT_OK;
     goto done;
 fail:
-    if (!cli_outdir_interrupted())
-        cli_print_error(&err);
+    cli_outdir_error(&err);
 done:
     free(a.mu.v);
     free(mine);

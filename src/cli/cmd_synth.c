@@ -150,8 +150,7 @@ static int job_write(synth_job *j)
     if (synth_write_outputs(&out, j->sets, j->nsets) != CLI_EXIT_OK)
         return CLI_EXIT_ERROR;
     if (cli_outdir_commit(&j->outd, &j->err)) {
-        if (!cli_outdir_interrupted())
-            cli_print_error(&j->err);
+        cli_outdir_error(&j->err);
         return CLI_EXIT_ERROR;
     }
     if (j->fl && !o->quiet)

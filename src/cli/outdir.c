@@ -133,6 +133,12 @@ void cli_outdir_writing(void) { writing = 1; }
 
 int cli_outdir_interrupted(void) { return interrupted != 0; }
 
+void cli_outdir_error(const sl_error *err)
+{
+    if (!interrupted)
+        cli_print_error(err);
+}
+
 sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err)
 {
     if (interrupted) /* *d stays for cli_outdir_finish() to drop */

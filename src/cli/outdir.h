@@ -47,6 +47,9 @@ sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err);
 void cli_outdir_final_name(char *path, size_t n);
 /* Nonzero when a signal was noted. */
 int cli_outdir_interrupted(void);
+/* Print err (cli_print_error) unless a signal was noted: then the error is
+ * the signal's, which cli_outdir_finish() reports. */
+void cli_outdir_error(const sl_error *err);
 /* Drop a fresh folder not committed (NULL: nothing), release the lock and,
  * after a noted signal, die of it. */
 void cli_outdir_finish(sl_atomic_dir *d);
