@@ -316,6 +316,19 @@ static void clean_stale(sl_atomic_dir *d)
     closedir(dir);
 }
 
+/* The next entry of d named prefix<owner> whose owner is gone (*pid: its
+ * process), or NULL after the last. */
+static struct dirent *next_gone(DIR *d, const char *prefix, long *pid)
+{
+    size_t plen = strlen(prefix);
+    char owner[80];
+    for (struct dirent *e; (e = readdir(d)) != NULL;)
+        if (strncmp(e->d_name, prefix, plen) == 0 &&
+            owner_of(e->d_name + plen, pid, owner, sizeof owner) == OWNER_GONE)
+            return e;
+    return NULL;
+}
+
 int sl_atomic_dir_salvage(const char *dir, const char *name, char *said, size_t nsaid)
 {
     char parent[4096], prefix[1024], want[8192];
@@ -330,13 +343,9 @@ int sl_atomic_dir_salvage(const char *dir, const char *name, char *said, size_t 
     DIR *d = opendir(parent);
     if (!d)
         return 0;
-    size_t plen = strlen(prefix);
-    for (struct dirent *e; !moved && (e = readdir(d)) != NULL;) {
-        char from[8192], owner[80];
-        long pid;
-        if (strncmp(e->d_name, prefix, plen) != 0 ||
-            owner_of(e->d_name + plen, &pid, owner, sizeof owner) != OWNER_GONE)
-            continue;
+    long pid;
+    for (struct dirent *e; !moved && (e = next_gone(d, prefix, &pid)) != NULL;) {
+        char from[8192];
         snprintf(from, sizeof from, "%s%s%s/%s", parent, has_dir ? "" : "/", e->d_name, name);
         if (lstat(from, &st) != 0)
             continue;
@@ -393,13 +402,8 @@ int sl_atomic_dir_recover(const char *dir, char *said, size_t nsaid)
     DIR *d = opendir(parent);
     if (!d)
         return 0;
-    size_t plen = strlen(prefix);
-    for (struct dirent *e; !done && (e = readdir(d)) != NULL;) {
-        char owner[80];
-        long pid;
-        if (strncmp(e->d_name, prefix, plen) != 0 ||
-            owner_of(e->d_name + plen, &pid, owner, sizeof owner) != OWNER_GONE)
-            continue;
+    long pid;
+    for (struct dirent *e; !done && (e = next_gone(d, prefix, &pid)) != NULL;) {
         snprintf(from, sizeof from, "%s%s%s", parent, has_dir ? "" : "/", e->d_name);
         snprintf(mark, sizeof mark, "%s/" SL_MANIFEST_NAME, from);
         if (lstat(mark, &st) != 0 || rename(from, dir) != 0)
