@@ -11,6 +11,7 @@
 #include "io/atomic.h"
 #include "io/floor.h"
 #include "io/motion.h"
+#include "report/sheets.h"
 
 /* Write a motion as CSV: time_s,acc_g (atomic). */
 static sl_status write_csv_motion(const char *path, const sl_motion *m, sl_error *err)
@@ -23,22 +24,6 @@ static sl_status write_csv_motion(const char *path, const sl_motion *m, sl_error
     for (size_t i = 0; i < m->n; i++)
         fprintf(f, "%.10g,%.10E\n", m->dt_s * (double)i, m->acc_ms2[i] / SL_G);
     return sl_atomic_commit(a, err);
-}
-
-/* One CSV field, quoted when it holds a comma, quote or line break (RFC 4180). */
-static void csv_string(FILE *f, const char *s)
-{
-    if (!strpbrk(s, ",\"\r\n")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
 }
 
 /* One report row. */
@@ -157,9 +142,9 @@ static void put_double(FILE *f, const char *fmt, double v)
 static void report_line(FILE *f, const report_row *r)
 {
     fprintf(f, "%u,%s,", r->set, r->comp);
-    csv_string(f, r->file);
+    sl_rpt_csv_field(f, r->file);
     fputc(',', f);
-    csv_string(f, r->source);
+    sl_rpt_csv_field(f, r->source);
     fprintf(f, ",%s", r->seed);
 #define X(name, fmt, expr) PUT_FIELD(f, fmt, expr);
     REPORT_NUM_COLUMNS(X)

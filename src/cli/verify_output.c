@@ -16,19 +16,10 @@ static const char *const columns[] = {"area",     "problem",  "checks",         
 /* column widths of the sheet, characters */
 static const double widths[NCOL] = {8, 7, 34, 13, 38, 13, 10, 10, 34, 7};
 
+/* One RFC 4180 field (sl_rpt_csv_field), then ',' or, after the last, '\n'. */
 static void csv_field(FILE *f, const char *s, int last)
 {
-    if (strpbrk(s, ",\"\n")) {
-        fputc('"', f);
-        for (; *s; s++) {
-            if (*s == '"')
-                fputc('"', f);
-            fputc(*s, f);
-        }
-        fputc('"', f);
-    } else {
-        fputs(s, f);
-    }
+    sl_rpt_csv_field(f, s);
     fputc(last ? '\n' : ',', f);
 }
 
