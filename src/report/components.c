@@ -423,8 +423,7 @@ static void csv_num(FILE *f, double v, const char *fmt)
 /* The run's record as the shared CSV head reads it; floors named
  * BUILDING/ID in a plant (as plant.csv names them). */
 static sl_status shared_report(const sl_comp_results *r, const sl_comp_opts *o, sl_report *rep,
-                               sl_report_floor **floors, char (**ids)[2 * SL_RPT_ID_MAX + 2],
-                               sl_error *err)
+                               sl_rpt_floors *floors, sl_error *err)
 {
     sl_report_init(rep);
     rep->version = o->version;
@@ -434,23 +433,14 @@ static sl_status shared_report(const sl_comp_results *r, const sl_comp_opts *o, 
     rep->project.project = strcmp(r->project, "-") ? r->project : NULL;
     rep->project.document = strcmp(r->document, "-") ? r->document : NULL;
     rep->project.revision = strcmp(r->revision, "-") ? r->revision : NULL;
-    *floors = calloc(r->n_floors, sizeof **floors);
-    *ids = calloc(r->n_floors, sizeof **ids);
-    if (!*floors || !*ids) {
-        free(*floors);
-        free(*ids);
-        return sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
-    }
+    if (sl_rpt_floors_alloc(floors, rep, r->n_floors, NULL, err))
+        return err ? err->code : SL_ENOMEM;
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_comp_floor *fl = &r->floors[i];
-        snprintf((*ids)[i], sizeof (*ids)[i], "%s%s%s", fl->building, r->is_plant ? "/" : "",
-                 fl->id);
-        (*floors)[i] = (sl_report_floor){.id = (*ids)[i], .name = fl->name,
-                                         .path = fl->file ? fl->file : "-", .crc32 = fl->crc32,
-                                         .size_bytes = fl->size_bytes};
+        sl_rpt_floors_set(floors, i, fl->building, r->is_plant ? "/" : "", fl->id,
+                          (sl_report_floor){.name = fl->name, .path = fl->file ? fl->file : "-",
+                                            .crc32 = fl->crc32, .size_bytes = fl->size_bytes});
     }
-    rep->n_floors = r->n_floors;
-    rep->floors = *floors;
     return SL_OK;
 }
 
@@ -460,21 +450,18 @@ static sl_status write_csv(const sl_comp_results *r, const sl_comp_table *t, con
     char path[4400], buf[2400];
     snprintf(path, sizeof path, "%s/%s", dir, SL_COMP_CSV);
     sl_report rep;
-    sl_report_floor *floors;
-    char (*ids)[2 * SL_RPT_ID_MAX + 2];
-    if (shared_report(r, o, &rep, &floors, &ids, err))
+    sl_rpt_floors floors;
+    if (shared_report(r, o, &rep, &floors, err))
         return err ? err->code : SL_ENOMEM;
     sl_atomic *a = sl_atomic_open(path, err);
     if (!a) {
-        free(floors);
-        free(ids);
+        sl_rpt_floors_free(&floors);
         return err ? err->code : SL_EIO;
     }
     FILE *f = sl_atomic_file(a);
     sl_rpt_csv_head(f, &rep, "one row per component: its columns as given, then the required "
                     "clearance at its mu on its floor, the margin and the verdict");
-    free(floors);
-    free(ids);
+    sl_rpt_floors_free(&floors);
     snprintf(buf, sizeof buf, "%s (%08lx, %ld bytes)", t->path, t->crc32 & 0xffffffffUL,
              t->size_bytes);
     sl_rpt_csv_comment(f, "components_file", buf);

@@ -5,6 +5,7 @@
  * their checks, a "# WARNING:" line saying so (report.h, sheets.h). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -80,6 +81,36 @@ void sl_rpt_csv_head(FILE *f, const sl_report *r, const char *what) { csv_head(f
 void sl_rpt_csv_comment(FILE *f, const char *key, const char *value) { csv_comment(f, key, value); }
 
 void sl_rpt_csv_field(FILE *f, const char *s) { csv_field(f, s); }
+
+sl_status sl_rpt_floors_alloc(sl_rpt_floors *fl, sl_report *rep, size_t n, const char *path,
+                              sl_error *err)
+{
+    fl->floor = calloc(n ? n : 1, sizeof *fl->floor);
+    fl->id = calloc(n ? n : 1, sizeof *fl->id);
+    if (!fl->floor || !fl->id) {
+        sl_rpt_floors_free(fl);
+        return sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
+    }
+    rep->n_floors = n;
+    rep->floors = fl->floor;
+    return SL_OK;
+}
+
+void sl_rpt_floors_set(sl_rpt_floors *fl, size_t i, const char *building, const char *sep,
+                       const char *id, sl_report_floor f)
+{
+    snprintf(fl->id[i], sizeof fl->id[i], "%s%s%s", building, sep, id);
+    f.id = fl->id[i];
+    fl->floor[i] = f;
+}
+
+void sl_rpt_floors_free(sl_rpt_floors *fl)
+{
+    free(fl->floor);
+    free(fl->id);
+    fl->floor = NULL;
+    fl->id = NULL;
+}
 
 static sl_status csv_open(const char *dir, const char *name, sl_atomic **a, sl_error *err)
 {

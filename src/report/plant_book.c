@@ -71,10 +71,9 @@ static int csv_decimals(const sl_plant_book_row *r, double mu)
 
 /* The report the shared writers (csv.c, layout.c) read: the run's record
  * and title block, and one "floor" per row named BUILDING/ID for the
- * floor_file_crc32 lines (ids[i], SL_PLANT_ID_MAX each, or NULL). */
-#define SL_PLANT_ID_MAX (2 * SL_RPT_ID_MAX + 2)
-static sl_status shared_report(const sl_plant_book *b, sl_report *r, sl_report_floor **floors,
-                               char (**ids)[SL_PLANT_ID_MAX], const char *path, sl_error *err)
+ * floor_file_crc32 lines (floors: NULL, none). */
+static sl_status shared_report(const sl_plant_book *b, sl_report *r, sl_rpt_floors *floors,
+                               const char *path, sl_error *err)
 {
     sl_report_init(r);
     r->version = b->version;
@@ -82,24 +81,16 @@ static sl_status shared_report(const sl_plant_book *b, sl_report *r, sl_report_f
     r->seed = b->seed;
     r->created = b->created;
     r->project = b->project;
-    if (!floors || !ids)
+    if (!floors)
         return SL_OK;
-    *floors = calloc(b->n ? b->n : 1, sizeof **floors);
-    *ids = calloc(b->n ? b->n : 1, sizeof **ids);
-    if (!*floors || !*ids) {
-        free(*floors);
-        free(*ids);
-        return sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-    }
+    if (sl_rpt_floors_alloc(floors, r, b->n, path, err))
+        return err ? err->code : SL_ENOMEM;
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *w = &b->rows[i];
-        snprintf((*ids)[i], SL_PLANT_ID_MAX, "%s/%s", w->building, w->id);
-        (*floors)[i] = (sl_report_floor){.id = (*ids)[i], .name = w->name,
-                                         .path = w->path ? w->path : "-", .crc32 = w->crc32,
-                                         .size_bytes = w->size_bytes};
+        sl_rpt_floors_set(floors, i, w->building, "/", w->id,
+                          (sl_report_floor){.name = w->name, .path = w->path ? w->path : "-",
+                                            .crc32 = w->crc32, .size_bytes = w->size_bytes});
     }
-    r->n_floors = b->n;
-    r->floors = *floors;
     return SL_OK;
 }
 
@@ -112,14 +103,12 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
             return sl_error_set(err, SL_EINVAL, path, 0, "floor '%s/%s': ZPA not finite",
                                 b->rows[i].building, b->rows[i].id);
     sl_report rep;
-    sl_report_floor *floors;
-    char (*ids)[SL_PLANT_ID_MAX];
-    if (shared_report(b, &rep, &floors, &ids, path, err))
+    sl_rpt_floors floors;
+    if (shared_report(b, &rep, &floors, path, err))
         return err ? err->code : SL_ENOMEM;
     sl_atomic *a = sl_atomic_open(path, err);
     if (!a) {
-        free(floors);
-        free(ids);
+        sl_rpt_floors_free(&floors);
         return err ? err->code : SL_EIO;
     }
     FILE *f = sl_atomic_file(a);
@@ -136,8 +125,7 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
     sl_rpt_csv_head(f, &rep, "the plant index: one row per floor of every building; the "
                     "required clearance at six friction values, each where the run computed it "
                     "(empty where the friction grid does not hold it: never interpolated)");
-    free(floors);
-    free(ids);
+    sl_rpt_floors_free(&floors);
     sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm, shown to the "
                        "digit of its standard error (1 mm or 0.1 mm, as summary.csv)");
     fputs("building,floor,floor_name,elevation_m,zpa_g,sets,convergence", f);
@@ -513,7 +501,7 @@ sl_status sl_plant_book_write_xlsx(const sl_plant_book *b, const char *dir, sl_e
     sl_rpt_fmts F;
     sl_rpt_formats(wb, &F);
     sl_report rep; /* the title block and the record the page header and footer show */
-    shared_report(b, &rep, NULL, NULL, path, err);
+    shared_report(b, &rep, NULL, path, err);
     size_t nb = 0;
     for (size_t i = 0; i < b->n; i++)
         nb += i == 0 || strcmp(b->rows[i].building, b->rows[i - 1].building) != 0;

@@ -84,6 +84,22 @@ void sl_rpt_csv_head(FILE *f, const sl_report *r, const char *what);
 void sl_rpt_csv_comment(FILE *f, const char *key, const char *value);
 /* One RFC 4180 field, quoted when needed. */
 void sl_rpt_csv_field(FILE *f, const char *s);
+/* The floors of a report built from rows named BUILDING<sep>ID (the plant
+ * index, the components CSV): the entries and their id texts, which
+ * sl_rpt_floors_alloc allocates (at least one of each; SL_ENOMEM with path
+ * on failure) and hangs on rep (floors, n_floors = n), and
+ * sl_rpt_floors_free frees. */
+#define SL_RPT_QID_MAX (2 * SL_RPT_ID_MAX + 2)
+typedef struct sl_rpt_floors {
+    sl_report_floor *floor;
+    char (*id)[SL_RPT_QID_MAX];
+} sl_rpt_floors;
+sl_status sl_rpt_floors_alloc(sl_rpt_floors *fl, sl_report *rep, size_t n, const char *path,
+                              sl_error *err);
+/* Floor i: f, with the id "building sep id" written into fl. */
+void sl_rpt_floors_set(sl_rpt_floors *fl, size_t i, const char *building, const char *sep,
+                       const char *id, sl_report_floor f);
+void sl_rpt_floors_free(sl_rpt_floors *fl);
 
 /* ---- workbook.c -------------------------------------------------------- */
 /* A new workbook at `path`, written through sl_atomic (*a), with its
