@@ -223,9 +223,10 @@ static void stale_note(sl_atomic_dir *d, const char *fmt, const char *name, long
 
 /* Where the fresh folders of runs into `path` live: *parent (the folder
  * that holds `path`, "." for a bare name), *prefix (".BASE.tmp-") and
- * whether `path` named a parent at all (*has_dir). */
-static void sibling_prefix(const char *path, char *parent, size_t nparent, char *prefix,
-                           size_t nprefix, int *has_dir)
+ * whether `path` named a parent at all (*has_dir); returns *parent opened
+ * (opendir; NULL when it cannot be read). */
+static DIR *open_siblings(const char *path, char *parent, size_t nparent, char *prefix,
+                          size_t nprefix, int *has_dir)
 {
     size_t n = strlen(path);
     while (n > 1 && path[n - 1] == '/')
@@ -237,6 +238,7 @@ static void sibling_prefix(const char *path, char *parent, size_t nparent, char 
     snprintf(parent, nparent, "%.*s", (int)(dirlen ? dirlen : 1), dirlen ? path : ".");
     snprintf(prefix, nprefix, ".%.*s" SL_ATOMIC_TMP_TAG, (int)(n - dirlen), path + dirlen);
     *has_dir = dirlen != 0;
+    return opendir(parent);
 }
 
 /* Who left a fresh folder "PREFIX" + rest ("PID@HOST-XXXXXX"). */
@@ -274,8 +276,7 @@ static void clean_stale(sl_atomic_dir *d)
 {
     char parent[4096], prefix[1024];
     int has_dir;
-    sibling_prefix(d->path, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
-    DIR *dir = opendir(parent);
+    DIR *dir = open_siblings(d->path, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
     if (!dir)
         return;
     size_t plen = strlen(prefix);
@@ -339,8 +340,7 @@ int sl_atomic_dir_salvage(const char *dir, const char *name, char *said, size_t 
     snprintf(want, sizeof want, "%s/%s", dir, name);
     if (lstat(want, &st) == 0)
         return 0;
-    sibling_prefix(dir, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
-    DIR *d = opendir(parent);
+    DIR *d = open_siblings(dir, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
     if (!d)
         return 0;
     long pid;
@@ -398,8 +398,7 @@ int sl_atomic_dir_recover(const char *dir, char *said, size_t nsaid)
         said[0] = '\0';
     if (lstat(dir, &st) == 0 || errno != ENOENT)
         return 0;
-    sibling_prefix(dir, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
-    DIR *d = opendir(parent);
+    DIR *d = open_siblings(dir, parent, sizeof parent, prefix, sizeof prefix, &has_dir);
     if (!d)
         return 0;
     long pid;
