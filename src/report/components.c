@@ -420,10 +420,7 @@ static void csv_num(FILE *f, double v, const char *fmt)
         fprintf(f, fmt, v);
 }
 
-/* The run's record as the shared CSV head reads it; floors named
- * BUILDING/ID in a plant (as plant.csv names them). */
-static sl_status shared_report(const sl_comp_results *r, const sl_comp_opts *o, sl_report *rep,
-                               sl_rpt_floors *floors, sl_error *err)
+void sl_comp_report(const sl_comp_results *r, const sl_comp_opts *o, sl_report *rep)
 {
     sl_report_init(rep);
     rep->version = o->version;
@@ -433,6 +430,14 @@ static sl_status shared_report(const sl_comp_results *r, const sl_comp_opts *o, 
     rep->project.project = strcmp(r->project, "-") ? r->project : NULL;
     rep->project.document = strcmp(r->document, "-") ? r->document : NULL;
     rep->project.revision = strcmp(r->revision, "-") ? r->revision : NULL;
+}
+
+/* The run's record as the shared CSV head reads it; floors named
+ * BUILDING/ID in a plant (as plant.csv names them). */
+static sl_status shared_report(const sl_comp_results *r, const sl_comp_opts *o, sl_report *rep,
+                               sl_rpt_floors *floors, sl_error *err)
+{
+    sl_comp_report(r, o, rep);
     if (sl_rpt_floors_alloc(floors, rep, r->n_floors, NULL, err))
         return err ? err->code : SL_ENOMEM;
     for (size_t i = 0; i < r->n_floors; i++) {

@@ -59,6 +59,7 @@
 #include <time.h>
 
 #include "core/status.h"
+#include "report/report.h"
 
 #define SL_COMP_CSV "components.csv"
 #define SL_COMP_XLSX "components.xlsx"
@@ -165,6 +166,11 @@ typedef struct sl_comp_opts {
     const char *command_line; /* this command's */
     time_t created;
 } sl_comp_opts;
+
+/* The run's record and title block (version, command, seed, created,
+ * project; "-" read as none) into rep, as the shared writers read them;
+ * no floors. */
+void sl_comp_report(const sl_comp_results *r, const sl_comp_opts *o, sl_report *rep);
 
 /* Write dir/components.csv and dir/components.xlsx (dir exists). */
 sl_status sl_comp_write(const sl_comp_results *r, const sl_comp_table *t, const char *dir,

@@ -619,14 +619,7 @@ sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, c
             b.diag_mm = fmax(b.diag_mm, 1.05 * fmax(t->rows[i].required_mm,
                                                     t->rows[i].clearance_mm));
     sl_report rep;
-    sl_report_init(&rep);
-    rep.version = o->version;
-    rep.command_line = o->command_line;
-    rep.seed = r->seed;
-    rep.created = o->created;
-    rep.project.project = strcmp(r->project, "-") ? r->project : NULL;
-    rep.project.document = strcmp(r->document, "-") ? r->document : NULL;
-    rep.project.revision = strcmp(r->revision, "-") ? r->revision : NULL;
+    sl_comp_report(r, o, &rep);
     sl_atomic *a;
     b.wb = sl_rpt_workbook_open(path, "Components: required against available clearance",
                                 "verdict per unanchored component", &rep.project, o->created,
