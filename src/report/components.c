@@ -348,10 +348,10 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
 {
     memset(t, 0, sizeof *t);
     sl_text txt;
-    sl_status st = sl_csv_load(path, SL_COMP_MAX_BYTES, &txt, err);
+    sl_csvread rd;
+    sl_status st = sl_csv_open(path, SL_COMP_MAX_BYTES, &txt, &rd, err);
     if (st)
         return st;
-    sl_csvread rd = {.path = path, .buf = txt.buf, .len = txt.len, .line = 1};
     sl_csvrec h = {0}, w = {0};
     t->crc32 = file_crc(txt.mem, strlen(txt.mem));
     t->size_bytes = (long)strlen(txt.mem);

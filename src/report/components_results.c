@@ -158,10 +158,10 @@ static sl_status load_building(sl_comp_results *r, const char *building, const c
     char path[4400];
     snprintf(path, sizeof path, "%s/floors.csv", bdir);
     sl_text t;
-    sl_status st = sl_csv_load(path, RESULTS_MAX_BYTES, &t, err);
+    sl_csvread rd;
+    sl_status st = sl_csv_open(path, RESULTS_MAX_BYTES, &t, &rd, err);
     if (st)
         return st;
-    sl_csvread rd = {.path = path, .buf = t.buf, .len = t.len, .line = 1};
     sl_csvrec h = {0}, w = {0};
     static const char *const names[] = {"floor_id", "floor"};
     int col[2];
@@ -242,10 +242,10 @@ static sl_status plant_buildings(sl_comp_results *r, const char *pcsv, sl_error 
 {
     char path[4400], folder[4 * SL_RPT_ID_MAX + 1];
     sl_text t;
-    sl_status st = sl_csv_load(pcsv, RESULTS_MAX_BYTES, &t, err);
+    sl_csvread rd;
+    sl_status st = sl_csv_open(pcsv, RESULTS_MAX_BYTES, &t, &rd, err);
     if (st)
         return st;
-    sl_csvread rd = {.path = pcsv, .buf = t.buf, .len = t.len, .line = 1};
     sl_csvrec h = {0}, w = {0};
     static const char *const names[] = {"building"};
     int col[1];

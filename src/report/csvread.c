@@ -183,6 +183,14 @@ sl_status sl_csv_load(const char *path, long max, sl_text *t, sl_error *err)
     return sl_text_load(path, &o, t, err);
 }
 
+sl_status sl_csv_open(const char *path, long max, sl_text *t, sl_csvread *rd, sl_error *err)
+{
+    sl_status st = sl_csv_load(path, max, t, err);
+    if (!st)
+        *rd = (sl_csvread){.path = path, .buf = t->buf, .len = t->len, .line = 1};
+    return st;
+}
+
 /* A header record with the named columns (cols[k] set), after the comment
  * lines; *rd positioned at the first data row. */
 sl_status sl_csv_header(sl_csvread *rd, sl_csvrec *h, const char *const *names, size_t nn,

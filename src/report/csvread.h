@@ -38,6 +38,9 @@ void sl_csvrec_free(sl_csvrec *r);
 const char *sl_csv_trimmed(const char *s, char *buf, size_t n);
 /* Read path whole (sl_text_load: BOM skipped, NUL refused, at most max bytes). */
 sl_status sl_csv_load(const char *path, long max, sl_text *t, sl_error *err);
+/* sl_csv_load, then *rd set to read t from its first line (path is kept:
+ * it must outlive rd). */
+sl_status sl_csv_open(const char *path, long max, sl_text *t, sl_csvread *rd, sl_error *err);
 /* The column of header h named `name` (trimmed, without case), or -1. */
 int sl_csv_header_col(const sl_csvrec *h, const char *name);
 /* The header record: cols[k] the column of names[k]; SL_EPARSE naming the
