@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "io/floor.h"
+#include "io/text.h"
 #include "harness.h"
 #include "core/units.h"
 
@@ -564,6 +565,60 @@ static void test_missing_file(void)
     CHECK(!strcmp(sl_floor_comp_name(SL_FLOOR_V), "v"), "names");
 }
 
+/* Messages quote what was written: whole UTF-8 characters kept (RFC 3629),
+ * control characters and bytes that are not UTF-8 as '?', cut on a
+ * character boundary; and a floor file's bad value shows as written. */
+static void test_quote_as_written(void)
+{
+    const char *name = "B\xc3\xa2timent r\xc3\xa9" "acteur \xe2\x82\xac \xf0\x9f\x8f\xad";
+    CHECK(!strcmp(sl_text_quote(name, strlen(name)).s, name), "'%s'",
+          sl_text_quote(name, strlen(name)).s);
+    /* a control byte, DEL, a C1 control (U+0085), a stray continuation byte,
+     * an overlong '/', a surrogate and a lone lead byte at the end */
+    const char *mixed = "a\x01" "b\x7f" "c\xc2\x85" "d\x80" "e\xc0\xaf" "f\xed\xa0\x80" "g\xe2\x82";
+    CHECK(!strcmp(sl_text_quote(mixed, strlen(mixed)).s, "a?b?c?d?e??f???g??"), "'%s'",
+          sl_text_quote(mixed, strlen(mixed)).s);
+    char cut[64];
+    memset(cut, 'x', SL_TEXT_QUOTE_MAX - 1);
+    strcpy(cut + SL_TEXT_QUOTE_MAX - 1, "\xc3\xa9z"); /* the 2-byte e-acute crosses the cap */
+    sl_quoted q = sl_text_quote(cut, strlen(cut));
+    CHECK(strlen(q.s) == SL_TEXT_QUOTE_MAX - 1 + 3 && !strcmp(q.s + SL_TEXT_QUOTE_MAX - 1, "..."),
+          "'%s'", q.s);
+    CHECK(sl_text_utf8_len("\xc3\xa9", 1) == 0 && sl_text_utf8_len("\xc3\xa9", 2) == 2 &&
+              sl_text_utf8_len("", 0) == 0,
+          "lengths bounded by n");
+    /* the template with one value typed as "2.52" followed by a micro sign */
+    FILE *in = fopen("templates/floor.ini", "rb");
+    CHECK(in != NULL, "templates/floor.ini");
+    if (!in)
+        return;
+    static char text[1 << 16];
+    size_t len = fread(text, 1, sizeof text - 1, in);
+    fclose(in);
+    text[len] = '\0';
+    char *v = strstr(text, "2.5216");
+    CHECK(v != NULL, "the template's value 2.5216");
+    if (!v)
+        return;
+    memcpy(v, "2.52\xc2\xb5", 6);
+    char dir[] = "/tmp/seislide-quote-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    char path[128];
+    snprintf(path, sizeof path, "%s/f.ini", dir);
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL, "%s", path);
+    if (!f)
+        return;
+    fwrite(text, 1, len, f);
+    fclose(f);
+    sl_error e;
+    sl_error_clear(&e);
+    CHECK(sl_floor_load(path, &e) == NULL && strstr(e.msg, "'2.52\xc2\xb5'"), "message '%s'",
+          e.msg);
+    remove(path);
+    rmdir(dir);
+}
+
 int main(void)
 {
     RUN(test_template);
@@ -580,5 +635,6 @@ int main(void)
     RUN(test_utf16_no_bom);
     RUN(test_every_fixture_listed);
     RUN(test_missing_file);
+    RUN(test_quote_as_written);
     return HARNESS_END("floor");
 }

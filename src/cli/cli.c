@@ -12,6 +12,8 @@
 
 #include "outdir.h"
 #include "signal/spectrum.h"
+#include "signal/spectrum_kernel.h"
+#include "slide/kernel2d.h"
 
 void cli_print_error(const sl_error *err)
 {
@@ -545,4 +547,10 @@ void cli_print_table(int csv, const double *f, size_t nf, char (*names)[320], si
         }
         putchar('\n');
     }
+}
+
+void cli_kernels_baseline(void)
+{
+    sl_spectrum_kernel_baseline(1);
+    sl_kernel2d_baseline(1);
 }

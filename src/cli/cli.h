@@ -169,6 +169,11 @@ int cli_mu_check(const char *cmd, const cli_mu *mu);
 
 /* Print "seislide: FILE:LINE: message" for a library error. */
 void cli_print_error(const sl_error *err);
+
+/* The vector kernels' baseline instance (SSE2) for the engine and the
+ * oscillator bank, even on an AVX2 CPU: SEISLIDE_KERNELS=baseline for any
+ * command, `verify --baseline` (docs/reliability.md, "Across machines"). */
+void cli_kernels_baseline(void);
 /* Print "seislide: " + message to stderr. */
 void cli_msg(const char *fmt, ...)
 #if defined(__GNUC__)

@@ -143,10 +143,8 @@ int cmd_verify(int argc, char **argv)
         cli_print_error(&err);
         return CLI_EXIT_ERROR;
     }
-    if (a.baseline) {
-        sl_kernel2d_baseline(1);
-        sl_spectrum_kernel_baseline(1);
-    }
+    if (a.baseline)
+        cli_kernels_baseline();
     size_t n = 0, n_run = 0, n_pass = 0, n_fail = 0;
     const sl_verify_problem *tab = sl_verify_problems(&n);
     sl_verify_result *res = calloc(n, sizeof *res);

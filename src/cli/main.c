@@ -5,9 +5,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "signal/spectrum.h"
 #include "signal/spectrum_kernel.h"
-#include "slide/kernel2d.h"
 
 typedef struct command {
     const char *name;
@@ -59,10 +57,8 @@ int main(int argc, char **argv)
      * even on an AVX2 CPU, as a machine without AVX2 runs them; the outputs
      * are the same bits (docs/reliability.md, "Across machines"). */
     const char *kernels = getenv("SEISLIDE_KERNELS");
-    if (kernels && !strcmp(kernels, "baseline")) {
-        sl_spectrum_kernel_baseline(1);
-        sl_kernel2d_baseline(1);
-    }
+    if (kernels && !strcmp(kernels, "baseline"))
+        cli_kernels_baseline();
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;

@@ -62,18 +62,54 @@ long sl_text_find_ci(const char *s, size_t n, const char *needle)
     return -1;
 }
 
+size_t sl_text_utf8_len(const char *s, size_t n)
+{
+    const unsigned char *u = (const unsigned char *)s;
+    if (n == 0)
+        return 0;
+    if (u[0] < 0x80)
+        return 1;
+    size_t len = u[0] >= 0xC2 && u[0] <= 0xDF ? 2 : u[0] >= 0xE0 && u[0] <= 0xEF ? 3
+                 : u[0] >= 0xF0 && u[0] <= 0xF4 ? 4 : 0;
+    if (len == 0 || len > n)
+        return 0;
+    /* the second byte's range excludes overlong forms, surrogates and > U+10FFFF */
+    unsigned char lo = u[0] == 0xE0 ? 0xA0 : u[0] == 0xF0 ? 0x90 : 0x80;
+    unsigned char hi = u[0] == 0xED ? 0x9F : u[0] == 0xF4 ? 0x8F : 0xBF;
+    if (u[1] < lo || u[1] > hi)
+        return 0;
+    for (size_t k = 2; k < len; k++)
+        if ((u[k] & 0xC0) != 0x80)
+            return 0;
+    return len;
+}
+
+void sl_text_quote_into(char *dst, size_t cap, const char *s, size_t n)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n;) {
+        size_t c = sl_text_utf8_len(s + i, n - i), w = c ? c : 1;
+        if (k + w > cap) {
+            memcpy(dst + k, "...", 3);
+            k += 3;
+            break;
+        }
+        const unsigned char b0 = (unsigned char)s[i], b1 = c > 1 ? (unsigned char)s[i + 1] : 0;
+        const int control = c == 1 ? b0 < 0x20 || b0 == 0x7f : c == 2 && b0 == 0xC2 && b1 < 0xA0;
+        if (c && !control)
+            memcpy(dst + k, s + i, c);
+        else
+            dst[k] = '?';
+        k += c && !control ? c : 1;
+        i += w;
+    }
+    dst[k] = '\0';
+}
+
 sl_quoted sl_text_quote(const char *tok, size_t n)
 {
     sl_quoted q;
-    size_t k = n > SL_TEXT_QUOTE_MAX ? SL_TEXT_QUOTE_MAX : n;
-    for (size_t i = 0; i < k; i++) {
-        unsigned char c = (unsigned char)tok[i];
-        q.s[i] = (c >= 0x20 && c < 0x7f) ? (char)c : '?';
-    }
-    if (k < n)
-        memcpy(q.s + k, "...", 4);
-    else
-        q.s[k] = '\0';
+    sl_text_quote_into(q.s, SL_TEXT_QUOTE_MAX, tok, n);
     return q;
 }
 

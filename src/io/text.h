@@ -78,8 +78,18 @@ const char *sl_text_find_str_ci(const char *s, const char *needle);
 char *sl_text_dup(const char *s);
 char *sl_text_dup_mem(const char *s, size_t n);
 
-/* A token quoted for a message: at most SL_TEXT_QUOTE_MAX characters,
- * non-printable bytes as '?', "..." when cut. */
+/* Length in bytes of the well-formed UTF-8 character at s[0..n) (RFC 3629:
+ * no overlong forms, surrogates or code points above U+10FFFF), 0 when
+ * n = 0 or the bytes are not one. */
+size_t sl_text_utf8_len(const char *s, size_t n);
+
+/* s[0..n) as written for a message, into dst (cap + 4 bytes): whole UTF-8
+ * characters up to cap bytes, "..." when cut; a control character (C0, DEL,
+ * C1) or a byte that is not UTF-8 shows as '?'. */
+void sl_text_quote_into(char *dst, size_t cap, const char *s, size_t n);
+
+/* A token quoted for a message: sl_text_quote_into at SL_TEXT_QUOTE_MAX
+ * bytes. */
 typedef struct sl_quoted {
     char s[SL_TEXT_QUOTE_MAX + 4];
 } sl_quoted;

@@ -114,22 +114,7 @@ typedef struct shown_name {
 static shown_name as_written(const char *s)
 {
     shown_name q;
-    size_t k = 0;
-    for (size_t i = 0; s[i];) {
-        size_t c = sl_report_utf8_len(s + i), w = c ? c : 1;
-        if (k + w > NAME_SHOWN) {
-            memcpy(q.s + k, "...", 3);
-            k += 3;
-            break;
-        }
-        if (c > 1 || (c == 1 && (unsigned char)s[i] >= 0x20 && s[i] != 0x7f))
-            memcpy(q.s + k, s + i, c);
-        else
-            q.s[k] = '?';
-        k += c > 1 ? c : 1;
-        i += w;
-    }
-    q.s[k] = '\0';
+    sl_text_quote_into(q.s, NAME_SHOWN, s, strlen(s));
     return q;
 }
 

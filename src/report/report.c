@@ -2,6 +2,7 @@
  * flags and ranges as text, the finite check, and the workbook assembled
  * from one writer per sheet (sheet_*.c; the CSV files: csv.c). */
 #include "report/report.h"
+#include "io/text.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -20,23 +21,7 @@ void sl_report_init(sl_report *r)
     r->lookup_mu = SL_REPORT_LOOKUP_MU;
 }
 
-size_t sl_report_utf8_len(const char *s)
-{
-    const unsigned char *u = (const unsigned char *)s;
-    if (u[0] < 0x80)
-        return u[0] ? 1 : 0;
-    size_t len = u[0] >= 0xC2 && u[0] <= 0xDF ? 2 : u[0] >= 0xE0 && u[0] <= 0xEF ? 3
-                 : u[0] >= 0xF0 && u[0] <= 0xF4 ? 4 : 0;
-    /* the second byte's range excludes overlong forms, surrogates and > U+10FFFF */
-    unsigned char lo = u[0] == 0xE0 ? 0xA0 : u[0] == 0xF0 ? 0x90 : 0x80;
-    unsigned char hi = u[0] == 0xED ? 0x9F : u[0] == 0xF4 ? 0x8F : 0xBF;
-    if (len && (u[1] < lo || u[1] > hi))
-        return 0;
-    for (size_t k = 2; k < len; k++)
-        if ((u[k] & 0xC0) != 0x80)
-            return 0;
-    return len;
-}
+size_t sl_report_utf8_len(const char *s) { return sl_text_utf8_len(s, strnlen(s, 4)); }
 
 char *sl_report_floor_id(const char *path, char *buf, size_t n)
 {
