@@ -157,6 +157,13 @@
  * (docs/synthesis.md 12). */
 #define SL_SYNTH_WAVELET_RATE 0.5
 #define SL_SYNTH_WAVELET_CYCLES 2.0
+/* The start's expected energy is shared by at least this many packets
+ * (docs/synthesis.md 3.1, eq. 1a): where a log-uniform packet would carry
+ * more than 1/N of it (a narrow floor peak holds 1-2 packets), packets are
+ * drawn more densely and made weaker in proportion, so that the expected
+ * start spectrum is unchanged and the peak's energy is spread over the
+ * strong phase. 0: the log-uniform start. */
+#define SL_SYNTH_WAVELET_SPREAD 32.0
 /* Log standard deviation of the peak level of synthetic motions (synth.c
  * peak_level): each motion's compression level drawn around aim x ZPA.
  * Default 0 (level aim x ZPA): 0.10-0.25 did not move the sliding of
@@ -244,6 +251,7 @@ typedef struct sl_synth_params {
     double wavelet_rate;    /* >= 0, SL_SYNTH_WAVELET_RATE (0: random phases) */
     double pga_sigma;       /* >= 0, SL_SYNTH_PGA_SIGMA */
     double wavelet_cycles;  /* > 0, SL_SYNTH_WAVELET_CYCLES */
+    double wavelet_spread;  /* >= 0, SL_SYNTH_WAVELET_SPREAD (0: log-uniform) */
     /* envelope (fractions of the duration; end amplitude) */
     double rise_frac, hold_frac, end_amp;
     /* each end is multiplied by a half-cosine taper over this time, s, so
