@@ -1216,6 +1216,47 @@ static int spread_attempts(const sl_synth_target *t, double n_min, unsigned na, 
     return ok;
 }
 
+/* The spread leaves ground-like targets (RG 1.60: the peak-count check
+ * applies) and the sharpest floors (the mode sweep) alone: their starts are
+ * the same bits with spread as without. */
+static void test_spread_only_narrow(void)
+{
+    sl_error e;
+    sl_spectrum *sp[3];
+    sl_synth_target rg[3], sh[3];
+    sl_floor *fl = sl_floor_load("tests/data/floors/sharp-8.ini", &e);
+    CHECK(sl_synth_targets_rg160(0.3 * SL_G, 0.05, NULL, sp, rg, &e) == SL_OK, "%s", e.msg);
+    if (!fl || sl_synth_targets_floor(fl, 0, sh, &e)) {
+        CHECK(0, "%s", e.msg);
+        sl_floor_free(fl);
+        return;
+    }
+    sl_synth_params p[2];
+    sl_synth_params_default(&p[0]);
+    sl_synth_params_default(&p[1]);
+    p[1].wavelet_spread = 0;
+    sl_synth *s[2] = {sl_synth_alloc(T_N, T_DT, &p[0], &e), sl_synth_alloc(T_N, T_DT, &p[1], &e)};
+    sl_synth_motion *m[2] = {s[0] ? sl_synth_motion_alloc(s[0], &e) : NULL,
+                             s[1] ? sl_synth_motion_alloc(s[1], &e) : NULL};
+    CHECK(p[0].wavelet_spread > 0 && m[0] && m[1], "setup: %s", e.msg);
+    const sl_synth_target *tg[2] = {&rg[SL_SYNTH_H1], &sh[SL_SYNTH_H1]};
+    for (int k = 0; k < 2 && m[0] && m[1]; k++)
+        for (unsigned a = 0; a < 3; a++) {
+            for (int q = 0; q < 2; q++)
+                CHECK(sl_synth_set_random(m[q], tg[k], 5, 0, SL_SYNTH_H1, a, &e) == SL_OK, "%s",
+                      e.msg);
+            CHECK(!memcmp(sl_synth_acc(m[0]), sl_synth_acc(m[1]), T_N * sizeof(double)),
+                  "%s attempt %u: the start moved with the spread", k ? "sharp-8" : "RG 1.60", a);
+        }
+    for (int q = 0; q < 2; q++) {
+        sl_synth_motion_free(m[q]);
+        sl_synth_free(s[q]);
+    }
+    for (int c = 0; c < 3; c++)
+        sl_spectrum_free(sp[c]);
+    sl_floor_free(fl);
+}
+
 /* The start's packets spread over a narrow floor peak (synth.h
  * wavelet_spread, docs/synthesis.md 3.1 eq. 1a): H1 of the roof floor
  * (SA/ZPA 5.2), 40 attempts, against the log-uniform start (spread 0) on
@@ -1279,5 +1320,6 @@ int main(void)
     RUN(test_other_dampings);
     RUN(test_attempts_bounded);
     RUN(test_spread_d5_75);
+    RUN(test_spread_only_narrow);
     return HARNESS_END("synth");
 }
