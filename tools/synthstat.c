@@ -48,13 +48,13 @@ static void mean_se(double s, double s2, int k, double *m, double *se)
 int main(int argc, char **argv)
 {
     int slide = 1, npos = 0;
-    double focus = SL_SYNTH_WAVELET_SPREAD;
+    double spread = SL_SYNTH_WAVELET_SPREAD;
     const char *pos[3] = {NULL, NULL, NULL};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--no-slide"))
             slide = 0;
         else if (!strcmp(argv[i], "--spread") && i + 1 < argc)
-            focus = atof(argv[++i]);
+            spread = atof(argv[++i]);
         else if (npos < 3)
             pos[npos++] = argv[i];
     }
@@ -68,7 +68,7 @@ int main(int argc, char **argv)
     sl_error_clear(&e);
     sl_synth_params p;
     sl_synth_params_default(&p);
-    p.wavelet_spread = focus;
+    p.wavelet_spread = spread;
     sl_spectrum *spec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_synth_target tgt[SL_SYNTH_NCOMP];
     sl_floor *fl = NULL;
