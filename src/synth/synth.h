@@ -162,9 +162,9 @@
  * log-uniform packet would carry more than 1/N of the start's expected
  * energy, so that the expected start spectrum is unchanged and the peak
  * band holds many packets. Default 0 (the log-uniform start): N = 32 cut
- * the extra attempts on narrow floors by 0.3-2.2 a set (D5-75 failures
- * 0.5-2.2 -> 0.04-0.22) but raised the mean sliding at mu g/ZPA 0.5 by
- * 2-5 standard errors, the example facility's design values by up to 5.7
+ * the extra attempts on narrow floors by up to 2.2 a set (D5-75 failures
+ * 0.17-2.2 -> 0.04-0.22) but raised the mean sliding at mu g/ZPA 0.5 by up
+ * to 5.4 standard errors, the example facility's design values by up to 5.7
  * and the broadened physical-floor ratios above 1.33 (docs/synthesis.md
  * 3.4); SL_SYNTH_WAVELET_SPREAD_TRIED is that N. */
 #define SL_SYNTH_WAVELET_SPREAD 0.0
