@@ -150,7 +150,7 @@ static double target_ext(const sl_spectrum *sp, double f)
 }
 
 /* The spread frequency draw of the start packets (docs/synthesis.md 3.1,
- * eq. 1a). On u = log(f/f0)/log(f1/f0) in [0, 1], cut into FOCUS_CELLS
+ * eq. 1a). On u = log(f/f0)/log(f1/f0) in [0, 1], cut into SPREAD_CELLS
  * equal cells, e(u) = T(f)^2 is the expected energy of one packet of
  * amplitude T sqrt(f) and width c/(2 f), so the log-uniform start of K0
  * packets has the expected energy E = K0 mean(e), and a packet at a narrow
@@ -162,43 +162,43 @@ static double target_ext(const sl_spectrum *sp, double f)
  * that of the log-uniform start, and no packet's expected energy exceeds
  * E/N. Where no packet carries more than E/N anyway (a broad spectrum),
  * rel = 1 and nothing changes. */
-#define FOCUS_CELLS 64
-typedef struct focus_table {
-    double cdf[FOCUS_CELLS + 1];
-    double rel[FOCUS_CELLS];
+#define SPREAD_CELLS 64
+typedef struct spread_table {
+    double cdf[SPREAD_CELLS + 1];
+    double rel[SPREAD_CELLS];
     double mean_rel;
-} focus_table;
+} spread_table;
 
-static void focus_init(focus_table *fo, const sl_spectrum *sp, double f0, double f1, double n_min,
+static void spread_init(spread_table *fo, const sl_spectrum *sp, double f0, double f1, double n_min,
                        double k0)
 {
-    double e[FOCUS_CELLS], mean = 0;
-    for (size_t i = 0; i < FOCUS_CELLS; i++) {
-        double a = target_ext(sp, f0 * pow(f1 / f0, ((double)i + 0.5) / FOCUS_CELLS));
+    double e[SPREAD_CELLS], mean = 0;
+    for (size_t i = 0; i < SPREAD_CELLS; i++) {
+        double a = target_ext(sp, f0 * pow(f1 / f0, ((double)i + 0.5) / SPREAD_CELLS));
         e[i] = a * a;
-        mean += e[i] / FOCUS_CELLS;
+        mean += e[i] / SPREAD_CELLS;
     }
     fo->cdf[0] = 0;
-    for (size_t i = 0; i < FOCUS_CELLS; i++) {
+    for (size_t i = 0; i < SPREAD_CELLS; i++) {
         double r = n_min * e[i] / (k0 * mean);
         fo->rel[i] = r > 1 ? r : 1;
-        fo->cdf[i + 1] = fo->cdf[i] + fo->rel[i] / FOCUS_CELLS;
+        fo->cdf[i + 1] = fo->cdf[i] + fo->rel[i] / SPREAD_CELLS;
     }
-    fo->mean_rel = fo->cdf[FOCUS_CELLS];
+    fo->mean_rel = fo->cdf[SPREAD_CELLS];
 }
 
 /* u in [0, 1] from a uniform x in [0, 1) by the inverse of the piecewise
  * linear CDF; *rel: the density of its cell relative to the uniform one. */
-static double focus_draw(const focus_table *fo, double x, double *rel)
+static double spread_draw(const spread_table *fo, double x, double *rel)
 {
-    double c = x * fo->cdf[FOCUS_CELLS];
+    double c = x * fo->cdf[SPREAD_CELLS];
     size_t i = 0;
-    while (i + 1 < FOCUS_CELLS && fo->cdf[i + 1] <= c)
+    while (i + 1 < SPREAD_CELLS && fo->cdf[i + 1] <= c)
         i++;
     double width = fo->cdf[i + 1] - fo->cdf[i];
     double in = width > 0 ? (c - fo->cdf[i]) / width : 0.5;
     *rel = fo->rel[i];
-    return ((double)i + (in < 0 ? 0 : in > 1 ? 1 : in)) / FOCUS_CELLS;
+    return ((double)i + (in < 0 ? 0 : in > 1 ? 1 : in)) / SPREAD_CELLS;
 }
 
 /* Start a motion from m->acc at any level: scale it by the one gain that
@@ -285,7 +285,7 @@ static void sum_packets(sl_synth_motion *m, const sl_synth_target *t, gsl_rng *r
      * wavelet_cycles cycles within +-1 standard deviation... see
      * docs/synthesis.md 3.1):
      *   a(t) = sum_q A_q exp(-(t - t_q)^2/(2 s_q^2)) cos(2 pi f_q (t - t_q) + phi_q),
-     *   s_q = cycles/(2 f_q), f_q log-uniform on [f0, f1], t_q drawn
+     *   s_q = cycles/(2 f_q), f_q log-uniform on [f0, f1] (or by eq. 1a), t_q drawn
      *   with density E(t)^2, phi_q uniform, A_q = T(f_q) sqrt(f_q),
      * K = rate x log2(f1/f0) x 0.4 T (0.4 T: the energy width of E^2). */
     const double f0 = SL_SYNTH_WAVELET_FLO_FRAC * t->spec->f_hz[0];
@@ -298,16 +298,16 @@ static void sum_packets(sl_synth_motion *m, const sl_synth_target *t, gsl_rng *r
      * horizontals' peaks above 0.9 PGA from 2.1 to 2.8 a motion). */
     const double spread = m->sharp == SYNTH_SHARP_CREST ? s->p.wavelet_spread : 0;
     const size_t K0 = (size_t)ceil(s->p.wavelet_rate * log2(f1 / f0) * T * 0.4);
-    focus_table fo;
+    spread_table fo;
     fo.mean_rel = 1;
     if (spread > 0)
-        focus_init(&fo, t->spec, f0, f1, spread, (double)K0);
+        spread_init(&fo, t->spec, f0, f1, spread, (double)K0);
     const size_t K = spread > 0 ? (size_t)ceil((double)K0 * fo.mean_rel) : K0;
     for (size_t j = 0; j < s->n; j++)
         m->acc[j] = 0;
     for (size_t q = 0; q < K; q++) {
         double rel = 1, x = gsl_rng_uniform(rng);
-        double f = f0 * pow(f1 / f0, spread > 0 ? focus_draw(&fo, x, &rel) : x);
+        double f = f0 * pow(f1 / f0, spread > 0 ? spread_draw(&fo, x, &rel) : x);
         size_t jt;
         do { /* rejection sampling of t_q with density E^2 */
             jt = (size_t)(gsl_rng_uniform(rng) * (double)s->n);
