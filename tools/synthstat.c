@@ -3,7 +3,7 @@
  * (docs/synthesis.md 3.7 and 4):
  *
  *     make build/tools/synthstat
- *     build/tools/synthstat N SEED [FLOOR.ini] [--no-slide]
+ *     build/tools/synthstat N SEED [FLOOR.ini] [--no-slide] [--spread N]
  *
  * Makes sets 0 .. N-1 of SEED one at a time on one thread (RG 1.60 at 0.3 g,
  * 20 s at 200/s, or the floor file's targets) and prints: the CPU time of the
@@ -11,9 +11,11 @@
  * pass every check, the extra attempts per set; per component the set mean
  * 5 % spectrum / target (mean over the grid, lowest and highest), PGD/PGA in
  * m per g and the local maxima of |a| above 0.9 PGA, each mean with its
- * standard error, and the most peaks; then (unless --no-slide) the NLTHA mean
+ * standard error, and the most peaks; D5-75, V/A, A D/V^2 and the largest
+ * |rho| with the other components, each mean with its standard error; then (unless --no-slide) the NLTHA mean
  * peak sliding (2-D + vertical, engine defaults) at mu g/ZPA 0.1, 0.2, 0.3,
- * 0.5 with its standard error.
+ * 0.5 with its standard error. --spread N sets the least number of packets
+ * sharing the start's energy (synth.h wavelet_spread; 0: the log-uniform start).
  */
 #include <math.h>
 #include <omp.h>
@@ -46,15 +48,18 @@ static void mean_se(double s, double s2, int k, double *m, double *se)
 int main(int argc, char **argv)
 {
     int slide = 1, npos = 0;
+    double spread = SL_SYNTH_WAVELET_SPREAD;
     const char *pos[3] = {NULL, NULL, NULL};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--no-slide"))
             slide = 0;
+        else if (!strcmp(argv[i], "--spread") && i + 1 < argc)
+            spread = atof(argv[++i]);
         else if (npos < 3)
             pos[npos++] = argv[i];
     }
     if (npos < 2 || atoi(pos[0]) < 2) {
-        fprintf(stderr, "usage: synthstat N SEED [FLOOR.ini] [--no-slide]  (N >= 2)\n");
+        fprintf(stderr, "usage: synthstat N SEED [FLOOR.ini] [--no-slide] [--spread N]  (N >= 2)\n");
         return 2;
     }
     const int nsets = atoi(pos[0]);
@@ -63,6 +68,7 @@ int main(int argc, char **argv)
     sl_error_clear(&e);
     sl_synth_params p;
     sl_synth_params_default(&p);
+    p.wavelet_spread = spread;
     sl_spectrum *spec[SL_SYNTH_NCOMP] = {NULL, NULL, NULL};
     sl_synth_target tgt[SL_SYNTH_NCOMP];
     sl_floor *fl = NULL;
@@ -89,6 +95,8 @@ int main(int argc, char **argv)
     int *cnt = calloc(SL_SYNTH_NCOMP * ng, sizeof *cnt);
     double pgd[SL_SYNTH_NCOMP][2] = {{0}}, pk[SL_SYNTH_NCOMP][2] = {{0}}, sl[NMU][2] = {{0}};
     size_t pkmax[SL_SYNTH_NCOMP] = {0};
+    /* D5-75, V/A, A D/V^2 and the largest |rho| per component: sum, sum of squares */
+    double rz[SL_SYNTH_NCOMP][4][2] = {{{0}}};
     const double mu_frac[NMU] = {0.1, 0.2, 0.3, 0.5};
     double cpu = 0;
     int passed = 0, extra = 0;
@@ -113,6 +121,11 @@ int main(int argc, char **argv)
             pk[c][0] += (double)ck->peaks;
             pk[c][1] += (double)ck->peaks * (double)ck->peaks;
             pkmax[c] = ck->peaks > pkmax[c] ? ck->peaks : pkmax[c];
+            const double rv[4] = {ck->d5_75_s, ck->va_s, ck->adv2, ck->max_corr};
+            for (int q = 0; q < 4; q++) {
+                rz[c][q][0] += rv[q];
+                rz[c][q][1] += rv[q] * rv[q];
+            }
             sl_spectrum_compute(mo->acc_ms2, mo->n, mo->dt_s, grid, ng, ts->damping, psa, NULL,
                                 NULL, &e);
             for (size_t j = 0; j < ng; j++)
@@ -159,6 +172,13 @@ int main(int argc, char **argv)
                "%.3f m per g, peaks above 0.9 PGA %.2f +- %.2f (most %zu)\n",
                sl_synth_comp_name((sl_synth_comp)c), avg / (nn ? nn : 1), lo, hi, m, se, mk, sek,
                pkmax[c]);
+        double rm[4], rse[4];
+        for (int q = 0; q < 4; q++)
+            mean_se(rz[c][q][0], rz[c][q][1], nsets, &rm[q], &rse[q]);
+        printf("%-2s: D5-75 %.3f +- %.3f s, V/A %.4f +- %.4f s, A D/V^2 %.3f +- %.3f, "
+               "largest |rho| %.4f +- %.4f\n",
+               sl_synth_comp_name((sl_synth_comp)c), rm[0], rse[0], rm[1], rse[1], rm[2], rse[2],
+               rm[3], rse[3]);
     }
     for (int q = 0; slide && q < NMU; q++) {
         double m, se;

@@ -36,6 +36,7 @@ void sl_synth_params_default(sl_synth_params *p)
     p->wavelet_rate = SL_SYNTH_WAVELET_RATE;
     p->pga_sigma = SL_SYNTH_PGA_SIGMA;
     p->wavelet_cycles = SL_SYNTH_WAVELET_CYCLES;
+    p->wavelet_spread = SL_SYNTH_WAVELET_SPREAD;
     p->psd_frac = 0; /* reported, not required (docs/synthesis.md 9) */
     p->max_iter = SL_SYNTH_MAX_ITER;
     p->max_attempts = SL_SYNTH_MAX_ATTEMPTS;
@@ -74,6 +75,8 @@ sl_status sl_synth_params_check(const sl_synth_params *p, sl_error *err)
     SYNTH_REQUIRE(p->wavelet_rate >= 0 && isfinite(p->wavelet_rate), "wavelet_rate must be >= 0");
     SYNTH_REQUIRE(p->wavelet_cycles > 0 && isfinite(p->wavelet_cycles),
                   "wavelet_cycles must be > 0");
+    SYNTH_REQUIRE(p->wavelet_spread >= 0 && isfinite(p->wavelet_spread),
+                  "wavelet_spread must be >= 0");
     SYNTH_REQUIRE(p->pga_tol_below >= 0 && p->pga_tol_below <= 1, "pga_tol_below must be in [0, 1]");
     SYNTH_REQUIRE(p->pga_sigma >= 0 && p->pga_sigma <= 1, "pga_sigma must be in [0, 1]");
     SYNTH_REQUIRE(p->psd_frac >= 0 && isfinite(p->psd_frac), "psd_frac must be >= 0");

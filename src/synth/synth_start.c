@@ -149,6 +149,58 @@ static double target_ext(const sl_spectrum *sp, double f)
     return sl_spectrum_interp(sp, f);
 }
 
+/* The spread frequency draw of the start packets (docs/synthesis.md 3.1,
+ * eq. 1a). On u = log(f/f0)/log(f1/f0) in [0, 1], cut into SPREAD_CELLS
+ * equal cells, e(u) = T(f)^2 is the expected energy of one packet of
+ * amplitude T sqrt(f) and width c/(2 f), so the log-uniform start of K0
+ * packets has the expected energy E = K0 mean(e), and a packet at a narrow
+ * peak carries a large share of it. The packets' density relative to the
+ * log-uniform one is
+ *   rel(u) = max(1, N e(u) / (K0 mean(e))),   N = wavelet_spread,
+ * (K = K0 mean(rel) packets) and each packet's amplitude is divided by
+ * sqrt(rel): the expected energy per log-frequency, count x amplitude^2, is
+ * that of the log-uniform start, and no packet's expected energy exceeds
+ * E/N. Where no packet carries more than E/N anyway (a broad spectrum),
+ * rel = 1 and nothing changes. */
+#define SPREAD_CELLS 64
+typedef struct spread_table {
+    double cdf[SPREAD_CELLS + 1];
+    double rel[SPREAD_CELLS];
+    double mean_rel;
+} spread_table;
+
+static void spread_init(spread_table *fo, const sl_spectrum *sp, double f0, double f1, double n_min,
+                       double k0)
+{
+    double e[SPREAD_CELLS], mean = 0;
+    for (size_t i = 0; i < SPREAD_CELLS; i++) {
+        double a = target_ext(sp, f0 * pow(f1 / f0, ((double)i + 0.5) / SPREAD_CELLS));
+        e[i] = a * a;
+        mean += e[i] / SPREAD_CELLS;
+    }
+    fo->cdf[0] = 0;
+    for (size_t i = 0; i < SPREAD_CELLS; i++) {
+        double r = n_min * e[i] / (k0 * mean);
+        fo->rel[i] = r > 1 ? r : 1;
+        fo->cdf[i + 1] = fo->cdf[i] + fo->rel[i] / SPREAD_CELLS;
+    }
+    fo->mean_rel = fo->cdf[SPREAD_CELLS];
+}
+
+/* u in [0, 1] from a uniform x in [0, 1) by the inverse of the piecewise
+ * linear CDF; *rel: the density of its cell relative to the uniform one. */
+static double spread_draw(const spread_table *fo, double x, double *rel)
+{
+    double c = x * fo->cdf[SPREAD_CELLS];
+    size_t i = 0;
+    while (i + 1 < SPREAD_CELLS && fo->cdf[i + 1] <= c)
+        i++;
+    double width = fo->cdf[i + 1] - fo->cdf[i];
+    double in = width > 0 ? (c - fo->cdf[i]) / width : 0.5;
+    *rel = fo->rel[i];
+    return ((double)i + (in < 0 ? 0 : in > 1 ? 1 : in)) / SPREAD_CELLS;
+}
+
 /* Start a motion from m->acc at any level: scale it by the one gain that
  * brings its spectrum to aim x target on average (log mean over the checked
  * points), then make iteration 0. */
@@ -225,6 +277,53 @@ void sl_synth_add_wavelet(double *acc, size_t j0, size_t j1, double dt, double t
     }
 }
 
+/* m->acc <- the sum of K Gabor wavelets (eq. 1), drawn from rng. */
+static void sum_packets(sl_synth_motion *m, const sl_synth_target *t, gsl_rng *rng)
+{
+    const sl_synth *s = m->s;
+    /* A sum of K Gabor wavelets (Gaussian-windowed cosines of
+     * wavelet_cycles cycles within +-1 standard deviation... see
+     * docs/synthesis.md 3.1):
+     *   a(t) = sum_q A_q exp(-(t - t_q)^2/(2 s_q^2)) cos(2 pi f_q (t - t_q) + phi_q),
+     *   s_q = cycles/(2 f_q), f_q log-uniform on [f0, f1] (or by eq. 1a), t_q drawn
+     *   with density E(t)^2, phi_q uniform, A_q = T(f_q) sqrt(f_q),
+     * K = rate x log2(f1/f0) x 0.4 T (0.4 T: the energy width of E^2). */
+    const double f0 = SL_SYNTH_WAVELET_FLO_FRAC * t->spec->f_hz[0];
+    const double f1 = t->spec->f_hz[t->spec->n - 1];
+    const double T = s->dt * (double)(s->n - 1), nc = s->p.wavelet_cycles;
+    /* Only for narrow-band floor targets (SA/ZPA above SYNTH_CREST_AMP, where
+     * the peak-count check does not apply), and not with the mode sweep,
+     * which carries the peak band of the sharpest ones: a ground-like
+     * target keeps the log-uniform start (spread on RG 1.60 raised the
+     * horizontals' peaks above 0.9 PGA from 2.1 to 2.8 a motion). */
+    const double spread = m->sharp == SYNTH_SHARP_CREST ? s->p.wavelet_spread : 0;
+    const size_t K0 = (size_t)ceil(s->p.wavelet_rate * log2(f1 / f0) * T * 0.4);
+    spread_table fo;
+    fo.mean_rel = 1;
+    if (spread > 0)
+        spread_init(&fo, t->spec, f0, f1, spread, (double)K0);
+    const size_t K = spread > 0 ? (size_t)ceil((double)K0 * fo.mean_rel) : K0;
+    for (size_t j = 0; j < s->n; j++)
+        m->acc[j] = 0;
+    for (size_t q = 0; q < K; q++) {
+        double rel = 1, x = gsl_rng_uniform(rng);
+        double f = f0 * pow(f1 / f0, spread > 0 ? spread_draw(&fo, x, &rel) : x);
+        size_t jt;
+        do { /* rejection sampling of t_q with density E^2 */
+            jt = (size_t)(gsl_rng_uniform(rng) * (double)s->n);
+            if (jt >= s->n)
+                jt = s->n - 1;
+        } while (gsl_rng_uniform(rng) > s->env[jt] * s->env[jt]);
+        double phi = 2 * SL_PI * gsl_rng_uniform(rng);
+        double amp = target_ext(t->spec, f) * sqrt(f / rel);
+        double sg = nc / (2 * f), tk = s->dt * (double)jt;
+        double ja = floor((tk - 3 * sg) / s->dt), jb = ceil((tk + 3 * sg) / s->dt);
+        size_t j0 = ja < 0 ? 0 : (size_t)ja;
+        size_t j1 = jb >= (double)(s->n - 1) ? s->n - 1 : (size_t)jb;
+        sl_synth_add_wavelet(m->acc, j0, j1, s->dt, tk, amp, sg, f, phi);
+    }
+}
+
 sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint64_t seed,
                               size_t set, sl_synth_comp comp, unsigned attempt, sl_error *err)
 {
@@ -241,35 +340,7 @@ sl_status sl_synth_set_random(sl_synth_motion *m, const sl_synth_target *t, uint
         return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
     gsl_rng_set(rng, sl_synth_stream_seed(seed, set, comp, attempt));
     if (s->p.wavelet_rate > 0) {
-        /* A sum of K Gabor wavelets (Gaussian-windowed cosines of
-         * wavelet_cycles cycles within +-1 standard deviation... see
-         * docs/synthesis.md 3.1):
-         *   a(t) = sum_q A_q exp(-(t - t_q)^2/(2 s_q^2)) cos(2 pi f_q (t - t_q) + phi_q),
-         *   s_q = cycles/(2 f_q), f_q log-uniform on [f0, f1], t_q drawn
-         *   with density E(t)^2, phi_q uniform, A_q = T(f_q) sqrt(f_q),
-         * K = rate x log2(f1/f0) x 0.4 T (0.4 T: the energy width of E^2). */
-        const double f0 = SL_SYNTH_WAVELET_FLO_FRAC * t->spec->f_hz[0];
-        const double f1 = t->spec->f_hz[t->spec->n - 1];
-        const double T = s->dt * (double)(s->n - 1), nc = s->p.wavelet_cycles;
-        const size_t K = (size_t)ceil(s->p.wavelet_rate * log2(f1 / f0) * T * 0.4);
-        for (size_t j = 0; j < s->n; j++)
-            m->acc[j] = 0;
-        for (size_t q = 0; q < K; q++) {
-            double f = f0 * pow(f1 / f0, gsl_rng_uniform(rng));
-            size_t jt;
-            do { /* rejection sampling of t_q with density E^2 */
-                jt = (size_t)(gsl_rng_uniform(rng) * (double)s->n);
-                if (jt >= s->n)
-                    jt = s->n - 1;
-            } while (gsl_rng_uniform(rng) > s->env[jt] * s->env[jt]);
-            double phi = 2 * SL_PI * gsl_rng_uniform(rng);
-            double amp = target_ext(t->spec, f) * sqrt(f);
-            double sg = nc / (2 * f), tk = s->dt * (double)jt;
-            double ja = floor((tk - 3 * sg) / s->dt), jb = ceil((tk + 3 * sg) / s->dt);
-            size_t j0 = ja < 0 ? 0 : (size_t)ja;
-            size_t j1 = jb >= (double)(s->n - 1) ? s->n - 1 : (size_t)jb;
-            sl_synth_add_wavelet(m->acc, j0, j1, s->dt, tk, amp, sg, f, phi);
-        }
+        sum_packets(m, t, rng);
         if (m->sharp & SYNTH_SHARP_SWEEP) /* very sharp targets: eq. S1 (synth_sharp.c) */
             sl_synth_add_mode_sweep(m, rng);
         m->level = peak_level(&s->p, rng);
