@@ -130,25 +130,42 @@ int sl_kernel2d_avx2(void)
 #endif
 }
 
-/* NAME_pass: NAME_body as the AVX2 or the baseline instance. */
+/* NAME_pass(a): NAME_body as the AVX2 or the baseline instance, its
+ * arguments unpacked from the struct *a of type TYPE by UNPACK (one pointer
+ * a call: the 23-31 arguments of a pass cost about 100 instructions a call
+ * when passed one by one, more than the pass itself on a few blocks; the
+ * body's restrict parameters still tell the compiler the rows are apart). */
 #ifdef SL_K2_AVX2
-#define K2_INSTANCES(name, params, args)                                                         \
-    VECTOR_PASS static void name##_base params { name##_body args; }                              \
-    __attribute__((target("avx2"))) VECTOR_PASS static void name##_avx2 params                   \
+#define K2_INSTANCES(name, type, unpack)                                                         \
+    VECTOR_PASS static void name##_base(const type *a) { name##_body unpack; }                    \
+    __attribute__((target("avx2"))) VECTOR_PASS static void name##_avx2(const type *a)           \
     {                                                                                             \
-        name##_body args;                                                                         \
+        name##_body unpack;                                                                       \
     }                                                                                             \
-    static void name##_pass params                                                                \
+    static void name##_pass(const type *a)                                                        \
     {                                                                                             \
         if (sl_kernel2d_avx2())                                                                   \
-            name##_avx2 args;                                                                     \
+            name##_avx2(a);                                                                       \
         else                                                                                      \
-            name##_base args;                                                                     \
+            name##_base(a);                                                                       \
     }
 #else
-#define K2_INSTANCES(name, params, args)                                                         \
-    static void name##_pass params { name##_body args; }
+#define K2_INSTANCES(name, type, unpack)                                                         \
+    static void name##_pass(const type *a) { name##_body unpack; }
 #endif
+
+/* Packed working arrays of the live blocks of one sample. */
+enum { P_MU, P_TOL, P_UX, P_UY, P_VX, P_VY, P_CUX, P_CUY, P_CVX, P_CVY, P_BAD, P_PK2, P_D, P_DUX,
+       P_DUY, P_DVX, P_DVY, P_NS, P_N };
+
+/* The arguments of doubling_pass: the na packed blocks (rows of m in P),
+ * the forcing of the whole sample (Fc) and of its halves (Fa, Fb). */
+typedef struct doubling_args {
+    size_t na, m;
+    const force *Fc, *Fa, *Fb;
+    const sample *smp;
+    double *P;
+} doubling_args;
 
 /* The vector pass over the na packed sliding blocks of one sample: one step
  * (3)-(4) of dt (Fc) against two of dt/2 (Fa, Fb), the local differences,
@@ -161,9 +178,12 @@ int sl_kernel2d_avx2(void)
      double *restrict cuy, double *restrict cvx, double *restrict cvy, double *restrict pbad,     \
      double *restrict ppk2, double *restrict pd, double *restrict pdux, double *restrict pduy,    \
      double *restrict pdvx, double *restrict pdvy, double *restrict pns)
-#define DOUBLING_ARGS                                                                             \
-    (na, Fc, Fa, Fb, smp, pmu, ptol, pux, puy, pvx, pvy, cux, cuy, cvx, cvy, pbad, ppk2, pd, pdux, \
-     pduy, pdvx, pdvy, pns)
+#define DOUBLING_UNPACK                                                                           \
+    (a->na, a->Fc, a->Fa, a->Fb, a->smp, a->P + P_MU * a->m, a->P + P_TOL * a->m,                 \
+     a->P + P_UX * a->m, a->P + P_UY * a->m, a->P + P_VX * a->m, a->P + P_VY * a->m,              \
+     a->P + P_CUX * a->m, a->P + P_CUY * a->m, a->P + P_CVX * a->m, a->P + P_CVY * a->m,          \
+     a->P + P_BAD * a->m, a->P + P_PK2 * a->m, a->P + P_D * a->m, a->P + P_DUX * a->m,            \
+     a->P + P_DUY * a->m, a->P + P_DVX * a->m, a->P + P_DVY * a->m, a->P + P_NS * a->m)
 K2_BODY void doubling_body DOUBLING_PARAMS
 {
     /* one step of dt against two of dt/2, every live block at once */
@@ -239,11 +259,7 @@ K2_BODY void doubling_body DOUBLING_PARAMS
     }
 }
 
-K2_INSTANCES(doubling, DOUBLING_PARAMS, DOUBLING_ARGS)
-
-/* Packed working arrays of the live blocks of one sample. */
-enum { P_MU, P_TOL, P_UX, P_UY, P_VX, P_VY, P_CUX, P_CUY, P_CVX, P_CVY, P_BAD, P_PK2, P_D, P_DUX,
-       P_DUY, P_DVX, P_DVY, P_NS, P_N };
+K2_INSTANCES(doubling, doubling_args, DOUBLING_UNPACK)
 
 /* Signed error estimates of one block: position (ex, ey), velocity (wx, wy)
  * and |position error| when the peak was last raised. */
@@ -405,14 +421,16 @@ static int work_order(k2_work *w, const double *mu)
  * blocks are those before it and the sliding ones after it. */
 static size_t find_live(k2_work *w, const sample *s, const double *mu)
 {
-    const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
-    const double p0 = fmax(s->n0, 0.0), p1 = fmax(s->n1, 0.0);
-    const int ends_decide = (s->n0 > 0.0 && s->n1 > 0.0) || (a0m == 0.0 && a1m == 0.0);
+    /* squares, as the onset (sl_k2_onset) compares them: no hypot call */
+    const double a02 = s->ax0 * s->ax0 + s->ay0 * s->ay0, a12 = s->ax1 * s->ax1 + s->ay1 * s->ay1;
+    const double p0 = max2(s->n0, 0.0), p1 = max2(s->n1, 0.0);
+    const int a_zero = s->ax0 == 0.0 && s->ay0 == 0.0 && s->ax1 == 0.0 && s->ay1 == 0.0;
+    const int ends_decide = (s->n0 > 0.0 && s->n1 > 0.0) || a_zero;
     size_t lo = ends_decide ? 0 : w->m, hi = w->m; /* first position in order whose block is held */
     while (lo < hi) {
         const size_t mid = lo + (hi - lo) / 2;
-        const double mk = mu[w->order[mid]];
-        if (a0m <= mk * p0 && a1m <= mk * p1)
+        const double mk = mu[w->order[mid]], f0 = mk * p0, f1 = mk * p1;
+        if (a02 <= f0 * f0 && a12 <= f1 * f1)
             hi = mid;
         else
             lo = mid + 1;
@@ -478,10 +496,8 @@ static void step(k2_work *w, size_t na, const sample *s)
     double *P = w->P;
     const force Fc = sl_k2_force_of(s, 0.0, 1.0), Fa = sl_k2_force_of(s, 0.0, 0.5),
                 Fb = sl_k2_force_of(s, 0.5, 1.0);
-    doubling_pass(na, &Fc, &Fa, &Fb, s, P + P_MU * m, P + P_TOL * m, P + P_UX * m,
-                  P + P_UY * m, P + P_VX * m, P + P_VY * m, P + P_CUX * m, P + P_CUY * m,
-                  P + P_CVX * m, P + P_CVY * m, P + P_BAD * m, P + P_PK2 * m, P + P_D * m,
-                  P + P_DUX * m, P + P_DUY * m, P + P_DVX * m, P + P_DVY * m, P + P_NS * m);
+    const doubling_args a = {na, m, &Fc, &Fa, &Fb, s, P};
+    doubling_pass(&a);
 }
 
 /* Unpack the blocks whose step passed (statistics, peak at t1, error
@@ -542,9 +558,23 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
      double *restrict ovx, double *restrict ovy, double *restrict osp, double *restrict opk2,     \
      double *restrict otpk, double *restrict opx, double *restrict opy, double *restrict opath,    \
      double *restrict ovm2, double *restrict otsl, double *restrict otst)
-#define SUBSTEP_ARGS                                                                              \
-    (nq, F, tu, mu, bad, iux, iuy, ivx, ivy, isp, ipk2, itpk, ipx, ipy, ipath, ivm2, itsl, itst,   \
-     oux, ouy, ovx, ovy, osp, opk2, otpk, opx, opy, opath, ovm2, otsl, otst)
+/* The arguments of substep_pass: nq packed blocks, the forcing F of the
+ * sub-step ending at tu, friction, the flags, the state rows read (I) and
+ * written (O). */
+typedef struct substep_args {
+    size_t nq;
+    const force *F;
+    double tu;
+    const double *mu;
+    double *bad;
+    double *const *I, *const *O;
+} substep_args;
+#define SUBSTEP_UNPACK                                                                            \
+    (a->nq, a->F, a->tu, a->mu, a->bad, a->I[S_UX], a->I[S_UY], a->I[S_VX], a->I[S_VY],           \
+     a->I[S_SP], a->I[S_PK2], a->I[S_TPK], a->I[S_PX], a->I[S_PY], a->I[S_PATH], a->I[S_VM2],     \
+     a->I[S_TSL], a->I[S_TST], a->O[S_UX], a->O[S_UY], a->O[S_VX], a->O[S_VY], a->O[S_SP],        \
+     a->O[S_PK2], a->O[S_TPK], a->O[S_PX], a->O[S_PY], a->O[S_PATH], a->O[S_VM2], a->O[S_TSL],    \
+     a->O[S_TST])
 K2_BODY void substep_body SUBSTEP_PARAMS
 {
     const double hax = F->hax, hay = F->hay, hN = F->hN, cx = F->cx, cy = F->cy, h = F->h;
@@ -588,7 +618,7 @@ K2_BODY void substep_body SUBSTEP_PARAMS
     }
 }
 
-K2_INSTANCES(substep, SUBSTEP_PARAMS, SUBSTEP_ARGS)
+K2_INSTANCES(substep, substep_args, SUBSTEP_UNPACK)
 
 /* Row r of state bank `bank` of w->Q. */
 static double *q_row(const k2_work *w, int bank, int r)
@@ -678,10 +708,8 @@ static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk
         const force F = sl_k2_force_of(s, x, x1);
         const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
         double *const *I = S[cur], *const *O = S[1 - cur];
-        substep_pass(nq, &F, tu, mu, bad, I[S_UX], I[S_UY], I[S_VX], I[S_VY], I[S_SP],
-                     I[S_PK2], I[S_TPK], I[S_PX], I[S_PY], I[S_PATH], I[S_VM2], I[S_TSL],
-                     I[S_TST], O[S_UX], O[S_UY], O[S_VX], O[S_VY], O[S_SP], O[S_PK2],
-                     O[S_TPK], O[S_PX], O[S_PY], O[S_PATH], O[S_VM2], O[S_TSL], O[S_TST]);
+        const substep_args a = {nq, &F, tu, mu, bad, I, O};
+        substep_pass(&a);
         /* from the top, so the block moved into a freed slot is done */
         for (size_t i = nq; i-- > 0;) {
             if (bad[i] == 0.0)
