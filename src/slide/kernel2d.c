@@ -42,7 +42,7 @@
  * alone from the vector pass's two half steps, level 2) until two
  * successive levels agree: the sliding ones level by level, every block
  * due at one sub-step count advanced together in one vector pass per
- * sub-step (level_vector, substep_pass: (3)-(4) with the bookkeeping of
+ * sub-step (level_vector, levelrun_pass: (3)-(4) with the bookkeeping of
  * fstep), a block whose sub-step needs (5) finishing that level alone with
  * the full step (2)-(5) (run_from); a block at rest alone from its exact
  * onset (refine_onset). Fixed sub-steps take the same level passes. Per
@@ -558,23 +558,6 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
      double *restrict ovx, double *restrict ovy, double *restrict osp, double *restrict opk2,     \
      double *restrict otpk, double *restrict opx, double *restrict opy, double *restrict opath,    \
      double *restrict ovm2, double *restrict otsl, double *restrict otst)
-/* The arguments of substep_pass: nq packed blocks, the forcing F of the
- * sub-step ending at tu, friction, the flags, the state rows read (I) and
- * written (O). */
-typedef struct substep_args {
-    size_t nq;
-    const force *F;
-    double tu;
-    const double *mu;
-    double *bad;
-    double *const *I, *const *O;
-} substep_args;
-#define SUBSTEP_UNPACK                                                                            \
-    (a->nq, a->F, a->tu, a->mu, a->bad, a->I[S_UX], a->I[S_UY], a->I[S_VX], a->I[S_VY],           \
-     a->I[S_SP], a->I[S_PK2], a->I[S_TPK], a->I[S_PX], a->I[S_PY], a->I[S_PATH], a->I[S_VM2],     \
-     a->I[S_TSL], a->I[S_TST], a->O[S_UX], a->O[S_UY], a->O[S_VX], a->O[S_VY], a->O[S_SP],        \
-     a->O[S_PK2], a->O[S_TPK], a->O[S_PX], a->O[S_PY], a->O[S_PATH], a->O[S_VM2], a->O[S_TSL],    \
-     a->O[S_TST])
 K2_BODY void substep_body SUBSTEP_PARAMS
 {
     const double hax = F->hax, hay = F->hay, hN = F->hN, cx = F->cx, cy = F->cy, h = F->h;
@@ -618,7 +601,69 @@ K2_BODY void substep_body SUBSTEP_PARAMS
     }
 }
 
-K2_INSTANCES(substep, substep_args, SUBSTEP_UNPACK)
+/* Where a run of sub-steps of one level stands (levelrun_pass): the next
+ * sub-step j, its start x (fraction of the sample), the state bank cur it
+ * reads, and whether it stopped because a block's sub-step j needs the
+ * split step (5) (then bank 1 - cur holds sub-step j's output of the rest). */
+typedef struct level_pos {
+    unsigned j;
+    double x;
+    int cur, bad;
+} level_pos;
+
+/* The arguments of levelrun_pass: nq packed blocks of sample s, sub-steps
+ * of width wd, at most jmax of them, friction and flag rows, the two state
+ * banks S[0], S[1] (S_N rows each), and the position p (read and updated). */
+typedef struct level_args {
+    size_t nq;
+    const sample *s;
+    double wd;
+    unsigned jmax;
+    const double *mu;
+    double *bad;
+    double *const *S[2];
+    level_pos *p;
+} level_args;
+
+/* The sub-steps of one level from a->p on, every packed block together
+ * (substep_body, one call per sub-step, inlined: the state banks swap from
+ * one sub-step to the next), until the level ends or some block's sub-step
+ * needs the split step (5): the loop of the level runs inside the vector
+ * instance, so a level of n sub-steps costs one call, not n. The sub-steps
+ * and their forcing are those of run_from (the same x, x1 and arithmetic). */
+K2_BODY void levelrun_body(const level_args *a)
+{
+    level_pos *p = a->p;
+    const size_t nq = a->nq;
+    unsigned j = p->j;
+    double x = p->x;
+    int cur = p->cur;
+    p->bad = 0;
+    for (; j < a->jmax && x < 1.0; j++) {
+        const double x1 = 1.0 - (x + a->wd) < 1e-12 ? 1.0 : x + a->wd;
+        const force F = sl_k2_force_of(a->s, x, x1);
+        const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
+        double *const *I = a->S[cur], *const *O = a->S[1 - cur];
+        substep_body(nq, &F, tu, a->mu, a->bad, I[S_UX], I[S_UY], I[S_VX], I[S_VY], I[S_SP],
+                     I[S_PK2], I[S_TPK], I[S_PX], I[S_PY], I[S_PATH], I[S_VM2], I[S_TSL],
+                     I[S_TST], O[S_UX], O[S_UY], O[S_VX], O[S_VY], O[S_SP], O[S_PK2], O[S_TPK],
+                     O[S_PX], O[S_PY], O[S_PATH], O[S_VM2], O[S_TSL], O[S_TST]);
+        int any = 0;
+        for (size_t i = 0; i < nq; i++)
+            any |= a->bad[i] != 0.0;
+        if (any) {
+            p->bad = 1;
+            break;
+        }
+        cur = 1 - cur;
+        x = x1;
+    }
+    p->j = j;
+    p->x = x;
+    p->cur = cur;
+}
+
+K2_INSTANCES(levelrun, level_args, (a))
 
 /* Row r of state bank `bank` of w->Q. */
 static double *q_row(const k2_work *w, int bank, int r)
@@ -687,7 +732,7 @@ static void q_move(k2_work *w, double *const S[S_N], size_t i, size_t last)
 
 /* sl_k2_run_level(B[k], s, mu, n, 0) of the nq sliding blocks packed in
  * w->Q, all together: the n sub-steps share their forcing and run as vector code
- * (substep_pass); a block whose sub-step needs the split step (5) leaves
+ * (levelrun_pass); a block whose sub-step needs the split step (5) leaves
  * the pack and finishes the level alone (run_from, the same steps from
  * there). Block i's answer goes to res[w->qs[i]]. */
 static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk *res)
@@ -701,27 +746,29 @@ static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk
     }
     const double wd = (1.0 - 0.0) / n; /* as run_level */
     const unsigned jmax = 4u * n + 8u;
-    double x = 0.0;
-    int cur = 0;
-    for (unsigned j = 0; j < jmax && x < 1.0 && nq > 0; j++) {
-        const double x1 = 1.0 - (x + wd) < 1e-12 ? 1.0 : x + wd;
-        const force F = sl_k2_force_of(s, x, x1);
-        const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
-        double *const *I = S[cur], *const *O = S[1 - cur];
-        const substep_args a = {nq, &F, tu, mu, bad, I, O};
-        substep_pass(&a);
-        /* from the top, so the block moved into a freed slot is done */
+    level_pos p = {0, 0.0, 0, 0};
+    level_args a = {nq, s, wd, jmax, mu, bad, {S[0], S[1]}, &p};
+    while (nq > 0) {
+        a.nq = nq;
+        levelrun_pass(&a);
+        if (!p.bad)
+            break;
+        /* sub-step p.j needs (5) for some: from the top, so the block moved
+         * into a freed slot is done */
+        double *const *I = S[p.cur], *const *O = S[1 - p.cur];
         for (size_t i = nq; i-- > 0;) {
             if (bad[i] == 0.0)
                 continue;
-            res[w->qs[i]] = sl_k2_run_from(q_unpack(w, I, i), s, mu[i], wd, x, jmax - j);
+            res[w->qs[i]] = sl_k2_run_from(q_unpack(w, I, i), s, mu[i], wd, p.x, jmax - p.j);
             q_move(w, O, i, --nq);
         }
-        cur = 1 - cur;
-        x = x1;
+        const double x1 = 1.0 - (p.x + wd) < 1e-12 ? 1.0 : p.x + wd;
+        p.cur = 1 - p.cur;
+        p.x = x1;
+        p.j++;
     }
     for (size_t i = 0; i < nq; i++)
-        res[w->qs[i]] = q_unpack(w, S[cur], i);
+        res[w->qs[i]] = q_unpack(w, S[p.cur], i);
 }
 
 /* The end of the refinement of entry e: block k takes the answer C of n

@@ -41,7 +41,7 @@ typedef struct blk {
 } blk;
 
 /* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
-static inline double sl_k2_mean_positive(double n0, double n1)
+VECTOR_PASS static inline double sl_k2_mean_positive(double n0, double n1)
 {
     if (n0 >= 0.0 && n1 >= 0.0)
         return 0.5 * (n0 + n1);
@@ -53,7 +53,7 @@ static inline double sl_k2_mean_positive(double n0, double n1)
 
 /* The forcing integrals of the sub-step [x0, x1] of sample s (inline: it
  * is computed for every sub-step of every level, a few blocks at a time). */
-static inline force sl_k2_force_of(const sample *s, double x0, double x1)
+VECTOR_PASS static inline force sl_k2_force_of(const sample *s, double x0, double x1)
 {
     const double h = (x1 - x0) * s->dt, xm = 0.5 * (x0 + x1), c = h * h / 12.0 * (x1 - x0);
     force F;
