@@ -820,9 +820,10 @@ static void test_engine_instances_same_bits(void)
 
 /* The Coulomb step (3)-(4) is written twice: the scalar step with its
  * split (5) (kernel2d_step.c fstep, through sl_k2_run_level) and the
- * vector sub-step pass (kernel2d.c substep_pass, through the level passes
- * of fixed sub-steps), which hands a block to the scalar step only for a
- * split. On 2-D + vertical noise at 30 mu and 1, 2 and 4 sub-steps, every
+ * vector sub-step pass (kernel2d.c substep_body, through the level runs
+ * of fixed sub-steps, levelrun_pass), which hands a block to the scalar
+ * step only for a split. On 2-D + vertical noise at 30 mu and 1, 2, 4 and
+ * 16 sub-steps, every
  * block's state and statistics from sl_kernel2d_run must be the scalar
  * step's to the bit. */
 static void test_step_forms_agree(void)
@@ -837,8 +838,10 @@ static void test_step_forms_agree(void)
     for (int k = 0; k < NM; k++)
         mus[k] = 0.03 + 0.02 * k;
     sl_k2_out out[NM];
-    static const unsigned subs[3] = {1, 2, 4};
-    for (int q = 0; q < 3; q++) {
+    /* 16: long levels, in which the vector run of a level stops at a block's
+     * split step and resumes after it (kernel2d.c levelrun_pass) many times */
+    static const unsigned subs[4] = {1, 2, 4, 16};
+    for (int q = 0; q < 4; q++) {
         const sl_k2_opts ko = {subs[q], 1e-3, 1e-6};
         CHECK(sl_kernel2d_run(&km, mus, NULL, NULL, NM, &ko, out, NULL) == 0, "run");
         size_t bad = 0;

@@ -42,7 +42,7 @@
  * alone from the vector pass's two half steps, level 2) until two
  * successive levels agree: the sliding ones level by level, every block
  * due at one sub-step count advanced together in one vector pass per
- * sub-step (level_vector, substep_pass: (3)-(4) with the bookkeeping of
+ * sub-step (level_vector, levelrun_pass: (3)-(4) with the bookkeeping of
  * fstep), a block whose sub-step needs (5) finishing that level alone with
  * the full step (2)-(5) (run_from); a block at rest alone from its exact
  * onset (refine_onset). Fixed sub-steps take the same level passes. Per
@@ -130,25 +130,42 @@ int sl_kernel2d_avx2(void)
 #endif
 }
 
-/* NAME_pass: NAME_body as the AVX2 or the baseline instance. */
+/* NAME_pass(a): NAME_body as the AVX2 or the baseline instance, its
+ * arguments unpacked from the struct *a of type TYPE by UNPACK (one pointer
+ * a call: the 23-31 arguments of a pass cost about 100 instructions a call
+ * when passed one by one, more than the pass itself on a few blocks; the
+ * body's restrict parameters still tell the compiler the rows are apart). */
 #ifdef SL_K2_AVX2
-#define K2_INSTANCES(name, params, args)                                                         \
-    VECTOR_PASS static void name##_base params { name##_body args; }                              \
-    __attribute__((target("avx2"))) VECTOR_PASS static void name##_avx2 params                   \
+#define K2_INSTANCES(name, type, unpack)                                                         \
+    VECTOR_PASS static void name##_base(const type *a) { name##_body unpack; }                    \
+    __attribute__((target("avx2"))) VECTOR_PASS static void name##_avx2(const type *a)           \
     {                                                                                             \
-        name##_body args;                                                                         \
+        name##_body unpack;                                                                       \
     }                                                                                             \
-    static void name##_pass params                                                                \
+    static void name##_pass(const type *a)                                                        \
     {                                                                                             \
         if (sl_kernel2d_avx2())                                                                   \
-            name##_avx2 args;                                                                     \
+            name##_avx2(a);                                                                       \
         else                                                                                      \
-            name##_base args;                                                                     \
+            name##_base(a);                                                                       \
     }
 #else
-#define K2_INSTANCES(name, params, args)                                                         \
-    static void name##_pass params { name##_body args; }
+#define K2_INSTANCES(name, type, unpack)                                                         \
+    static void name##_pass(const type *a) { name##_body unpack; }
 #endif
+
+/* Packed working arrays of the live blocks of one sample. */
+enum { P_MU, P_TOL, P_UX, P_UY, P_VX, P_VY, P_CUX, P_CUY, P_CVX, P_CVY, P_BAD, P_PK2, P_D, P_DUX,
+       P_DUY, P_DVX, P_DVY, P_NS, P_N };
+
+/* The arguments of doubling_pass: the na packed blocks (rows of m in P),
+ * the forcing of the whole sample (Fc) and of its halves (Fa, Fb). */
+typedef struct doubling_args {
+    size_t na, m;
+    const force *Fc, *Fa, *Fb;
+    const sample *smp;
+    double *P;
+} doubling_args;
 
 /* The vector pass over the na packed sliding blocks of one sample: one step
  * (3)-(4) of dt (Fc) against two of dt/2 (Fa, Fb), the local differences,
@@ -161,9 +178,12 @@ int sl_kernel2d_avx2(void)
      double *restrict cuy, double *restrict cvx, double *restrict cvy, double *restrict pbad,     \
      double *restrict ppk2, double *restrict pd, double *restrict pdux, double *restrict pduy,    \
      double *restrict pdvx, double *restrict pdvy, double *restrict pns)
-#define DOUBLING_ARGS                                                                             \
-    (na, Fc, Fa, Fb, smp, pmu, ptol, pux, puy, pvx, pvy, cux, cuy, cvx, cvy, pbad, ppk2, pd, pdux, \
-     pduy, pdvx, pdvy, pns)
+#define DOUBLING_UNPACK                                                                           \
+    (a->na, a->Fc, a->Fa, a->Fb, a->smp, a->P + P_MU * a->m, a->P + P_TOL * a->m,                 \
+     a->P + P_UX * a->m, a->P + P_UY * a->m, a->P + P_VX * a->m, a->P + P_VY * a->m,              \
+     a->P + P_CUX * a->m, a->P + P_CUY * a->m, a->P + P_CVX * a->m, a->P + P_CVY * a->m,          \
+     a->P + P_BAD * a->m, a->P + P_PK2 * a->m, a->P + P_D * a->m, a->P + P_DUX * a->m,            \
+     a->P + P_DUY * a->m, a->P + P_DVX * a->m, a->P + P_DVY * a->m, a->P + P_NS * a->m)
 K2_BODY void doubling_body DOUBLING_PARAMS
 {
     /* one step of dt against two of dt/2, every live block at once */
@@ -239,11 +259,7 @@ K2_BODY void doubling_body DOUBLING_PARAMS
     }
 }
 
-K2_INSTANCES(doubling, DOUBLING_PARAMS, DOUBLING_ARGS)
-
-/* Packed working arrays of the live blocks of one sample. */
-enum { P_MU, P_TOL, P_UX, P_UY, P_VX, P_VY, P_CUX, P_CUY, P_CVX, P_CVY, P_BAD, P_PK2, P_D, P_DUX,
-       P_DUY, P_DVX, P_DVY, P_NS, P_N };
+K2_INSTANCES(doubling, doubling_args, DOUBLING_UNPACK)
 
 /* Signed error estimates of one block: position (ex, ey), velocity (wx, wy)
  * and |position error| when the peak was last raised. */
@@ -405,14 +421,16 @@ static int work_order(k2_work *w, const double *mu)
  * blocks are those before it and the sliding ones after it. */
 static size_t find_live(k2_work *w, const sample *s, const double *mu)
 {
-    const double a0m = hypot(s->ax0, s->ay0), a1m = hypot(s->ax1, s->ay1);
-    const double p0 = fmax(s->n0, 0.0), p1 = fmax(s->n1, 0.0);
-    const int ends_decide = (s->n0 > 0.0 && s->n1 > 0.0) || (a0m == 0.0 && a1m == 0.0);
+    /* squares, as the onset (sl_k2_onset) compares them: no hypot call */
+    const double a02 = s->ax0 * s->ax0 + s->ay0 * s->ay0, a12 = s->ax1 * s->ax1 + s->ay1 * s->ay1;
+    const double p0 = max2(s->n0, 0.0), p1 = max2(s->n1, 0.0);
+    const int a_zero = s->ax0 == 0.0 && s->ay0 == 0.0 && s->ax1 == 0.0 && s->ay1 == 0.0;
+    const int ends_decide = (s->n0 > 0.0 && s->n1 > 0.0) || a_zero;
     size_t lo = ends_decide ? 0 : w->m, hi = w->m; /* first position in order whose block is held */
     while (lo < hi) {
         const size_t mid = lo + (hi - lo) / 2;
-        const double mk = mu[w->order[mid]];
-        if (a0m <= mk * p0 && a1m <= mk * p1)
+        const double mk = mu[w->order[mid]], f0 = mk * p0, f1 = mk * p1;
+        if (a02 <= f0 * f0 && a12 <= f1 * f1)
             hi = mid;
         else
             lo = mid + 1;
@@ -478,10 +496,8 @@ static void step(k2_work *w, size_t na, const sample *s)
     double *P = w->P;
     const force Fc = sl_k2_force_of(s, 0.0, 1.0), Fa = sl_k2_force_of(s, 0.0, 0.5),
                 Fb = sl_k2_force_of(s, 0.5, 1.0);
-    doubling_pass(na, &Fc, &Fa, &Fb, s, P + P_MU * m, P + P_TOL * m, P + P_UX * m,
-                  P + P_UY * m, P + P_VX * m, P + P_VY * m, P + P_CUX * m, P + P_CUY * m,
-                  P + P_CVX * m, P + P_CVY * m, P + P_BAD * m, P + P_PK2 * m, P + P_D * m,
-                  P + P_DUX * m, P + P_DUY * m, P + P_DVX * m, P + P_DVY * m, P + P_NS * m);
+    const doubling_args a = {na, m, &Fc, &Fa, &Fb, s, P};
+    doubling_pass(&a);
 }
 
 /* Unpack the blocks whose step passed (statistics, peak at t1, error
@@ -542,9 +558,6 @@ static size_t accept(k2_work *w, size_t na, double dt, double t1)
      double *restrict ovx, double *restrict ovy, double *restrict osp, double *restrict opk2,     \
      double *restrict otpk, double *restrict opx, double *restrict opy, double *restrict opath,    \
      double *restrict ovm2, double *restrict otsl, double *restrict otst)
-#define SUBSTEP_ARGS                                                                              \
-    (nq, F, tu, mu, bad, iux, iuy, ivx, ivy, isp, ipk2, itpk, ipx, ipy, ipath, ivm2, itsl, itst,   \
-     oux, ouy, ovx, ovy, osp, opk2, otpk, opx, opy, opath, ovm2, otsl, otst)
 K2_BODY void substep_body SUBSTEP_PARAMS
 {
     const double hax = F->hax, hay = F->hay, hN = F->hN, cx = F->cx, cy = F->cy, h = F->h;
@@ -588,7 +601,69 @@ K2_BODY void substep_body SUBSTEP_PARAMS
     }
 }
 
-K2_INSTANCES(substep, SUBSTEP_PARAMS, SUBSTEP_ARGS)
+/* Where a run of sub-steps of one level stands (levelrun_pass): the next
+ * sub-step j, its start x (fraction of the sample), the state bank cur it
+ * reads, and whether it stopped because a block's sub-step j needs the
+ * split step (5) (then bank 1 - cur holds sub-step j's output of the rest). */
+typedef struct level_pos {
+    unsigned j;
+    double x;
+    int cur, bad;
+} level_pos;
+
+/* The arguments of levelrun_pass: nq packed blocks of sample s, sub-steps
+ * of width wd, at most jmax of them, friction and flag rows, the two state
+ * banks S[0], S[1] (S_N rows each), and the position p (read and updated). */
+typedef struct level_args {
+    size_t nq;
+    const sample *s;
+    double wd;
+    unsigned jmax;
+    const double *mu;
+    double *bad;
+    double *const *S[2];
+    level_pos *p;
+} level_args;
+
+/* The sub-steps of one level from a->p on, every packed block together
+ * (substep_body, one call per sub-step, inlined: the state banks swap from
+ * one sub-step to the next), until the level ends or some block's sub-step
+ * needs the split step (5): the loop of the level runs inside the vector
+ * instance, so a level of n sub-steps costs one call, not n. The sub-steps
+ * and their forcing are those of run_from (the same x, x1 and arithmetic). */
+K2_BODY void levelrun_body(const level_args *a)
+{
+    level_pos *p = a->p;
+    const size_t nq = a->nq;
+    unsigned j = p->j;
+    double x = p->x;
+    int cur = p->cur;
+    p->bad = 0;
+    for (; j < a->jmax && x < 1.0; j++) {
+        const double x1 = 1.0 - (x + a->wd) < 1e-12 ? 1.0 : x + a->wd;
+        const force F = sl_k2_force_of(a->s, x, x1);
+        const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
+        double *const *I = a->S[cur], *const *O = a->S[1 - cur];
+        substep_body(nq, &F, tu, a->mu, a->bad, I[S_UX], I[S_UY], I[S_VX], I[S_VY], I[S_SP],
+                     I[S_PK2], I[S_TPK], I[S_PX], I[S_PY], I[S_PATH], I[S_VM2], I[S_TSL],
+                     I[S_TST], O[S_UX], O[S_UY], O[S_VX], O[S_VY], O[S_SP], O[S_PK2], O[S_TPK],
+                     O[S_PX], O[S_PY], O[S_PATH], O[S_VM2], O[S_TSL], O[S_TST]);
+        int any = 0;
+        for (size_t i = 0; i < nq; i++)
+            any |= a->bad[i] != 0.0;
+        if (any) {
+            p->bad = 1;
+            break;
+        }
+        cur = 1 - cur;
+        x = x1;
+    }
+    p->j = j;
+    p->x = x;
+    p->cur = cur;
+}
+
+K2_INSTANCES(levelrun, level_args, (a))
 
 /* Row r of state bank `bank` of w->Q. */
 static double *q_row(const k2_work *w, int bank, int r)
@@ -657,7 +732,7 @@ static void q_move(k2_work *w, double *const S[S_N], size_t i, size_t last)
 
 /* sl_k2_run_level(B[k], s, mu, n, 0) of the nq sliding blocks packed in
  * w->Q, all together: the n sub-steps share their forcing and run as vector code
- * (substep_pass); a block whose sub-step needs the split step (5) leaves
+ * (levelrun_pass); a block whose sub-step needs the split step (5) leaves
  * the pack and finishes the level alone (run_from, the same steps from
  * there). Block i's answer goes to res[w->qs[i]]. */
 static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk *res)
@@ -671,29 +746,29 @@ static void level_vector(k2_work *w, size_t nq, const sample *s, unsigned n, blk
     }
     const double wd = (1.0 - 0.0) / n; /* as run_level */
     const unsigned jmax = 4u * n + 8u;
-    double x = 0.0;
-    int cur = 0;
-    for (unsigned j = 0; j < jmax && x < 1.0 && nq > 0; j++) {
-        const double x1 = 1.0 - (x + wd) < 1e-12 ? 1.0 : x + wd;
-        const force F = sl_k2_force_of(s, x, x1);
-        const double tu = F.t - F.h + F.h * 1.0; /* as fstep */
-        double *const *I = S[cur], *const *O = S[1 - cur];
-        substep_pass(nq, &F, tu, mu, bad, I[S_UX], I[S_UY], I[S_VX], I[S_VY], I[S_SP],
-                     I[S_PK2], I[S_TPK], I[S_PX], I[S_PY], I[S_PATH], I[S_VM2], I[S_TSL],
-                     I[S_TST], O[S_UX], O[S_UY], O[S_VX], O[S_VY], O[S_SP], O[S_PK2],
-                     O[S_TPK], O[S_PX], O[S_PY], O[S_PATH], O[S_VM2], O[S_TSL], O[S_TST]);
-        /* from the top, so the block moved into a freed slot is done */
+    level_pos p = {0, 0.0, 0, 0};
+    level_args a = {nq, s, wd, jmax, mu, bad, {S[0], S[1]}, &p};
+    while (nq > 0) {
+        a.nq = nq;
+        levelrun_pass(&a);
+        if (!p.bad)
+            break;
+        /* sub-step p.j needs (5) for some: from the top, so the block moved
+         * into a freed slot is done */
+        double *const *I = S[p.cur], *const *O = S[1 - p.cur];
         for (size_t i = nq; i-- > 0;) {
             if (bad[i] == 0.0)
                 continue;
-            res[w->qs[i]] = sl_k2_run_from(q_unpack(w, I, i), s, mu[i], wd, x, jmax - j);
+            res[w->qs[i]] = sl_k2_run_from(q_unpack(w, I, i), s, mu[i], wd, p.x, jmax - p.j);
             q_move(w, O, i, --nq);
         }
-        cur = 1 - cur;
-        x = x1;
+        const double x1 = 1.0 - (p.x + wd) < 1e-12 ? 1.0 : p.x + wd;
+        p.cur = 1 - p.cur;
+        p.x = x1;
+        p.j++;
     }
     for (size_t i = 0; i < nq; i++)
-        res[w->qs[i]] = q_unpack(w, S[cur], i);
+        res[w->qs[i]] = q_unpack(w, S[p.cur], i);
 }
 
 /* The end of the refinement of entry e: block k takes the answer C of n

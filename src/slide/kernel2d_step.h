@@ -40,8 +40,38 @@ typedef struct blk {
     long episodes;
 } blk;
 
-/* The forcing integrals of the sub-step [x0, x1] of sample s. */
-force sl_k2_force_of(const sample *s, double x0, double x1);
+/* Mean over [0, 1] of max(n0 + (n1 - n0) x, 0): exact for the linear N. */
+VECTOR_PASS static inline double sl_k2_mean_positive(double n0, double n1)
+{
+    if (n0 >= 0.0 && n1 >= 0.0)
+        return 0.5 * (n0 + n1);
+    if (n0 <= 0.0 && n1 <= 0.0)
+        return 0.0;
+    double p = n0 > 0.0 ? n0 : n1, q = n0 > 0.0 ? n1 : n0;
+    return 0.5 * p * p / (p - q);
+}
+
+/* The forcing integrals of the sub-step [x0, x1] of sample s (inline: it
+ * is computed for every sub-step of every level, a few blocks at a time). */
+VECTOR_PASS static inline force sl_k2_force_of(const sample *s, double x0, double x1)
+{
+    const double h = (x1 - x0) * s->dt, xm = 0.5 * (x0 + x1), c = h * h / 12.0 * (x1 - x0);
+    force F;
+    F.h = h;
+    F.hax = h * (s->ax0 + (s->ax1 - s->ax0) * xm);
+    F.hay = h * (s->ay0 + (s->ay1 - s->ay0) * xm);
+    F.hN = h * sl_k2_mean_positive(s->n0 + (s->n1 - s->n0) * x0, s->n0 + (s->n1 - s->n0) * x1);
+    F.cx = c * (s->ax1 - s->ax0);
+    F.cy = c * (s->ay1 - s->ay0);
+    F.t = s->t0 + x1 * s->dt;
+    F.ax0 = s->ax0 + (s->ax1 - s->ax0) * x0;
+    F.ay0 = s->ay0 + (s->ay1 - s->ay0) * x0;
+    F.n0 = s->n0 + (s->n1 - s->n0) * x0;
+    F.dax = (s->ax1 - s->ax0) * (x1 - x0);
+    F.day = (s->ay1 - s->ay0) * (x1 - x0);
+    F.dn = (s->n1 - s->n0) * (x1 - x0);
+    return F;
+}
 
 /* The first fraction x in [lo_x, 1) after which a block at rest slips, or
  * 1 if it stays held (exact). */
