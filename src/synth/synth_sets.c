@@ -342,11 +342,15 @@ static void flow_set(flow *f, size_t k)
         f->pending[k] = (unsigned)nredo; /* visible to the tasks: task creation flushes */
 #pragma omp critical(sl_synth_progress)
         f->total += (size_t)nredo;
-        for (int q = 0; q < nredo; q++) {
+        /* the last redone component goes on here, at once: a set's redos
+         * come before the work queued behind them (the NLTHA of the sets
+         * already final), which then fills the flow's end */
+        for (int q = 0; q + 1 < nredo; q++) {
             size_t i = k * SL_SYNTH_NCOMP + (size_t)redo[q];
 #pragma omp task default(shared) firstprivate(i)
             flow_job(f, i);
         }
+        flow_job(f, k * SL_SYNTH_NCOMP + (size_t)redo[nredo - 1]);
         return;
     }
     set_psd(f->s, jb3);
