@@ -337,7 +337,7 @@ static void test_wavelet_recurrence(void)
     free(a);
 }
 
-/* The App. B PSD of a kept motion (computed after the retry rounds when
+/* The App. B PSD of a kept motion (computed once its set is final when
  * psd_frac = 0, for every attempt otherwise) is the motion's own: the
  * report's psd_min_ratio equals sl_psd_check_motion on the motion, and the
  * same whether or not it decides redos (psd_frac 0 against a tiny

@@ -1,5 +1,5 @@
-/* synth_sets.c - whole sets in parallel with retries and the
- * correlation check, record-matching sets, AT2 output (docs/synthesis.md 3.4-3.6). */
+/* synth_sets.c - whole sets in parallel (a flow of OpenMP tasks) with
+ * retries and the correlation check, record-matching sets, AT2 output (docs/synthesis.md 3.4-3.6). */
 #include "synth/synth_internal.h"
 
 #include <math.h>
@@ -115,8 +115,8 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
     memcpy(jb->acc, sl_synth_acc(m), s->n * sizeof *jb->acc);
 }
 
-/* Per-thread motion workspaces kept across the rounds of one call (their
- * spectrum and FFTW plans are made once, not once per round). */
+/* Per-thread motion workspaces kept across the attempts of one call (their
+ * spectrum and FFTW plans are made once per thread, not once per task). */
 typedef struct workspaces {
     sl_synth_motion **m;
     size_t n;
