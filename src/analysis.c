@@ -498,7 +498,7 @@ static sl_status set_ready(void *ctx, size_t k, sl_error *err)
         b->team = team;
     }
     for (size_t c = 0; c < b->per_set; c++) {
-#pragma omp task default(shared) firstprivate(k, c)
+#pragma omp task default(none) firstprivate(b, k, c) /* by value: this frame may be gone */
         nltha_chunk(b, k, c);
     }
     return SL_OK;

@@ -347,7 +347,7 @@ static void flow_set(flow *f, size_t k)
          * already final), which then fills the flow's end */
         for (int q = 0; q + 1 < nredo; q++) {
             size_t i = k * SL_SYNTH_NCOMP + (size_t)redo[q];
-#pragma omp task default(shared) firstprivate(i)
+#pragma omp task default(none) firstprivate(f, i) /* f by value: this frame may be gone */
             flow_job(f, i);
         }
         flow_job(f, k * SL_SYNTH_NCOMP + (size_t)redo[nredo - 1]);
@@ -435,7 +435,7 @@ sl_status sl_synth_make_sets_then(const sl_synth *s, const sl_synth_target tgt[S
 #pragma omp parallel
 #pragma omp single
     for (size_t i = 0; i < nj; i++) {
-#pragma omp task default(shared) firstprivate(i)
+#pragma omp task default(none) shared(f) firstprivate(i) /* f outlives the region */
         flow_job(&f, i);
     }
     /* the first failure in job order, then in set order */
