@@ -9,6 +9,8 @@
 #include <string.h>
 #include <time.h>
 
+#include <omp.h>
+
 #include "method/asce.h"
 #include "method/asce_input.h"
 #include "method/stats.h"
@@ -440,16 +442,100 @@ static sl_status run_plan(run *r, sl_error *err)
     return SL_OK;
 }
 
-/* One batch: sets r->n .. want-1 synthesized (time_synth_s), then their
- * NLTHA at every mu (time_nltha_s); r->n = want. */
+/* The NLTHA of one batch, each set's started as soon as its synthesis is
+ * final (the ready callback of sl_synth_make_sets_then): a task per chunk
+ * of SL_SLIDE_BATCH_CHUNK friction values, as sl_slide_batch would run it. */
+typedef struct batch {
+    run *r;
+    size_t n;                /* the batch's first set */
+    const double *grid;      /* the friction values integrated: o->mu, or the scatter grid */
+    size_t nq, per_set;      /* their count, and chunks of them per set */
+    sl_slide_result *res;    /* nb x nq */
+    double nltha_s;          /* thread time of the NLTHA (and the sets' PGD), s */
+    int team;                /* threads of the flow */
+    sl_status st;            /* the first failure in (set, chunk) order, as sl_slide_batch */
+    size_t first_item;
+    sl_error err;
+} batch;
+
+static void nltha_chunk(batch *b, size_t k, size_t c)
+{
+    double t0 = sl_clock_s();
+    const size_t k0 = c * SL_SLIDE_BATCH_CHUNK;
+    const size_t kn = k0 + SL_SLIDE_BATCH_CHUNK <= b->nq ? SL_SLIDE_BATCH_CHUNK : b->nq - k0;
+    sl_error e;
+    sl_error_clear(&e);
+    sl_status st = sl_slide_run(&b->r->sets[b->n + k], b->grid + k0, kn, &b->r->so,
+                                b->res + k * b->nq + k0, &e);
+    double dt = sl_clock_s() - t0;
+    size_t item = k * b->per_set + c;
+#pragma omp critical(sl_analysis_nltha)
+    {
+        b->nltha_s += dt;
+        if (st && (!b->st || item < b->first_item)) {
+            b->st = st;
+            b->first_item = item;
+            b->err = e;
+        }
+    }
+}
+
+/* Set b->n + k is synthesized: its PGD, then its NLTHA as tasks. */
+static sl_status set_ready(void *ctx, size_t k, sl_error *err)
+{
+    (void)err;
+    batch *b = ctx;
+    run *r = b->r;
+    const size_t s = b->n + k;
+    double t0 = sl_clock_s();
+    r->sets[s] = r->a->sets[s].set;
+    r->a->pgd_m[s] = sl_set_pgd_100_40(&r->sets[s]);
+    double dt = sl_clock_s() - t0;
+    int team = omp_get_num_threads();
+#pragma omp critical(sl_analysis_nltha)
+    {
+        b->nltha_s += dt;
+        b->team = team;
+    }
+    for (size_t c = 0; c < b->per_set; c++) {
+#pragma omp task default(none) firstprivate(b, k, c) /* by value: this frame may be gone */
+        nltha_chunk(b, k, c);
+    }
+    return SL_OK;
+}
+
+/* One batch: sets r->n .. want-1 synthesized, each going on to its NLTHA at
+ * every mu as soon as it is final, in one flow of tasks. time_synth_s and
+ * time_nltha_s get thread time: the NLTHA's tasks are timed, and the rest
+ * of the flow's wall time x threads (the synthesis, with the time threads
+ * wait at the flow's end) is the synthesis'; on 1 thread, wall time. */
 static sl_status run_batch(run *r, size_t want, sl_error *err)
 {
     sl_analysis *a = r->a;
     const sl_analysis_opts *o = r->o;
     const size_t n = r->n, nb = want - n, n_mu = r->n_mu;
+    batch b = {.r = r, .n = n, .grid = o->mu, .nq = n_mu, .team = 1};
+    if (r->scat)
+        b.grid = sl_scatter_grid(r->scat, &b.nq);
+    b.per_set = (b.nq + SL_SLIDE_BATCH_CHUNK - 1) / SL_SLIDE_BATCH_CHUNK;
+    b.res = r->scat ? calloc(nb * b.nq, sizeof *b.res) : r->res + n * n_mu;
+    if (!b.res)
+        return sl_error_set(err, SL_ENOMEM, NULL, 0, "analysis: out of memory");
     double t0 = sl_clock_s();
-    sl_status st = sl_synth_make_sets(r->plan, r->tgt, a->floor_seed, n, nb, a->sets + n,
-                                      synth_progress, &r->pc, err);
+    sl_status st = sl_synth_make_sets_then(r->plan, r->tgt, a->floor_seed, n, nb, a->sets + n,
+                                           synth_progress, &r->pc, set_ready, &b, err);
+    double flow_s = (sl_clock_s() - t0) * (double)b.team;
+    t0 = sl_clock_s();
+    if (st == SL_OK || st == SL_ENOCONV) {
+        st = b.st;
+        if (st && err)
+            *err = b.err;
+    }
+    if (!st && r->scat)
+        st = sl_scatter_results(r->scat, b.res, nb, r->peak + n * n_mu, r->err_k + n * n_mu,
+                                err);
+    if (r->scat)
+        free(b.res);
     if (st != SL_OK && st != SL_ENOCONV)
         return st;
     a->n_sets = want;
@@ -458,22 +544,6 @@ static sl_status run_batch(run *r, size_t want, sl_error *err)
             a->n_failed_motions += !a->sets[s].check[c].pass;
             a->n_extra_attempts += a->sets[s].check[c].attempt;
         }
-    a->time_synth_s += sl_clock_s() - t0;
-
-    t0 = sl_clock_s();
-    for (size_t s = n; s < want; s++) {
-        r->sets[s] = a->sets[s].set;
-        a->pgd_m[s] = sl_set_pgd_100_40(&r->sets[s]);
-    }
-    if (o->progress)
-        o->progress(o->progress_ctx, "nltha", n, want);
-    st = r->scat ? sl_scatter_slide_batch(r->scat, r->sets + n, nb, &r->so, r->peak + n * n_mu,
-                                          r->err_k + n * n_mu, err)
-                 : sl_slide_batch(r->sets + n, nb, o->mu, n_mu, &r->so, r->res + n * n_mu, err);
-    if (st)
-        return st;
-    if (o->progress)
-        o->progress(o->progress_ctx, "nltha", want, want);
     for (size_t i = n * n_mu; i < want * n_mu; i++) {
         size_t k = i % n_mu;
         /* "need no NLTHA": skipped (mu above the set's threshold), or
@@ -487,7 +557,11 @@ static sl_status run_batch(run *r, size_t want, sl_error *err)
         }
         a->err_est_m[k] = fmax(a->err_est_m[k], r->err_k[i]);
     }
-    a->time_nltha_s += sl_clock_s() - t0;
+    b.nltha_s += sl_clock_s() - t0;
+    a->time_synth_s += flow_s > b.nltha_s ? flow_s - b.nltha_s : 0;
+    a->time_nltha_s += b.nltha_s;
+    if (o->progress)
+        o->progress(o->progress_ctx, "nltha", want, want);
     r->n = want;
     a->n_batches++;
     return SL_OK;
@@ -537,7 +611,8 @@ static sl_status run_bands(run *r, sl_error *err)
     sl_status st = store_dampings(a, r->plan, r->fl, &r->sp, err);
     if (st)
         return st;
-    a->time_checks_s = sl_clock_s() - t0;
+    /* thread time: every thread is in the checks' loops */
+    a->time_checks_s = (sl_clock_s() - t0) * (double)omp_get_max_threads();
     a->time_synth_s += a->time_checks_s;
 
     t0 = sl_clock_s();

@@ -171,13 +171,19 @@ typedef struct sl_analysis {
     size_t n_failed_motions;    /* components that failed a quality check */
     size_t n_mu_skipped;        /* friction values not integrated for any set */
     int sa10_fallback;          /* 1: ASCE used the motions' mean 10 % spectra */
-    double time_synth_s, time_nltha_s, time_asce_s; /* wall time of each step, s */
-    double time_stats_s;        /* wall time of the convergence statistics, the band and the
+    /* Times of the steps, s, as thread time: the time threads spend in the
+     * step, summed over threads (on 1 thread, its wall time). A batch's
+     * synthesis and NLTHA run as one flow of tasks and overlap: the NLTHA
+     * is its tasks' time, the synthesis the rest of the flow's wall time x
+     * threads (with the time threads wait at the flow's end); the steps
+     * run by one thread (statistics, ASCE, design) are their wall time. */
+    double time_synth_s, time_nltha_s, time_asce_s; /* thread time of each step, s */
+    double time_stats_s;        /* time of the convergence statistics, the band and the
                                    variance-reduction diagnostic, s (each step timed once:
                                    time_asce_s is the ASCE method and the design only) */
-    double time_checks_s;       /* wall time of the other dampings' checks, s (part of
-                                 * time_synth_s, which also holds the checks made while
-                                 * synthesizing) */
+    double time_checks_s;       /* the other dampings' checks: their wall time x threads, s
+                                 * (part of time_synth_s, which also holds the checks made
+                                 * while synthesizing) */
     size_t n_extra_attempts;    /* synthesis attempts beyond the first, summed over every
                                  * component of every set (sl_synth_check.attempt) */
     char note[512];             /* what a reader must know ("" when nothing) */

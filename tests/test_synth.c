@@ -337,7 +337,7 @@ static void test_wavelet_recurrence(void)
     free(a);
 }
 
-/* The App. B PSD of a kept motion (computed after the retry rounds when
+/* The App. B PSD of a kept motion (computed once its set is final when
  * psd_frac = 0, for every attempt otherwise) is the motion's own: the
  * report's psd_min_ratio equals sl_psd_check_motion on the motion, and the
  * same whether or not it decides redos (psd_frac 0 against a tiny
@@ -1301,6 +1301,107 @@ static void test_spread_d5_75(void)
     sl_floor_free(fl);
 }
 
+/* What the ready callback of sl_synth_make_sets_then saw. */
+typedef struct ready_log {
+    sl_synth_set *out;
+    int calls[8];
+    int complete[8];     /* out[k] had its three motions when handed on */
+    double first[8];     /* out[k].h1 sample 100 then */
+    int task_done[8];    /* written by a task the callback spawned */
+    size_t fail_at;      /* SIZE_MAX: never fail */
+} ready_log;
+
+static sl_status ready_cb(void *ctx, size_t k, sl_error *err)
+{
+    ready_log *g = ctx;
+#pragma omp atomic update
+    g->calls[k]++;
+    const sl_synth_set *o = &g->out[k];
+    g->complete[k] = o->set.h1 && o->set.h2 && o->set.v;
+    g->first[k] = o->set.h1 ? o->set.h1->acc_ms2[100] : NAN;
+#pragma omp task firstprivate(k)
+    g->task_done[k] = 1;
+    if (k == g->fail_at)
+        return sl_error_set(err, SL_EIO, "ready.txt", 7, "ready: set %zu refused", k);
+    return SL_OK;
+}
+
+/* sl_synth_make_sets_then: each set handed on once, complete, as it ends;
+ * the same bits as sl_synth_make_sets on 1 and 3 threads; the tasks the
+ * callback spawns done on return; its failure returned with the sets
+ * cleared. And on the result, the redo rule itself (synth.h): a component
+ * with attempts left passes its own checks, and a set's worst |rho| above
+ * the limit only when the later component of that pair has none left. */
+static void test_ready_flow(void)
+{
+    sl_error e;
+    sl_synth *s = sl_synth_alloc(T_N, T_DT, NULL, &e);
+    sl_spectrum *sp[3];
+    sl_synth_target tgt[3];
+    if (!s || sl_synth_targets_rg160(0.3 * SL_G, 0.05, NULL, sp, tgt, &e)) {
+        CHECK(0, "%s", e.msg);
+        return;
+    }
+    enum { NS = 6 };
+    sl_synth_set ref[NS], run[NS];
+    CHECK(sl_synth_make_sets(s, tgt, 13, 4, NS, ref, NULL, NULL, &e) == SL_OK, "%s", e.msg);
+    const unsigned cap = SL_SYNTH_MAX_ATTEMPTS;
+    for (int k = 0; k < NS; k++) {
+        for (int c = 0; c < 3; c++) {
+            const sl_synth_check *ck = &ref[k].check[c];
+            int own = ck->ok_below && ck->ok_above && ck->ok_run && ck->ok_d5_75 && ck->ok_pga &&
+                      ck->ok_peaks && ck->ok_psd;
+            CHECK(own || ck->attempt + 1 >= cap, "set %d %s fails at attempt %u of %u", k,
+                  sl_synth_comp_name((sl_synth_comp)c), ck->attempt, cap);
+        }
+        static const int later[3] = {SL_SYNTH_H2, SL_SYNTH_V, SL_SYNTH_V};
+        for (int q = 0; q < 3; q++)
+            CHECK(fabs(ref[k].corr[q]) <= SL_SYNTH_MAX_CORR ||
+                      ref[k].check[later[q]].attempt + 1 >= cap,
+                  "set %d pair %d: |rho| %.3f", k, q, ref[k].corr[q]);
+    }
+    int saved = omp_get_max_threads();
+    const int threads[] = {1, 3};
+    for (int t = 0; t < 2; t++) {
+        omp_set_num_threads(threads[t]);
+        ready_log g = {.out = run, .fail_at = SIZE_MAX};
+        CHECK(sl_synth_make_sets_then(s, tgt, 13, 4, NS, run, NULL, NULL, ready_cb, &g, &e) ==
+                  SL_OK, "%s", e.msg);
+        for (int k = 0; k < NS; k++) {
+            CHECK(g.calls[k] == 1 && g.complete[k] && g.task_done[k],
+                  "%d threads: set %d handed on %d times, complete %d, its task %d", threads[t],
+                  k, g.calls[k], g.complete[k], g.task_done[k]);
+            CHECK(run[k].set.h1 && g.first[k] == run[k].set.h1->acc_ms2[100],
+                  "%d threads: set %d changed after it was handed on", threads[t], k);
+            for (int c = 0; c < 3; c++)
+                CHECK(!memcmp(sl_synth_set_motion(&ref[k], (sl_synth_comp)c)->acc_ms2,
+                              sl_synth_set_motion(&run[k], (sl_synth_comp)c)->acc_ms2,
+                              T_N * sizeof(double)) &&
+                          ref[k].check[c].attempt == run[k].check[c].attempt,
+                      "%d threads: set %d %s differs", threads[t], k,
+                      sl_synth_comp_name((sl_synth_comp)c));
+            sl_synth_set_clear(&run[k]);
+        }
+        /* the callback refuses set 2: its error, every set cleared */
+        memset(&g, 0, sizeof g);
+        g.out = run;
+        g.fail_at = 2;
+        sl_error_clear(&e);
+        CHECK(sl_synth_make_sets_then(s, tgt, 13, 4, NS, run, NULL, NULL, ready_cb, &g, &e) ==
+                  SL_EIO && strstr(e.msg, "set 2 refused") && e.line == 7,
+              "%d threads: refusal not returned: '%s'", threads[t], e.msg);
+        for (int k = 0; k < NS; k++)
+            CHECK(!run[k].set.h1 && !run[k].set.h2 && !run[k].set.v,
+                  "%d threads: set %d kept after a failure", threads[t], k);
+    }
+    omp_set_num_threads(saved);
+    for (int k = 0; k < NS; k++)
+        sl_synth_set_clear(&ref[k]);
+    for (int c = 0; c < 3; c++)
+        sl_spectrum_free(sp[c]);
+    sl_synth_free(s);
+}
+
 int main(void)
 {
     RUN(test_defaults);
@@ -1323,5 +1424,6 @@ int main(void)
     RUN(test_attempts_bounded);
     RUN(test_spread_d5_75);
     RUN(test_spread_only_narrow);
+    RUN(test_ready_flow);
     return HARNESS_END("synth");
 }

@@ -70,8 +70,8 @@ echo "CPU of 2 threads / CPU of 1 thread: $(echo "${r2#* } ${r1#* }" | awk '{ pr
 echo "merge of the 2 shards: $(echo "$rm_" | awk '{ printf "%.2f s wall", $1 }'); CSV outputs of all three runs identical (but for the command and time lines): $same"
 echo "cache: the first run $(echo "$k1" | awk '{ printf "%.2f s wall", $1 }'), the unchanged rerun (every floor reused) $(echo "$k2 $k1" | awk '{ if ($1 >= 0.01) printf "%.2f s wall, %.0f x less", $1, $3 / $1; else printf "under 0.01 s wall" }')"
 echo
-# the split: the per-floor "wall time:" lines of the 1-thread run
-split() { grep "wall time: synthesis" "$W/out1.log" | sed 's/.*synthesis \([0-9.]*\) s (of which the other dampings. checks \([0-9.]*\) s), NLTHA \([0-9.]*\) s, statistics \([0-9.]*\) s, ASCE and design \([0-9.]*\) s.*; \([0-9.]*\) extra synthesis attempts per set/\1 \2 \3 \4 \5 \6/'; }
+# the split: the per-floor "thread time:" lines of the 1-thread run
+split() { grep "thread time: synthesis" "$W/out1.log" | sed 's/.*synthesis \([0-9.]*\) s (of which the other dampings. checks \([0-9.]*\) s), NLTHA \([0-9.]*\) s, statistics \([0-9.]*\) s, ASCE and design \([0-9.]*\) s.*; \([0-9.]*\) extra synthesis attempts per set/\1 \2 \3 \4 \5 \6/'; }
 nsets() { grep "motion sets" "$W/out1.log" | sed 's/.* \([0-9][0-9]*\) motion sets.*/\1/'; }
 paste -d' ' <(split) <(nsets) | awk -v s="$S" -v c="${r1#* }" '
   { sy += $1; ck += $2; nl += $3; st += $4; as += $5; xa += $6 * $7; ns += $7 }

@@ -119,7 +119,8 @@ static void print_rest(FILE *f, const sl_bench *b)
     }
     out(f, "\n## 6. The main job on the example facility (`seislide run` on floors/)\n\n");
     out(f, "%d friction values, the default 2-D accuracy; all threads of this machine (%d);\n"
-        "wall time. Two settings per floor: a fixed %d motion sets (the former default) and\n"
+        "thread time (summed over the threads; a batch's synthesis and NLTHA overlap,\n"
+        "docs/plant.md). Two settings per floor: a fixed %d motion sets (the former default) and\n"
         "the default, sets added until the standard error of the design\n"
         "value is <= max(5 %%, 1 mm) at every mu (docs/run.md, \"Convergence\"). The cost of\n"
         "a set does not depend on the setting; the number of sets does.\n\n", SL_MU_GRID_N,

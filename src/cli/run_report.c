@@ -83,7 +83,8 @@ void run_report_floor(size_t i, size_t n, const char *name, const sl_analysis *q
                                                       : "NOT converged, --max-sets reached",
                 100 * q->worst_rel_se);
     report_dampings(name, q);
-    cli_msg("run: floor '%s': wall time: synthesis %.2f s (of which the other dampings' "
+    /* thread time (analysis.h): a floor's synthesis and NLTHA overlap */
+    cli_msg("run: floor '%s': thread time: synthesis %.2f s (of which the other dampings' "
             "checks %.2f s), NLTHA %.2f s, statistics %.3f s, ASCE and design %.3f s (%.3f s "
             "per set); %.2f extra synthesis attempts per set", name, q->time_synth_s,
             q->time_checks_s, q->time_nltha_s, q->time_stats_s, q->time_asce_s,

@@ -194,16 +194,11 @@ sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_er
     return st;
 }
 
-sl_status sl_scatter_slide_batch(const sl_scatter *s, const sl_set *sets, size_t n,
-                                 const sl_slide_opts *so, double *y, double *err_est,
-                                 sl_error *err)
+sl_status sl_scatter_results(const sl_scatter *s, const sl_slide_result *res, size_t n,
+                             double *y, double *err_est, sl_error *err)
 {
-    if (n == 0)
-        return SL_OK;
-    sl_slide_result *res = calloc(n * s->nq, sizeof *res);
     double *u = malloc(2 * s->nq * sizeof *u);
-    sl_status st = !res || !u ? sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory")
-                              : sl_slide_batch(sets, n, s->grid, s->nq, so, res, err);
+    sl_status st = u ? SL_OK : sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory");
     for (size_t i = 0; i < n && !st; i++) {
         const sl_slide_result *r = res + i * s->nq;
         double *e = u + s->nq;
@@ -215,7 +210,21 @@ sl_status sl_scatter_slide_batch(const sl_scatter *s, const sl_set *sets, size_t
         if (!st && err_est)
             st = sl_scatter_mean(s, e, err_est + i * s->n_mu, err);
     }
-    free(res);
     free(u);
+    return st;
+}
+
+sl_status sl_scatter_slide_batch(const sl_scatter *s, const sl_set *sets, size_t n,
+                                 const sl_slide_opts *so, double *y, double *err_est,
+                                 sl_error *err)
+{
+    if (n == 0)
+        return SL_OK;
+    sl_slide_result *res = calloc(n * s->nq, sizeof *res);
+    sl_status st = !res ? sl_error_set(err, SL_ENOMEM, NULL, 0, "scatter: out of memory")
+                        : sl_slide_batch(sets, n, s->grid, s->nq, so, res, err);
+    if (!st)
+        st = sl_scatter_results(s, res, n, y, err_est, err);
+    free(res);
     return st;
 }

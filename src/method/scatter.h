@@ -78,6 +78,13 @@ const double *sl_scatter_grid(const sl_scatter *s, size_t *n);
  * set up the interpolation; its error handler is off meanwhile, gslerr.h). */
 sl_status sl_scatter_mean(const sl_scatter *s, const double *u, double *y, sl_error *err);
 
+/* (R3) of n sets from their NLTHA on the grid, res[i * nq + q] for set i
+ * at sl_scatter_grid()[q]: y[i * n_mu + k] = Y_i(mu[k]), and err_est (NULL:
+ * not wanted) the same quadrature of the error estimates err_est_m. SL_OK,
+ * SL_ENOMEM or SL_ESOLVER (sl_scatter_mean). */
+sl_status sl_scatter_results(const sl_scatter *s, const sl_slide_result *res, size_t n,
+                             double *y, double *err_est, sl_error *err);
+
 /* NLTHA of sets[0..n) on the grid (sl_slide_batch, in parallel) and (R3)
  * per set: y[i * n_mu + k] = Y_i(mu[k]); err_est (NULL: not wanted) gets
  * the same quadrature of the engine's error estimates err_est_m. SL_OK, or

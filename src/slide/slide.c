@@ -94,7 +94,7 @@ sl_status sl_slide_batch(const sl_set *sets, size_t n_sets, const double *mu, si
 {
     /* Work items: (set, chunk of mu). Every (set, mu) is computed the same
      * way whatever the chunking, so results do not depend on threads. */
-    const size_t chunk = 16;
+    const size_t chunk = SL_SLIDE_BATCH_CHUNK;
     const size_t per_set = (n_mu + chunk - 1) / chunk;
     const long items = (long)(n_sets * per_set);
     sl_status first = SL_OK;

@@ -63,6 +63,11 @@ SL_API sl_status sl_slide_run(const sl_set *set, const double *mu, size_t n_mu,
 SL_API sl_status sl_slide_history(const sl_set *set, double mu, const sl_slide_opts *opts,
                                   sl_slide_result *res, sl_history **hist, sl_error *err);
 
+/* The friction values of one work item of sl_slide_batch (a set's mu are
+ * run in chunks of this many; each (set, mu) gives the same bits whatever
+ * the chunking, so a caller may run the chunks of a set as it likes). */
+#define SL_SLIDE_BATCH_CHUNK 16
+
 /* Many sets: res[i * n_mu + k] for set i and mu[k]; runs the sets in
  * parallel with OpenMP. Results do not depend on the thread count. */
 SL_API sl_status sl_slide_batch(const sl_set *sets, size_t n_sets, const double *mu,

@@ -499,6 +499,30 @@ SL_API sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt
                                     sl_synth_set *out, sl_synth_progress progress, void *ctx,
                                     sl_error *err);
 
+/* Called by sl_synth_make_sets_then once for each set, as soon as that set
+ * is final: k is its index in the call (out[k] filled, its pass flags set;
+ * its index in the run is first_set + k). Called inside the call's OpenMP
+ * parallel region, from a task, on any thread, for sets in any order and
+ * concurrently with other sets' synthesis: it must touch only what is set
+ * k's own, and may spawn OpenMP tasks (the call returns after them). A
+ * non-zero return (err filled) stops the call, which then returns it. */
+typedef sl_status (*sl_synth_ready)(void *ctx, size_t k, sl_error *err);
+
+/* sl_synth_make_sets with ready(ready_ctx, k, err) for each set as it
+ * becomes final (ready may be NULL). The sets are made as a flow of OpenMP
+ * tasks, a task per component attempt: when the last running component of
+ * a set ends, its thread makes the set's redo decisions (functions of that
+ * set's results only) and spawns the redone components, so no thread waits
+ * for other sets. out[k] are the same bits as sl_synth_make_sets gives, for
+ * any thread count. Same returns; on a failure other than SL_ENOCONV out is
+ * cleared, and ready may have been called for some sets. */
+SL_API sl_status sl_synth_make_sets_then(const sl_synth *s,
+                                         const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                                         uint64_t seed, size_t first_set, size_t count,
+                                         sl_synth_set *out, sl_synth_progress progress,
+                                         void *ctx, sl_synth_ready ready, void *ready_ctx,
+                                         sl_error *err);
+
 /* One set (set index `set`; its three components in parallel): the unit
  * timed by the benchmark. Equal, bit for bit, to set `set` of a
  * sl_synth_make_sets() batch with the same seed. Same returns as

@@ -1,5 +1,5 @@
-/* synth_sets.c - whole sets in parallel with retries and the
- * correlation check, record-matching sets, AT2 output (docs/synthesis.md 3.4-3.6). */
+/* synth_sets.c - whole sets in parallel (a flow of OpenMP tasks) with
+ * retries and the correlation check, record-matching sets, AT2 output (docs/synthesis.md 3.4-3.6). */
 #include "synth/synth_internal.h"
 
 #include <math.h>
@@ -115,8 +115,8 @@ static void run_job(const sl_synth *s, sl_synth_motion *m, const sl_synth_target
     memcpy(jb->acc, sl_synth_acc(m), s->n * sizeof *jb->acc);
 }
 
-/* Per-thread motion workspaces kept across the rounds of one call (their
- * spectrum and FFTW plans are made once, not once per round). */
+/* Per-thread motion workspaces kept across the attempts of one call (their
+ * spectrum and FFTW plans are made once per thread, not once per task). */
 typedef struct workspaces {
     sl_synth_motion **m;
     size_t n;
@@ -200,57 +200,53 @@ static int set_corr(const sl_synth *s, job *jb3, double corr[SL_SYNTH_NPAIR])
     return worst;
 }
 
-/* Fill out[k] from the jobs (motions copied into sl_motion). */
-static sl_status collect(const sl_synth *s, job *jobs, size_t count, const char *prefix,
-                         size_t first_set, sl_synth_set *out, sl_error *err)
+/* The App. B PSD of the motions of one set kept, where run_job left it out. */
+static void set_psd(const sl_synth *s, job *jb3)
 {
-    /* The App. B PSD of the motions kept, where run_job left it out. */
-    long long nj = (long long)(count * SL_SYNTH_NCOMP);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (long long i = 0; i < nj; i++) {
-        job *jb = &jobs[i];
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        job *jb = &jb3[c];
         if (jb->acc && !jb->psd_done && !jb->st && s->p.psd_report) {
             sl_synth_check_psd(jb->acc, s->n, s->dt, jb->tspec, s->p.psd_frac, &jb->check);
             jb->psd_done = 1;
         }
     }
-    int all_pass = 1;
-    for (size_t k = 0; k < count; k++) {
-        sl_synth_set *o = &out[k];
-        memset(o, 0, sizeof *o);
-        job *jb3 = &jobs[k * SL_SYNTH_NCOMP];
-        set_corr(s, jb3, o->corr);
-        o->pass = 1;
-        for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
-            job *jb = &jb3[c];
-            if (!jb->acc)
-                continue;
-            char label[64];
-            if (prefix)
-                snprintf(label, sizeof label, "%s_%s", prefix, sl_synth_comp_name((sl_synth_comp)c));
-            else
-                snprintf(label, sizeof label, "set%02zu_%s", first_set + k + 1,
-                         sl_synth_comp_name((sl_synth_comp)c));
-            sl_motion **slot = set_slot(&o->set, (sl_synth_comp)c);
-            *slot = sl_motion_from_array(jb->acc, s->n, s->dt, label);
-            if (!*slot) {
-                for (size_t q = 0; q <= k; q++)
-                    sl_synth_set_clear(&out[q]);
-                return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
-            }
-            o->check[c] = jb->check;
-            double mc = NAN;
-            for (int q = 0; q < SL_SYNTH_NPAIR; q++)
-                if ((synth_pairs[q][0] == c || synth_pairs[q][1] == c) && !isnan(o->corr[q]))
-                    mc = isnan(mc) || fabs(o->corr[q]) > mc ? fabs(o->corr[q]) : mc;
-            o->check[c].max_corr = mc;
-            o->check[c].ok_corr = isnan(mc) || mc <= s->p.max_corr;
-            o->check[c].pass = o->check[c].pass && o->check[c].ok_corr;
-            o->pass = o->pass && o->check[c].pass;
+}
+
+/* Fill *o, set k of the call, from its jobs jb3 (motions copied into
+ * sl_motion; o cleared on failure). Returns SL_OK or SL_ENOMEM. */
+static sl_status collect_set(const sl_synth *s, job *jb3, size_t k, const char *prefix,
+                             size_t first_set, sl_synth_set *o, sl_error *err)
+{
+    memset(o, 0, sizeof *o);
+    set_corr(s, jb3, o->corr);
+    o->pass = 1;
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        job *jb = &jb3[c];
+        if (!jb->acc)
+            continue;
+        char label[64];
+        if (prefix)
+            snprintf(label, sizeof label, "%s_%s", prefix, sl_synth_comp_name((sl_synth_comp)c));
+        else
+            snprintf(label, sizeof label, "set%02zu_%s", first_set + k + 1,
+                     sl_synth_comp_name((sl_synth_comp)c));
+        sl_motion **slot = set_slot(&o->set, (sl_synth_comp)c);
+        *slot = sl_motion_from_array(jb->acc, s->n, s->dt, label);
+        if (!*slot) {
+            sl_synth_set_clear(o);
+            return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
         }
-        all_pass = all_pass && o->pass;
+        o->check[c] = jb->check;
+        double mc = NAN;
+        for (int q = 0; q < SL_SYNTH_NPAIR; q++)
+            if ((synth_pairs[q][0] == c || synth_pairs[q][1] == c) && !isnan(o->corr[q]))
+                mc = isnan(mc) || fabs(o->corr[q]) > mc ? fabs(o->corr[q]) : mc;
+        o->check[c].max_corr = mc;
+        o->check[c].ok_corr = isnan(mc) || mc <= s->p.max_corr;
+        o->check[c].pass = o->check[c].pass && o->check[c].ok_corr;
+        o->pass = o->pass && o->check[c].pass;
     }
-    return all_pass ? SL_OK : SL_ENOCONV;
+    return SL_OK;
 }
 
 static void free_jobs(job *jobs, size_t nj)
@@ -262,71 +258,220 @@ static void free_jobs(job *jobs, size_t nj)
     free(jobs);
 }
 
-sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
-                             uint64_t seed, size_t first_set, size_t count,
-                             sl_synth_set *out, sl_synth_progress progress, void *ctx,
-                             sl_error *err)
+/* The redo decisions of one set whose components have all run: every
+ * component that failed its spectral, D5-75, PGA, peaks or PSD checks, and
+ * the later component of the set's worst correlated pair, while attempts
+ * remain (each gets its next attempt). Functions of the set's results only,
+ * so the same for any thread count, order or batch split. Returns the
+ * number of components to redo, their comps in redo[]. */
+static int set_redo(const sl_synth *s, job *jb3, sl_synth_comp redo_c[SL_SYNTH_NCOMP])
+{
+    int redo[SL_SYNTH_NCOMP] = {0, 0, 0}, nredo = 0;
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
+        const sl_synth_check *ck = &jb3[c].check;
+        redo[c] = !(ck->ok_below && ck->ok_above && ck->ok_run && ck->ok_d5_75 && ck->ok_pga &&
+                    ck->ok_peaks && ck->ok_psd);
+    }
+    double corr[SL_SYNTH_NPAIR];
+    int q = set_corr(s, jb3, corr);
+    if (q >= 0 && !redo[synth_pairs[q][0]])
+        redo[synth_pairs[q][1]] = 1;
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        if (redo[c] && jb3[c].attempt + 1 < s->p.max_attempts) {
+            jb3[c].attempt++;
+            redo_c[nredo++] = (sl_synth_comp)c;
+        }
+    return nredo;
+}
+
+/* One call of sl_synth_make_sets_then as a flow of OpenMP tasks: a task per
+ * component attempt; the task that ends the last running component of a set
+ * makes the set's redo decisions (set_redo) and spawns its redone
+ * components, or, when none is left, fills out[k] and hands the set to
+ * `ready`. No thread waits for a round of other sets. */
+typedef struct flow {
+    const sl_synth *s;
+    const sl_synth_target *tgt;
+    uint64_t seed;
+    size_t first_set, count;
+    job *jobs;               /* count x SL_SYNTH_NCOMP */
+    unsigned *pending;       /* per set: components still running */
+    sl_status *set_st;       /* per set: the failure of collect_set or ready */
+    sl_error *set_err;
+    int *filled;             /* per set: out[k] filled */
+    sl_synth_set *out;
+    size_t done, total;      /* motion runs finished and planned (progress) */
+    sl_synth_progress progress;
+    void *ctx;
+    sl_synth_ready ready;
+    void *ready_ctx;
+    workspaces *ws;
+    int stop;                /* a failure: no new work is started */
+} flow;
+
+static int flow_stopped(flow *f)
+{
+    int stop;
+#pragma omp atomic read
+    stop = f->stop;
+    return stop;
+}
+
+static void flow_fail(flow *f)
+{
+#pragma omp atomic write
+    f->stop = 1;
+}
+
+static void flow_job(flow *f, size_t i);
+
+/* Set k has no component running: redo some, or hand it on. */
+static void flow_set(flow *f, size_t k)
+{
+    job *jb3 = &f->jobs[k * SL_SYNTH_NCOMP];
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++)
+        if (jb3[c].st) {
+            flow_fail(f);
+            return;
+        }
+    if (flow_stopped(f))
+        return;
+    sl_synth_comp redo[SL_SYNTH_NCOMP];
+    int nredo = set_redo(f->s, jb3, redo);
+    if (nredo > 0) {
+        f->pending[k] = (unsigned)nredo; /* visible to the tasks: task creation flushes */
+#pragma omp critical(sl_synth_progress)
+        f->total += (size_t)nredo;
+        /* the last redone component goes on here, at once: a set's redos
+         * come before the work queued behind them (the NLTHA of the sets
+         * already final), which then fills the flow's end */
+        for (int q = 0; q + 1 < nredo; q++) {
+            size_t i = k * SL_SYNTH_NCOMP + (size_t)redo[q];
+#pragma omp task default(none) firstprivate(f, i) /* f by value: this frame may be gone */
+            flow_job(f, i);
+        }
+        flow_job(f, k * SL_SYNTH_NCOMP + (size_t)redo[nredo - 1]);
+        return;
+    }
+    set_psd(f->s, jb3);
+    sl_status st = collect_set(f->s, jb3, k, NULL, f->first_set, &f->out[k], &f->set_err[k]);
+    for (int c = 0; c < SL_SYNTH_NCOMP; c++) { /* copied into out[k] (or failed) */
+        free(jb3[c].acc);
+        jb3[c].acc = NULL;
+    }
+    f->filled[k] = !st;
+    if (!st && f->ready)
+        st = f->ready(f->ready_ctx, k, &f->set_err[k]);
+    if (st) {
+        f->set_st[k] = st;
+        flow_fail(f);
+    }
+}
+
+/* Component attempt jobs[i] on this thread's workspace (made on its first
+ * job; a task runs on one thread and reaches no scheduling point while it
+ * uses the workspace). */
+static void flow_job(flow *f, size_t i)
+{
+    job *jb = &f->jobs[i];
+    const size_t k = jb->set;
+    if (flow_stopped(f))
+        return;
+    size_t tid = (size_t)omp_get_thread_num();
+    sl_synth_motion **slot = &f->ws->m[tid < f->ws->n ? tid : 0];
+    if (!*slot)
+        *slot = sl_synth_motion_alloc(f->s, &jb->err);
+    if (!*slot)
+        jb->st = sl_error_set(&jb->err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+    else
+        run_job(f->s, *slot, &f->tgt[jb->comp], f->seed, f->first_set + k, jb);
+    if (jb->st)
+        flow_fail(f);
+    unsigned left;
+#pragma omp critical(sl_synth_progress)
+    {
+        f->done++;
+        if (f->progress)
+            f->progress(f->ctx, f->done, f->total);
+        left = --f->pending[k];
+    }
+    if (left == 0)
+        flow_set(f, k);
+}
+
+sl_status sl_synth_make_sets_then(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                                  uint64_t seed, size_t first_set, size_t count,
+                                  sl_synth_set *out, sl_synth_progress progress, void *ctx,
+                                  sl_synth_ready ready, void *ready_ctx, sl_error *err)
 {
     if (count == 0)
         return SL_OK;
     for (int c = 0; c < SL_SYNTH_NCOMP; c++)
         if (sl_synth_check_target(&tgt[c], err))
             return SL_EINVAL;
-    size_t nj = count * SL_SYNTH_NCOMP;
-    job *jobs = calloc(nj, sizeof *jobs);
-    size_t *idx = malloc(nj * sizeof *idx);
-    if (!jobs || !idx) {
-        free(jobs);
-        free(idx);
-        return sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+    const size_t nj = count * SL_SYNTH_NCOMP, nth = (size_t)omp_get_max_threads();
+    flow f = {.s = s, .tgt = tgt, .seed = seed, .first_set = first_set, .count = count,
+              .out = out, .total = nj, .progress = progress, .ctx = ctx, .ready = ready,
+              .ready_ctx = ready_ctx};
+    workspaces ws = {calloc(nth, sizeof(sl_synth_motion *)), nth};
+    f.ws = &ws;
+    f.jobs = calloc(nj, sizeof *f.jobs);
+    f.pending = malloc(count * sizeof *f.pending);
+    f.set_st = calloc(count, sizeof *f.set_st);
+    f.set_err = calloc(count, sizeof *f.set_err);
+    f.filled = calloc(count, sizeof *f.filled);
+    sl_status st = SL_OK;
+    if (!ws.m || !f.jobs || !f.pending || !f.set_st || !f.set_err || !f.filled) {
+        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "synth: out of memory");
+        goto done;
     }
     for (size_t i = 0; i < nj; i++) {
-        jobs[i].set = i / SL_SYNTH_NCOMP;
-        jobs[i].comp = (sl_synth_comp)(i % SL_SYNTH_NCOMP);
-        idx[i] = i;
+        f.jobs[i].set = i / SL_SYNTH_NCOMP;
+        f.jobs[i].comp = (sl_synth_comp)(i % SL_SYNTH_NCOMP);
     }
-    size_t done = 0, total = nj, nidx = nj;
-    sl_status st = SL_OK;
-    workspaces ws = {calloc((size_t)omp_get_max_threads(), sizeof(sl_synth_motion *)),
-                     (size_t)omp_get_max_threads()};
-    if (!ws.m)
-        ws.n = 0; /* every thread then makes its own */
-    /* Rounds: run the pending jobs, then redo (next attempt) every component
-     * that failed its spectral or D5-75 checks and the later component of each set's
-     * worst correlated pair, while attempts remain. Every decision depends
-     * only on results, so the rounds are the same for any thread count. */
-    while (nidx > 0) {
-        st = run_jobs(s, tgt, seed, first_set, jobs, idx, nidx, &done, total, progress, ctx,
-                      &ws, err);
-        if (st)
-            break;
-        nidx = 0;
-        for (size_t k = 0; k < count; k++) {
-            job *jb3 = &jobs[k * SL_SYNTH_NCOMP];
-            int redo[SL_SYNTH_NCOMP] = {0, 0, 0};
-            for (int c = 0; c < SL_SYNTH_NCOMP; c++) {
-                const sl_synth_check *ck = &jb3[c].check;
-                redo[c] = !(ck->ok_below && ck->ok_above && ck->ok_run && ck->ok_d5_75 &&
-                            ck->ok_pga && ck->ok_peaks && ck->ok_psd);
-            }
-            double corr[SL_SYNTH_NPAIR];
-            int q = set_corr(s, jb3, corr);
-            if (q >= 0 && !redo[synth_pairs[q][0]])
-                redo[synth_pairs[q][1]] = 1;
-            for (int c = 0; c < SL_SYNTH_NCOMP; c++)
-                if (redo[c] && jb3[c].attempt + 1 < s->p.max_attempts) {
-                    jb3[c].attempt++;
-                    idx[nidx++] = k * SL_SYNTH_NCOMP + (size_t)c;
-                }
+    for (size_t k = 0; k < count; k++)
+        f.pending[k] = SL_SYNTH_NCOMP;
+    /* the first attempts in set order; the rest is spawned as sets decide */
+#pragma omp parallel
+#pragma omp single
+    for (size_t i = 0; i < nj; i++) {
+#pragma omp task default(none) shared(f) firstprivate(i) /* f outlives the region */
+        flow_job(&f, i);
+    }
+    /* the first failure in job order, then in set order */
+    for (size_t i = 0; i < nj && !st; i++)
+        if (f.jobs[i].st)
+            st = sl_error_set(err, f.jobs[i].st, NULL, 0, "%s", f.jobs[i].err.msg);
+    for (size_t k = 0; k < count && !st; k++)
+        if (f.set_st[k]) {
+            st = f.set_st[k];
+            if (err)
+                *err = f.set_err[k];
         }
-        total += nidx;
-    }
+    for (size_t k = 0; k < count && !st; k++)
+        if (!out[k].pass)
+            st = SL_ENOCONV;
+done:
+    if (st && st != SL_ENOCONV && f.filled)
+        for (size_t k = 0; k < count; k++)
+            if (f.filled[k])
+                sl_synth_set_clear(&out[k]);
     workspaces_free(&ws);
-    if (!st)
-        st = collect(s, jobs, count, NULL, first_set, out, err);
-    free_jobs(jobs, nj);
-    free(idx);
+    free_jobs(f.jobs, f.jobs ? nj : 0);
+    free(f.pending);
+    free(f.set_st);
+    free(f.set_err);
+    free(f.filled);
     return st;
+}
+
+sl_status sl_synth_make_sets(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
+                             uint64_t seed, size_t first_set, size_t count,
+                             sl_synth_set *out, sl_synth_progress progress, void *ctx,
+                             sl_error *err)
+{
+    return sl_synth_make_sets_then(s, tgt, seed, first_set, count, out, progress, ctx, NULL,
+                                   NULL, err);
 }
 
 sl_status sl_synth_make_set(const sl_synth *s, const sl_synth_target tgt[SL_SYNTH_NCOMP],
@@ -362,8 +507,12 @@ sl_status sl_synth_match_set(const sl_synth *s, const sl_synth_target tgt[SL_SYN
     size_t done = 0;
     workspaces ws = {NULL, 0};
     sl_status st = run_jobs(s, tgt, 0, 0, jobs, idx, nidx, &done, nidx, NULL, NULL, &ws, err);
-    if (!st)
-        st = collect(s, jobs, 1, "match", 0, out, err);
+    if (!st) {
+        set_psd(s, jobs);
+        st = collect_set(s, jobs, 0, "match", 0, out, err);
+    }
+    if (!st && !out->pass)
+        st = SL_ENOCONV;
     for (int c = 0; c < SL_SYNTH_NCOMP; c++)
         free(jobs[c].acc);
     return st;
