@@ -205,6 +205,7 @@ typedef struct work {
     double *block;
     double *c[NCOEF];
     double *w2, *tzw;
+    double *zw, *iwd; /* z w and 1/w_d: the free vibration's amplitude (free_bound) */
 } work;
 
 static void work_free(work *wk)
@@ -236,7 +237,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
 {
     memset(wk, 0, sizeof *wk);
     wk->nf = nf;
-    enum { NARR = NCOEF + 2 };
+    enum { NARR = NCOEF + 4 };
     size_t cnt = nf ? nf : 1;
     size_t *m_of = malloc(cnt * sizeof *m_of);
     wk->perm = malloc(cnt * sizeof *wk->perm);
@@ -252,6 +253,8 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         wk->c[k] = wk->block + (size_t)k * cnt;
     wk->w2 = wk->block + (size_t)NCOEF * cnt;
     wk->tzw = wk->w2 + cnt;
+    wk->zw = wk->tzw + cnt;
+    wk->iwd = wk->zw + cnt;
     for (size_t j = 0; j < nf; j++) {
         m_of[j] = substeps_for(f[j], dt, spp);
         wk->perm[j] = j;
@@ -269,16 +272,85 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         wk->nfree[p] = free_steps_for(f[j], zeta, h);
         wk->w2[p] = w * w;
         wk->tzw[p] = 2.0 * zeta * w;
+        wk->zw[p] = zeta * w;
+        wk->iwd[p] = 1.0 / (w * sqrt(1.0 - zeta * zeta));
     }
     free(m_of);
     return SL_OK;
 }
 
+/* ---- the free vibration after the record: skipped where it cannot matter
+ *
+ * From the state (u0, v0) at the last sample the floor is at rest and the
+ * oscillator vibrates freely:
+ *
+ *     u(t) = e^(-z w t) (u0 cos w_d t + (v0 + z w u0)/w_d sin w_d t),
+ *
+ * so |u(t)| <= e^(-z w t) R_u <= R_u with R_u = hypot(u0, (v0 + z w u0)/w_d)
+ * for every t >= 0.                                                       (F1)
+ * The absolute acceleration y = w^2 u + 2 z w v of a free vibration obeys
+ * the same equation (1) with a = 0, with y(0) = y0 and y'(0) = w^2 v0 -
+ * 2 z w y0, so |y(t)| <= R_y = hypot(y0, (w^2 v0 - z w y0)/w_d).         (F2)
+ * When R (1 + SL_SPECTRUM_FREE_MARGIN) < the peak over the record in every
+ * lane of a block, no free sub-step can raise a peak: the free sub-steps
+ * are skipped and the result is the same bits as with them (the sampled
+ * free response differs from the exact one by the rounding of the map, some
+ * 1e-13 relative over a million sub-steps, far inside the margin). */
+#define SL_SPECTRUM_FREE_MARGIN 1e-6
+
+/* Tests: 0 runs every free sub-step (sl_spectrum_free_skip()). */
+static int free_skip_enabled = 1;
+/* Free sub-steps skipped by this thread (a count for tests). */
+static _Thread_local unsigned long long free_skipped;
+
+int sl_spectrum_free_skip(int on)
+{
+    int was = free_skip_enabled;
+    free_skip_enabled = on != 0;
+    return was;
+}
+
+unsigned long long sl_spectrum_free_skipped(void) { return free_skipped; }
+
+/* Free amplitudes from (u0, v0): R_u (F1) into *ru, R_y (F2) into *ry;
+ * zw = z w, iwd = 1/w_d, w2 = w^2, tzw = 2 z w. */
+static inline void free_amplitudes(double zw, double iwd, double w2, double tzw, double u0,
+                                   double v0, double *ru, double *ry)
+{
+    double y0 = w2 * u0 + tzw * v0;
+    *ru = hypot(u0, (v0 + zw * u0) * iwd);
+    *ry = hypot(y0, (w2 * v0 - zw * y0) * iwd);
+}
+
+void sl_spectrum_free_amplitudes(double f_hz, double zeta, double u0, double v0, double *ru,
+                                 double *ry)
+{
+    double w = 2.0 * SL_PI * f_hz;
+    free_amplitudes(zeta * w, 1.0 / (w * sqrt(1.0 - zeta * zeta)), w * w, 2.0 * zeta * w, u0,
+                    v0, ru, ry);
+}
+
+/* 1 when the free vibration from (u0, v0) at position p may reach umax
+ * (or, want_amax, amax); NaN compares false, so it is taken as "may". */
+static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0, double umax,
+                                  int want_amax, double amax)
+{
+    double ru, ry;
+    free_amplitudes(wk->zw[p], wk->iwd[p], wk->w2[p], wk->tzw[p], u0, v0, &ru, &ry);
+    const double k = 1.0 + SL_SPECTRUM_FREE_MARGIN;
+    return !(ru * k < umax) || (want_amax && !(ry * k < amax));
+}
+
 /* Oscillators stepped together (time loop inside): blocks of BLOCK_WIDE
  * lanes (4 AVX2 vectors: enough independent chains to hide the latency of
- * the recurrence), a group's last few in blocks of BLOCK_MID or BLOCK_NARROW
- * so that few lanes are idle. */
+ * the recurrence), a group's last few in blocks of BLOCK_WIDE3, BLOCK_MID or
+ * BLOCK_NARROW so that few lanes are idle. A block of 12 (3 AVX2 vectors)
+ * takes about as long a sub-step as one of 8 or 4, whose time is the
+ * latency of the recurrence's chain (a multiply and three adds), not the
+ * throughput of its arithmetic; run_groups() therefore ends a group in
+ * blocks of up to 12 rather than in several narrow ones. */
 #define BLOCK_WIDE 16
+#define BLOCK_WIDE3 12
 #define BLOCK_MID 8
 #define BLOCK_NARROW 4
 
@@ -348,7 +420,20 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
                 }                                                                             \
             }                                                                                 \
         }                                                                                     \
-        for (size_t k = 0; k < nfree; k++) /* free vibration after the record */              \
+        /* free vibration after the record, unless no lane can reach its peak */             \
+        if (nfree > 0 && free_skip_enabled) {                                                 \
+            int need = 0;                                                                     \
+            for (size_t b = 0; b < nb && !need; b++) {                                        \
+                const size_t q = b / (L), l = b % (L), p = p0 + b;                            \
+                need = free_can_exceed(wk, p, u[q][l], v[q][l], umax[q][l], want_amax,        \
+                                       amax[q][l]);                                           \
+            }                                                                                 \
+            if (!need) {                                                                      \
+                free_skipped += nfree;                                                        \
+                nfree = 0;                                                                    \
+            }                                                                                 \
+        }                                                                                     \
+        for (size_t k = 0; k < nfree; k++)                                                    \
             KERNEL_STEP(VT, IT, L, MAXV, 0.0, 0.0);                                           \
         for (size_t b = 0; b < nb; b++) {                                                     \
             umax_out[p0 + b] = umax[b / (L)][b % (L)];                                        \
@@ -397,11 +482,18 @@ KERNEL_DEFINE(kernel_v2, sl_v2d, sl_v2i, 2, MAX_V2, )
  * absolute acceleration. */
 #define RUN_WIDTHS(KERNEL)                                                                    \
     do {                                                                                      \
-        size_t W_ = nb > BLOCK_MID ? BLOCK_WIDE : nb > BLOCK_NARROW ? BLOCK_MID : BLOCK_NARROW; \
+        size_t W_ = nb > BLOCK_WIDE3  ? BLOCK_WIDE                                            \
+                    : nb > BLOCK_MID  ? BLOCK_WIDE3                                           \
+                    : nb > BLOCK_NARROW ? BLOCK_MID                                           \
+                                        : BLOCK_NARROW;                                       \
         if (W_ == BLOCK_WIDE && amax_out)                                                     \
             KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);          \
         else if (W_ == BLOCK_WIDE)                                                            \
             KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);              \
+        else if (W_ == BLOCK_WIDE3 && amax_out)                                               \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE3, 1);         \
+        else if (W_ == BLOCK_WIDE3)                                                           \
+            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE3, 0);             \
         else if (W_ == BLOCK_MID && amax_out)                                                 \
             KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);           \
         else if (W_ == BLOCK_MID)                                                             \
@@ -471,9 +563,22 @@ static void run_block(const work *wk, size_t p0, size_t nb, size_t m, const doub
     run_block_base(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
 }
 
+/* Lanes of the next block of a group with `left` oscillators still to run:
+ * all of them up to BLOCK_WIDE; BLOCK_WIDE3 when the rest then fits one
+ * block of BLOCK_WIDE3 (17-24 left: 12 + up to 12, not 16 + a narrow block
+ * that takes as long as 12); else BLOCK_WIDE. */
+static size_t next_block(size_t left)
+{
+    if (left <= BLOCK_WIDE)
+        return left;
+    if (left <= 2 * BLOCK_WIDE3)
+        return BLOCK_WIDE3;
+    return BLOCK_WIDE;
+}
+
 /* Every group of equal m, in blocks: the record, then (free_vib) the free
  * sub-steps of the block's lowest frequency. A group runs in blocks of
- * BLOCK_WIDE, its remainder in the narrowest block that holds it. */
+ * next_block() lanes, each in the narrowest instance that holds it. */
 static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
                        double *amax)
 {
@@ -485,7 +590,7 @@ static void run_groups(const work *wk, const double *acc, size_t n, int free_vib
             p1++;
         for (size_t q = p0; q < p1;) {
             size_t left = p1 - q;
-            size_t nb = left > BLOCK_WIDE ? BLOCK_WIDE : left;
+            size_t nb = next_block(left);
             /* free sub-steps of the block's lowest frequency; the higher
              * ones run on past their first extremum, where later extrema
              * of a free damped vibration are smaller */
