@@ -363,8 +363,9 @@ static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0
  * at 200/s, 271 points, took 0.96 ms, and up to 2.8 ms where its stack
  * arrays fell badly; now 0.63 ms, the baseline instance 1.40 ms; CPU time,
  * SEISLIDE_TEST_VERBOSE=1 build/tests/test_spectrum.) Positions
- * [p0, p0 + nb) (nb <= W, one sub-step count m) over the whole record and
- * nfree free sub-steps; max|u| into umax[p], max|u''+a| into amax[p] (when
+ * [p0, p0 + nb) (nb <= W, one sub-step count m) over the n values of the
+ * input at their sub-step (the record, or for m > 1 its sub-step input made
+ * by substep_input()) and nfree free sub-steps; max|u| into umax[p], max|u''+a| into amax[p] (when
  * want_amax). Every lane does exactly the arithmetic of map (2) in the same
  * order as a one-at-a-time loop (|x| by clearing the sign bit, as fabs; the
  * maximum by MAXV(x, max) = x > max ? x : max), and there is no FMA
@@ -375,7 +376,7 @@ static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0
  * (IT: the integer vector of its size), with function attributes ATTR. */
 #define KERNEL_DEFINE(NAME, VT, IT, L, MAXV, ATTR)                                            \
     static inline __attribute__((always_inline)) ATTR void NAME(                              \
-        const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,          \
+        const work *wk, size_t p0, size_t nb, const double *acc, size_t n,                    \
         size_t nfree, double *umax_out, double *amax_out, const size_t W,                     \
         const int want_amax)                                                                  \
     {                                                                                         \
@@ -404,22 +405,8 @@ static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0
         IT abs_mask;                                                                          \
         for (size_t l = 0; l < (L); l++)                                                      \
             abs_mask[l] = INT64_MAX;                                                          \
-        const double inv_m = 1.0 / (double)m;                                                 \
-        if (m == 1) {                                                                         \
-            for (size_t i = 0; i + 1 < n; i++)                                                \
-                KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                             \
-        } else {                                                                              \
-            for (size_t i = 0; i + 1 < n; i++) {                                              \
-                /* linear interpolation, endpoint exact */                                    \
-                const double a0 = acc[i], da = acc[i + 1] - acc[i];                           \
-                double as = a0;                                                               \
-                for (size_t s = 1; s <= m; s++) {                                             \
-                    const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);   \
-                    KERNEL_STEP(VT, IT, L, MAXV, as, as1);                                    \
-                    as = as1;                                                                 \
-                }                                                                             \
-            }                                                                                 \
-        }                                                                                     \
+        for (size_t i = 0; i + 1 < n; i++)                                                    \
+            KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                                 \
         /* free vibration after the record, unless no lane can reach its peak */             \
         if (nfree > 0 && free_skip_enabled) {                                                 \
             int need = 0;                                                                     \
@@ -487,26 +474,26 @@ KERNEL_DEFINE(kernel_v2, sl_v2d, sl_v2i, 2, MAX_V2, )
                     : nb > BLOCK_NARROW ? BLOCK_MID                                           \
                                         : BLOCK_NARROW;                                       \
         if (W_ == BLOCK_WIDE && amax_out)                                                     \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);          \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);          \
         else if (W_ == BLOCK_WIDE)                                                            \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);              \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);              \
         else if (W_ == BLOCK_WIDE3 && amax_out)                                               \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE3, 1);         \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE3, 1);         \
         else if (W_ == BLOCK_WIDE3)                                                           \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE3, 0);             \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE3, 0);             \
         else if (W_ == BLOCK_MID && amax_out)                                                 \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);           \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);           \
         else if (W_ == BLOCK_MID)                                                             \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_MID, 0);               \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_MID, 0);               \
         else if (amax_out)                                                                    \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);        \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);        \
         else                                                                                  \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);            \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);            \
     } while (0)
 
 /* Baseline instance (x86-64: SSE2, 2 doubles a vector; any other CPU). */
-static void run_block_base(const work *wk, size_t p0, size_t nb, size_t m, const double *acc,
-                           size_t n, size_t nfree, double *umax_out, double *amax_out)
+static void run_block_base(const work *wk, size_t p0, size_t nb, const double *acc, size_t n,
+                           size_t nfree, double *umax_out, double *amax_out)
 {
     RUN_WIDTHS(kernel_v2);
 }
@@ -524,8 +511,8 @@ typedef long long sl_v4i __attribute__((vector_size(32)));
 KERNEL_DEFINE(kernel_v4, sl_v4d, sl_v4i, 4, MAX_V4, __attribute__((target("avx2"))))
 
 __attribute__((target("avx2"))) static void
-run_block_avx2(const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,
-               size_t nfree, double *umax_out, double *amax_out)
+run_block_avx2(const work *wk, size_t p0, size_t nb, const double *acc, size_t n, size_t nfree,
+               double *umax_out, double *amax_out)
 {
     RUN_WIDTHS(kernel_v4);
 }
@@ -551,16 +538,16 @@ int sl_spectrum_kernel_avx2(void)
 #endif
 }
 
-static void run_block(const work *wk, size_t p0, size_t nb, size_t m, const double *acc,
-                      size_t n, size_t nfree, double *umax_out, double *amax_out)
+static void run_block(const work *wk, size_t p0, size_t nb, const double *acc, size_t n,
+                      size_t nfree, double *umax_out, double *amax_out)
 {
 #ifdef SL_KERNEL_AVX2
     if (sl_spectrum_kernel_avx2()) {
-        run_block_avx2(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
+        run_block_avx2(wk, p0, nb, acc, n, nfree, umax_out, amax_out);
         return;
     }
 #endif
-    run_block_base(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
+    run_block_base(wk, p0, nb, acc, n, nfree, umax_out, amax_out);
 }
 
 /* Lanes of the next block of a group with `left` oscillators still to run:
@@ -576,11 +563,36 @@ static size_t next_block(size_t left)
     return BLOCK_WIDE;
 }
 
+/* The sub-step input of a group of m > 1 sub-steps per sample, made once
+ * for all its blocks: xs[i m + s] = a_i + (a_{i+1} - a_i) (s/m), s < m, and
+ * xs[(n - 1) m] = a_{n-1}, the values (same operations) that the kernel
+ * would otherwise interpolate in every block; (n - 1) m + 1 values. */
+static void substep_input(const double *acc, size_t n, size_t m, double *xs)
+{
+    const double inv_m = 1.0 / (double)m;
+    for (size_t i = 0; i + 1 < n; i++) {
+        const double a0 = acc[i], da = acc[i + 1] - acc[i];
+        xs[i * m] = a0;
+        for (size_t s = 1; s < m; s++)
+            xs[i * m + s] = a0 + da * ((double)s * inv_m);
+    }
+    xs[(n - 1) * m] = acc[n - 1];
+}
+
+/* Sub-step input values run_groups() needs for wk on n samples. */
+static size_t substep_count(const work *wk, size_t n)
+{
+    size_t m = wk->nf ? wk->m[wk->nf - 1] : 1; /* sorted by m: the largest */
+    return m > 1 ? (n - 1) * m + 1 : 0;
+}
+
 /* Every group of equal m, in blocks: the record, then (free_vib) the free
  * sub-steps of the block's lowest frequency. A group runs in blocks of
- * next_block() lanes, each in the narrowest instance that holds it. */
+ * next_block() lanes, each in the narrowest instance that holds it; a group
+ * of m > 1 on its sub-step input in xs (substep_count() values), which the
+ * kernel then steps as samples. */
 static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
-                       double *amax)
+                       double *amax, double *xs)
 {
     size_t nf = wk->nf;
     for (size_t p0 = 0; p0 < nf;) {
@@ -588,6 +600,13 @@ static void run_groups(const work *wk, const double *acc, size_t n, int free_vib
         size_t p1 = p0 + 1;
         while (p1 < nf && wk->m[p1] == m)
             p1++;
+        const double *in = acc;
+        size_t nin = n;
+        if (m > 1) {
+            substep_input(acc, n, m, xs);
+            in = xs;
+            nin = (n - 1) * m + 1;
+        }
         for (size_t q = p0; q < p1;) {
             size_t left = p1 - q;
             size_t nb = next_block(left);
@@ -597,7 +616,7 @@ static void run_groups(const work *wk, const double *acc, size_t n, int free_vib
             size_t nfree = 0;
             for (size_t p = q; p < q + nb && free_vib; p++)
                 nfree = wk->nfree[p] > nfree ? wk->nfree[p] : nfree;
-            run_block(wk, q, nb, m, acc, n, nfree, umax, amax);
+            run_block(wk, q, nb, in, nin, nfree, umax, amax);
             q += nb;
         }
         p0 = p1;
@@ -818,7 +837,12 @@ sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_
     if (sa_abs_ms2 && p->nlev > 1)
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "spectrum: a multirate plan gives PSA and SD only");
-    double *umax = malloc(2 * p->nf * sizeof *umax);
+    size_t nxs = 1;
+    for (size_t l = 0; l < p->nlev; l++) {
+        size_t k = substep_count(&p->lev[l].wk, p->lev[l].n);
+        nxs = k > nxs ? k : nxs;
+    }
+    double *umax = malloc((2 * p->nf + nxs) * sizeof *umax);
     double *r = NULL;
     fftw_complex *x = NULL, *c = NULL;
     size_t nbin = p->nfft / 2 + 1;
@@ -856,7 +880,7 @@ sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_
             fftw_execute_dft_c2r(lv->c2r, c, r);
             a = r;
         }
-        run_groups(&lv->wk, a, lv->n, p->free_vib, umax, amax);
+        run_groups(&lv->wk, a, lv->n, p->free_vib, umax, amax, umax + 2 * p->nf);
         for (size_t pos = 0; pos < lv->nf; pos++) {
             size_t j = lv->out[pos];
             if (sd_m)
