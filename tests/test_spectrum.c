@@ -369,6 +369,16 @@ static void test_peak_after_record(void)
     CHECK_CLOSE(psa_cut, a0 * (1 - cos(w * td)), 0, 1e-10);
     CHECK(psa_cut < 0.2 * psa, "stopping at the record end misses the peak");
     free(a);
+    /* the same on sub-steps: 5 Hz at dt 0.01 s on 200 sub-steps per period
+     * (m = 10; sampled-peak error <= 1.2e-4), t_d = 0.05 s = T/4 */
+    double f5 = 5.0, psa5;
+    a = constant(6, a0);
+    o.free_vibration = 1;
+    o.steps_per_period = 200;
+    CHECK(sl_spectrum_compute_opts(a, 6, dt, &f5, 1, 0.0, &o, &psa5, NULL, NULL, NULL) == SL_OK,
+          "ok");
+    CHECK_CLOSE(psa5, 2 * a0 * sin(PI * 0.05 * f5), 0, 1.3e-4);
+    free(a);
 }
 
 /* Sampled peak against dt/T: the step's first peak placed half-way between
