@@ -279,23 +279,16 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
     return SL_OK;
 }
 
-/* ---- the free vibration after the record: skipped where it cannot matter
- *
- * From the state (u0, v0) at the last sample the floor is at rest and the
- * oscillator vibrates freely:
- *
- *     u(t) = e^(-z w t) (u0 cos w_d t + (v0 + z w u0)/w_d sin w_d t),
- *
- * so |u(t)| <= e^(-z w t) R_u <= R_u with R_u = hypot(u0, (v0 + z w u0)/w_d)
- * for every t >= 0.                                                       (F1)
- * The absolute acceleration y = w^2 u + 2 z w v of a free vibration obeys
- * the same equation (1) with a = 0, with y(0) = y0 and y'(0) = w^2 v0 -
- * 2 z w y0, so |y(t)| <= R_y = hypot(y0, (w^2 v0 - z w y0)/w_d).         (F2)
+/* ---- the free vibration after the record: skipped where it cannot matter.
+ * From (u0, v0) at the last sample, u(t) = e^(-z w t) (u0 cos w_d t +
+ * (v0 + z w u0)/w_d sin w_d t), so for every t >= 0
+ *     |u(t)| <= R_u = hypot(u0, (v0 + z w u0)/w_d),                      (F1)
+ * and y = w^2 u + 2 z w v obeys (1) with a = 0, y'(0) = w^2 v0 - 2 z w y0:
+ *     |y(t)| <= R_y = hypot(y0, (w^2 v0 - z w y0)/w_d).                  (F2)
  * When R (1 + SL_SPECTRUM_FREE_MARGIN) < the peak over the record in every
- * lane of a block, no free sub-step can raise a peak: the free sub-steps
- * are skipped and the result is the same bits as with them (the sampled
- * free response differs from the exact one by the rounding of the map, some
- * 1e-13 relative over a million sub-steps, far inside the margin). */
+ * lane of a block, its free sub-steps cannot raise a peak and are skipped:
+ * the same bits (the rounding of the map, some 1e-13 relative over a
+ * million sub-steps, is far inside the margin). docs/spectra.md. */
 #define SL_SPECTRUM_FREE_MARGIN 1e-6
 
 /* Tests: 0 runs every free sub-step (sl_spectrum_free_skip()). */
@@ -345,10 +338,8 @@ static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0
  * lanes (4 AVX2 vectors: enough independent chains to hide the latency of
  * the recurrence), a group's last few in blocks of BLOCK_WIDE3, BLOCK_MID or
  * BLOCK_NARROW so that few lanes are idle. A block of 12 (3 AVX2 vectors)
- * takes about as long a sub-step as one of 8 or 4, whose time is the
- * latency of the recurrence's chain (a multiply and three adds), not the
- * throughput of its arithmetic; run_groups() therefore ends a group in
- * blocks of up to 12 rather than in several narrow ones. */
+ * takes about as long a sub-step as one of 8 or 4 (the latency of the
+ * recurrence: a multiply and three adds), so run_groups() prefers it. */
 #define BLOCK_WIDE 16
 #define BLOCK_WIDE3 12
 #define BLOCK_MID 8
@@ -550,10 +541,9 @@ static void run_block(const work *wk, size_t p0, size_t nb, const double *acc, s
     run_block_base(wk, p0, nb, acc, n, nfree, umax_out, amax_out);
 }
 
-/* Lanes of the next block of a group with `left` oscillators still to run:
- * all of them up to BLOCK_WIDE; BLOCK_WIDE3 when the rest then fits one
- * block of BLOCK_WIDE3 (17-24 left: 12 + up to 12, not 16 + a narrow block
- * that takes as long as 12); else BLOCK_WIDE. */
+/* Lanes of the next block of a group with `left` still to run: up to
+ * BLOCK_WIDE; 12 when 17-24 are left (12 + up to 12, not 16 + a narrow
+ * block that takes as long as 12). */
 static size_t next_block(size_t left)
 {
     if (left <= BLOCK_WIDE)
@@ -579,17 +569,10 @@ static void substep_input(const double *acc, size_t n, size_t m, double *xs)
     xs[(n - 1) * m] = acc[n - 1];
 }
 
-/* Sub-step input values run_groups() needs for wk on n samples. */
-static size_t substep_count(const work *wk, size_t n)
-{
-    size_t m = wk->nf ? wk->m[wk->nf - 1] : 1; /* sorted by m: the largest */
-    return m > 1 ? (n - 1) * m + 1 : 0;
-}
-
 /* Every group of equal m, in blocks: the record, then (free_vib) the free
  * sub-steps of the block's lowest frequency. A group runs in blocks of
  * next_block() lanes, each in the narrowest instance that holds it; a group
- * of m > 1 on its sub-step input in xs (substep_count() values), which the
+ * of m > 1 on its sub-step input in xs ((n - 1) m + 1 values), which the
  * kernel then steps as samples. */
 static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
                        double *amax, double *xs)
@@ -837,9 +820,10 @@ sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_
     if (sa_abs_ms2 && p->nlev > 1)
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "spectrum: a multirate plan gives PSA and SD only");
-    size_t nxs = 1;
+    size_t nxs = 1; /* the largest sub-step input (m sorted: the last is the largest) */
     for (size_t l = 0; l < p->nlev; l++) {
-        size_t k = substep_count(&p->lev[l].wk, p->lev[l].n);
+        const work *w = &p->lev[l].wk;
+        size_t k = w->nf ? (p->lev[l].n - 1) * w->m[w->nf - 1] + 1 : 0;
         nxs = k > nxs ? k : nxs;
     }
     double *umax = malloc((2 * p->nf + nxs) * sizeof *umax);
