@@ -205,7 +205,7 @@ typedef struct work {
     double *block;
     double *c[NCOEF];
     double *w2, *tzw;
-    double *zw, *iwd; /* z w and 1/w_d: the free vibration's amplitude (free_bound) */
+    double *zw, *iwd; /* z w and 1/w_d: the free vibration's amplitude (eq. F1-F2) */
 } work;
 
 static void work_free(work *wk)
@@ -356,10 +356,11 @@ static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0
  * SEISLIDE_TEST_VERBOSE=1 build/tests/test_spectrum.) Positions
  * [p0, p0 + nb) (nb <= W, one sub-step count m) over the n values of the
  * input at their sub-step (the record, or for m > 1 its sub-step input made
- * by substep_input()) and nfree free sub-steps; max|u| into umax[p], max|u''+a| into amax[p] (when
- * want_amax). Every lane does exactly the arithmetic of map (2) in the same
- * order as a one-at-a-time loop (|x| by clearing the sign bit, as fabs; the
- * maximum by MAXV(x, max) = x > max ? x : max), and there is no FMA
+ * by substep_input()) and nfree free sub-steps; max|u| into umax[p],
+ * max|u''+a| into amax[p] (when want_amax). Every lane does exactly the
+ * arithmetic of map (2) in the same order as a one-at-a-time loop (|x| by
+ * clearing the sign bit, as fabs; the maximum by MAXV(x, max) =
+ * x > max ? x : max), and there is no FMA
  * contraction (-std=c11 sets -ffp-contract=off): the result does not depend
  * on the blocking, the vector width or the instance the CPU runs. W and
  * want_amax are constants after inlining. KERNEL_DEFINE(NAME, VT, IT, L,
@@ -398,7 +399,7 @@ static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0
             abs_mask[l] = INT64_MAX;                                                          \
         for (size_t i = 0; i + 1 < n; i++)                                                    \
             KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                                 \
-        /* free vibration after the record, unless no lane can reach its peak */             \
+        /* free vibration after the record, unless no lane can reach its peak */              \
         if (nfree > 0 && free_skip_enabled) {                                                 \
             int need = 0;                                                                     \
             for (size_t b = 0; b < nb && !need; b++) {                                        \
@@ -465,21 +466,21 @@ KERNEL_DEFINE(kernel_v2, sl_v2d, sl_v2i, 2, MAX_V2, )
                     : nb > BLOCK_NARROW ? BLOCK_MID                                           \
                                         : BLOCK_NARROW;                                       \
         if (W_ == BLOCK_WIDE && amax_out)                                                     \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);          \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);             \
         else if (W_ == BLOCK_WIDE)                                                            \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);              \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);                 \
         else if (W_ == BLOCK_WIDE3 && amax_out)                                               \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE3, 1);         \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE3, 1);            \
         else if (W_ == BLOCK_WIDE3)                                                           \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE3, 0);             \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE3, 0);                \
         else if (W_ == BLOCK_MID && amax_out)                                                 \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);           \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);              \
         else if (W_ == BLOCK_MID)                                                             \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_MID, 0);               \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_MID, 0);                  \
         else if (amax_out)                                                                    \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);        \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);           \
         else                                                                                  \
-            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);            \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);               \
     } while (0)
 
 /* Baseline instance (x86-64: SSE2, 2 doubles a vector; any other CPU). */
