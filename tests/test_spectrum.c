@@ -208,6 +208,19 @@ static void test_blocks_same_bits(void)
                   "%zu frequencies, f %g: together %.17g alone %.17g", nf, f[j], psa[j], p1);
         }
     }
+    /* one group of 1 to 40 (21-23 Hz at dt 0.01: m = 5): every split into
+     * blocks of 16, 12, 8 and 4, on the group's sub-step input */
+    for (size_t nf = 1; nf <= 40; nf++) {
+        for (size_t j = 0; j < nf; j++)
+            f[j] = 21.0 + 0.05 * (double)j;
+        CHECK(sl_spectrum_compute(a, n, 0.01, f, nf, 0.05, psa, sd, sa, NULL) == SL_OK, "ok");
+        for (size_t j = 0; j < nf; j++) {
+            double p1, d1, s1;
+            sl_spectrum_compute(a, n, 0.01, &f[j], 1, 0.05, &p1, &d1, &s1, NULL);
+            CHECK(p1 == psa[j] && d1 == sd[j] && s1 == sa[j],
+                  "one group of %zu, f %g: together %.17g alone %.17g", nf, f[j], psa[j], p1);
+        }
+    }
     free(a);
 }
 
