@@ -208,6 +208,19 @@ static void test_blocks_same_bits(void)
                   "%zu frequencies, f %g: together %.17g alone %.17g", nf, f[j], psa[j], p1);
         }
     }
+    /* one group of 1 to 40 (21-23 Hz at dt 0.01: m = 5): every split into
+     * blocks of 16, 12, 8 and 4, on the group's sub-step input */
+    for (size_t nf = 1; nf <= 40; nf++) {
+        for (size_t j = 0; j < nf; j++)
+            f[j] = 21.0 + 0.05 * (double)j;
+        CHECK(sl_spectrum_compute(a, n, 0.01, f, nf, 0.05, psa, sd, sa, NULL) == SL_OK, "ok");
+        for (size_t j = 0; j < nf; j++) {
+            double p1, d1, s1;
+            sl_spectrum_compute(a, n, 0.01, &f[j], 1, 0.05, &p1, &d1, &s1, NULL);
+            CHECK(p1 == psa[j] && d1 == sd[j] && s1 == sa[j],
+                  "one group of %zu, f %g: together %.17g alone %.17g", nf, f[j], psa[j], p1);
+        }
+    }
     free(a);
 }
 
@@ -257,6 +270,100 @@ static void test_kernel_instances_same_bits(void)
     free(a);
 }
 
+/* The free-vibration bounds (spectrum.c eq. F1-F2) against the closed form
+ * u(t) = e^(-z w t) (u0 cos w_d t + (v0 + z w u0)/w_d sin w_d t) sampled
+ * 2000 times a period over ten periods: never below the free response's peak |u| and
+ * |w^2 u + 2 z w v|, and equal to it for z = 0 (the amplitude of an
+ * undamped oscillation). */
+static void test_free_amplitudes(void)
+{
+    static const double zs[] = {0.0, 0.02, 0.05, 0.1, 0.3, 0.7};
+    for (size_t iz = 0; iz < sizeof zs / sizeof zs[0]; iz++)
+        for (int k = 0; k < 24; k++) {
+            double z = zs[iz], f = 0.37 + 0.9 * k, w = 2 * PI * f;
+            double wd = w * sqrt(1 - z * z);
+            double u0 = cos(0.7 * k + 0.3) * 0.01, v0 = sin(1.3 * k + 0.1) * 0.05 * w;
+            double ru, ry, pu = 0, py = 0;
+            sl_spectrum_free_amplitudes(f, z, u0, v0, &ru, &ry);
+            for (int i = 0; i <= 20000; i++) {
+                double t = 10.0 / f * i / 20000.0, e = exp(-z * w * t);
+                double cs = cos(wd * t), sn = sin(wd * t), b = (v0 + z * w * u0) / wd;
+                double u = e * (u0 * cs + b * sn);
+                double v = e * (-z * w * (u0 * cs + b * sn) + wd * (-u0 * sn + b * cs));
+                pu = fmax(pu, fabs(u));
+                py = fmax(py, fabs(w * w * u + 2 * z * w * v));
+            }
+            CHECK(ru >= pu * (1 - 1e-12), "z %g, f %g: R_u %.17g below the peak %.17g", z, f,
+                  ru, pu);
+            CHECK(ry >= py * (1 - 1e-12), "z %g, f %g: R_y %.17g below the peak %.17g", z, f,
+                  ry, py);
+            if (z == 0) {
+                CHECK_CLOSE(ru, pu, 0, 2e-6); /* sampling: 1 - cos(pi/2000) = 1.2e-6 */
+                CHECK_CLOSE(ry, py, 0, 2e-6);
+            }
+        }
+}
+
+/* The free vibration after the record is skipped in a block only when no
+ * lane's free amplitude (spectrum.c eq. F1-F2) reaches its peak: spectra
+ * with the skip are the same bits as with every free sub-step, on records
+ * whose free vibration exceeds the record's peak (resonant sines growing to
+ * an abrupt end at several phases, short pulses) and on a tapered burst
+ * that ends at rest, where the skip must engage. */
+static void test_free_skip_same_bits(void)
+{
+    size_t nf;
+    double *f = sl_spectrum_grid(0.1, 50, 100, &nf);
+    static const double zs[] = {0.0, 0.02, 0.05, 0.1, 0.3, 0.9};
+    const size_t n = 2001;
+    const double dt = 0.005;
+    double *a = malloc(n * sizeof *a);
+    double *out[2][3];
+    for (int k = 0; k < 2; k++)
+        for (int q = 0; q < 3; q++)
+            out[k][q] = malloc(nf * sizeof(double));
+    unsigned long long burst_skipped = 0;
+    for (int rec = 0; rec < 8; rec++) {
+        size_t nr = rec == 7 ? 11 : n;
+        for (size_t i = 0; i < nr; i++) {
+            double t = dt * (double)i, x = (double)i / (double)(nr - 1);
+            if (rec == 0) /* tapered burst: ends at rest */
+                a[i] = sin(PI * x) * sin(PI * x) *
+                       (sin(0.031 * (double)(i * i % 1009)) + 0.3 * cos(0.7 * (double)i));
+            else if (rec < 7) /* resonant sine growing to an abrupt end, phase rec */
+                a[i] = x * sin(2 * PI * (0.13 * (double)(rec * rec) + 0.2) * t + 0.9 * rec);
+            else /* a short rectangular pulse: every peak after the record */
+                a[i] = 1.3;
+        }
+        for (size_t iz = 0; iz < sizeof zs / sizeof zs[0]; iz++) {
+            for (int full = 0; full < 2; full++) { /* with and without absolute SA */
+                for (int k = 0; k < 2; k++) {
+                    sl_spectrum_free_skip(!k);
+                    unsigned long long before = sl_spectrum_free_skipped();
+                    CHECK(sl_spectrum_compute(a, nr, dt, f, nf, zs[iz], out[k][0],
+                                              full ? out[k][1] : NULL,
+                                              full ? out[k][2] : NULL, NULL) == SL_OK, "ok");
+                    if (!k && rec == 0)
+                        burst_skipped += sl_spectrum_free_skipped() - before;
+                    if (k)
+                        CHECK(sl_spectrum_free_skipped() == before, "skip off skips nothing");
+                }
+                for (int q = 0; q < (full ? 3 : 1); q++)
+                    CHECK(!memcmp(out[0][q], out[1][q], nf * sizeof(double)),
+                          "record %d, damping %g, output %d%s: the free-vibration skip "
+                          "changes bits", rec, zs[iz], q, full ? "" : " (PSA only)");
+            }
+        }
+    }
+    sl_spectrum_free_skip(1);
+    CHECK(burst_skipped > 0, "the skip never engaged on a record that ends at rest");
+    for (int k = 0; k < 2; k++)
+        for (int q = 0; q < 3; q++)
+            free(out[k][q]);
+    free(a);
+    free(f);
+}
+
 /* Rectangular pulse a0 for t_d < T/2 (the record ends at its last sample,
  * then a = 0), undamped: the peak comes after the record,
  * PSA = 2 a0 sin(pi t_d/T), at t = T/4 + t_d/2 (here a sample). */
@@ -274,6 +381,16 @@ static void test_peak_after_record(void)
     sl_spectrum_compute_opts(a, n, dt, &f, 1, 0.0, &o, &psa_cut, NULL, NULL, NULL);
     CHECK_CLOSE(psa_cut, a0 * (1 - cos(w * td)), 0, 1e-10);
     CHECK(psa_cut < 0.2 * psa, "stopping at the record end misses the peak");
+    free(a);
+    /* the same on sub-steps: 5 Hz at dt 0.01 s on 200 sub-steps per period
+     * (m = 10; sampled-peak error <= 1.2e-4), t_d = 0.05 s = T/4 */
+    double f5 = 5.0, psa5;
+    a = constant(6, a0);
+    o.free_vibration = 1;
+    o.steps_per_period = 200;
+    CHECK(sl_spectrum_compute_opts(a, 6, dt, &f5, 1, 0.0, &o, &psa5, NULL, NULL, NULL) == SL_OK,
+          "ok");
+    CHECK_CLOSE(psa5, 2 * a0 * sin(PI * 0.05 * f5), 0, 1.3e-4);
     free(a);
 }
 
@@ -697,6 +814,8 @@ int main(void)
     RUN(test_order_and_groups);
     RUN(test_blocks_same_bits);
     RUN(test_kernel_instances_same_bits);
+    RUN(test_free_amplitudes);
+    RUN(test_free_skip_same_bits);
     RUN(test_peak_after_record);
     RUN(test_peak_after_record_block);
     RUN(test_sampled_peak_convergence);

@@ -205,6 +205,7 @@ typedef struct work {
     double *block;
     double *c[NCOEF];
     double *w2, *tzw;
+    double *zw, *iwd; /* z w and 1/w_d: the free vibration's amplitude (eq. F1-F2) */
 } work;
 
 static void work_free(work *wk)
@@ -236,7 +237,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
 {
     memset(wk, 0, sizeof *wk);
     wk->nf = nf;
-    enum { NARR = NCOEF + 2 };
+    enum { NARR = NCOEF + 4 };
     size_t cnt = nf ? nf : 1;
     size_t *m_of = malloc(cnt * sizeof *m_of);
     wk->perm = malloc(cnt * sizeof *wk->perm);
@@ -252,6 +253,8 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         wk->c[k] = wk->block + (size_t)k * cnt;
     wk->w2 = wk->block + (size_t)NCOEF * cnt;
     wk->tzw = wk->w2 + cnt;
+    wk->zw = wk->tzw + cnt;
+    wk->iwd = wk->zw + cnt;
     for (size_t j = 0; j < nf; j++) {
         m_of[j] = substeps_for(f[j], dt, spp);
         wk->perm[j] = j;
@@ -269,16 +272,76 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         wk->nfree[p] = free_steps_for(f[j], zeta, h);
         wk->w2[p] = w * w;
         wk->tzw[p] = 2.0 * zeta * w;
+        wk->zw[p] = zeta * w;
+        wk->iwd[p] = 1.0 / (w * sqrt(1.0 - zeta * zeta));
     }
     free(m_of);
     return SL_OK;
 }
 
+/* ---- the free vibration after the record: skipped where it cannot matter.
+ * From (u0, v0) at the last sample, u(t) = e^(-z w t) (u0 cos w_d t +
+ * (v0 + z w u0)/w_d sin w_d t), so for every t >= 0
+ *     |u(t)| <= R_u = hypot(u0, (v0 + z w u0)/w_d),                      (F1)
+ * and y = w^2 u + 2 z w v obeys (1) with a = 0, y'(0) = w^2 v0 - 2 z w y0:
+ *     |y(t)| <= R_y = hypot(y0, (w^2 v0 - z w y0)/w_d).                  (F2)
+ * When R (1 + SL_SPECTRUM_FREE_MARGIN) < the peak over the record in every
+ * lane of a block, its free sub-steps cannot raise a peak and are skipped:
+ * the same bits (the rounding of the map, some 1e-13 relative over a
+ * million sub-steps, is far inside the margin). docs/spectra.md. */
+#define SL_SPECTRUM_FREE_MARGIN 1e-6
+
+/* Tests: 0 runs every free sub-step (sl_spectrum_free_skip()). */
+static int free_skip_enabled = 1;
+/* Free sub-steps skipped by this thread (a count for tests). */
+static _Thread_local unsigned long long free_skipped;
+
+int sl_spectrum_free_skip(int on)
+{
+    int was = free_skip_enabled;
+    free_skip_enabled = on != 0;
+    return was;
+}
+
+unsigned long long sl_spectrum_free_skipped(void) { return free_skipped; }
+
+/* Free amplitudes from (u0, v0): R_u (F1) into *ru, R_y (F2) into *ry;
+ * zw = z w, iwd = 1/w_d, w2 = w^2, tzw = 2 z w. */
+static inline void free_amplitudes(double zw, double iwd, double w2, double tzw, double u0,
+                                   double v0, double *ru, double *ry)
+{
+    double y0 = w2 * u0 + tzw * v0;
+    *ru = hypot(u0, (v0 + zw * u0) * iwd);
+    *ry = hypot(y0, (w2 * v0 - zw * y0) * iwd);
+}
+
+void sl_spectrum_free_amplitudes(double f_hz, double zeta, double u0, double v0, double *ru,
+                                 double *ry)
+{
+    double w = 2.0 * SL_PI * f_hz;
+    free_amplitudes(zeta * w, 1.0 / (w * sqrt(1.0 - zeta * zeta)), w * w, 2.0 * zeta * w, u0,
+                    v0, ru, ry);
+}
+
+/* 1 when the free vibration from (u0, v0) at position p may reach umax
+ * (or, want_amax, amax); NaN compares false, so it is taken as "may". */
+static inline int free_can_exceed(const work *wk, size_t p, double u0, double v0, double umax,
+                                  int want_amax, double amax)
+{
+    double ru, ry;
+    free_amplitudes(wk->zw[p], wk->iwd[p], wk->w2[p], wk->tzw[p], u0, v0, &ru, &ry);
+    const double k = 1.0 + SL_SPECTRUM_FREE_MARGIN;
+    return !(ru * k < umax) || (want_amax && !(ry * k < amax));
+}
+
 /* Oscillators stepped together (time loop inside): blocks of BLOCK_WIDE
  * lanes (4 AVX2 vectors: enough independent chains to hide the latency of
- * the recurrence), a group's last few in blocks of BLOCK_MID or BLOCK_NARROW
- * so that few lanes are idle. */
+ * the recurrence), a group's last few in blocks of BLOCK_WIDE3, BLOCK_MID or
+ * BLOCK_NARROW so that few lanes are idle. A block of 12 (3 AVX2 vectors)
+ * takes about as long a sub-step as one of 8 or 4 (the latency of the
+ * recurrence: a multiply and three adds), so run_groups() prefers it. */
 #define BLOCK_WIDE 16
+#define BLOCK_WIDE3 12
 #define BLOCK_MID 8
 #define BLOCK_NARROW 4
 
@@ -291,11 +354,13 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
  * at 200/s, 271 points, took 0.96 ms, and up to 2.8 ms where its stack
  * arrays fell badly; now 0.63 ms, the baseline instance 1.40 ms; CPU time,
  * SEISLIDE_TEST_VERBOSE=1 build/tests/test_spectrum.) Positions
- * [p0, p0 + nb) (nb <= W, one sub-step count m) over the whole record and
- * nfree free sub-steps; max|u| into umax[p], max|u''+a| into amax[p] (when
- * want_amax). Every lane does exactly the arithmetic of map (2) in the same
- * order as a one-at-a-time loop (|x| by clearing the sign bit, as fabs; the
- * maximum by MAXV(x, max) = x > max ? x : max), and there is no FMA
+ * [p0, p0 + nb) (nb <= W, one sub-step count m) over the n values of the
+ * input at their sub-step (the record, or for m > 1 its sub-step input made
+ * by substep_input()) and nfree free sub-steps; max|u| into umax[p],
+ * max|u''+a| into amax[p] (when want_amax). Every lane does exactly the
+ * arithmetic of map (2) in the same order as a one-at-a-time loop (|x| by
+ * clearing the sign bit, as fabs; the maximum by MAXV(x, max) =
+ * x > max ? x : max), and there is no FMA
  * contraction (-std=c11 sets -ffp-contract=off): the result does not depend
  * on the blocking, the vector width or the instance the CPU runs. W and
  * want_amax are constants after inlining. KERNEL_DEFINE(NAME, VT, IT, L,
@@ -303,7 +368,7 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
  * (IT: the integer vector of its size), with function attributes ATTR. */
 #define KERNEL_DEFINE(NAME, VT, IT, L, MAXV, ATTR)                                            \
     static inline __attribute__((always_inline)) ATTR void NAME(                              \
-        const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,          \
+        const work *wk, size_t p0, size_t nb, const double *acc, size_t n,                    \
         size_t nfree, double *umax_out, double *amax_out, const size_t W,                     \
         const int want_amax)                                                                  \
     {                                                                                         \
@@ -332,23 +397,22 @@ static sl_status work_init(work *wk, const double *f, size_t nf, double dt, doub
         IT abs_mask;                                                                          \
         for (size_t l = 0; l < (L); l++)                                                      \
             abs_mask[l] = INT64_MAX;                                                          \
-        const double inv_m = 1.0 / (double)m;                                                 \
-        if (m == 1) {                                                                         \
-            for (size_t i = 0; i + 1 < n; i++)                                                \
-                KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                             \
-        } else {                                                                              \
-            for (size_t i = 0; i + 1 < n; i++) {                                              \
-                /* linear interpolation, endpoint exact */                                    \
-                const double a0 = acc[i], da = acc[i + 1] - acc[i];                           \
-                double as = a0;                                                               \
-                for (size_t s = 1; s <= m; s++) {                                             \
-                    const double as1 = s == m ? acc[i + 1] : a0 + da * ((double)s * inv_m);   \
-                    KERNEL_STEP(VT, IT, L, MAXV, as, as1);                                    \
-                    as = as1;                                                                 \
-                }                                                                             \
+        for (size_t i = 0; i + 1 < n; i++)                                                    \
+            KERNEL_STEP(VT, IT, L, MAXV, acc[i], acc[i + 1]);                                 \
+        /* free vibration after the record, unless no lane can reach its peak */              \
+        if (nfree > 0 && free_skip_enabled) {                                                 \
+            int need = 0;                                                                     \
+            for (size_t b = 0; b < nb && !need; b++) {                                        \
+                const size_t q = b / (L), l = b % (L), p = p0 + b;                            \
+                need = free_can_exceed(wk, p, u[q][l], v[q][l], umax[q][l], want_amax,        \
+                                       amax[q][l]);                                           \
+            }                                                                                 \
+            if (!need) {                                                                      \
+                free_skipped += nfree;                                                        \
+                nfree = 0;                                                                    \
             }                                                                                 \
         }                                                                                     \
-        for (size_t k = 0; k < nfree; k++) /* free vibration after the record */              \
+        for (size_t k = 0; k < nfree; k++)                                                    \
             KERNEL_STEP(VT, IT, L, MAXV, 0.0, 0.0);                                           \
         for (size_t b = 0; b < nb; b++) {                                                     \
             umax_out[p0 + b] = umax[b / (L)][b % (L)];                                        \
@@ -397,24 +461,31 @@ KERNEL_DEFINE(kernel_v2, sl_v2d, sl_v2i, 2, MAX_V2, )
  * absolute acceleration. */
 #define RUN_WIDTHS(KERNEL)                                                                    \
     do {                                                                                      \
-        size_t W_ = nb > BLOCK_MID ? BLOCK_WIDE : nb > BLOCK_NARROW ? BLOCK_MID : BLOCK_NARROW; \
+        size_t W_ = nb > BLOCK_WIDE3  ? BLOCK_WIDE                                            \
+                    : nb > BLOCK_MID  ? BLOCK_WIDE3                                           \
+                    : nb > BLOCK_NARROW ? BLOCK_MID                                           \
+                                        : BLOCK_NARROW;                                       \
         if (W_ == BLOCK_WIDE && amax_out)                                                     \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);          \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE, 1);             \
         else if (W_ == BLOCK_WIDE)                                                            \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);              \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE, 0);                 \
+        else if (W_ == BLOCK_WIDE3 && amax_out)                                               \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_WIDE3, 1);            \
+        else if (W_ == BLOCK_WIDE3)                                                           \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_WIDE3, 0);                \
         else if (W_ == BLOCK_MID && amax_out)                                                 \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);           \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_MID, 1);              \
         else if (W_ == BLOCK_MID)                                                             \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_MID, 0);               \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_MID, 0);                  \
         else if (amax_out)                                                                    \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);        \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, amax_out, BLOCK_NARROW, 1);           \
         else                                                                                  \
-            KERNEL(wk, p0, nb, m, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);            \
+            KERNEL(wk, p0, nb, acc, n, nfree, umax_out, NULL, BLOCK_NARROW, 0);               \
     } while (0)
 
 /* Baseline instance (x86-64: SSE2, 2 doubles a vector; any other CPU). */
-static void run_block_base(const work *wk, size_t p0, size_t nb, size_t m, const double *acc,
-                           size_t n, size_t nfree, double *umax_out, double *amax_out)
+static void run_block_base(const work *wk, size_t p0, size_t nb, const double *acc, size_t n,
+                           size_t nfree, double *umax_out, double *amax_out)
 {
     RUN_WIDTHS(kernel_v2);
 }
@@ -432,8 +503,8 @@ typedef long long sl_v4i __attribute__((vector_size(32)));
 KERNEL_DEFINE(kernel_v4, sl_v4d, sl_v4i, 4, MAX_V4, __attribute__((target("avx2"))))
 
 __attribute__((target("avx2"))) static void
-run_block_avx2(const work *wk, size_t p0, size_t nb, size_t m, const double *acc, size_t n,
-               size_t nfree, double *umax_out, double *amax_out)
+run_block_avx2(const work *wk, size_t p0, size_t nb, const double *acc, size_t n, size_t nfree,
+               double *umax_out, double *amax_out)
 {
     RUN_WIDTHS(kernel_v4);
 }
@@ -459,23 +530,53 @@ int sl_spectrum_kernel_avx2(void)
 #endif
 }
 
-static void run_block(const work *wk, size_t p0, size_t nb, size_t m, const double *acc,
-                      size_t n, size_t nfree, double *umax_out, double *amax_out)
+static void run_block(const work *wk, size_t p0, size_t nb, const double *acc, size_t n,
+                      size_t nfree, double *umax_out, double *amax_out)
 {
 #ifdef SL_KERNEL_AVX2
     if (sl_spectrum_kernel_avx2()) {
-        run_block_avx2(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
+        run_block_avx2(wk, p0, nb, acc, n, nfree, umax_out, amax_out);
         return;
     }
 #endif
-    run_block_base(wk, p0, nb, m, acc, n, nfree, umax_out, amax_out);
+    run_block_base(wk, p0, nb, acc, n, nfree, umax_out, amax_out);
+}
+
+/* Lanes of the next block of a group with `left` still to run: up to
+ * BLOCK_WIDE; 12 when 17-24 are left (12 + up to 12, not 16 + a narrow
+ * block that takes as long as 12). */
+static size_t next_block(size_t left)
+{
+    if (left <= BLOCK_WIDE)
+        return left;
+    if (left <= 2 * BLOCK_WIDE3)
+        return BLOCK_WIDE3;
+    return BLOCK_WIDE;
+}
+
+/* The sub-step input of a group of m > 1 sub-steps per sample, made once
+ * for all its blocks: xs[i m + s] = a_i + (a_{i+1} - a_i) (s/m), s < m, and
+ * xs[(n - 1) m] = a_{n-1}, the values (same operations) that the kernel
+ * would otherwise interpolate in every block; (n - 1) m + 1 values. */
+static void substep_input(const double *acc, size_t n, size_t m, double *xs)
+{
+    const double inv_m = 1.0 / (double)m;
+    for (size_t i = 0; i + 1 < n; i++) {
+        const double a0 = acc[i], da = acc[i + 1] - acc[i];
+        xs[i * m] = a0;
+        for (size_t s = 1; s < m; s++)
+            xs[i * m + s] = a0 + da * ((double)s * inv_m);
+    }
+    xs[(n - 1) * m] = acc[n - 1];
 }
 
 /* Every group of equal m, in blocks: the record, then (free_vib) the free
  * sub-steps of the block's lowest frequency. A group runs in blocks of
- * BLOCK_WIDE, its remainder in the narrowest block that holds it. */
+ * next_block() lanes, each in the narrowest instance that holds it; a group
+ * of m > 1 on its sub-step input in xs ((n - 1) m + 1 values), which the
+ * kernel then steps as samples. */
 static void run_groups(const work *wk, const double *acc, size_t n, int free_vib, double *umax,
-                       double *amax)
+                       double *amax, double *xs)
 {
     size_t nf = wk->nf;
     for (size_t p0 = 0; p0 < nf;) {
@@ -483,16 +584,23 @@ static void run_groups(const work *wk, const double *acc, size_t n, int free_vib
         size_t p1 = p0 + 1;
         while (p1 < nf && wk->m[p1] == m)
             p1++;
+        const double *in = acc;
+        size_t nin = n;
+        if (m > 1) {
+            substep_input(acc, n, m, xs);
+            in = xs;
+            nin = (n - 1) * m + 1;
+        }
         for (size_t q = p0; q < p1;) {
             size_t left = p1 - q;
-            size_t nb = left > BLOCK_WIDE ? BLOCK_WIDE : left;
+            size_t nb = next_block(left);
             /* free sub-steps of the block's lowest frequency; the higher
              * ones run on past their first extremum, where later extrema
              * of a free damped vibration are smaller */
             size_t nfree = 0;
             for (size_t p = q; p < q + nb && free_vib; p++)
                 nfree = wk->nfree[p] > nfree ? wk->nfree[p] : nfree;
-            run_block(wk, q, nb, m, acc, n, nfree, umax, amax);
+            run_block(wk, q, nb, in, nin, nfree, umax, amax);
             q += nb;
         }
         p0 = p1;
@@ -713,7 +821,13 @@ sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_
     if (sa_abs_ms2 && p->nlev > 1)
         return sl_error_set(err, SL_EINVAL, NULL, 0,
                             "spectrum: a multirate plan gives PSA and SD only");
-    double *umax = malloc(2 * p->nf * sizeof *umax);
+    size_t nxs = 1; /* the largest sub-step input (m sorted: the last is the largest) */
+    for (size_t l = 0; l < p->nlev; l++) {
+        const work *w = &p->lev[l].wk;
+        size_t k = w->nf ? (p->lev[l].n - 1) * w->m[w->nf - 1] + 1 : 0;
+        nxs = k > nxs ? k : nxs;
+    }
+    double *umax = malloc((2 * p->nf + nxs) * sizeof *umax);
     double *r = NULL;
     fftw_complex *x = NULL, *c = NULL;
     size_t nbin = p->nfft / 2 + 1;
@@ -751,7 +865,7 @@ sl_status sl_spectrum_plan_compute(const sl_spectrum_plan *p, const double *acc_
             fftw_execute_dft_c2r(lv->c2r, c, r);
             a = r;
         }
-        run_groups(&lv->wk, a, lv->n, p->free_vib, umax, amax);
+        run_groups(&lv->wk, a, lv->n, p->free_vib, umax, amax, umax + 2 * p->nf);
         for (size_t pos = 0; pos < lv->nf; pos++) {
             size_t j = lv->out[pos];
             if (sd_m)

@@ -35,13 +35,18 @@
  * the largest |u| (and |u''|) of a free damped vibration occurs at its first
  * extremum, within half a damped period T_d/2 = T/(2 sqrt(1 - z^2)), since
  * later extrema decay. The run therefore continues for ceil(T_d/(2 h)) + 1
- * free sub-steps, so a peak after the record end is never cut off.
+ * free sub-steps, so a peak after the record end is never cut off. A block
+ * of oscillators skips those free sub-steps when, for each of them, the
+ * amplitude of the free vibration from its state at the last sample is
+ * below its peak over the record (spectrum.c eq. F1-F2): they could not
+ * raise it, and the result is the same bits.
  *
  * Speed. Coefficients are computed once per (frequency, sub-step) (once
  * per plan, below); the frequencies are grouped by m and each group is
- * stepped in blocks of 8 oscillators with time as the inner loop: a block's
- * state stays in registers and its independent lanes hide the latency of
- * the recurrence.
+ * stepped in blocks of up to 16 oscillators with time as the inner loop: a
+ * block's state stays in registers and its independent lanes hide the
+ * latency of the recurrence. A group with m > 1 interpolates its sub-step
+ * input once for all its blocks.
  * sl_spectrum_batch() runs motions in parallel with OpenMP.
  *
  * Units: SI (s, Hz, m, m/s^2). Damping as a ratio of critical, in [0, 1).

@@ -18,4 +18,20 @@
 int sl_spectrum_kernel_avx2(void);
 int sl_spectrum_kernel_baseline(int force);
 
+/* The free vibration after the record (spectrum.c, eq. F1-F2) is skipped in
+ * a block when no lane's free amplitude reaches its peak. For tests:
+ * sl_spectrum_free_skip(0) runs every free sub-step (the same bits; not to
+ * be called while spectra are being computed in other threads), 1 restores
+ * the skip; returns the previous setting. sl_spectrum_free_skipped() is the
+ * number of free sub-steps (of one block) skipped so far by the calling
+ * thread. */
+int sl_spectrum_free_skip(int on);
+unsigned long long sl_spectrum_free_skipped(void);
+
+/* The bounds the skip uses, for an oscillator at f_hz, damping zeta, from
+ * the state (u0 m, v0 m/s) at the last sample: *ru >= |u(t)| (F1) and
+ * *ry >= |u''(t) + a(t)| (F2) for every t after the record. */
+void sl_spectrum_free_amplitudes(double f_hz, double zeta, double u0, double v0, double *ru,
+                                 double *ry);
+
 #endif
