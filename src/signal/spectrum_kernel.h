@@ -34,4 +34,10 @@ unsigned long long sl_spectrum_free_skipped(void);
 void sl_spectrum_free_amplitudes(double f_hz, double zeta, double u0, double v0, double *ru,
                                  double *ry);
 
+/* The recurrence's coefficients (spectrum_coefs.c): x1 = A x0 + B (a0, a1)
+ * over a step h at w = 2 pi f rad/s and damping z, in this order; the series
+ * where w h < SL_SPECTRUM_SERIES_WH, else the closed form. */
+enum { C11, C12, C21, C22, BU0, BU1, BV0, BV1, NCOEF };
+void sl_spectrum_coefs_auto(double w, double z, double h, double c[NCOEF]);
+
 #endif
