@@ -16,6 +16,7 @@
 #include "analysis.h"
 #include "core/units.h"
 #include "harness.h"
+#include "io/owner.h"
 #include "method/design.h"
 #include "oracle.h"
 #include "plant/cache.h"
@@ -153,7 +154,17 @@ static void test_entry_roundtrip_and_damage(void)
     f = fopen(lp, "w");
     fprintf(f, "%s 999999999 0\n", host);
     fclose(f);
+    /* ... and the entry it was writing when it died goes with it (the cache
+     * was opened before it died, so only the break can sweep it) */
+    char tp[400], oh[128];
+    sl_owner_host(oh, sizeof oh);
+    snprintf(tp, sizeof tp, "%s/.%s.tmp-%s-999999999-abcdef", dir, k.hash, oh);
+    f = fopen(tp, "w");
+    CHECK(f != NULL, "%s", tp);
+    if (f)
+        fclose(f);
     CHECK(sl_cache_lock(dir, k.hash, &e) == SL_CACHE_LOCKED, "a dead process's lock must be broken");
+    CHECK(access(tp, F_OK) != 0, "the dead process's temporary entry was left: %s", tp);
     sl_cache_unlock(dir, k.hash);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);

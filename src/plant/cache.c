@@ -34,19 +34,16 @@ static int owner_gone(const char *rest, int tmp)
     return sl_owner_pid_gone(pid);
 }
 
-sl_status sl_cache_open(const char *dir, sl_error *err)
+/* What dead processes of this host left in the cache folder: their
+ * temporary entries and the locks they put aside go, and a lock whose run
+ * was killed after its entry was written is broken as sl_cache_lock does.
+ * Made when the cache is opened and when a lock of a dead run is broken
+ * (that run may have died while writing its entry). */
+static void sweep_dead(const char *dir)
 {
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
-        return sl_error_set(err, SL_EIO, dir, 0, "cannot create the cache folder: %s",
-                            strerror(errno));
     DIR *d = opendir(dir);
     if (!d)
-        return sl_error_set(err, SL_EIO, dir, 0, "cannot read the cache folder: %s",
-                            strerror(errno));
-    if (access(dir, W_OK) != 0) {
-        closedir(d);
-        return sl_error_set(err, SL_EIO, dir, 0, "the cache folder is not writable");
-    }
+        return;
     char host[128], prefix[160], aside[160], path[4400];
     sl_owner_host(host, sizeof host);
     snprintf(prefix, sizeof prefix, ".tmp-%s-", host);
@@ -69,6 +66,21 @@ sl_status sl_cache_open(const char *dir, sl_error *err)
         }
     }
     closedir(d);
+}
+
+sl_status sl_cache_open(const char *dir, sl_error *err)
+{
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+        return sl_error_set(err, SL_EIO, dir, 0, "cannot create the cache folder: %s",
+                            strerror(errno));
+    DIR *d = opendir(dir);
+    if (!d)
+        return sl_error_set(err, SL_EIO, dir, 0, "cannot read the cache folder: %s",
+                            strerror(errno));
+    closedir(d);
+    if (access(dir, W_OK) != 0)
+        return sl_error_set(err, SL_EIO, dir, 0, "the cache folder is not writable");
+    sweep_dead(dir);
     return SL_OK;
 }
 
@@ -287,8 +299,10 @@ sl_cache_lock_result sl_cache_lock(const char *dir, const char *hash, sl_error *
             return SL_CACHE_BUSY;
         /* break it: rename it aside (one breaker wins), then remove it */
         snprintf(aside, sizeof aside, "%s.stale-%s-%ld", path, host, (long)getpid());
-        if (rename(path, aside) == 0)
+        if (rename(path, aside) == 0) {
             unlink(aside);
+            sweep_dead(dir); /* its run may have died writing the entry */
+        }
     }
     return SL_CACHE_BUSY;
 }
