@@ -53,7 +53,7 @@ STUDY_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(shell grep -l '^\#include
 # found by the compiler, so a header added to or moved under seislide.h follows.
 PUBLIC_H  := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
-.PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant plausfloors
+.PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant plausfloors rockfloors
 all: $(PROG) $(SHLIB) $(TEST_BIN)
 
 # (the library's objects are rebuilt when the Makefile changes: a tree
@@ -116,6 +116,11 @@ study: $(PROG)
 # three-component record of ../shared/records (docs/synthesis.md 10; minutes).
 physfloors: $(BUILD)/tools/physfloors
 	nice $(BUILD)/tools/physfloors -x
+
+# Rocking (probability of tipping) on synthesized floor sets against the physical
+# floor motions behind their spectra, three buildings (docs/validation.md; minutes).
+rockfloors: $(BUILD)/tools/rockfloors
+	nice $(BUILD)/tools/rockfloors
 
 # The worst ratios of physical floor spectra behind the plausibility rules of floor
 # files (docs/formats-floor.md, "Plausibility"; minutes).

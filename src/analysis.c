@@ -442,6 +442,18 @@ static sl_status run_plan(run *r, sl_error *err)
     return SL_OK;
 }
 
+sl_status sl_analysis_make_sets(const sl_floor *fl, const sl_analysis_opts *o, size_t first,
+                                size_t count, sl_synth_set *out, sl_error *err)
+{
+    run r = {.fl = fl, .o = o};
+    sl_status st = run_plan(&r, err);
+    if (!st)
+        st = sl_synth_make_sets(r.plan, r.tgt, sl_analysis_floor_seed(o->seed, fl), first, count,
+                                out, NULL, NULL, err);
+    sl_synth_free(r.plan);
+    return st == SL_ENOCONV ? SL_OK : st; /* a failed check is kept, as the run keeps it */
+}
+
 /* The NLTHA of one batch, each set's started as soon as its synthesis is
  * final (the ready callback of sl_synth_make_sets_then): a task per chunk
  * of SL_SLIDE_BATCH_CHUNK friction values, as sl_slide_batch would run it. */

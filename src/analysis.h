@@ -203,6 +203,18 @@ SL_API sl_analysis *sl_analysis_run(const sl_floor *fl, const sl_analysis_opts *
 
 SL_API void sl_analysis_free(sl_analysis *a);
 
+/* Sets first .. first + count - 1 of floor fl under options o, synthesized
+ * again: the same bits as the sets sl_analysis_run made (the same plan,
+ * targets and floor seed; a set's motions depend only on its index), so a
+ * result read from the cache, which keeps no motions, can be given its
+ * motions back (the rocking check, rock/rock_floor.h). out[count] filled
+ * (free each with sl_synth_set_clear); a motion that fails its checks is
+ * kept, as the run keeps it. SL_OK, or SL_EINVAL, SL_ENOMEM, SL_ESOLVER
+ * (out cleared). */
+SL_API sl_status sl_analysis_make_sets(const sl_floor *fl, const sl_analysis_opts *o,
+                                       size_t first, size_t count, sl_synth_set *out,
+                                       sl_error *err);
+
 /* The other-damping check of a as text into buf (size n): "none" when the
  * file gives one damping, else "H1 10 %: 0.931-1.118 ok; H1 2 %: ... OUTSIDE;
  * ..." (set-mean S/T lowest-highest, verdict). Returns buf. */
