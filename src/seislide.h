@@ -23,7 +23,7 @@
  *   floor response spectra (io/floor.h) and ground motions (io/motion.h,
  *   io/setdir.h) -> response spectra and RG 1.60 (signal/) -> synthesized
  *   spectrum-compatible sets (synth/synth.h) -> NLTHA of the sliding block
- *   (slide/slide.h) and the ASCE method (method/asce_input.h, asce.h) ->
+ *   (slide/slide.h), rocking of slender blocks (rock/rock.h) and the ASCE method (method/asce_input.h, asce.h) ->
  *   design sliding spectra and clearance (method/design.h) -> the per-floor
  *   job (analysis.h) -> the workbook and CSV tables (report/report.h).
  *
@@ -64,6 +64,7 @@
 #include "synth/synth.h"
 
 #include "slide/slide.h"
+#include "rock/rock.h"
 
 #include "method/asce.h"
 #include "method/asce_input.h"

@@ -61,11 +61,40 @@ typedef struct sl_rock_block {
                              Housner's (K4) */
 } sl_rock_block;
 
-/* Settings of the integrator (sl_rock_opts_default). */
+/* Settings of the integrator (sl_rock_opts_default).
+ *
+ * Between events the block is integrated by the 3-stage, fourth-order
+ * Runge-Kutta-Nystrom method for theta'' = f(t, theta) on sub-steps aligned
+ * with the samples (the forcing is linear within a step), at most
+ * H(rtol) / omega_s long, omega_s = p ((1 + a_v/g)^2 + (a_h/g)^2)^(1/4)
+ * the largest frequency of the linearised (K2) over the sample and
+ * H(rtol) = SL_ROCK_H_COEF rtol^(1/4) (docs/integrators.md, "Rocking",
+ * has the measured accuracy). */
 typedef struct sl_rock_opts {
     double rtol;          /* relative accuracy aimed at for the peak rotation */
     unsigned substeps;    /* > 0: fixed sub-steps per sample (no error control) */
+    double rest_fraction; /* the rest rule's threshold: after an impact the block is set at
+                             rest when the excursion it can reach is below rest_fraction
+                             alpha (rock.c, docs/model.md); default SL_ROCK_REST_FRACTION */
+    double theta0_rad;    /* initial state (default 0, 0: at rest); |theta0| < pi/2 */
+    double omega0_rad_s;
 } sl_rock_opts;
+
+/* Default rtol: keeps the peak rotation of non-chaotic cases within 0.1 %
+ * of a converged reference (docs/integrators.md, "Rocking"). */
+#define SL_ROCK_DEFAULT_RTOL 1e-4
+#define SL_ROCK_RTOL_MIN 1e-12
+#define SL_ROCK_RTOL_MAX 1e-2
+/* H(rtol) = SL_ROCK_H_COEF rtol^(1/4): the step's share of a radian of the
+ * block's fastest linearised motion (1.0 at rtol 1, 0.1 at rtol 1e-4). */
+#define SL_ROCK_H_COEF 1.0
+#define SL_ROCK_SUBSTEPS_MAX 100000u
+/* The rest rule: a rebound that cannot reach this fraction of alpha ends
+ * the cascade at rest. */
+#define SL_ROCK_REST_FRACTION 1e-6
+/* The free rocking after the record is followed at most SL_ROCK_TAIL_MAX_P / p s
+ * (it ends at its first peak, within a few 1/p). */
+#define SL_ROCK_TAIL_MAX_P 1e4
 
 SL_API void sl_rock_opts_default(sl_rock_opts *o);
 
@@ -84,6 +113,15 @@ typedef struct sl_rock_result {
     double t_uplift_s, t_tip_s, t_overturn_s; /* first uplift, tip, overturn */
     size_t impacts;            /* impacts at theta = 0 */
     size_t uplifts;            /* times the block left rest */
+    size_t rests;              /* impact cascades ended by the rest rule */
+    size_t liftoff_samples;    /* samples with g + a_v < 0: (K3) holds whatever a_h; the
+                                  block would leave the floor, which the model does not
+                                  describe (docs/model.md): treat the result as flagged */
+    double t_end_s;            /* where the integration ended: the last sample when the
+                                  block is at rest there; else the first peak of the free
+                                  rocking after the record (all later peaks are lower), a
+                                  rest, or the overturn */
+    size_t steps;              /* integrator steps taken (cost) */
 } sl_rock_result;
 
 /* Housner's restitution (K4) of a block with half base b_m and centre of
@@ -92,9 +130,12 @@ SL_API double sl_rock_housner_r(double b_m, double h_m);
 
 /* Run the block on a_h (n samples at dt_s, m/s^2) and a_v (n samples, or
  * NULL: no vertical), each multiplied by its scale (a_h by scale_h, a_v by
- * scale_v) on the fly. SL_EINVAL (bad block, n < 2, dt <= 0, a sample not
- * finite), SL_ENOMEM. The block starts at rest. Reentrant; allocates
- * nothing on the way. */
+ * scale_v) on the fly. SL_EINVAL (bad block, bad options, n < 2, dt <= 0,
+ * a scale or a sample not finite), SL_ENOMEM, SL_ENOCONV (the free rocking
+ * after the record did not end within SL_ROCK_TAIL_MAX_P / p s: not seen).
+ * The block starts at rest (or in the state of o->theta0_rad,
+ * o->omega0_rad_s); o NULL: the defaults. Reentrant; allocates nothing on
+ * the way. */
 SL_API sl_status sl_rock_run(const sl_rock_block *blk, const double *a_h_ms2,
                              const double *a_v_ms2, size_t n, double dt_s, double scale_h,
                              double scale_v, const sl_rock_opts *o, sl_rock_result *out,
@@ -105,15 +146,41 @@ SL_API sl_status sl_rock_run(const sl_rock_block *blk, const double *a_h_ms2,
 SL_API void sl_rock_project(const double *h1, const double *h2, size_t n, double phi_deg,
                             double *out);
 
+/* The events of a run (sl_rock_history). */
+typedef enum sl_rock_event_kind {
+    SL_ROCK_EV_UPLIFT = 0, /* left rest: (K3) */
+    SL_ROCK_EV_IMPACT,     /* theta = 0: omega_before -> omega = r omega_before */
+    SL_ROCK_EV_PEAK,       /* a local largest |theta| (theta' = 0) */
+    SL_ROCK_EV_TIP,        /* |theta| = alpha, the first time */
+    SL_ROCK_EV_OVERTURN,   /* |theta| = pi/2: the run stops */
+    SL_ROCK_EV_REST,       /* a cascade ended at rest by the rest rule (or r = 0) */
+    SL_ROCK_EV_END,        /* the integration ends (t_end_s) */
+    SL_ROCK_EV_COUNT
+} sl_rock_event_kind;
+
+typedef struct sl_rock_event {
+    sl_rock_event_kind kind;
+    double t_s, theta_rad, omega_rad_s; /* the state after the event */
+    double omega_before_rad_s;          /* an impact's omega before it (else = omega) */
+} sl_rock_event;
+
+/* "uplift", "impact", "peak", "tip", "overturn", "rest", "end". */
+SL_API const char *sl_rock_event_name(sl_rock_event_kind k);
+
 /* Optional history of a run (sl_rock_run_history): theta and theta' at
- * every sample, and every event. */
+ * every sample of the record (rows 0 .. n_record - 1, t = i dt), then on
+ * through the free rocking after it at the same dt, and a last row at
+ * t_end_s; and every event in time order. */
 typedef struct sl_rock_history {
-    size_t n;
-    double *t_s, *theta_rad, *omega_rad_s;  /* n each, at the samples */
+    size_t n;                               /* rows */
+    double *t_s, *theta_rad, *omega_rad_s;  /* n each */
+    size_t n_events;
+    sl_rock_event *events;                  /* n_events */
 } sl_rock_history;
 
 /* As sl_rock_run, also filling h (allocated here; free with
- * sl_rock_history_free). After an overturn the history holds pi/2 sgn. */
+ * sl_rock_history_free). After an overturn the history holds pi/2 sgn
+ * to the end of the record. */
 SL_API sl_status sl_rock_run_history(const sl_rock_block *blk, const double *a_h_ms2,
                                      const double *a_v_ms2, size_t n, double dt_s,
                                      double scale_h, double scale_v, const sl_rock_opts *o,
