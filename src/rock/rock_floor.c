@@ -19,6 +19,8 @@ struct sl_rockf_acc {
     sl_rockf_opts o;
     size_t n_items, max_sets, n_sets;
     sl_rockf_item *items;
+    size_t *n_item_sets;      /* per item: the sets it was run on (a prefix of the floor's) */
+    unsigned char *active;    /* per item: still taking sets (sl_rockf_acc_add) */
     size_t nz;                /* intensity points (F1) */
     double *eps, *w;          /* nz each */
     size_t n_orient;          /* the grid of (F2) */
@@ -41,6 +43,7 @@ void sl_rockf_opts_default(sl_rockf_opts *o)
     o->zmax = SL_ROCKF_ZMAX;
     o->dz = SL_ROCKF_DZ;
     o->orient_step_deg = SL_ROCKF_ORIENT_STEP_DEG;
+    o->min_sets = SL_ROCKF_MIN_SETS;
     sl_rock_opts_default(&o->engine);
 }
 
@@ -55,7 +58,7 @@ static sl_status check_opts(const sl_rockf_opts *o, sl_error *err)
             return sl_error_set(err, SL_EINVAL, NULL, 0, "rocking: level %g or target "
                                 "probability %g out of range", o->level[l], o->p_target[l]);
     if (o->sigma_ln > 0 && !(o->dz > 0 && o->zmin < o->zmax && isfinite(o->zmin) &&
-                             isfinite(o->zmax) && (o->zmax - o->zmin) / o->dz < 1000))
+                             isfinite(o->zmax) && (o->zmax - o->zmin) / o->dz <= 10000))
         return sl_error_set(err, SL_EINVAL, NULL, 0, "rocking: bad intensity grid %g:%g:%g",
                             o->zmin, o->dz, o->zmax);
     if (!(o->orient_step_deg > 0 && o->orient_step_deg <= 180))
@@ -101,6 +104,8 @@ void sl_rockf_acc_free(sl_rockf_acc *a)
     if (!a)
         return;
     free(a->items);
+    free(a->n_item_sets);
+    free(a->active);
     free(a->eps);
     free(a->w);
     free(a->orient_deg);
@@ -151,12 +156,16 @@ sl_rockf_acc *sl_rockf_acc_alloc(const sl_rockf_item *items, size_t n_items, siz
     a->exc_m = calloc(cells, sizeof *a->exc_m);
     a->flags = calloc(cells, 1);
     a->runs = calloc(n_items * max_sets, sizeof *a->runs);
-    if (!a->items || !a->orient_deg || !a->ratio || !a->exc_m || !a->flags || !a->runs) {
+    a->n_item_sets = calloc(n_items, sizeof *a->n_item_sets);
+    a->active = malloc(n_items);
+    if (!a->items || !a->orient_deg || !a->ratio || !a->exc_m || !a->flags || !a->runs ||
+        !a->n_item_sets || !a->active) {
         sl_error_set(err, SL_ENOMEM, NULL, 0, "rocking: out of memory");
         sl_rockf_acc_free(a);
         return NULL;
     }
     memcpy(a->items, items, n_items * sizeof *items);
+    memset(a->active, 1, n_items);
     for (size_t k = 0; k < a->n_orient; k++)
         a->orient_deg[k] = (double)k * o->orient_step_deg;
     return a;
@@ -214,6 +223,8 @@ static sl_status one_set(sl_rockf_acc *a, const sl_set *set, size_t s, work *wk,
                                                                a->o.level[l]);
     }
     for (size_t i = 0; i < a->n_items; i++) {
+        if (!a->active[i])
+            continue;
         const sl_rockf_item *it = &a->items[i];
         size_t runs = 0;
         const double tan_a = it->block.b_m / it->block.h_m;
@@ -316,6 +327,9 @@ sl_status sl_rockf_acc_add(sl_rockf_acc *a, const sl_set *sets, size_t count, sl
         return st;
     }
     a->n_sets += count;
+    for (size_t i = 0; i < a->n_items; i++)
+        if (a->active[i])
+            a->n_item_sets[i] = a->n_sets;
     return SL_OK;
 }
 
@@ -323,7 +337,7 @@ sl_status sl_rockf_acc_add(sl_rockf_acc *a, const sl_set *sets, size_t count, sl
 static void prob(const sl_rockf_acc *a, size_t i, int l, unsigned char bit, double *p,
                  double *se)
 {
-    const size_t n = a->n_sets;
+    const size_t n = a->n_item_sets[i];
     double sum = 0, sum2 = 0;
     for (size_t s = 0; s < n; s++) {
         double ps = 0;
@@ -353,7 +367,7 @@ static int by_value(const void *x, const void *y)
 static void wstats(const sl_rockf_acc *a, const double *values, size_t i, int l, double q,
                    wv *buf, double *mean, double *quant)
 {
-    const size_t n = a->n_sets;
+    const size_t n = a->n_item_sets[i];
     size_t m = 0;
     double sum = 0;
     for (size_t s = 0; s < n; s++)
@@ -387,9 +401,9 @@ sl_status sl_rockf_acc_result(const sl_rockf_acc *a, sl_rockf_result *out, sl_er
     for (size_t i = 0; i < a->n_items; i++) {
         sl_rockf_result *r = &out[i];
         memset(r, 0, sizeof *r);
-        r->n_sets = a->n_sets;
+        r->n_sets = a->n_item_sets[i];
         r->n_orient = isnan(a->items[i].orientation_deg) ? a->n_orient : 1;
-        for (size_t s = 0; s < a->n_sets; s++)
+        for (size_t s = 0; s < r->n_sets; s++)
             r->n_runs += a->runs[i * a->max_sets + s];
         for (int l = 0; l < SL_ROCKF_NLEVELS; l++) {
             sl_rockf_level *v = &r->level[l];
@@ -405,6 +419,35 @@ sl_status sl_rockf_acc_result(const sl_rockf_acc *a, sl_rockf_result *out, sl_er
     }
     free(buf);
     return SL_OK;
+}
+
+/* (F6): item i is decided when some level's p_tip is above its target by
+ * more than SE_DECIDE standard errors, or every level's is below it by more
+ * than that, a level whose sets all agree (SE 0) counting as decided. */
+static int decided(const sl_rockf_acc *a, size_t i)
+{
+    int all_below = 1;
+    for (int l = 0; l < SL_ROCKF_NLEVELS; l++) {
+        double p, se;
+        prob(a, i, l, F_TIP, &p, &se);
+        const double t = a->o.p_target[l], k = SL_ROCKF_SE_DECIDE;
+        if (p > t && (se == 0 || p - t > k * se))
+            return 1;
+        if (!(p <= t && (se == 0 || t - p > k * se)))
+            all_below = 0;
+    }
+    return all_below;
+}
+
+size_t sl_rockf_acc_update(sl_rockf_acc *a)
+{
+    size_t n_active = 0;
+    for (size_t i = 0; i < a->n_items; i++) {
+        if (a->active[i] && a->n_item_sets[i] >= a->o.min_sets && decided(a, i))
+            a->active[i] = 0;
+        n_active += a->active[i];
+    }
+    return n_active;
 }
 
 sl_rockf_verdict sl_rockf_verdict_of(const sl_rockf_result *r,

@@ -31,6 +31,16 @@
  *    probabilities: the larger of the (1 - p_target[0]) quantile at L = 1
  *    and the (1 - p_target[1]) quantile at L = 1.5.                   (F5)
  *
+ * Sets per item (the stopping rule of rocking, F6). An item takes the
+ * floor's sets in order, a batch at a time, until its verdict on tipping is
+ * decided: some level's p_tip above its target by more than
+ * SL_ROCKF_SE_DECIDE standard errors (it overturns), or every level's below
+ * it by more than that (it stands), a level whose sets all agree (SE 0:
+ * every set tips everywhere, or nowhere) counting as decided; at least
+ * min_sets sets, at most the floor's. An item near its limit so gets every
+ * set the floor has; one far from it, the first batch only. Each item's
+ * statistics are over its own sets (a prefix of the floor's).
+ *
  * A realisation that cannot uplift is not integrated: uplift needs
  * L eps |a_h(t)| > (g + L a_v(t)) tan(alpha) at some t (rock.h (K3)), i.e.
  * eps > tan(alpha) c(phi, L) with c = min_t (g + L a_v) / (L |a_h|), a
@@ -66,6 +76,10 @@
 #define SL_ROCKF_LEVEL_2 1.5
 #define SL_ROCKF_P_TARGET_1 0.01
 #define SL_ROCKF_P_TARGET_2 0.10
+/* The stopping rule (F6): fewest sets per item, and the distance from the
+ * target, in standard errors, that decides. */
+#define SL_ROCKF_MIN_SETS 16
+#define SL_ROCKF_SE_DECIDE 2.0
 /* The quantile of theta/alpha reported beside its mean. */
 #define SL_ROCKF_THETA_Q 0.84
 
@@ -82,6 +96,7 @@ typedef struct sl_rockf_opts {
     double p_target[SL_ROCKF_NLEVELS]; /* SL_ROCKF_P_TARGET_1, _2 */
     double zmin, zmax, dz;   /* the grid of (F1) */
     double orient_step_deg;  /* (F2) */
+    size_t min_sets;         /* (F6) SL_ROCKF_MIN_SETS */
     int no_screen;           /* 1: integrate every realisation, the uplift screen off
                                 (the same results, slower: a check of the screen) */
     sl_rock_opts engine;     /* rock.h */
@@ -108,7 +123,7 @@ typedef enum sl_rockf_verdict {
 } sl_rockf_verdict;
 
 typedef struct sl_rockf_result {
-    size_t n_sets;
+    size_t n_sets;                    /* the sets it was run on (F6) */
     size_t n_orient;                  /* orientations per realisation */
     sl_rockf_level level[SL_ROCKF_NLEVELS];
     double excursion_m;               /* the design excursion (F5) */
@@ -133,6 +148,10 @@ SL_API sl_status sl_rockf_acc_add(sl_rockf_acc *acc, const sl_set *sets, size_t 
                                   sl_error *err);
 /* Sets added so far. */
 SL_API size_t sl_rockf_acc_n_sets(const sl_rockf_acc *acc);
+/* Apply the stopping rule (F6) to every item still taking sets; the items
+ * decided take no more. Returns the items still taking sets. Without it,
+ * every item takes every set added. */
+SL_API size_t sl_rockf_acc_update(sl_rockf_acc *acc);
 /* The statistics of every item over the sets added so far (out[n_items]). */
 SL_API sl_status sl_rockf_acc_result(const sl_rockf_acc *acc, sl_rockf_result *out,
                                      sl_error *err);
@@ -151,9 +170,10 @@ SL_API const char *sl_rockf_verdict_name(sl_rockf_verdict v);
 /* The rocking check of items[n_items] on floor fl of a run with seed
  * run_seed and n_sets sets per floor: over sets[0..n_sets) when given with
  * their motions (a floor just computed), else over the same sets made again
- * SL_ROCKF_CHUNK at a time (sl_analysis_make_sets: a floor read from the
- * cache). out[n_items] filled. Errors as sl_rockf_acc_*, and the
- * synthesis'. */
+ * (sl_analysis_make_sets: a floor read from the cache); the sets taken in
+ * batches of SL_ROCKF_CHUNK (the first: o->min_sets), the stopping rule
+ * (F6) applied after each. out[n_items] filled. Errors as sl_rockf_acc_*,
+ * and the synthesis'. */
 struct sl_floor;
 struct sl_synth_set;
 SL_API sl_status sl_rockf_floor_run(const struct sl_floor *fl, uint64_t run_seed, size_t n_sets,
