@@ -39,6 +39,13 @@ STUDY_LIB := $(BUILD)/libseislide-study.a
 PROG      ?= seislide
 # The version, declared once in src/core/version.h (MAJOR, MINOR, PATCH in that order).
 VERSION   := $(shell sed -n 's/^\#define SEISLIDE_VERSION_[A-Z]* \([0-9][0-9]*\)$$/\1/p' src/core/version.h | paste -sd.)
+# The build's source fingerprint (docs/reliability.md, "Which code made a number"): the
+# SHA-256 of the list of SHA-256 sums of this Makefile and of every file under src/ (by
+# name and content), so a tarball gives the same as a checkout. Compiled into the library
+# (src/core/version.h: sl_source_id, sl_build_id) from $(BUILD)/source_id.h, rewritten only
+# when it changes; it is in every cache key (plant/entry.h) and every program line.
+ID_FILES  := Makefile $(sort $(wildcard src/*.[ch] src/*/*.[ch]))
+SOURCE_ID := $(shell sha256sum $(ID_FILES) | sha256sum | cut -c1-64)
 # The shared library: libseislide.so.VERSION, soname libseislide.so.SO_MAJOR
 # (raised when the interface changes incompatibly). Its objects are the static
 # library's, compiled position-independent (PIC; docs/dependencies.md has the
@@ -53,8 +60,20 @@ STUDY_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(shell grep -l '^\#include
 # found by the compiler, so a header added to or moved under seislide.h follows.
 PUBLIC_H  := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
-.PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant plausfloors rockfloors
+.PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant plausfloors \
+  rockfloors source-id FORCE
 all: $(PROG) $(SHLIB) $(TEST_BIN)
+
+# The fingerprint (above), for tests and release notes.
+source-id:
+	@echo $(SOURCE_ID)
+
+$(BUILD)/source_id.h: FORCE
+	@mkdir -p $(dir $@)
+	@test -n "$(SOURCE_ID)" || { echo "cannot compute the source fingerprint (sha256sum)" >&2; exit 1; }
+	@printf '#define SL_SOURCE_ID "%s"\n#define SL_SOURCE_ID_SHORT "%s"\n' \
+	  $(SOURCE_ID) $(shell echo $(SOURCE_ID) | cut -c1-12) > $@.new
+	@if cmp -s $@.new $@; then rm -f $@.new; else mv -f $@.new $@; fi
 
 # (the library's objects are rebuilt when the Makefile changes: a tree
 # built before they were PIC would not link the shared library)
@@ -62,6 +81,9 @@ all: $(PROG) $(SHLIB) $(TEST_BIN)
 # declaration in an installed header carries SL_API (src/core/api.h), no other.
 $(LIB_OBJ): OBJ_CFLAGS := $(PIC) -fvisibility=hidden
 $(LIB_OBJ): Makefile
+# (the version's object includes the fingerprint, above)
+$(BUILD)/src/core/version.o: $(BUILD)/source_id.h
+$(BUILD)/src/core/version.o: OBJ_CFLAGS += -I$(BUILD)
 $(BUILD)/%.o: %.c $(wildcard src/*.h src/*/*.h tests/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(OBJ_CFLAGS) -c $< -o $@

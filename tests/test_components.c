@@ -90,21 +90,23 @@ static void test_table(void)
         ",,,,,,,\r\n"                                /* skipped */
         "x,T4,,Roof,0.45,2,1,500\r\n"                /* above the grid */
         "x,T5,,roof,0.4,2,1,100\r\n"                 /* the grid's last row: inside, ok */
-        "x,T6,,roof,0.05,2,1,100\r\n");              /* below the grid */
+        "x,T6,,roof,0.05,2,1,100\r\n"               /* below the grid */
+        "x,T7,,roof,0.5,0.6,1,100\r\n");            /* b/h 0.3, above the grid: rocking */
     char path[600];
     snprintf(path, sizeof path, "%s/list.csv", dir);
     sl_comp_table t;
     CHECK(sl_comp_table_read(path, &r, &t, &e) == SL_OK, "list: %s:%ld:%ld: %s", e.file, e.line,
           e.col, e.msg);
-    if (t.n != 6) {
-        CHECK(0, "%zu rows, 6 expected", t.n);
+    if (t.n != 7) {
+        CHECK(0, "%zu rows, 7 expected", t.n);
         sl_comp_results_free(&r);
         return;
     }
+    /* rocking decided before outside: the sliding table does not apply at all */
     const sl_comp_verdict v[] = {SL_COMP_OK, SL_COMP_SHORT, SL_COMP_ROCKING, SL_COMP_OUTSIDE,
-                                 SL_COMP_OK, SL_COMP_OUTSIDE};
-    const long line[] = {3, 4, 5, 8, 9, 10};
-    for (size_t i = 0; i < 6; i++)
+                                 SL_COMP_OK, SL_COMP_OUTSIDE, SL_COMP_ROCKING};
+    const long line[] = {3, 4, 5, 8, 9, 10, 11};
+    for (size_t i = 0; i < 7; i++)
         CHECK(t.rows[i].verdict == v[i] && t.rows[i].line == line[i], "row %zu: verdict %d line "
               "%ld", i + 1, (int)t.rows[i].verdict, t.rows[i].line);
     CHECK_CLOSE(t.rows[0].required_mm, 75.0, 0, 0);
@@ -117,7 +119,7 @@ static void test_table(void)
     CHECK(!strcmp(t.rows[1].field[0], "say \"hi\"") && !strcmp(t.rows[2].field[0], "two\nlines") &&
           !strcmp(t.header[1], "TAG"), "fields as written");
     CHECK(t.count[SL_COMP_OK] == 2 && t.count[SL_COMP_SHORT] == 1 &&
-          t.count[SL_COMP_ROCKING] == 1 && t.count[SL_COMP_OUTSIDE] == 2, "counts");
+          t.count[SL_COMP_ROCKING] == 2 && t.count[SL_COMP_OUTSIDE] == 2, "counts");
     char why[300];
     CHECK(!strcmp(sl_comp_reason(&r, &t.rows[2], why, sizeof why), "mu 0.15 >= b/h 0.15: rocks "
                   "before it slides, check rocking (ASCE 43-05)"), "reason '%s'", why);
@@ -149,9 +151,50 @@ static void test_table(void)
     CHECK(system(cmd) == 0, "clean up");
 }
 
+/* A floor reference that is one floor's id and another's name (without case):
+ * the results are refused when read, naming both floors and files, and a row
+ * never resolves it by an order of preference (issue 39: floor=Roof took the
+ * table of roof.ini, named "Ground slab", 29 % low). */
+static void test_ambiguous_floor(void)
+{
+    char dir[] = "/tmp/sl-components-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    make_results(dir);
+    put(dir, "floors.csv", "floor_id,floor\r\nroof,Ground slab\r\ntop,ROOF\r\n");
+    put(dir, "floor_top.csv", "mu,clearance_mm,nltha_design_se_mm\r\n0.1,500,30\r\n"
+                              "0.2,400,20\r\n0.4,300,10\r\n");
+    sl_comp_results r;
+    sl_error e;
+    CHECK(sl_comp_results_load(dir, &r, &e) == SL_EINVAL && strstr(e.msg, "roof ('Ground slab'") &&
+              strstr(e.msg, "top ('ROOF'") && strstr(e.file, "floors.csv"),
+          "results refused: %s: %s", e.file, e.msg);
+    /* the resolver alone, on results made by hand: the row is refused */
+    put(dir, "floors.csv", "floor_id,floor\r\nroof,Ground slab\r\ntop,Top\r\n");
+    CHECK(sl_comp_results_load(dir, &r, &e) == SL_OK, "results: %s", e.msg);
+    if (r.n_floors == 2) {
+        char *keep = r.floors[1].name;
+        r.floors[1].name = "Roof";
+        put(dir, "list.csv", "tag,building,floor,mu,base_m,cg_height_m,clearance_mm\n"
+                             "A,,top,0.2,1,1,450\nB,,ROOF,0.2,1,1,450\n");
+        char path[600];
+        snprintf(path, sizeof path, "%s/list.csv", dir);
+        sl_comp_table t;
+        sl_status st = sl_comp_table_read(path, &r, &t, &e);
+        CHECK(st == SL_EINVAL && e.line == 3 && e.col == 3 && strstr(e.msg, "names two floors") &&
+                  strstr(e.msg, "roof (Ground slab, file") && strstr(e.msg, "top (Roof, file"),
+              "ambiguous row: %d %ld:%ld %s", (int)st, e.line, e.col, e.msg);
+        r.floors[1].name = keep;
+    }
+    sl_comp_results_free(&r);
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0, "clean up");
+}
+
 int main(void)
 {
     RUN(test_interp_twin);
     RUN(test_table);
+    RUN(test_ambiguous_floor);
     return HARNESS_END("components");
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "analysis.h"
+#include "core/version.h"
 #include "harness.h"
 #include "plant/entry.h"
 #include "plant/identity.h"
@@ -251,6 +252,19 @@ static void test_settings(void)
     OPT(n_mu, o.n_mu - 1, 0);
     /* the program version */
     expect(&ref, fl, &o, "seislide another version", 1, 0, "version");
+    /* the library's own source fingerprint, whatever version text the caller
+     * gives (core/version.h): another build's key differs even under the
+     * same text (tests/cli/test_build_id.sh builds one) */
+    const char *sid = sl_source_id();
+    CHECK(strlen(sid) == 64 && strspn(sid, "0123456789abcdef") == 64, "source id '%s'", sid);
+    int in_key = 0;
+    for (size_t i = 0; ref.key.text && i + 64 <= ref.key.len && !in_key; i++)
+        in_key = !memcmp(ref.key.text + i, sid, 64);
+    CHECK(in_key, "the key does not hold the source fingerprint");
+    CHECK(!strncmp(sl_build_id(), "seislide ", 9) && strstr(sl_build_id(), sl_version()) &&
+              strstr(sl_build_id(), "(source ") && !strncmp(strstr(sl_build_id(), "(source ") + 8,
+                                                             sid, 12),
+          "build id '%s'", sl_build_id());
     /* progress (-q) must not matter */
     sl_analysis_opts q = o;
     q.progress = progress;
@@ -295,11 +309,154 @@ static void test_seeds_pinned(void)
     }
 }
 
+/* ---- every field of the structs is in the identity or listed as not ----- */
+
+/* The whole text of a file (malloc'd), NULL when unreadable. */
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *b = NULL;
+    size_t n = 0, cap = 0, got;
+    do {
+        if (n + 4096 + 1 > cap) {
+            char *g = realloc(b, cap = 2 * cap + 8192);
+            if (!g) {
+                free(b);
+                fclose(f);
+                return NULL;
+            }
+            b = g;
+        }
+        got = fread(b + n, 1, 4096, f);
+        n += got;
+    } while (got > 0);
+    fclose(f);
+    b[n] = '\0';
+    return b;
+}
+
+static int ident_char(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+/* Does text hold `pre` immediately followed by the whole word `word`? */
+static int has_word_after(const char *text, const char *pre, const char *word)
+{
+    size_t lp = strlen(pre), lw = strlen(word);
+    for (const char *p = strstr(text, pre); p; p = strstr(p + 1, pre))
+        if (!strncmp(p + lp, word, lw) && !ident_char(p[lp + lw]))
+            return 1;
+    return 0;
+}
+
+/* The member names of `typedef struct TYPE { ... } TYPE;` in header text h
+ * (comments removed; several declarators on a line; arrays; function
+ * pointers), into names[max][64]; their count, or -1 when not found. */
+static int struct_fields(const char *h, const char *type, char names[][64], int max)
+{
+    char open[128];
+    snprintf(open, sizeof open, "typedef struct %s {", type);
+    const char *s = strstr(h, open);
+    if (!s)
+        return -1;
+    s += strlen(open);
+    const char *e = strchr(s, '}');
+    if (!e)
+        return -1;
+    char body[8192];
+    size_t k = 0;
+    for (const char *p = s; p < e && k + 1 < sizeof body; p++) {
+        if (p[0] == '/' && p[1] == '*') { /* comments out */
+            const char *q = strstr(p + 2, "*/");
+            if (!q || q > e)
+                break;
+            p = q + 1;
+            continue;
+        }
+        body[k++] = *p;
+    }
+    body[k] = '\0';
+    int n = 0;
+    for (char *decl = strtok(body, ";"); decl; decl = strtok(NULL, ";")) {
+        char *fp = strstr(decl, "(*");
+        if (fp) { /* a function pointer: the name inside (*name) */
+            char *q = fp + 2, *r = q;
+            while (ident_char(*r))
+                r++;
+            if (r > q && n < max)
+                snprintf(names[n++], 64, "%.*s", (int)(r - q), q);
+            continue;
+        }
+        /* declarators separated by commas; the name is each one's last word
+         * before any [size] */
+        for (char *d = decl; d && *d;) {
+            char *comma = strchr(d, ',');
+            if (comma)
+                *comma = '\0';
+            char *br = strchr(d, '[');
+            if (br)
+                *br = '\0';
+            char *end = d + strlen(d);
+            while (end > d && !ident_char(end[-1]))
+                end--;
+            char *beg = end;
+            while (beg > d && ident_char(beg[-1]))
+                beg--;
+            if (end > beg && n < max)
+                snprintf(names[n++], 64, "%.*s", (int)(end - beg), beg);
+            d = comma ? comma + 1 : NULL;
+        }
+    }
+    return n;
+}
+
+/* issue 39: a field of the options or of a floor that changes results and is
+ * missing from the identity would let the cache serve another setting's
+ * result. Every member of each struct, read from its header, is walked by
+ * identity.c (o->, fl->, fc->, sp->) or named in its list of fields no result
+ * depends on ("sl_floor.path"). A new field fails here until it is one or
+ * the other. */
+static void test_struct_fields_covered(void)
+{
+    static const struct {
+        const char *header, *type, *walked_as;
+        int min_fields; /* the parse found the struct whole */
+    } st[] = {{"src/analysis.h", "sl_analysis_opts", "o->", 22},
+              {"src/io/floor.h", "sl_floor", "fl->", 13},
+              {"src/io/floor.h", "sl_floor_component", "fc->", 5},
+              {"src/core/spectrum_type.h", "sl_spectrum", "sp->", 4}};
+    char *id = slurp("src/plant/identity.c");
+    CHECK(id != NULL, "src/plant/identity.c not readable (run from the source tree)");
+    for (size_t i = 0; id && i < sizeof st / sizeof st[0]; i++) {
+        char *h = slurp(st[i].header);
+        char names[64][64];
+        int n = h ? struct_fields(h, st[i].type, names, 64) : -1;
+        CHECK(n >= st[i].min_fields, "%s: %d fields of %s read, at least %d expected", st[i].header,
+              n, st[i].type, st[i].min_fields);
+        for (int f = 0; f < n; f++) {
+            char listed[140];
+            snprintf(listed, sizeof listed, "%s.", st[i].type);
+            int walked = has_word_after(id, st[i].walked_as, names[f]);
+            int named = has_word_after(id, listed, names[f]);
+            CHECK(walked != named, "%s.%s is %s in src/plant/identity.c: a field that changes a "
+                  "result goes into the walk (identity.h), one that changes none into the list "
+                  "of fields not in it", st[i].type, names[f],
+                  walked ? "both walked and listed as not" : "neither walked nor listed");
+        }
+        free(h);
+    }
+    free(id);
+}
+
 int main(void)
 {
     RUN(test_floor_fields);
     RUN(test_counts_separate);
     RUN(test_settings);
     RUN(test_seeds_pinned);
+    RUN(test_struct_fields_covered);
     return HARNESS_END("test_identity");
 }

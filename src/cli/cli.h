@@ -21,7 +21,9 @@
 #define CLI_EXIT_ERROR 1
 #define CLI_EXIT_USAGE 2
 
-/* The program's version is the library's (core/version.h). */
+/* The program's version is the library's (core/version.h); the program line
+ * of every output is the build's identity, sl_build_id(): "seislide 0.1.0
+ * (source 60785011e55b)". */
 #define SEISLIDE_VERSION SEISLIDE_VERSION_STRING
 
 /* Commands: each takes argc/argv with argv[0] the command name. */

@@ -80,7 +80,7 @@ sl_status components_write(const char *results, const char *shown, const char *f
         sl_comp_results_free(&r);
         return st;
     }
-    sl_comp_opts o = {"seislide " SEISLIDE_VERSION, cmdline, created};
+    sl_comp_opts o = {sl_build_id(), cmdline, created};
     st = sl_comp_write(&r, &t, dir, &o, err);
     if (!st)
         cli_msg("%zu components: %zu ok, %zu short, %zu rocking, %zu outside", t.n,
@@ -110,7 +110,7 @@ int cmd_components(int argc, char **argv)
     cli_command_line(cmdline, sizeof cmdline, argc, argv);
     sl_error err;
     sl_error_clear(&err);
-    sl_atomic_dir *out = cli_outdir_open(a.out, "seislide " SEISLIDE_VERSION, NULL, &err);
+    sl_atomic_dir *out = cli_outdir_open(a.out, sl_build_id(), NULL, &err);
     rc = CLI_EXIT_ERROR;
     if (!out)
         goto fail;

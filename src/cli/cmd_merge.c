@@ -20,7 +20,7 @@
 #include "report/deliver.h"
 #include "report/plant_book.h"
 
-#define VERSION_TEXT "seislide " SEISLIDE_VERSION
+#define VERSION_TEXT sl_build_id() /* the build's identity (core/version.h) */
 
 typedef struct merge_args {
     const char *out;

@@ -22,7 +22,7 @@
 
 #include "core/standards.h"
 
-#define VERSION_TEXT "seislide " SEISLIDE_VERSION
+#define VERSION_TEXT sl_build_id() /* the build's identity (core/version.h) */
 
 int cmd_run(int argc, char **argv)
 {

@@ -113,7 +113,7 @@ static int job_plan(synth_job *j)
 static int job_motions(synth_job *j)
 {
     const synth_run *o = &j->o;
-    if (!(j->outd = cli_outdir_open(o->outdir, "seislide " SEISLIDE_VERSION, NULL, &j->err))) {
+    if (!(j->outd = cli_outdir_open(o->outdir, sl_build_id(), NULL, &j->err))) {
         cli_print_error(&j->err);
         return CLI_EXIT_ERROR;
     }

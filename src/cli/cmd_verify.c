@@ -139,7 +139,7 @@ int cmd_verify(int argc, char **argv)
     sl_error err;
     sl_error_clear(&err);
     sl_atomic_dir *outd = NULL;
-    if (a.out && !(outd = cli_outdir_open(a.out, "seislide " SEISLIDE_VERSION, NULL, &err))) {
+    if (a.out && !(outd = cli_outdir_open(a.out, sl_build_id(), NULL, &err))) {
         cli_print_error(&err);
         return CLI_EXIT_ERROR;
     }
@@ -158,7 +158,7 @@ int cmd_verify(int argc, char **argv)
     }
     verify_info info;
     memset(&info, 0, sizeof info);
-    snprintf(info.version, sizeof info.version, "seislide %s", SEISLIDE_VERSION);
+    snprintf(info.version, sizeof info.version, "%s", sl_build_id());
     compiler_text(info.compiler, sizeof info.compiler);
     snprintf(info.flags, sizeof info.flags, "%s", SL_BUILD_FLAGS);
     snprintf(info.vector, sizeof info.vector, "engine %s, spectra %s%s",

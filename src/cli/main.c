@@ -68,7 +68,7 @@ int main(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (!strcmp(argv[1], "--version")) {
-        printf("seislide %s\n", SEISLIDE_VERSION);
+        printf("%s\n", sl_build_id());
         return CLI_EXIT_OK;
     }
     for (size_t i = 0; i < N_COMMANDS; i++)

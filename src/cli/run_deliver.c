@@ -16,7 +16,7 @@
 #include "report/deliver.h"
 #include "report/plant_book.h"
 
-#define VERSION_TEXT "seislide " SEISLIDE_VERSION
+#define VERSION_TEXT sl_build_id() /* the build's identity (core/version.h) */
 
 /* Write every result of shard K into the fresh folder, with the manifest. */
 static sl_status write_shard(const sl_plant *p, const char *dir, const run_args *a,

@@ -193,7 +193,7 @@ int run_parse(int argc, char **argv, run_args *a)
     *a = (run_args){.out = "output", .abs_se_mm = 1e3 * SL_ANALYSIS_ABS_SE_M,
                     .max_sets = SL_ANALYSIS_MAX_SETS,
                     .created = cli_created_default(),
-                    .dop = {.version = "seislide " SEISLIDE_VERSION}};
+                    .dop = {.version = sl_build_id()}};
     sl_analysis_opts_default(&a->ao);
     int rc = cli_command_parse(&cmd, argc, argv, a);
     if (rc == CLI_EXIT_OK)

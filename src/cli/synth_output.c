@@ -206,12 +206,12 @@ int synth_write_outputs(const synth_output *o, const sl_synth_set *sets, size_t 
                 return CLI_EXIT_ERROR;
             }
             /* A title too long for one line is cut (it is free text). */
-            int tw = match ? snprintf(title, sizeof title, "%s matched to %s (seislide %s)",
-                                      o->match[c], desc[c], SEISLIDE_VERSION)
+            int tw = match ? snprintf(title, sizeof title, "%s matched to %s (%s)",
+                                      o->match[c], desc[c], sl_build_id())
                            : snprintf(title, sizeof title,
-                                      "set %02lu %s: %s, seed %s (seislide %s)",
+                                      "set %02lu %s: %s, seed %s (%s)",
                                       (unsigned long)(k + 1), cn, desc[c], seed,
-                                      SEISLIDE_VERSION);
+                                      sl_build_id());
             if (tw < 0)
                 title[0] = '\0';
             sl_status st = o->csv ? write_csv_motion(path, m, &err)

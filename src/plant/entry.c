@@ -2,6 +2,7 @@
  * line of a table: adding a field of sl_analysis the writers read is one
  * line here (and changes the schema hash, so older entries are recomputed). */
 #include "plant/entry.h"
+#include "core/version.h"
 #include "plant/identity.h"
 
 #include <stdio.h>
@@ -174,13 +175,15 @@ void sl_entry_key_hash(const char *text, size_t len, char out[17])
 }
 
 /* The key text is the same byte encoding as the entries (pbuf.h): the
- * program, the schema, then the floor's identity (identity.h). */
+ * program, the library's source fingerprint, the schema, then the floor's
+ * identity (identity.h). */
 sl_status sl_entry_key_make(const sl_floor *fl, const sl_analysis_opts *o, const char *version,
                             sl_entry_key *k, sl_error *err)
 {
     sl_pbuf w = {0};
     sl_pbuf_str(&w, "seislide floor result");
     sl_pbuf_str(&w, version);
+    sl_pbuf_str(&w, sl_source_id()); /* the code that computed it (core/version.h) */
     sl_pbuf_u64(&w, schema_hash());
     sl_identity_write(&w, fl, o); /* the settings and the floor (identity.h) */
     if (w.oom) {

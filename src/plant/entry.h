@@ -4,8 +4,12 @@
  * read from an sl_analysis, so that a result read back gives byte-identical
  * outputs.
  *
- * Key. The key text is: the program version, the entry schema (a hash of
- * the field tables of entry.c, so adding a field invalidates old entries),
+ * Key. The key text is: the program version (the caller's text: the build's
+ * identity, core/version.h), the fingerprint of the library's sources
+ * (sl_source_id(): any change of the code, a constant or the compile flags
+ * gives other keys, so a cache never serves the results of another build),
+ * the entry schema (a hash of the field tables of entry.c, so adding a
+ * field invalidates old entries),
  * and the floor's identity (identity.h: every setting that changes a
  * result, the friction grid and the floor's numbers in SI, every double as
  * its exact bits; the same walk makes the floor's seed). Nothing else: not

@@ -4,6 +4,19 @@
 
 #include <string.h>
 
+/* Every field of sl_analysis_opts, sl_floor, sl_floor_component and
+ * sl_spectrum is either walked below (o->, fl->, fc->, sp->) or named in
+ * this list of fields no result depends on (identity.h, "Not part of it");
+ * tests/test_identity.c reads the structs from their headers and fails on
+ * a field that is neither, so a new setting cannot be left out of the key
+ * by forgetting it:
+ *   not sl_analysis_opts.progress, sl_analysis_opts.progress_ctx
+ *   not sl_floor.path, sl_floor.name, sl_floor.description, sl_floor.building,
+ *       sl_floor.format, sl_floor.elevation_m, sl_floor.units, sl_floor.units_line,
+ *       sl_floor.units_text, sl_floor.h2_same_as_h1
+ *   not sl_floor_component.zpa_given, sl_floor_component.line
+ */
+
 /* The walk's two outputs: the text (when w is not NULL) and the FNV-1a
  * hash of the floor's numbers (the seed's base). */
 typedef struct walk {

@@ -175,18 +175,42 @@ static sl_status find_building(const sl_comp_results *r, const char *path, const
                            known_buildings(r, known, sizeof known));
 }
 
+/* A floor of the results for a message: "roof (Ground slab, file roof.ini)". */
+static char *floor_named(const sl_comp_floor *f, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s (%s, file %s)", f->id, f->name, f->file ? f->file : "-");
+    return buf;
+}
+
+/* The floor a row's reference names in building bi: the one floor of that
+ * building whose id or name it is, compared without case as the workbook's
+ * MATCH compares; a reference two floors answer to (one's id, another's
+ * name) is refused naming both, never resolved by an order of preference. */
 static sl_status find_floor(const sl_comp_results *r, const char *path, const sl_csvrec *w,
                             int col, size_t bi, size_t *fi, sl_error *err)
 {
     char b[1024], known[KNOWN_MAX];
     const char *s = sl_csv_trimmed(w->f[col], b, sizeof b), *bld = r->buildings[bi];
-    for (int by_name = 0; by_name < 2; by_name++)
-        for (size_t i = 0; i < r->n_floors; i++)
-            if (!strcmp(r->floors[i].building, bld) &&
-                !strcasecmp(s, by_name ? r->floors[i].name : r->floors[i].id)) {
-                *fi = i;
-                return SL_OK;
-            }
+    size_t hit = r->n_floors;
+    for (size_t i = 0; i < r->n_floors; i++) {
+        const sl_comp_floor *f = &r->floors[i];
+        if (strcmp(f->building, bld) || (strcasecmp(s, f->id) && strcasecmp(s, f->name)))
+            continue;
+        if (hit < r->n_floors) {
+            char one[600], two[600];
+            return sl_error_set_at(err, SL_EINVAL, path, w->fline[col], col + 1,
+                                   "floor '%s' names two floors of the results: %s and %s (ids "
+                                   "and names compared without case): rename one floor and "
+                                   "rerun seislide run",
+                                   as_written(s).s, floor_named(&r->floors[hit], one, sizeof one),
+                                   floor_named(f, two, sizeof two));
+        }
+        hit = i;
+    }
+    if (hit < r->n_floors) {
+        *fi = hit;
+        return SL_OK;
+    }
     char in[600] = "";
     if (r->is_plant)
         snprintf(in, sizeof in, " in building %s", bld);

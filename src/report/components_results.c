@@ -165,6 +165,7 @@ static sl_status load_building(sl_comp_results *r, const char *building, const c
     sl_csvrec h = {0}, w = {0};
     static const char *const names[] = {"floor_id", "floor"};
     int col[2];
+    const size_t first = r->n_floors;
     st = sl_csv_header(&rd, &h, names, 2, col, err);
     for (int got; !st && (got = sl_csvread_next(&rd, &w, err)) != 0;) {
         if (got < 0) {
@@ -193,6 +194,20 @@ static sl_status load_building(sl_comp_results *r, const char *building, const c
     }
     if (!st && !r->n_floors)
         st = sl_error_set(err, SL_EPARSE, path, rd.line, "no floors listed");
+    /* every reference names one floor (report.h, sl_report_check_floors), so that a
+     * row and the workbook's formulas, which try ids before names, find the same */
+    for (size_t i = first; !st && i < r->n_floors; i++)
+        for (size_t j = first; !st && j < i; j++) {
+            const sl_comp_floor *a = &r->floors[j], *b = &r->floors[i];
+            if (sl_report_floor_refs_clash(a->id, a->name, b->id, b->name))
+                st = sl_error_set(err, SL_EINVAL, path, 0,
+                                  "floors %s ('%s', file %s) and %s ('%s', file %s) share a "
+                                  "reference (ids and names compared without case), so a "
+                                  "component's floor could name either: rename one floor and "
+                                  "rerun seislide run",
+                                  a->id, a->name, a->file ? a->file : "-", b->id, b->name,
+                                  b->file ? b->file : "-");
+        }
     sl_csvrec_free(&h);
     sl_csvrec_free(&w);
     sl_text_free(&t);

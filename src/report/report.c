@@ -73,28 +73,62 @@ char *sl_report_file_name(const char *id, char *buf, size_t n)
     return buf;
 }
 
+int sl_report_floor_refs_clash(const char *id_a, const char *name_a, const char *id_b,
+                               const char *name_b)
+{
+    if (!strcasecmp(id_a, id_b))
+        return 1;
+    if (!strcasecmp(name_a, name_b))
+        return 2;
+    if (!strcasecmp(id_b, name_a))
+        return 3;
+    if (!strcasecmp(name_b, id_a))
+        return 4;
+    return 0;
+}
+
 sl_status sl_report_check_floors(const sl_report *r, sl_error *err)
 {
     for (size_t i = 0; i < r->n_floors; i++)
         for (size_t j = 0; j < i; j++) {
             const sl_report_floor *a = &r->floors[j], *b = &r->floors[i];
             char fa[4 * SL_RPT_ID_MAX + 1], fb[4 * SL_RPT_ID_MAX + 1];
-            if (!strcmp(a->id, b->id))
+            switch (sl_report_floor_refs_clash(a->id, a->name, b->id, b->name)) {
+            case 1:
                 return sl_error_set(err, SL_EINVAL, b->path, 0,
-                                    "floor id '%s' (from the file name) is also that of %s: "
+                                    "floor id '%s' (from the file name) is also that of %s%s: "
                                     "rename one file, the outputs are named by it",
-                                    b->id, a->path);
+                                    b->id, a->path,
+                                    strcmp(a->id, b->id) ? " (floor ids are compared without "
+                                                           "case)" : "");
+            case 2:
+                return sl_error_set(err, SL_EINVAL, b->path, 0,
+                                    "floor name '%s' is also that of %s: floor names must "
+                                    "differ (the workbook's Lookup chooses by name)",
+                                    b->name, a->path);
+            case 3:
+                return sl_error_set(err, SL_EINVAL, b->path, 0,
+                                    "floor id '%s' (from the file name) is the name of the floor "
+                                    "of %s ('%s', ids and names compared without case): a "
+                                    "components list's floor '%s' would name two floors; "
+                                    "rename the file or that floor",
+                                    b->id, a->path, a->name, b->id);
+            case 4:
+                return sl_error_set(err, SL_EINVAL, b->path, 0,
+                                    "floor name '%s' is the floor id of %s (from its file name; "
+                                    "ids and names compared without case): a components list's "
+                                    "floor '%s' would name two floors; rename the floor or that "
+                                    "file",
+                                    b->name, a->path, b->name);
+            default:
+                break;
+            }
             if (!strcmp(sl_report_file_name(a->id, fa, sizeof fa),
                         sl_report_file_name(b->id, fb, sizeof fb)))
                 return sl_error_set(err, SL_EINVAL, b->path, 0,
                                     "floor id '%s' (from the file name) gives the output file "
                                     "name floor_%s.csv, as %s does: rename one file",
                                     b->id, fb, a->path);
-            if (!strcasecmp(a->name, b->name))
-                return sl_error_set(err, SL_EINVAL, b->path, 0,
-                                    "floor name '%s' is also that of %s: floor names must "
-                                    "differ (the workbook's Lookup chooses by name)",
-                                    b->name, a->path);
         }
     return SL_OK;
 }

@@ -165,9 +165,18 @@ SL_API char *sl_report_file_name(const char *id, char *buf, size_t n);
  * one (or is at its end). */
 SL_API size_t sl_report_utf8_len(const char *s);
 
-/* Check that the floors' ids and names are unique (names compared without
- * case, as the workbook's MATCH does). SL_EINVAL naming both files. */
+/* Check that every floor reference is unique: no floor's id or name is
+ * another floor's id or name, compared without case (as the workbook's
+ * MATCH and a components list compare them; a floor's own id may be its
+ * name), and no two ids give the same output file name. SL_EINVAL naming
+ * both files. */
 SL_API sl_status sl_report_check_floors(const sl_report *r, sl_error *err);
+/* Do two floors (id and name each) share a reference, compared without case?
+ * 0 no; 1 the ids; 2 the names; 3 b's id is a's name; 4 b's name is a's id.
+ * The one rule of the run (sl_report_check_floors) and of a components list
+ * (report/components.h). */
+SL_API int sl_report_floor_refs_clash(const char *id_a, const char *name_a, const char *id_b,
+                                      const char *name_b);
 
 /* Write the workbook to path. Returns SL_OK, or SL_EIO/SL_EINVAL with the
  * path and libxlsxwriter's message. All floors must share the mu grid. */

@@ -30,6 +30,18 @@ t_expect_err dup-id-msg "x.ini: floor id 'x'.*rename one file"; nothing_left dup
 sed 's/^name = .*/name = AUX BLDG, EL. 12 M/' floors/02-el12.ini > "$D/b/y.ini"
 t_run run "$D/fl/aux-a.ini" "$D/b/y.ini" -o "$D/dupn" $FAST; t_expect_rc dup-name 1
 t_expect_err dup-name-msg "floor name .* is also that of"; nothing_left dup-name "$D/dupn"
+# a floor id that is another floor's name (without case): a components list's
+# floor=Roof would name two floors; refused naming both files, nothing written
+sed 's/^name = .*/name = Ground slab/' floors/02-el12.ini > "$D/a/roof.ini"
+sed 's/^name = .*/name = Roof/' floors/04-roof36.ini > "$D/b/top.ini"
+t_run run "$D/a/roof.ini" "$D/b/top.ini" -o "$D/dupr" $FAST; t_expect_rc id-name 1
+t_expect_err id-name-msg "b/top.ini: floor name 'Roof' is the floor id of .*a/roof.ini"; nothing_left id-name "$D/dupr"
+t_run run "$D/b/top.ini" "$D/a/roof.ini" -o "$D/dupr" $FAST; t_expect_rc name-id 1
+t_expect_err name-id-msg "a/roof.ini: floor id 'roof' .* is the name of the floor of .*b/top.ini \('Roof'"
+# ids compared without case
+sed 's/^name = .*/name = Upper/' floors/02-el12.ini > "$D/b/ROOF.ini"
+t_run run "$D/a/roof.ini" "$D/b/ROOF.ini" -o "$D/dupr" $FAST; t_expect_rc id-case 1
+t_expect_err id-case-msg "ROOF.ini: floor id 'ROOF' .* is also that of .*a/roof.ini \(floor ids are compared without case\)"
 
 # a second run with fewer floors: the old floor CSVs are gone
 t_run run "$D/fl/01-ground.ini" -o "$D/res" $FAST; t_expect_rc fewer 0

@@ -23,7 +23,7 @@ ls -a "$D/out1" | grep -q '\.tmp-' && t_fail "temporary file left" || t_pass
 
 # CSV: RFC 4180 line ends and units in the column names
 grep -v "^#" "$D/out1/summary.csv" | head -1 | grep -q "^mu,01-ground_clearance_mm,04-roof36_clearance_mm" && t_pass || t_fail "summary header"
-head -1 "$D/out1/summary.csv" | od -c | grep -q '\\r  \\n' && t_pass || t_fail "CRLF line ends"
+[ "$(head -1 "$D/out1/summary.csv" | tail -c 2 | od -An -c | tr -d ' ')" = '\r\n' ] && t_pass || t_fail "CRLF line ends"
 F0="$D/out1/floor_04-roof36.csv"
 F="$D/roof-table.csv"; grep -v "^#" "$F0" > "$F"
 head -1 "$F" | grep -q "^mu,mu_g_over_zpa,nltha_mean_mm,nltha_sd_mm,nltha_design_mm,nltha_design_se_mm,nltha_design_lo90_mm,nltha_design_hi90_mm,asce_best_mm,asce_design_mm,cap_mm,clearance_mm,flags" && t_pass || t_fail "floor CSV header: $(head -1 "$F")"
