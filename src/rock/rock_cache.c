@@ -1,6 +1,7 @@
 /* rock_cache.c - rocking results kept in the cache folder (rock_cache.h). */
 #include "rock/rock_cache.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
