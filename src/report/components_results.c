@@ -70,9 +70,9 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
             }
         }
         static const char *const keys[] = {"program", "command", "created", "seed", "project",
-                                           "document", "revision"};
+                                           "document", "revision", "clearance_policy"};
         char **dst[] = {&r->program, &r->command, &r->created, &r->seed, &r->project,
-                        &r->document, &r->revision};
+                        &r->document, &r->revision, &r->policy};
         for (size_t k = 0; first && k < sizeof keys / sizeof keys[0]; k++)
             if (!*dst[k] && (v = comment_value(s, n, keys[k], b, sizeof b)))
                 *dst[k] = dupstr(v);
@@ -83,9 +83,13 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
     int col[3];
     size_t k = 0;
     st = sl_csv_header(&rd, &h, names, 3, col, err);
+    /* the ASCE design value beside it (a table without the column: empty) */
+    int col_asce = st ? -1 : sl_csv_header_col(&h, "asce_design_mm");
     if (!st && !(fl->clearance_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
         st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
     if (!st && !(fl->se_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
+        st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
+    if (!st && !(fl->asce_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
         st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
     int first_floor = !r->mu;
     double *mu = first_floor ? calloc(64, sizeof *mu) : NULL;
@@ -97,10 +101,11 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
             st = (sl_status)-got;
             break;
         }
-        double m, c, e;
+        double m, c, e, a = NAN;
         if ((st = sl_csv_num(&rd, &w, col[0], &m, 0, err)) ||
             (st = sl_csv_num(&rd, &w, col[1], &c, 0, err)) ||
-            (st = sl_csv_num(&rd, &w, col[2], &e, 1, err)))
+            (st = sl_csv_num(&rd, &w, col[2], &e, 1, err)) ||
+            (col_asce >= 0 && (st = sl_csv_num(&rd, &w, col_asce, &a, 1, err))))
             break;
         if (first_floor) {
             if (k == cap) {
@@ -113,7 +118,10 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
                 g[2] = realloc(fl->se_mm, 2 * cap * sizeof *mu);
                 if (g[2])
                     fl->se_mm = g[2];
-                if (!g[0] || !g[1] || !g[2]) {
+                double *ga = realloc(fl->asce_mm, 2 * cap * sizeof *mu);
+                if (ga)
+                    fl->asce_mm = ga;
+                if (!g[0] || !g[1] || !g[2] || !ga) {
                     st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
                     break;
                 }
@@ -133,6 +141,7 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
         }
         fl->clearance_mm[k] = c;
         fl->se_mm[k] = e;
+        fl->asce_mm[k] = a;
     }
     if (!st && k == 0)
         st = sl_error_set(err, SL_EPARSE, path, rd.line, "no rows under the header");
@@ -303,6 +312,7 @@ void sl_comp_results_free(sl_comp_results *r)
         free(f->file);
         free(f->clearance_mm);
         free(f->se_mm);
+        free(f->asce_mm);
     }
     for (size_t b = 0; b < r->n_buildings; b++) {
         free(r->buildings[b]);
@@ -315,7 +325,7 @@ void sl_comp_results_free(sl_comp_results *r)
     free(r->dir);
     free(r->single);
     char **s[] = {&r->program, &r->command, &r->created, &r->seed, &r->project, &r->document,
-                  &r->revision};
+                  &r->revision, &r->policy};
     for (size_t k = 0; k < sizeof s / sizeof s[0]; k++)
         free(*s[k]);
     memset(r, 0, sizeof *r);
@@ -382,7 +392,7 @@ sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *er
             st = load_building(r, "", dir, err);
     }
     char **s[] = {&r->program, &r->command, &r->created, &r->seed, &r->project, &r->document,
-                  &r->revision};
+                  &r->revision, &r->policy};
     for (size_t k = 0; !st && k < sizeof s / sizeof s[0]; k++)
         if (!*s[k] && !(*s[k] = dupstr("-")))
             st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
