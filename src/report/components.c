@@ -54,6 +54,21 @@ double sl_comp_interp(const double *mu, const double *c, size_t n, double mu_at)
     return mu1 == mu0 ? c0 : c0 + (mu_at - mu0) * (c1 - c0) / (mu1 - mu0);
 }
 
+int sl_comp_floor_at(const sl_comp_results *r, size_t fi, double mu, sl_comp_at *a)
+{
+    const sl_comp_floor *fl = &r->floors[fi];
+    a->required_mm = sl_comp_interp(r->mu, fl->clearance_mm, r->n_mu, mu);
+    a->se_mm = sl_comp_interp(r->mu, fl->se_mm, r->n_mu, mu);
+    a->asce_mm = sl_comp_interp(r->mu, fl->asce_mm, r->n_mu, mu);
+    a->k0 = a->k1 = 0;
+    if (isnan(a->required_mm))
+        return 0;
+    while (a->k0 + 1 < r->n_mu && r->mu[a->k0 + 1] <= mu) /* as sl_comp_interp finds it */
+        a->k0++;
+    a->k1 = a->k0 + 1 < r->n_mu ? a->k0 + 1 : a->k0;
+    return 1;
+}
+
 /* mu as the workbook's TEXT(x, "0.0##") shows it. */
 static char *fmt_mu(double x, char *buf, size_t n)
 {
@@ -202,6 +217,18 @@ static sl_status find_floor(const sl_comp_results *r, const char *path, const sl
                            "unknown floor '%s'%s; its floors (id (name)): %s",
                            as_written(s).s, in,
                            known_floors(r, bld, known, sizeof known));
+}
+
+sl_status sl_comp_find(const sl_comp_results *r, const char *building, const char *floor,
+                       size_t *fi, sl_error *err)
+{
+    /* a record of two fields, resolved as a row of the list is (no file, no line) */
+    char *f[2] = {(char *)(building ? building : ""), (char *)(floor ? floor : "")};
+    long fline[2] = {0, 0};
+    const sl_csvrec w = {.f = f, .fline = fline, .n = 2};
+    size_t bi = 0;
+    sl_status st = find_building(r, NULL, &w, 0, &bi, err);
+    return st ? st : find_floor(r, NULL, &w, 1, bi, fi, err);
 }
 
 /* A number of a row that must be > 0 (or >= 0 with nonneg); in a list
@@ -470,12 +497,13 @@ static int read_row(const sl_comp_results *r, sl_comp_table *t, sl_csvrec *w, sl
     if (k->n != n0)
         return 0;
     x->line = w->line;
-    const sl_comp_floor *fl = &r->floors[x->floor];
     /* Shenton (1996): a rigid block slides before it rocks when mu < b/h */
     x->b_over_h = x->base_m / (2 * x->cg_height_m);
-    x->required_mm = sl_comp_interp(r->mu, fl->clearance_mm, r->n_mu, x->mu);
-    x->se_mm = sl_comp_interp(r->mu, fl->se_mm, r->n_mu, x->mu);
-    x->asce_mm = sl_comp_interp(r->mu, fl->asce_mm, r->n_mu, x->mu);
+    sl_comp_at at;
+    sl_comp_floor_at(r, x->floor, x->mu, &at);
+    x->required_mm = at.required_mm;
+    x->se_mm = at.se_mm;
+    x->asce_mm = at.asce_mm;
     x->margin_mm = x->clearance_mm - x->required_mm;
     x->verdict = verdict(x);
     return 1;

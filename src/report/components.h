@@ -122,6 +122,13 @@ typedef struct sl_comp_floor {
     long size_bytes;
     double *clearance_mm, *se_mm; /* n_mu each; se NAN when the table leaves it empty */
     double *asce_mm;         /* n_mu: the ASCE design value (NAN: empty in the table) */
+    char **flags;            /* n_mu: the flags of each grid row ("" when none) */
+    size_t n_flags;          /* of them allocated */
+    double zpa_g;            /* the horizontal ZPA (horizontal_zpa_g line; NAN: absent) */
+    long n_sets;             /* floors.csv n_sets (-1: absent) */
+    char *sets_stop;         /* floors.csv sets_stop ("" when absent) */
+    char *note;              /* floors.csv note ("" when none) */
+    char *warnings;          /* floors.csv warnings, when the table has the column ("") */
 } sl_comp_floor;
 
 typedef struct sl_comp_results {
@@ -203,6 +210,24 @@ void sl_comp_table_free(sl_comp_table *t);
 /* The interpolation at mu on the grid mu[0..n) of the values c (the
  * Lookup's rule above): NAN when mu is off the grid or NAN. */
 double sl_comp_interp(const double *mu, const double *c, size_t n, double mu_at);
+
+/* The floor a building and a floor id or name give, resolved as a
+ * components row is (the name rule; building "" or NULL: the only one, or
+ * the folder's own name for one building). SL_EINVAL naming the known
+ * buildings or the building's floors (err has no file: the caller says
+ * where the names came from). */
+sl_status sl_comp_find(const sl_comp_results *r, const char *building, const char *floor,
+                       size_t *fi, sl_error *err);
+
+/* One floor's numbers at mu, as a components row gets them: the required
+ * clearance, its standard error and the ASCE value interpolated on the grid
+ * (NAN off it), and the grid rows around mu (the last at or below, and the
+ * next: their flags are the Lookup's). Returns 1 when mu is on the grid. */
+typedef struct sl_comp_at {
+    double required_mm, se_mm, asce_mm;
+    size_t k0, k1;
+} sl_comp_at;
+int sl_comp_floor_at(const sl_comp_results *r, size_t fi, double mu, sl_comp_at *a);
 
 /* The verdict's reason in words into buf ("mu 0.45 >= b/h 0.36: rocks
  * before it slides, check rocking (ASCE 43-05)"); the workbook's formula
