@@ -2,9 +2,17 @@
  * interpolation against sl_design_clearance_at() on random tables; a
  * hand-made results folder and list (BOM, CRLF, comments, quoted commas,
  * quotes and line breaks, a blank row) with every verdict worked out by
- * hand, the boundaries included (mu = b/h rocks; a margin of 0 is ok; the
- * grid's ends are inside); refused rows naming line and column. */
+ * hand, the boundaries included (mu = b/h rocks; a margin of 0 with an SE
+ * is marginal, with none ok; a margin of exactly 2 SE is ok; the grid's
+ * ends are inside); the ASCE value beside the required clearance; refused
+ * rows naming line and column, every one of a list in one pass; a list
+ * separated by ';' with decimal commas; the name rule against the C
+ * library's own Unicode case tables. */
 #include <gsl/gsl_rng.h>
+#include <locale.h>
+#include <wctype.h>
+
+#include "io/casefold.h"
 
 #include "harness.h"
 #include "method/design.h"
@@ -62,8 +70,9 @@ static void make_results(const char *dir)
     put(dir, "floors.csv", "# program: seislide test\r\n# seed: 7\r\nfloor_id,floor,file\r\n"
                            "gf,\"Ground, north\",gf.ini\r\nroof,Roof,roof.ini\r\n");
     put(dir, "floor_gf.csv", "# program: seislide test\r\n# seed: 7\r\n# floor_file_crc32: 0000abcd gf "
-                             "(gf.ini, 12 bytes)\r\nmu,clearance_mm,nltha_design_se_mm\r\n"
-                             "0.1,100,10\r\n0.2,50,6\r\n0.4,10,2\r\n");
+                             "(gf.ini, 12 bytes)\r\n# clearance_policy: nltha\r\n"
+                             "mu,clearance_mm,nltha_design_se_mm,asce_design_mm\r\n"
+                             "0.1,100,10,200\r\n0.2,50,6,120\r\n0.4,10,2,\r\n");
     put(dir, "floor_roof.csv", "mu,mu_g_over_zpa,clearance_mm,nltha_design_se_mm\r\n"
                                "0.1,1,300,30\r\n0.2,2,200,20\r\n0.4,4,100,\r\n");
 }
@@ -81,6 +90,9 @@ static void test_table(void)
     CHECK(r.n_mu == 3 && !r.is_plant && !strcmp(r.seed, "7") && r.floors[0].crc32 == 0xabcd,
           "grid %zu, seed %s", r.n_mu, r.seed);
     CHECK(isnan(r.floors[1].se_mm[2]), "an empty SE is NAN");
+    CHECK(!strcmp(r.policy, "nltha") && r.floors[0].asce_mm[1] == 120 &&
+          isnan(r.floors[0].asce_mm[2]) && isnan(r.floors[1].asce_mm[0]),
+          "policy %s; ASCE read, empty or absent NAN", r.policy);
     /* BOM, CRLF, a comment, quoted fields, an extra column first, a blank row */
     put(dir, "list.csv",
         "\xEF\xBB\xBF# the list\r\nnote,TAG,Building,Floor,MU,base_m,cg_height_m,clearance_mm\r\n"
@@ -95,22 +107,24 @@ static void test_table(void)
     char path[600];
     snprintf(path, sizeof path, "%s/list.csv", dir);
     sl_comp_table t;
-    CHECK(sl_comp_table_read(path, &r, &t, &e) == SL_OK, "list: %s:%ld:%ld: %s", e.file, e.line,
+    CHECK(sl_comp_table_read(path, &r, &t, NULL, &e) == SL_OK, "list: %s:%ld:%ld: %s", e.file, e.line,
           e.col, e.msg);
     if (t.n != 7) {
         CHECK(0, "%zu rows, 7 expected", t.n);
         sl_comp_results_free(&r);
         return;
     }
-    /* rocking decided before outside: the sliding table does not apply at all */
-    const sl_comp_verdict v[] = {SL_COMP_OK, SL_COMP_SHORT, SL_COMP_ROCKING, SL_COMP_OUTSIDE,
-                                 SL_COMP_OK, SL_COMP_OUTSIDE, SL_COMP_ROCKING};
+    /* T1: margin 0 with an SE of 8: marginal; T5: margin 0, its SE empty (0): ok;
+     * rocking decided before outside: the sliding table does not apply at all */
+    const sl_comp_verdict v[] = {SL_COMP_MARGINAL, SL_COMP_SHORT, SL_COMP_ROCKING,
+                                 SL_COMP_OUTSIDE, SL_COMP_OK, SL_COMP_OUTSIDE, SL_COMP_ROCKING};
     const long line[] = {3, 4, 5, 8, 9, 10, 11};
     for (size_t i = 0; i < 7; i++)
         CHECK(t.rows[i].verdict == v[i] && t.rows[i].line == line[i], "row %zu: verdict %d line "
               "%ld", i + 1, (int)t.rows[i].verdict, t.rows[i].line);
     CHECK_CLOSE(t.rows[0].required_mm, 75.0, 0, 0);
     CHECK_CLOSE(t.rows[0].se_mm, 8.0, 0, 1e-15);
+    CHECK_CLOSE(t.rows[0].asce_mm, 160.0, 0, 1e-15);
     CHECK_CLOSE(t.rows[1].margin_mm, -0.1, 1e-12, 0);
     CHECK_CLOSE(t.rows[2].required_mm, 250.0, 0, 0);
     CHECK_CLOSE(t.rows[2].b_over_h, 0.15, 0, 1e-15);
@@ -118,13 +132,17 @@ static void test_table(void)
     CHECK(t.rows[1].floor == 0 && t.rows[2].floor == 1, "floors by name and by id, any case");
     CHECK(!strcmp(t.rows[1].field[0], "say \"hi\"") && !strcmp(t.rows[2].field[0], "two\nlines") &&
           !strcmp(t.header[1], "TAG"), "fields as written");
-    CHECK(t.count[SL_COMP_OK] == 2 && t.count[SL_COMP_SHORT] == 1 &&
+    CHECK(t.count[SL_COMP_OK] == 1 && t.count[SL_COMP_MARGINAL] == 1 &&
+          t.count[SL_COMP_SHORT] == 1 &&
           t.count[SL_COMP_ROCKING] == 2 && t.count[SL_COMP_OUTSIDE] == 2, "counts");
     char why[300];
     CHECK(!strcmp(sl_comp_reason(&r, &t.rows[2], why, sizeof why), "mu 0.15 >= b/h 0.15: rocks "
                   "before it slides, check rocking (ASCE 43-05)"), "reason '%s'", why);
     CHECK(!strcmp(sl_comp_reason(&r, &t.rows[1], why, sizeof why), "required 75.0 mm (SE 8.0) > "
                   "available 74.9 mm: 0.1 mm short"), "reason '%s'", why);
+    CHECK(!strcmp(sl_comp_reason(&r, &t.rows[0], why, sizeof why), "required 75.0 mm (SE 8.0) <= "
+                  "available 75.0 mm: margin 0.0 mm < 2 SE (16.0 mm), inside the noise of the "
+                  "motion sets"), "reason '%s'", why);
     sl_comp_table_free(&t);
     /* refused: line and column named */
     const struct { const char *text; long line, col; const char *msg; } bad[] = {
@@ -140,10 +158,90 @@ static void test_table(void)
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         put(dir, "bad.csv", bad[k].text);
         snprintf(path, sizeof path, "%s/bad.csv", dir);
-        sl_status st = sl_comp_table_read(path, &r, &t, &e);
+        sl_status st = sl_comp_table_read(path, &r, &t, NULL, &e);
         CHECK(st != SL_OK && e.line == bad[k].line && e.col == bad[k].col &&
               strstr(e.msg, bad[k].msg) && t.n == 0 && !t.rows,
               "case %zu: %d %ld:%ld %s", k, (int)st, e.line, e.col, e.msg);
+    }
+    /* the margin against 2 SE: at mu 0.1 required 100 mm, SE 10 mm */
+    put(dir, "m.csv", "tag,building,floor,mu,base_m,cg_height_m,clearance_mm\n"
+                      "M1,,gf,0.1,2,1,120\nM2,,gf,0.1,2,1,119.9\nM3,,gf,0.1,2,1,100\n"
+                      "M4,,gf,0.1,2,1,99.9\n");
+    snprintf(path, sizeof path, "%s/m.csv", dir);
+    if (sl_comp_table_read(path, &r, &t, NULL, &e) == SL_OK && t.n == 4) {
+        CHECK(t.rows[0].verdict == SL_COMP_OK && t.rows[1].verdict == SL_COMP_MARGINAL &&
+              t.rows[2].verdict == SL_COMP_MARGINAL && t.rows[3].verdict == SL_COMP_SHORT,
+              "2 SE exactly ok, below it marginal, margin 0 marginal, below 0 short: %d %d %d %d",
+              (int)t.rows[0].verdict, (int)t.rows[1].verdict, (int)t.rows[2].verdict,
+              (int)t.rows[3].verdict);
+        sl_comp_table_free(&t);
+    } else {
+        CHECK(0, "m.csv: %s", e.msg);
+    }
+    /* ';' and decimal commas: the same rows as ',' and points */
+    put(dir, "semi.csv", "tag;building;floor;mu;base_m;cg_height_m;clearance_mm;note\r\n"
+                         "S1;;gf;0,15;1;1;74,9;\"a; b\"\r\nS2;;Roof;0.4;2;1;100;x\r\n");
+    snprintf(path, sizeof path, "%s/semi.csv", dir);
+    if (sl_comp_table_read(path, &r, &t, NULL, &e) == SL_OK && t.n == 2) {
+        CHECK(t.sep == ';' && t.rows[0].mu == 0.15 && t.rows[0].clearance_mm == 74.9 &&
+              t.rows[0].verdict == SL_COMP_SHORT && t.rows[1].verdict == SL_COMP_OK &&
+              !strcmp(t.rows[0].field[7], "a; b"), "a list separated by ';'");
+        sl_comp_table_free(&t);
+    } else {
+        CHECK(0, "semi.csv: %s:%ld:%ld: %s", e.file, e.line, e.col, e.msg);
+    }
+    put(dir, "semi2.csv", "tag;building;floor;mu;base_m;cg_height_m;clearance_mm\n"
+                          "S1;;gf;0,15;1;1;1.074,9\n");
+    snprintf(path, sizeof path, "%s/semi2.csv", dir);
+    CHECK(sl_comp_table_read(path, &r, &t, NULL, &e) == SL_EPARSE && e.line == 2 && e.col == 7 &&
+          strstr(e.msg, "one decimal comma"), "a thousands separator refused: %ld:%ld %s",
+          e.line, e.col, e.msg);
+    put(dir, "semi3.csv", "tag;building,floor;mu;base_m;cg_height_m;clearance_mm\n");
+    snprintf(path, sizeof path, "%s/semi3.csv", dir);
+    CHECK(sl_comp_table_read(path, &r, &t, NULL, &e) == SL_EPARSE && e.line == 1 &&
+          strstr(e.msg, "both ',' and ';'"), "a header with both separators: %s", e.msg);
+    /* every bad row in one pass, in file order, each with line and column */
+    put(dir, "many.csv", "tag,building,floor,mu,base_m,cg_height_m,clearance_mm\n"
+                         "A,,gf,0.2,1,1,1\n"       /* good */
+                         "B,,attic,x,1,1,1\n"      /* floor and mu: two problems */
+                         "C,,gf,0.2,1,1\n"         /* too few fields */
+                         "D,,gf,0.2,1,1,1\n"       /* good */
+                         "a,,gf,0.2,0,1,-2\n"      /* tag again, base, clearance */
+                         "E,,roof,0.2,1,1,1\n");   /* good */
+    snprintf(path, sizeof path, "%s/many.csv", dir);
+    sl_comp_problems *pb = malloc(sizeof *pb);
+    if (pb) {
+        sl_status st = sl_comp_table_read(path, &r, &t, pb, &e);
+        const long wl[] = {3, 3, 4, 6, 6, 6}, wc[] = {3, 4, 7, 1, 5, 7};
+        int same = pb->n == 6;
+        for (size_t i = 0; same && i < 6; i++)
+            same = pb->e[i].line == wl[i] && pb->e[i].col == wc[i];
+        CHECK(st != SL_OK && same && pb->n_bad_rows == 3 && pb->n_rows == 6 && !pb->n_more &&
+              t.n == 0 && !t.rows && strstr(e.msg, "3 of 6 rows refused (6 problems)") &&
+              e.line == 0 && strstr(e.file, "many.csv"), "every problem: %zu (%zu rows of %zu): "
+              "%s", pb->n, pb->n_bad_rows, pb->n_rows, e.msg);
+        for (size_t i = 0; !same && i < pb->n; i++)
+            fprintf(stderr, "    %ld:%ld %s\n", pb->e[i].line, pb->e[i].col, pb->e[i].msg);
+        /* past the cap: counted, not kept */
+        FILE *f = fopen(path, "w");
+        if (f) {
+            fputs("tag,building,floor,mu,base_m,cg_height_m,clearance_mm\n", f);
+            for (int i = 0; i < SL_COMP_MAX_PROBLEMS + 10; i++)
+                fprintf(f, "T%d,,gf,0.2,1,1,-1\n", i);
+            fclose(f);
+        }
+        st = sl_comp_table_read(path, &r, &t, pb, &e);
+        CHECK(st == SL_EINVAL && pb->n == SL_COMP_MAX_PROBLEMS && pb->n_more == 10 &&
+              pb->n_bad_rows == SL_COMP_MAX_PROBLEMS + 10 &&
+              pb->e[SL_COMP_MAX_PROBLEMS - 1].line == SL_COMP_MAX_PROBLEMS + 1,
+              "the cap: %zu kept, %zu more", pb->n, pb->n_more);
+        /* one problem: err is that problem */
+        put(dir, "one.csv", "tag,building,floor,mu,base_m,cg_height_m,clearance_mm\nA,,gf,0,1,1,1\n");
+        snprintf(path, sizeof path, "%s/one.csv", dir);
+        st = sl_comp_table_read(path, &r, &t, pb, &e);
+        CHECK(st == SL_EINVAL && pb->n == 1 && e.line == 2 && e.col == 4, "one problem: %s",
+              e.msg);
+        free(pb);
     }
     sl_comp_results_free(&r);
     char cmd[700];
@@ -179,7 +277,7 @@ static void test_ambiguous_floor(void)
         char path[600];
         snprintf(path, sizeof path, "%s/list.csv", dir);
         sl_comp_table t;
-        sl_status st = sl_comp_table_read(path, &r, &t, &e);
+        sl_status st = sl_comp_table_read(path, &r, &t, NULL, &e);
         CHECK(st == SL_EINVAL && e.line == 3 && e.col == 3 && strstr(e.msg, "names two floors") &&
                   strstr(e.msg, "roof (Ground slab, file") && strstr(e.msg, "top (Roof, file"),
               "ambiguous row: %d %ld:%ld %s", (int)st, e.line, e.col, e.msg);
@@ -191,8 +289,53 @@ static void test_ambiguous_floor(void)
     CHECK(system(cmd) == 0, "clean up");
 }
 
+/* The name rule: the spreadsheet's TRIM and case-insensitive MATCH. */
+static void test_names(void)
+{
+    CHECK(sl_comp_same_name("bâtiment RÉACTEUR", "Bâtiment réacteur"), "Latin-1");
+    CHECK(sl_comp_same_name("  Floor   el. 12 M ", "floor el. 12 m"), "blanks trimmed, runs one");
+    CHECK(sl_comp_same_name("ΑΝΤΙΔΡΑΣΤΗΡΑΣ", "αντιδραστηρας") &&
+          sl_comp_same_name("ЭТАЖ −3 М", "этаж −3 м") && sl_comp_same_name("ŁÓDŹ", "łódź"),
+          "Greek, Cyrillic, Latin Extended-A");
+    CHECK(!sl_comp_same_name("Floor 1", "Floor 2") && !sl_comp_same_name("ab", "a b") &&
+          !sl_comp_same_name("e\xCC\x81", "\xC3\xA9") && !sl_comp_same_name("a", "") &&
+          sl_comp_same_name(" ", ""), "different names stay different (no normalization)");
+    CHECK(sl_comp_same_name("\xFF\xFEx", "\xFF\xFEX") && !sl_comp_same_name("\xFFx", "\xFEx"),
+          "bytes that are not UTF-8 kept");
+    char k[64];
+    CHECK(!strcmp(sl_casefold_key("  Ȿ  ÉTAGE ", k, sizeof k), "ȿ étage"), "key '%s'", k);
+    CHECK(!strcmp(sl_casefold_key("\xC8\xBA", k, sizeof k), "\xE2\xB1\xA5"),
+          "U+023A folds to 3 bytes");
+    /* every letter of the BMP against the C library's own case tables (glibc's
+     * C.UTF-8): a code point towlower maps, and its fold, agree, but for the
+     * foldings that are not lower cases (the micro sign, long s, final sigma,
+     * ...), where towupper of both agrees instead */
+    locale_t loc = newlocale(LC_CTYPE_MASK, "C.UTF-8", (locale_t)0);
+    if (loc == (locale_t)0)
+        SKIP("no C.UTF-8 locale: the table is not checked against the C library's");
+    size_t n = 0, bad = 0;
+    for (unsigned long c = 0; c < 0x10000; c++) {
+        if (c >= 0xD800 && c <= 0xDFFF)
+            continue;
+        wint_t lo = towlower_l((wint_t)c, loc), up = towupper_l((wint_t)c, loc);
+        unsigned long f = sl_casefold_cp(c);
+        if (lo == (wint_t)c && f == c)
+            continue;
+        n++;
+        int ok = f == (unsigned long)lo ||
+                 towupper_l((wint_t)f, loc) == towupper_l((wint_t)c, loc) ||
+                 (up != (wint_t)c && towlower_l(up, loc) == (wint_t)f);
+        if (!ok && bad++ < 5)
+            fprintf(stderr, "    U+%04lX: fold U+%04lX, towlower U+%04lX\n", c, f,
+                    (unsigned long)lo);
+    }
+    freelocale(loc);
+    CHECK(n > 1000 && bad == 0, "%zu of %zu letters disagree with the C library", bad, n);
+}
+
 int main(void)
 {
+    RUN(test_names);
     RUN(test_interp_twin);
     RUN(test_table);
     RUN(test_ambiguous_floor);

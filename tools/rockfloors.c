@@ -28,8 +28,9 @@
  *   options: -r RECORDS_DIR (default $SEISLIDE_SHARED/records or
  *            ../shared/records), -n MAX_RECORDS (0 = all), -s NSYN (24),
  *            -S SEED (1), -R SIGMA (intensity scatter, default the run's),
- *            -b BUILDINGS (letters: a 5 %, s stiff 3 %, f soft 2 %; default
- *            asf)
+ *            -b BUILDINGS (letters: a 5 %, s stiff 3 %, f soft 2 %, and the
+ *            held-out x 4 % at 2.4 Hz, y stiff 5 % at 8 Hz, z soft 3 % at
+ *            1.2 Hz; default asf)
  * Prints markdown tables; exit 0, or 1 with a message on bad input.
  */
 #include <math.h>
@@ -63,6 +64,10 @@ static const bldg BUILDINGS[] = {
     {'a', "5 % building (f1 3.0 / 4.2 Hz)", {3, {3.0, 4.2, 14.0}, 0.05}},
     {'s', "stiff 3 % building (f1 5.0 / 6.5 Hz)", {3, {5.0, 6.5, 16.0}, 0.03}},
     {'f', "soft 2 % building (f1 1.6 / 1.9 Hz)", {3, {1.6, 1.9, 12.0}, 0.02}},
+    /* held out: not used to choose the scatter of rocking (-b xyz) */
+    {'x', "held-out 4 % building (f1 2.4 / 3.0 Hz)", {3, {2.4, 3.0, 13.0}, 0.04}},
+    {'y', "held-out stiff 5 % building (f1 8.0 / 10 Hz)", {3, {8.0, 10.0, 18.0}, 0.05}},
+    {'z', "held-out soft 3 % building (f1 1.2 / 1.4 Hz)", {3, {1.2, 1.4, 11.0}, 0.03}},
 };
 
 /* The blocks: b/h x h (centre of mass), m. */

@@ -37,6 +37,7 @@ int cmd_synth(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_study(int argc, char **argv);
 int cmd_components(int argc, char **argv);
+int cmd_lookup(int argc, char **argv);
 int cmd_verify(int argc, char **argv);
 
 /*

@@ -20,21 +20,25 @@ static const char comp_head[] =
     "RESULTS is the output folder of 'seislide run' (one building, or a plant\n"
     "with <building>/ folders and plant.csv). COMPONENTS.csv has the columns\n"
     "tag, building, floor, mu, base_m, cg_height_m, clearance_mm (any order,\n"
-    "without case; other columns kept); building may be empty for one building;\n"
-    "floor is a floor id or name. Per component: the required clearance at mu\n"
-    "(linear interpolation on the floor's grid, as the workbook's Lookup), its\n"
-    "standard error, margin_mm = clearance_mm - required and the verdict:\n"
-    "rocking when mu >= b/h = base_m / (2 cg_height_m) (it rocks before it\n"
-    "slides: check rocking, ASCE/SEI 43-05); outside when mu is off the grid;\n"
-    "ok when the margin is >= 0; short otherwise. Writes OUT/" SL_COMP_CSV " and\n"
+    "without case; other columns kept; ';' between fields and decimal commas\n"
+    "read as a floor table); building may be empty for one building; floor is a\n"
+    "floor id or name (names compared as the workbook does: ends trimmed, runs\n"
+    "of blanks one, without case in any script). Per component: the required\n"
+    "clearance at mu (linear interpolation on the floor's grid, as the\n"
+    "workbook's Lookup), its standard error, the ASCE/SEI 43-05 value beside it,\n"
+    "margin_mm = clearance_mm - required and the verdict: rocking when\n"
+    "mu >= b/h = base_m / (2 cg_height_m) (it rocks before it slides: check\n"
+    "rocking, ASCE/SEI 43-05); outside when mu is off the grid; short when the\n"
+    "margin is < 0; marginal when it is below 2 standard errors; ok otherwise.\n"
+    "Writes OUT/" SL_COMP_CSV " and\n"
     "OUT/" SL_COMP_XLSX " (live formulas: rows typed in below get their verdict)\n"
     "(docs/components.md).\n"
     "\n"
     "options:\n";
 static const char comp_tail[] =
-    "\nExit status: 0 every component computed (short is a result), 1 a malformed\n"
-    "row (file:line:column named; nothing written) or unreadable results,\n"
-    "2 usage error.\n";
+    "\nExit status: 0 every component computed (short is a result), 1 malformed\n"
+    "rows (every problem named as file:line:column in one pass; nothing written)\n"
+    "or unreadable results, 2 usage error.\n";
 
 typedef struct comp_args {
     const char *out;
@@ -76,16 +80,36 @@ sl_status components_write(const char *results, const char *shown, const char *f
         sl_comp_results_free(&r);
     if (st)
         return st;
-    if ((st = sl_comp_table_read(file, &r, &t, err))) {
+    sl_comp_problems *p = malloc(sizeof *p);
+    if (!p) {
+        sl_comp_results_free(&r);
+        return sl_error_set(err, SL_ENOMEM, file, 0, "out of memory");
+    }
+    if ((st = sl_comp_table_read(file, &r, &t, p, err))) {
+        /* every bad row, each named; then how many (the caller prints err) */
+        for (size_t i = 0; p->n > 1 && i < p->n; i++)
+            cli_print_error(&p->e[i]);
+        if (p->n_more)
+            cli_msg("... and %zu more problems in %s", p->n_more, file);
+        if (p->n > 1) {
+            size_t len = strlen(err->msg);
+            snprintf(err->msg + len, sizeof err->msg - len, "; nothing written");
+        }
+        free(p);
         sl_comp_results_free(&r);
         return st;
     }
-    sl_comp_opts o = {sl_build_id(), cmdline, created};
+    free(p);
+    char date[32] = "";
+    struct tm tm;
+    if (gmtime_r(&created, &tm))
+        strftime(date, sizeof date, "%Y-%m-%d", &tm);
+    sl_comp_opts o = {sl_build_id(), cmdline, created, date[0] ? date : NULL};
     st = sl_comp_write(&r, &t, dir, &o, err);
     if (!st)
-        cli_msg("%zu components: %zu ok, %zu short, %zu rocking, %zu outside", t.n,
-                t.count[SL_COMP_OK], t.count[SL_COMP_SHORT], t.count[SL_COMP_ROCKING],
-                t.count[SL_COMP_OUTSIDE]);
+        cli_msg("%zu components: %zu ok, %zu marginal, %zu short, %zu rocking, %zu outside",
+                t.n, t.count[SL_COMP_OK], t.count[SL_COMP_MARGINAL], t.count[SL_COMP_SHORT],
+                t.count[SL_COMP_ROCKING], t.count[SL_COMP_OUTSIDE]);
     sl_comp_table_free(&t);
     sl_comp_results_free(&r);
     return st;

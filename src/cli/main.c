@@ -25,6 +25,7 @@ static const command commands[] = {
     {"verify", cmd_verify, "verification of this installed program against independent references"},
     {"study", cmd_study, "reproduce the source study from recorded motions (docs/validation.md)"},
     {"components", cmd_components, "each component of a list checked against a run's floor tables"},
+    {"lookup", cmd_lookup, "the required clearance of one floor at one mu, from a run's outputs"},
 };
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 

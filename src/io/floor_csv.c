@@ -239,21 +239,6 @@ static int check_bytes(csv *c)
     return 1;
 }
 
-/* A number written with a decimal comma (a table separated by ';', as a
- * European spreadsheet saves it): the comma becomes a point in place. 1, or
- * 0 when the token holds both a comma and a point, or two commas (a
- * thousands separator: ambiguous, refused by the caller). */
-static int decimal_comma(char *tok)
-{
-    char *comma = strchr(tok, ',');
-    if (!comma)
-        return 1;
-    if (strchr(tok, '.') || strchr(comma + 1, ','))
-        return 0;
-    *comma = '.';
-    return 1;
-}
-
 static int fail_decimal(csv *c, const char *key, const char *tok, long line, long col)
 {
     sl_quoted q = sl_text_quote(tok, strlen(tok));
@@ -293,7 +278,7 @@ static int comment_line(csv *c, const char *s, size_t n, long line)
     int ok;
     sl_floor_key fk = sl_floor_desc_key(key);
     int numeric = fk == SL_FK_ELEV || !strncmp(key, "zpa_", 4);
-    if (numeric && c->sep == ';' && !decimal_comma(value)) {
+    if (numeric && c->sep == ';' && !sl_text_decimal_comma(value)) {
         ok = fail_decimal(c, key, value, line, 0);
     } else if (fk != SL_FK_COUNT) {
         ok = sl_floor_desc_set(c->d, fk, value, line, 0);
@@ -468,7 +453,7 @@ static int data_row(csv *c, const record *r, size_t ncol, sl_floor_sa_desc **sa,
             return sl_floor_desc_fail(c->d, SL_EPARSE, r->line[k], col,
                                       "%s: empty cell (every row gives every column a value)",
                                       key);
-        if (c->sep == ';' && !decimal_comma(cell))
+        if (c->sep == ';' && !sl_text_decimal_comma(cell))
             return fail_decimal(c, key, cell, r->line[k], col);
         double x;
         if (!sl_floor_desc_number(c->d, key, cell, r->line[k], col, &x))

@@ -23,6 +23,17 @@ int sl_text_is_space(char c)
     return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r';
 }
 
+int sl_text_decimal_comma(char *tok)
+{
+    char *comma = strchr(tok, ',');
+    if (!comma)
+        return 1;
+    if (strchr(tok, '.') || strchr(comma + 1, ','))
+        return 0;
+    *comma = '.';
+    return 1;
+}
+
 char *sl_text_dup(const char *s)
 {
     return sl_text_dup_mem(s ? s : "", strlen(s ? s : ""));

@@ -95,6 +95,13 @@ typedef struct sl_quoted {
 } sl_quoted;
 sl_quoted sl_text_quote(const char *tok, size_t n);
 
+/* A number written with a decimal comma (a table separated by ';', as a
+ * European spreadsheet saves it: the floor tables, the components list):
+ * the comma becomes a point in place. 1, or 0 when the token holds both a
+ * comma and a point, or two commas (a thousands separator: ambiguous,
+ * refused by the caller). */
+int sl_text_decimal_comma(char *tok);
+
 /* A whole token as a finite number: strtod syntax plus a Fortran 'D'
  * exponent; hexadecimal, blanks inside and anything left over rejected. */
 typedef enum sl_num_result { SL_NUM_OK, SL_NUM_BAD, SL_NUM_NONFINITE } sl_num_result;

@@ -11,6 +11,7 @@
 #include <zlib.h>
 
 #include "io/atomic.h"
+#include "io/casefold.h"
 #include "io/text.h"
 #include "report/csvread.h"
 #include "report/plant_book.h"
@@ -18,8 +19,8 @@
 
 const char *const SL_COMP_COL_NAME[SL_COMP_NCOLS] = {"tag", "building", "floor", "mu", "base_m",
                                                      "cg_height_m", "clearance_mm"};
-const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS] = {"ok", "short", "rocking",
-                                                             "outside"};
+const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS] = {"ok", "marginal", "short",
+                                                             "rocking", "outside"};
 /* Room for the list of known buildings or floors in a message. */
 #define KNOWN_MAX 600
 
@@ -36,6 +37,8 @@ static unsigned long file_crc(const char *buf, size_t len)
 
 static char *dupstr(const char *s) { return sl_text_dup(s); }
 
+int sl_comp_same_name(const char *a, const char *b) { return sl_casefold_same(a, b); }
+
 /* ---- the components -------------------------------------------------------- */
 
 double sl_comp_interp(const double *mu, const double *c, size_t n, double mu_at)
@@ -49,6 +52,21 @@ double sl_comp_interp(const double *mu, const double *c, size_t n, double mu_at)
     double mu0 = mu[k0], mu1 = mu[k1], c0 = c[k0], c1 = c[k1];
     /* the Lookup's formula, operation for operation (lookup_formula.c) */
     return mu1 == mu0 ? c0 : c0 + (mu_at - mu0) * (c1 - c0) / (mu1 - mu0);
+}
+
+int sl_comp_floor_at(const sl_comp_results *r, size_t fi, double mu, sl_comp_at *a)
+{
+    const sl_comp_floor *fl = &r->floors[fi];
+    a->required_mm = sl_comp_interp(r->mu, fl->clearance_mm, r->n_mu, mu);
+    a->se_mm = sl_comp_interp(r->mu, fl->se_mm, r->n_mu, mu);
+    a->asce_mm = sl_comp_interp(r->mu, fl->asce_mm, r->n_mu, mu);
+    a->k0 = a->k1 = 0;
+    if (isnan(a->required_mm))
+        return 0;
+    while (a->k0 + 1 < r->n_mu && r->mu[a->k0 + 1] <= mu) /* as sl_comp_interp finds it */
+        a->k0++;
+    a->k1 = a->k0 + 1 < r->n_mu ? a->k0 + 1 : a->k0;
+    return 1;
 }
 
 /* mu as the workbook's TEXT(x, "0.0##") shows it. */
@@ -87,6 +105,11 @@ char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, 
         if (w->verdict == SL_COMP_OK)
             snprintf(buf, n, "required %.1f mm (SE %s) <= available %.1f mm: margin %.1f mm",
                      w->required_mm, se, w->clearance_mm, w->margin_mm);
+        else if (w->verdict == SL_COMP_MARGINAL)
+            snprintf(buf, n, "required %.1f mm (SE %s) <= available %.1f mm: margin %.1f mm "
+                     "< %g SE (%.1f mm), inside the noise of the motion sets", w->required_mm,
+                     se, w->clearance_mm, w->margin_mm, SL_COMP_MARGIN_SE,
+                     SL_COMP_MARGIN_SE * w->se_mm);
         else
             snprintf(buf, n, "required %.1f mm (SE %s) > available %.1f mm: %.1f mm short",
                      w->required_mm, se, w->clearance_mm, -w->margin_mm);
@@ -150,7 +173,7 @@ static sl_status find_building(const sl_comp_results *r, const char *path, const
     char b[512], known[KNOWN_MAX];
     const char *s = sl_csv_trimmed(w->f[col], b, sizeof b);
     if (!r->is_plant) {
-        if (!*s || (r->single && !strcasecmp(s, r->single))) {
+        if (!*s || (r->single && sl_comp_same_name(s, r->single))) {
             *bi = 0;
             return SL_OK;
         }
@@ -164,7 +187,7 @@ static sl_status find_building(const sl_comp_results *r, const char *path, const
         return SL_OK;
     }
     for (size_t k = 0; k < r->n_buildings; k++)
-        if (!strcasecmp(s, r->buildings[k])) {
+        if (sl_comp_same_name(s, r->buildings[k])) {
             *bi = k;
             return SL_OK;
         }
@@ -194,13 +217,13 @@ static sl_status find_floor(const sl_comp_results *r, const char *path, const sl
     size_t hit = r->n_floors;
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_comp_floor *f = &r->floors[i];
-        if (strcmp(f->building, bld) || (strcasecmp(s, f->id) && strcasecmp(s, f->name)))
+        if (strcmp(f->building, bld) || !(sl_comp_same_name(s, f->id) || sl_comp_same_name(s, f->name)))
             continue;
         if (hit < r->n_floors) {
             char one[600], two[600];
             return sl_error_set_at(err, SL_EINVAL, path, w->fline[col], col + 1,
                                    "floor '%s' names two floors of the results: %s and %s (ids "
-                                   "and names compared without case): rename one floor and "
+                                   "and names compared by the one name rule): rename one floor and "
                                    "rerun seislide run",
                                    as_written(s).s, floor_named(&r->floors[hit], one, sizeof one),
                                    floor_named(f, two, sizeof two));
@@ -220,23 +243,42 @@ static sl_status find_floor(const sl_comp_results *r, const char *path, const sl
                            known_floors(r, bld, known, sizeof known));
 }
 
-/* A number of a row that must be > 0 (or >= 0 with nonneg). */
-static sl_status row_num(const char *path, const sl_csvrec *w, int col, int nonneg, double *v,
-                         sl_error *err)
+sl_status sl_comp_find(const sl_comp_results *r, const char *building, const char *floor,
+                       size_t *fi, sl_error *err)
 {
-    char b[SL_TEXT_TOKEN_MAX + 1];
+    /* a record of two fields, resolved as a row of the list is (no file, no line) */
+    char *f[2] = {(char *)(building ? building : ""), (char *)(floor ? floor : "")};
+    long fline[2] = {0, 0};
+    const sl_csvrec w = {.f = f, .fline = fline, .n = 2};
+    size_t bi = 0;
+    sl_status st = find_building(r, NULL, &w, 0, &bi, err);
+    return st ? st : find_floor(r, NULL, &w, 1, bi, fi, err);
+}
+
+/* A number of a row that must be > 0 (or >= 0 with nonneg); in a list
+ * separated by ';' a decimal comma is a point (sl_text_decimal_comma). */
+static sl_status row_num(const char *path, char sep, const sl_csvrec *w, int col, int nonneg,
+                         double *v, sl_error *err)
+{
+    char b[SL_TEXT_TOKEN_MAX + 1], shown[SL_TEXT_TOKEN_MAX + 1];
     const char *s = sl_csv_trimmed(w->f[col], b, sizeof b);
-    sl_num_result nr = sl_text_parse_num(s, strlen(s), v);
+    snprintf(shown, sizeof shown, "%s", s);
     if (!*s)
         return sl_error_set_at(err, SL_EPARSE, path, w->fline[col], col + 1, "empty value");
+    if (sep == ';' && !sl_text_decimal_comma(b))
+        return sl_error_set_at(err, SL_EPARSE, path, w->fline[col], col + 1, "'%s' mixes ',' "
+                               "and '.' (or holds two commas): in a list separated by ';' write "
+                               "numbers with one decimal comma and no thousands separator, e.g. "
+                               "0,35", sl_text_quote(shown, strlen(shown)).s);
+    sl_num_result nr = sl_text_parse_num(s, strlen(s), v);
     if (nr != SL_NUM_OK)
         return sl_error_set_at(err, nr == SL_NUM_BAD ? SL_EPARSE : SL_EINVAL, path,
                                w->fline[col], col + 1, "%s value '%s'",
                                nr == SL_NUM_BAD ? "non-numeric" : "non-finite",
-                               sl_text_quote(s, strlen(s)).s);
+                               sl_text_quote(shown, strlen(shown)).s);
     if (nonneg ? !(*v >= 0) : !(*v > 0))
         return sl_error_set_at(err, SL_EINVAL, path, w->fline[col], col + 1, "value %s must be "
-                               "%s", s, nonneg ? ">= 0" : "> 0");
+                               "%s", shown, nonneg ? ">= 0" : "> 0");
     return SL_OK;
 }
 
@@ -268,9 +310,56 @@ static char **take_fields(sl_csvrec *w)
     return f;
 }
 
+/* Where the problems of a list go: into p (every one, up to the cap), or
+ * the first into err and the reading stops (p NULL). */
+typedef struct sink {
+    sl_comp_problems *p;
+    sl_error *err;
+    size_t n;                /* problems so far */
+    int stop;                /* 1: stop reading (p NULL, or a problem after which no row
+                                can be read) */
+    sl_status first;         /* the first problem's code */
+} sink;
+
+static void note(sink *k, const sl_error *e)
+{
+    if (!k->n++) {
+        k->first = e->code;
+        if (k->err)
+            *k->err = *e;
+    }
+    if (!k->p) {
+        k->stop = 1;
+        return;
+    }
+    if (k->p->n < SL_COMP_MAX_PROBLEMS)
+        k->p->e[k->p->n++] = *e;
+    else
+        k->p->n_more++;
+}
+
+/* A problem after which the reading stops (the header, a broken quote, no
+ * memory, too many rows). */
+static void fatal(sink *k, const sl_error *e)
+{
+    note(k, e);
+    k->stop = 1;
+}
+
+static void no_memory(sink *k, const char *path)
+{
+    sl_error e;
+    sl_error_set(&e, SL_ENOMEM, path, 0, "out of memory");
+    fatal(k, &e);
+}
+
 static sl_status read_header(const char *path, sl_csvread *rd, sl_csvrec *h, sl_comp_table *t,
                              sl_error *err)
 {
+    sl_status st = sl_csvread_detect_sep(rd, err);
+    if (st)
+        return st;
+    t->sep = rd->sep;
     int got = sl_csvread_next(rd, h, err);
     if (got < 0)
         return (sl_status)-got;
@@ -288,104 +377,188 @@ static sl_status read_header(const char *path, sl_csvread *rd, sl_csvrec *h, sl_
         if (!*s)
             return sl_error_set_at(err, SL_EPARSE, path, h->line, (long)c + 1, "empty column "
                                    "name");
-        for (size_t e = 0; e < c; e++) {
-            char b2[256];
-            if (!strcasecmp(s, sl_csv_trimmed(h->f[e], b2, sizeof b2)))
+        for (size_t e = 0; e < c; e++)
+            if (sl_comp_same_name(s, h->f[e]))
                 return sl_error_set_at(err, SL_EPARSE, path, h->line, (long)c + 1, "column "
                                        "'%s' again (column %zu)", sl_text_quote(s, strlen(s)).s,
                                        e + 1);
-        }
         for (int k = 0; k < SL_COMP_NCOLS; k++)
-            if (!strcasecmp(s, SL_COMP_COL_NAME[k]))
+            if (sl_comp_same_name(s, SL_COMP_COL_NAME[k]))
                 t->col[k] = (int)c;
     }
     for (int k = 0; k < SL_COMP_NCOLS; k++)
         if (t->col[k] < 0)
             return sl_error_set(err, SL_EPARSE, path, h->line, "no column '%s' in the header "
                                 "(tag, building, floor, mu, base_m, cg_height_m, clearance_mm; "
-                                "without case)", SL_COMP_COL_NAME[k]);
+                                "without case; the columns separated by ',', or all by ';')",
+                                SL_COMP_COL_NAME[k]);
     t->n_cols = h->n;
     return (t->header = take_fields(h)) ? SL_OK
                                        : sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
 }
 
-/* One data record w checked and computed into row x. */
-static sl_status read_row(const sl_comp_results *r, sl_comp_table *t, sl_csvrec *w,
-                          sl_comp_row *x, sl_error *err)
+/* The verdict of a computed row (components.h: in this order). */
+static sl_comp_verdict verdict(const sl_comp_row *x)
+{
+    if (x->mu >= x->b_over_h)
+        return SL_COMP_ROCKING;
+    if (isnan(x->required_mm))
+        return SL_COMP_OUTSIDE;
+    if (x->margin_mm < 0)
+        return SL_COMP_SHORT;
+    double se = isfinite(x->se_mm) ? x->se_mm : 0; /* an empty SE counts as 0 */
+    if (x->margin_mm < SL_COMP_MARGIN_SE * se)
+        return SL_COMP_MARGINAL;
+    return SL_COMP_OK;
+}
+
+/* The tags seen: a hash set of their keys (sl_casefold_key) with the line
+ * of each one's first row, so that a repeated tag is found in one pass. */
+typedef struct tag_set {
+    char **key;
+    long *line;
+    size_t cap, n;
+} tag_set;
+
+static size_t tag_hash(const char *s)
+{
+    size_t h = 14695981039346656037ULL & (size_t)-1; /* FNV-1a */
+    for (; *s; s++)
+        h = (h ^ (unsigned char)*s) * (size_t)1099511628211ULL;
+    return h;
+}
+
+static void tag_set_free(tag_set *s)
+{
+    for (size_t i = 0; i < s->cap; i++)
+        free(s->key[i]);
+    free(s->key);
+    free(s->line);
+    memset(s, 0, sizeof *s);
+}
+
+/* The tag's first line when it was seen before, else 0 (and it is added);
+ * -1 on no memory. */
+static long tag_seen(tag_set *s, const char *tag, long line)
+{
+    if (2 * (s->n + 1) > s->cap) {
+        tag_set g = {calloc(s->cap ? 2 * s->cap : 256, sizeof(char *)),
+                     calloc(s->cap ? 2 * s->cap : 256, sizeof(long)), s->cap ? 2 * s->cap : 256,
+                     s->n};
+        if (!g.key || !g.line) {
+            free(g.key);
+            free(g.line);
+            return -1;
+        }
+        for (size_t i = 0; i < s->cap; i++)
+            if (s->key[i]) {
+                size_t j = tag_hash(s->key[i]) & (g.cap - 1);
+                while (g.key[j])
+                    j = (j + 1) & (g.cap - 1);
+                g.key[j] = s->key[i];
+                g.line[j] = s->line[i];
+            }
+        free(s->key);
+        free(s->line);
+        *s = g;
+    }
+    char *key = malloc(2 * strlen(tag) + 1);
+    if (!key)
+        return -1;
+    sl_casefold_key(tag, key, 2 * strlen(tag) + 1);
+    size_t j = tag_hash(key) & (s->cap - 1);
+    for (; s->key[j]; j = (j + 1) & (s->cap - 1))
+        if (!strcmp(s->key[j], key)) {
+            free(key);
+            return s->line[j];
+        }
+    s->key[j] = key;
+    s->line[j] = line;
+    s->n++;
+    return 0;
+}
+
+/* One data record w checked and computed into row x: every field checked
+ * (a repeated tag against the set of tags), each problem noted in the
+ * order of the fields; 1 when the row is good. */
+static int read_row(const sl_comp_results *r, sl_comp_table *t, sl_csvrec *w, sl_comp_row *x,
+                    tag_set *tags, sink *k)
 {
     const char *path = t->path;
     const int *col = t->col;
-    if (w->n != t->n_cols)
-        return sl_error_set_at(err, SL_EPARSE, path, w->line, (long)(w->n < t->n_cols ? w->n + 1
-                               : t->n_cols + 1), "%zu fields; the header has %zu", w->n,
-                               t->n_cols);
+    sl_error e;
+    size_t n0 = k->n;
+    if (w->n != t->n_cols) { /* the fields cannot be told apart: one problem for the row */
+        sl_error_set_at(&e, SL_EPARSE, path, w->line, (long)(w->n < t->n_cols ? w->n + 1
+                        : t->n_cols + 1), "%zu fields; the header has %zu", w->n, t->n_cols);
+        note(k, &e);
+        return 0;
+    }
     char b[512];
-    if (!*sl_csv_trimmed(w->f[col[SL_COMP_TAG]], b, sizeof b))
-        return sl_error_set_at(err, SL_EPARSE, path, w->fline[col[SL_COMP_TAG]],
-                               col[SL_COMP_TAG] + 1, "empty tag");
+    const char *tag = sl_csv_trimmed(w->f[col[SL_COMP_TAG]], b, sizeof b);
+    long first = *tag ? tag_seen(tags, tag, w->line) : 0;
+    if (!*tag)
+        sl_error_set_at(&e, SL_EPARSE, path, w->fline[col[SL_COMP_TAG]], col[SL_COMP_TAG] + 1,
+                        "empty tag");
+    else if (first > 0) /* without case, as the workbook's COUNTIF compares */
+        sl_error_set_at(&e, SL_EINVAL, path, w->fline[col[SL_COMP_TAG]], col[SL_COMP_TAG] + 1,
+                        "tag '%s' again: first on line %ld", as_written(tag).s, first);
+    else if (first < 0)
+        sl_error_set(&e, SL_ENOMEM, path, 0, "out of memory");
+    if (!*tag || first)
+        (first < 0 ? fatal : note)(k, &e);
     size_t bi = 0;
-    sl_status st;
-    if ((st = find_building(r, path, w, col[SL_COMP_BUILDING], &bi, err)) ||
-        (st = find_floor(r, path, w, col[SL_COMP_FLOOR], bi, &x->floor, err)) ||
-        (st = row_num(path, w, col[SL_COMP_MU], 0, &x->mu, err)) ||
-        (st = row_num(path, w, col[SL_COMP_BASE], 0, &x->base_m, err)) ||
-        (st = row_num(path, w, col[SL_COMP_CG], 0, &x->cg_height_m, err)) ||
-        (st = row_num(path, w, col[SL_COMP_CLEARANCE], 1, &x->clearance_mm, err)))
-        return st;
+    if (!k->stop && find_building(r, path, w, col[SL_COMP_BUILDING], &bi, &e))
+        note(k, &e);
+    else if (!k->stop && find_floor(r, path, w, col[SL_COMP_FLOOR], bi, &x->floor, &e))
+        note(k, &e);
+    const struct { int c, nonneg; double *v; } num[] = {
+        {SL_COMP_MU, 0, &x->mu}, {SL_COMP_BASE, 0, &x->base_m}, {SL_COMP_CG, 0, &x->cg_height_m},
+        {SL_COMP_CLEARANCE, 1, &x->clearance_mm}};
+    for (size_t q = 0; q < sizeof num / sizeof num[0] && !k->stop; q++)
+        if (row_num(path, t->sep, w, col[num[q].c], num[q].nonneg, num[q].v, &e))
+            note(k, &e);
+    if (k->n != n0)
+        return 0;
     x->line = w->line;
-    const sl_comp_floor *fl = &r->floors[x->floor];
     /* Shenton (1996): a rigid block slides before it rocks when mu < b/h */
     x->b_over_h = x->base_m / (2 * x->cg_height_m);
-    x->required_mm = sl_comp_interp(r->mu, fl->clearance_mm, r->n_mu, x->mu);
-    x->se_mm = sl_comp_interp(r->mu, fl->se_mm, r->n_mu, x->mu);
+    sl_comp_at at;
+    sl_comp_floor_at(r, x->floor, x->mu, &at);
+    x->required_mm = at.required_mm;
+    x->se_mm = at.se_mm;
+    x->asce_mm = at.asce_mm;
     x->margin_mm = x->clearance_mm - x->required_mm;
-    if (x->mu >= x->b_over_h)
-        x->verdict = SL_COMP_ROCKING;
-    else if (isnan(x->required_mm))
-        x->verdict = SL_COMP_OUTSIDE;
-    else if (x->margin_mm >= 0)
-        x->verdict = SL_COMP_OK;
-    else
-        x->verdict = SL_COMP_SHORT;
-    if (!(x->field = take_fields(w)))
-        return sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-    return SL_OK;
+    x->verdict = verdict(x);
+    return 1;
 }
 
 sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp_table *t,
-                             sl_error *err)
+                             sl_comp_problems *p, sl_error *err)
 {
     memset(t, 0, sizeof *t);
+    if (p)
+        memset(p, 0, sizeof *p);
+    sink k = {.p = p, .err = err};
     sl_text txt;
     sl_csvread rd;
+    sl_error e;
     sl_status st = sl_csv_open(path, SL_COMP_MAX_BYTES, &txt, &rd, err);
     if (st)
         return st;
     sl_csvrec h = {0}, w = {0};
+    tag_set tags = {0};
     t->crc32 = file_crc(txt.mem, strlen(txt.mem));
     t->size_bytes = (long)strlen(txt.mem);
     if (!(t->path = dupstr(path)))
-        st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-    if (!st)
-        st = read_header(path, &rd, &h, t, err);
+        no_memory(&k, path);
+    else if (read_header(path, &rd, &h, t, &e))
+        fatal(&k, &e);
     size_t cap = 0;
-    for (int got; !st && (got = sl_csvread_next(&rd, &w, err)) != 0;) {
+    for (int got; !k.stop && (got = sl_csvread_next(&rd, &w, &e)) != 0;) {
         if (got < 0) {
-            st = (sl_status)-got;
+            fatal(&k, &e);
             break;
-        }
-        if (t->n == SL_COMP_MAX_ROWS) {
-            st = sl_error_set(err, SL_EINVAL, path, w.line, "more than %d components",
-                              SL_COMP_MAX_ROWS);
-            break;
-        }
-        if (t->n == cap) {
-            sl_comp_row *g = realloc(t->rows, (cap = cap ? 2 * cap : 64) * sizeof *g);
-            if (!g) {
-                st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-                break;
-            }
-            t->rows = g;
         }
         int blank = 1; /* a row of empty fields (",,,,": spreadsheets export them) */
         char bb[64];
@@ -393,32 +566,52 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
             blank = !*sl_csv_trimmed(w.f[c], bb, sizeof bb);
         if (blank)
             continue;
-        sl_comp_row *x = &t->rows[t->n];
-        memset(x, 0, sizeof *x);
-        if ((st = read_row(r, t, &w, x, err)))
+        if (p)
+            p->n_rows++;
+        if (p ? p->n_rows > SL_COMP_MAX_ROWS : t->n == SL_COMP_MAX_ROWS) {
+            sl_error_set(&e, SL_EINVAL, path, w.line, "more than %d components",
+                         SL_COMP_MAX_ROWS);
+            fatal(&k, &e);
             break;
-        t->n++;
-        /* a repeated tag (without case, as the workbook's COUNTIF compares) */
-        char b1[512], b2[512];
-        const char *tag = sl_csv_trimmed(x->field[t->col[SL_COMP_TAG]], b1, sizeof b1);
-        for (size_t i = 0; i + 1 < t->n; i++)
-            if (!strcasecmp(tag, sl_csv_trimmed(t->rows[i].field[t->col[SL_COMP_TAG]], b2, sizeof b2))) {
-                st = sl_error_set_at(err, SL_EINVAL, path, x->line, t->col[SL_COMP_TAG] + 1,
-                                     "tag '%s' again: first on line %ld",
-                                     as_written(tag).s, t->rows[i].line);
+        }
+        if (t->n == cap) {
+            sl_comp_row *g = realloc(t->rows, (cap = cap ? 2 * cap : 64) * sizeof *g);
+            if (!g) {
+                no_memory(&k, path);
                 break;
             }
-        if (!st)
-            t->count[x->verdict]++;
+            t->rows = g;
+        }
+        size_t n0 = k.n;
+        sl_comp_row *x = &t->rows[t->n];
+        memset(x, 0, sizeof *x);
+        int good = read_row(r, t, &w, x, &tags, &k);
+        if (p && k.n != n0)
+            p->n_bad_rows++;
+        if (!good || k.n)
+            continue; /* once a row is refused only the problems are gathered */
+        if (!(x->field = take_fields(&w))) {
+            no_memory(&k, path);
+            break;
+        }
+        t->n++;
+        t->count[x->verdict]++;
     }
-    if (!st && t->n == 0)
-        st = sl_error_set(err, SL_EPARSE, path, rd.line, "no components under the header");
+    if (!k.n && t->n == 0) {
+        sl_error_set(&e, SL_EPARSE, path, rd.line, "no components under the header");
+        fatal(&k, &e);
+    }
     sl_csvrec_free(&h);
     sl_csvrec_free(&w);
     sl_text_free(&txt);
-    if (st)
-        sl_comp_table_free(t);
-    return st;
+    tag_set_free(&tags);
+    if (!k.n)
+        return SL_OK;
+    if (p && k.n > 1)
+        sl_error_set(err, k.first, path, 0, "%zu of %zu rows refused (%zu problems)",
+                     p->n_bad_rows, p->n_rows, k.n);
+    sl_comp_table_free(t);
+    return k.first;
 }
 
 /* ---- components.csv -------------------------------------------------------- */
@@ -439,6 +632,7 @@ void sl_comp_report(const sl_comp_results *r, const sl_comp_opts *o, sl_report *
     rep->project.project = strcmp(r->project, "-") ? r->project : NULL;
     rep->project.document = strcmp(r->document, "-") ? r->document : NULL;
     rep->project.revision = strcmp(r->revision, "-") ? r->revision : NULL;
+    rep->project.date = o->date; /* the check's own date, as a run's title block */
 }
 
 /* The run's record as the shared CSV head reads it; floors named
@@ -484,21 +678,32 @@ static sl_status write_csv(const sl_comp_results *r, const sl_comp_table *t, con
     sl_rpt_csv_comment(f, "results", buf);
     sl_rpt_csv_comment(f, "units", "base_m and cg_height_m in m; clearances and margin in mm; mu "
                        "and b_over_h dimensionless");
+    snprintf(buf, sizeof buf, "%s (the run's; required_clearance_mm is %s)", r->policy,
+             !strcmp(r->policy, "asce") ? "the ASCE/SEI 43-05 design value"
+             : !strcmp(r->policy, "envelope") ? "the larger of the NLTHA and ASCE design values"
+             : "the NLTHA design value");
+    sl_rpt_csv_comment(f, "clearance_policy", buf);
     sl_rpt_csv_comment(f, "required_clearance_mm", "the floor's required clearance (clearance_mm "
                        "of its floor table) at mu, linear interpolation between the grid rows "
                        "around it, as the workbook's Lookup; empty off the grid");
     sl_rpt_csv_comment(f, "required_clearance_se_mm", "the standard error of the NLTHA design "
                        "value, interpolated the same way");
-    sl_rpt_csv_comment(f, "verdict", "rocking when mu >= b_over_h = base_m / (2 cg_height_m) (a "
-                       "rigid block rocks before it slides, Shenton 1996: check rocking, ASCE/SEI "
-                       "43-05); else outside when mu is off the grid; else ok when margin_mm = "
-                       "clearance_mm - required_clearance_mm >= 0; else short");
+    sl_rpt_csv_comment(f, "asce_design_mm", "the ASCE/SEI 43-05 design value at mu "
+                       "(asce_design_mm of the floor table), interpolated the same way, beside "
+                       "the required clearance");
+    snprintf(buf, sizeof buf, "rocking when mu >= b_over_h = base_m / (2 cg_height_m) (a rigid "
+             "block rocks before it slides, Shenton 1996: check rocking, ASCE/SEI 43-05); else "
+             "outside when mu is off the grid; else, with margin_mm = clearance_mm - "
+             "required_clearance_mm: short when margin_mm < 0; marginal when margin_mm < %g x "
+             "required_clearance_se_mm (inside the noise of the motion sets: more sets or more "
+             "gap decide it); else ok", SL_COMP_MARGIN_SE);
+    sl_rpt_csv_comment(f, "verdict", buf);
     for (size_t c = 0; c < t->n_cols; c++) {
         sl_rpt_csv_field(f, t->header[c]);
         fputc(',', f);
     }
-    fputs("b_over_h,required_clearance_mm,required_clearance_se_mm,margin_mm,verdict,reason\r\n",
-          f);
+    fputs("b_over_h,required_clearance_mm,required_clearance_se_mm,asce_design_mm,margin_mm,"
+          "verdict,reason\r\n", f);
     for (size_t i = 0; i < t->n; i++) {
         const sl_comp_row *w = &t->rows[i];
         for (size_t c = 0; c < t->n_cols; c++) {
@@ -510,6 +715,8 @@ static sl_status write_csv(const sl_comp_results *r, const sl_comp_table *t, con
         csv_num(f, w->required_mm, "%.1f");
         fputc(',', f);
         csv_num(f, w->se_mm, "%.1f");
+        fputc(',', f);
+        csv_num(f, w->asce_mm, "%.1f");
         fputc(',', f);
         csv_num(f, w->margin_mm, "%.1f");
         fprintf(f, ",%s,", SL_COMP_VERDICT_NAME[w->verdict]);

@@ -15,10 +15,17 @@
  * names compared without case: tag, building, floor, mu, base_m,
  * cg_height_m, clearance_mm, in any order; any other column is kept as it
  * is, in its place. building may be empty when the results hold one
- * building; floor is a floor id or the floor's name (without case). mu,
- * base_m (least base dimension) and cg_height_m (centre of mass above the
- * floor) must be > 0, clearance_mm (the available gap) >= 0; tags unique
- * (without case). Blank lines and rows of empty fields are skipped.
+ * building; floor is a floor id or the floor's name. Names (column names,
+ * buildings, floors, tags) are compared by one rule, sl_comp_same_name():
+ * blanks at either end dropped, runs inside read as one, without case for
+ * every script a plant writes names in (io/casefold.h), as the workbook's
+ * MATCH over TRIM compares them. mu, base_m (least base dimension) and
+ * cg_height_m (centre of mass above the floor) must be > 0, clearance_mm
+ * (the available gap) >= 0; tags unique. Blank lines and rows of empty
+ * fields are skipped. A header row holding ';' and no ',' (outside quotes)
+ * makes a list separated by ';' whose numbers may carry a decimal comma
+ * ("0,35"), as a European spreadsheet saves it: the rule of the floor
+ * tables (io/floor_csv.c, sl_text_decimal_comma).
  *
  * Per component:
  *   required_clearance_mm  the floor's clearance at mu by linear
@@ -29,6 +36,10 @@
  *                          sl_design_clearance_at(); empty off the grid
  *   required_clearance_se_mm  the standard error of the NLTHA design value,
  *                          interpolated the same way (as the Lookup does)
+ *   asce_design_mm         the ASCE/SEI 43-05 design value at mu,
+ *                          interpolated the same way: beside the required
+ *                          clearance, which the run's clearance policy
+ *                          takes from NLTHA by default
  *   margin_mm              clearance_mm - required_clearance_mm
  *   b_over_h               base_m / (2 cg_height_m): half the base over the
  *                          height of the centre of mass
@@ -38,8 +49,11 @@
  *              rock, and slide-rock rigid-body modes"); the sliding table
  *              does not apply: check rocking (ASCE/SEI 43-05)
  *     outside  mu off the computed grid [mu_first, mu_last]
- *     ok       margin >= 0
  *     short    margin < 0 (a result, not an error)
+ *     marginal 0 <= margin < SL_COMP_MARGIN_SE x the required clearance's
+ *              standard error: the margin is inside the noise of the
+ *              motion sets (an SE left empty counts as 0)
+ *     ok       margin >= SL_COMP_MARGIN_SE x SE
  *
  * Outputs (sl_comp_write): DIR/components.csv (the input columns in their
  * order, then the results, after the trace lines every CSV of the project
@@ -68,8 +82,16 @@
 #define SL_COMP_MAX_COLS 256
 #define SL_COMP_MAX_ROWS 100000
 /* The workbook keeps this many empty formula rows below the last component
- * for components typed in later. */
-#define SL_COMP_SPARE_ROWS 200
+ * for components typed in later; they are printed with the sheet (an empty
+ * one as a blank row of the form), so that a row typed in prints. */
+#define SL_COMP_SPARE_ROWS 40
+/* A margin below this many standard errors of the required clearance is
+ * "marginal", not "ok" (two standard errors: about the 95 % two-sided
+ * band of the mean of the motion sets). */
+#define SL_COMP_MARGIN_SE 2.0
+/* Most problems of a refused list kept for the messages (every bad row is
+ * counted). */
+#define SL_COMP_MAX_PROBLEMS 50
 
 /* The required columns, in the order the workbook shows them. */
 typedef enum sl_comp_col {
@@ -79,9 +101,17 @@ typedef enum sl_comp_col {
 extern const char *const SL_COMP_COL_NAME[SL_COMP_NCOLS];
 
 typedef enum sl_comp_verdict {
-    SL_COMP_OK, SL_COMP_SHORT, SL_COMP_ROCKING, SL_COMP_OUTSIDE, SL_COMP_NVERDICTS
+    SL_COMP_OK, SL_COMP_MARGINAL, SL_COMP_SHORT, SL_COMP_ROCKING, SL_COMP_OUTSIDE,
+    SL_COMP_NVERDICTS
 } sl_comp_verdict;
-extern const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS]; /* "ok", "short", ... */
+extern const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS]; /* "ok", "marginal", ... */
+
+/* The one rule by which names are compared: a row's building and floor
+ * with the results' (building, floor id, floor name), tags with each
+ * other, column names with the required ones. Ends trimmed, runs of blanks
+ * inside read as one, without case (io/casefold.h: sl_casefold_same). 1
+ * when a and b are the same name. */
+int sl_comp_same_name(const char *a, const char *b);
 
 /* One floor of the results: its table on the run's grid (mm). */
 typedef struct sl_comp_floor {
@@ -91,6 +121,14 @@ typedef struct sl_comp_floor {
     unsigned long crc32;
     long size_bytes;
     double *clearance_mm, *se_mm; /* n_mu each; se NAN when the table leaves it empty */
+    double *asce_mm;         /* n_mu: the ASCE design value (NAN: empty in the table) */
+    char **flags;            /* n_mu: the flags of each grid row ("" when none) */
+    size_t n_flags;          /* of them allocated */
+    double zpa_g;            /* the horizontal ZPA (horizontal_zpa_g line; NAN: absent) */
+    long n_sets;             /* floors.csv n_sets (-1: absent) */
+    char *sets_stop;         /* floors.csv sets_stop ("" when absent) */
+    char *note;              /* floors.csv note ("" when none) */
+    char *warnings;          /* floors.csv warnings, when the table has the column ("") */
 } sl_comp_floor;
 
 typedef struct sl_comp_results {
@@ -108,6 +146,7 @@ typedef struct sl_comp_results {
     double *mu;              /* the grid every floor shares */
     /* the run's record, from its CSV comment lines ("-" when absent) */
     char *program, *command, *created, *seed, *project, *document, *revision;
+    char *policy;            /* the clearance policy (clearance_policy line; "-" when absent) */
 } sl_comp_results;
 
 /* Read the results folder dir. SL_EIO (missing files), SL_EPARSE (a table
@@ -126,7 +165,7 @@ typedef struct sl_comp_row {
     char **field;            /* the input fields, in the file's column order */
     size_t floor;            /* index into the results' floors */
     double mu, base_m, cg_height_m, clearance_mm;
-    double b_over_h, required_mm, se_mm, margin_mm; /* required, se, margin NAN off the grid */
+    double b_over_h, required_mm, se_mm, asce_mm, margin_mm; /* NAN off the grid */
     sl_comp_verdict verdict;
 } sl_comp_row;
 
@@ -137,23 +176,58 @@ typedef struct sl_comp_table {
     size_t n_cols;
     char **header;           /* as written */
     int col[SL_COMP_NCOLS];  /* the file's column of each required column */
+    char sep;                /* the field separator: ',' or ';' (decimal commas) */
     size_t n;
     sl_comp_row *rows;
     size_t count[SL_COMP_NVERDICTS];
 } sl_comp_table;
 
+/* The problems of a refused list: the first SL_COMP_MAX_PROBLEMS messages
+ * in file order (each file, line, column, the value), and the counts. */
+typedef struct sl_comp_problems {
+    size_t n;                /* messages in e */
+    size_t n_more;           /* problems beyond the cap (counted, not kept) */
+    size_t n_bad_rows;       /* rows with at least one problem */
+    size_t n_rows;           /* component rows read */
+    sl_error e[SL_COMP_MAX_PROBLEMS];
+} sl_comp_problems;
+
 /* Read and check the components file `path` against the results r and
- * compute every row. The first malformed row stops it: SL_EPARSE or
- * SL_EINVAL with file, line and column (the field's number) and the value;
- * an unknown building or floor lists the known ones; a repeated tag names
- * both lines. On failure t is empty. */
+ * compute every row. A malformed field is SL_EPARSE or SL_EINVAL with
+ * file, line and column (the field's number) and the value; an unknown
+ * building or floor lists the known ones; a repeated tag names both lines.
+ * With p NULL the first problem stops the reading and is err. With p, every
+ * field of every row is checked in one pass and each problem kept in p
+ * (up to the cap); err is the only problem when there is one, else
+ * "N of M rows refused (K problems)" naming the file, with the first
+ * problem's code. A header that is not a components header, a quoted field
+ * left open, text after a closing quote and too many rows stop the reading
+ * at once (kept in p as well). On failure t is empty. */
 sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp_table *t,
-                             sl_error *err);
+                             sl_comp_problems *p, sl_error *err);
 void sl_comp_table_free(sl_comp_table *t);
 
 /* The interpolation at mu on the grid mu[0..n) of the values c (the
  * Lookup's rule above): NAN when mu is off the grid or NAN. */
 double sl_comp_interp(const double *mu, const double *c, size_t n, double mu_at);
+
+/* The floor a building and a floor id or name give, resolved as a
+ * components row is (the name rule; building "" or NULL: the only one, or
+ * the folder's own name for one building). SL_EINVAL naming the known
+ * buildings or the building's floors (err has no file: the caller says
+ * where the names came from). */
+sl_status sl_comp_find(const sl_comp_results *r, const char *building, const char *floor,
+                       size_t *fi, sl_error *err);
+
+/* One floor's numbers at mu, as a components row gets them: the required
+ * clearance, its standard error and the ASCE value interpolated on the grid
+ * (NAN off it), and the grid rows around mu (the last at or below, and the
+ * next: their flags are the Lookup's). Returns 1 when mu is on the grid. */
+typedef struct sl_comp_at {
+    double required_mm, se_mm, asce_mm;
+    size_t k0, k1;
+} sl_comp_at;
+int sl_comp_floor_at(const sl_comp_results *r, size_t fi, double mu, sl_comp_at *a);
 
 /* The verdict's reason in words into buf ("mu 0.45 >= b/h 0.36: rocks
  * before it slides, check rocking (ASCE 43-05)"); the workbook's formula
@@ -165,6 +239,8 @@ typedef struct sl_comp_opts {
     const char *version;      /* "seislide 0.1.0" */
     const char *command_line; /* this command's */
     time_t created;
+    const char *date;         /* the title block's Date (NULL: "-"): the CLI gives the
+                                 created date, as `run` does */
 } sl_comp_opts;
 
 /* The run's record and title block (version, command, seed, created,

@@ -10,18 +10,22 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/casefold.h"
 #include "report/components.h"
 #include "report/sheets.h"
 
 /* Components sheet rows (0-based): title, note, header; components below. */
 enum { CS_TITLE, CS_NOTE, CS_HEAD, CS_FIRST };
 /* Helper columns after the visible ones (hidden, not printed). */
-enum { H_CHK, H_ROW, H_K, H_MU0, H_MU1, H_C0, H_C1, H_S0, H_S1, H_BLD, H_FID, H_OKX, H_OKY,
-       H_SHX, H_SHY, H_N };
+enum { H_CHK, H_ROW, H_K, H_MU0, H_MU1, H_C0, H_C1, H_S0, H_S1, H_A0, H_A1, H_BLD, H_FID,
+       H_OKX, H_OKY, H_MGX, H_MGY, H_SHX, H_SHY, H_N };
 /* Result columns after the inputs. */
-enum { R_BH, R_REQ, R_SE, R_MARGIN, R_VERDICT, R_REASON, R_N };
+enum { R_BH, R_REQ, R_SE, R_ASCE, R_MARGIN, R_VERDICT, R_REASON, R_N };
 /* Floors sheet: A building, B floor id, C floor name, D key by id, E key
- * by name, then the grid's clearance, then its standard error (row 1: mu). */
+ * by name (the names' keys, sl_casefold_key: MATCH compares without case,
+ * and TRIM reads a run of blanks as one), then the grid's clearance, its
+ * standard error and the ASCE design value ("-" where the table has none)
+ * (row 1: mu). */
 enum { FS_BLD, FS_FID, FS_NAME, FS_KID, FS_KNAME, FS_GRID };
 /* Column widths (characters). */
 #define W_TAG 10.0
@@ -31,21 +35,26 @@ enum { FS_BLD, FS_FID, FS_NAME, FS_KID, FS_KNAME, FS_GRID };
 #define W_EXTRA_MAX 13.0
 #define W_CHART 100.0 /* the Chart sheet's one column: a landscape page */
 
-static const char *const verdict_label[] = {"ok", "short", "rocking", "outside", "check input"};
-static const lxw_color_t verdict_bg[] = {0xC6EFCE, 0xFFC7CE, 0xFFEB9C, 0xD9D9D9, 0xE4DFEC};
-static const lxw_color_t verdict_fg[] = {0x006100, 0x9C0006, 0x9C5700, 0x404040, 0x5B3C88};
-#define N_LABELS 5
+static const char *const verdict_label[] = {"ok", "marginal", "short", "rocking", "outside",
+                                            "check input"};
+static const lxw_color_t verdict_bg[] = {0xC6EFCE, 0xF8CBAD, 0xFFC7CE, 0xFFEB9C, 0xD9D9D9,
+                                         0xE4DFEC};
+static const lxw_color_t verdict_fg[] = {0x006100, 0x833C0B, 0x9C0006, 0x9C5700, 0x404040,
+                                         0x5B3C88};
+#define N_LABELS 6
 
 typedef struct book {
     lxw_workbook *wb;
     sl_rpt_fmts F;
-    lxw_format *in_text, *in_num, *num3, *mm, *reason, *top, *vfmt[N_LABELS];
+    lxw_format *in_text, *in_num, *num3, *mm, *reason, *top, *count, *head_text,
+        *vfmt[N_LABELS];
     const sl_comp_results *r;
     const sl_comp_table *t;
     size_t n_extra, vis, last;   /* extra columns; visible columns; last formula row */
     int extra[SL_COMP_MAX_COLS]; /* the file's column of each extra column */
     char g0[48], g1[48];         /* the grid's ends as the reasons show them */
     double diag_mm;              /* the end of the chart's diagonal (Floors) */
+    void *labels[3];             /* the chart's point labels, freed after the workbook */
 } book;
 
 static lxw_col_t col_res(const book *b, int k) { return (lxw_col_t)(SL_COMP_NCOLS + b->n_extra + (size_t)k); }
@@ -109,6 +118,14 @@ static void formats(book *b)
     b->top = workbook_add_format(b->wb); /* the verdict: kept off the margin beside it */
     format_set_align(b->top, LXW_ALIGN_VERTICAL_TOP);
     format_set_indent(b->top, 1);
+    b->count = workbook_add_format(b->wb); /* a count beside a wrapped name: at its top */
+    format_set_align(b->count, LXW_ALIGN_VERTICAL_TOP);
+    b->head_text = workbook_add_format(b->wb); /* a text heading after a number's: kept off it */
+    format_set_bold(b->head_text);
+    format_set_text_wrap(b->head_text);
+    format_set_align(b->head_text, LXW_ALIGN_VERTICAL_TOP);
+    format_set_bottom(b->head_text, LXW_BORDER_THIN);
+    format_set_indent(b->head_text, 1);
     b->reason = workbook_add_format(b->wb);
     format_set_text_wrap(b->reason);
     format_set_align(b->reason, LXW_ALIGN_VERTICAL_TOP);
@@ -143,29 +160,36 @@ static void floors_sheet(book *b)
     char key[2400], def[200], a[8], z[8];
     for (int c = 0; c < FS_GRID; c++)
         worksheet_write_string(ws, 0, (lxw_col_t)c, head[c], b->F.header);
-    for (size_t k = 0; k < n; k++) {
-        worksheet_write_number(ws, 0, (lxw_col_t)(FS_GRID + k), r->mu[k], NULL);
-        worksheet_write_number(ws, 0, (lxw_col_t)(FS_GRID + n + k), r->mu[k], NULL);
-    }
+    for (size_t k = 0; k < n; k++)
+        for (size_t blk = 0; blk < 3; blk++)
+            worksheet_write_number(ws, 0, (lxw_col_t)(FS_GRID + blk * n + k), r->mu[k], NULL);
     for (size_t i = 0; i < nf; i++) {
         const sl_comp_floor *fl = &r->floors[i];
         lxw_row_t row = (lxw_row_t)(i + 1);
         worksheet_write_string(ws, row, FS_BLD, fl->building, NULL);
         worksheet_write_string(ws, row, FS_FID, fl->id, NULL);
         worksheet_write_string(ws, row, FS_NAME, fl->name, NULL);
-        snprintf(key, sizeof key, "%s|%s", fl->building, fl->id);
+        char kb[1000], kf[1000];
+        sl_casefold_key(fl->building, kb, sizeof kb);
+        snprintf(key, sizeof key, "%s|%s", kb, sl_casefold_key(fl->id, kf, sizeof kf));
         worksheet_write_string(ws, row, FS_KID, key, NULL);
-        snprintf(key, sizeof key, "%s|%s", fl->building, fl->name);
+        snprintf(key, sizeof key, "%s|%s", kb, sl_casefold_key(fl->name, kf, sizeof kf));
         worksheet_write_string(ws, row, FS_KNAME, key, NULL);
         for (size_t k = 0; k < n; k++) {
             worksheet_write_number(ws, row, (lxw_col_t)(FS_GRID + k), fl->clearance_mm[k], NULL);
             if (isfinite(fl->se_mm[k]))
                 worksheet_write_number(ws, row, (lxw_col_t)(FS_GRID + n + k), fl->se_mm[k], NULL);
+            if (isfinite(fl->asce_mm[k]))
+                worksheet_write_number(ws, row, (lxw_col_t)(FS_GRID + 2 * n + k), fl->asce_mm[k],
+                                       NULL);
+            else
+                worksheet_write_string(ws, row, (lxw_col_t)(FS_GRID + 2 * n + k), "-", NULL);
         }
     }
     struct { const char *name; size_t c0, c1; int grid; } names[] = {
         {"cmp_grid", FS_GRID, FS_GRID + n - 1, 1}, {"cmp_clear", FS_GRID, FS_GRID + n - 1, 0},
-        {"cmp_se", FS_GRID + n, FS_GRID + 2 * n - 1, 0}, {"cmp_key_id", FS_KID, FS_KID, 0},
+        {"cmp_se", FS_GRID + n, FS_GRID + 2 * n - 1, 0},
+        {"cmp_asce", FS_GRID + 2 * n, FS_GRID + 3 * n - 1, 0}, {"cmp_key_id", FS_KID, FS_KID, 0},
         {"cmp_key_name", FS_KNAME, FS_KNAME, 0}, {"cmp_bld", FS_BLD, FS_BLD, 0},
         {"cmp_fid", FS_FID, FS_FID, 0}};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
@@ -284,7 +308,9 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
         {H_MU0, "cmp_grid", 0, in ? r->mu[k0] : 0}, {H_MU1, "cmp_grid", 1, in ? r->mu[k1] : 0},
         {H_C0, "cmp_clear", 0, in ? fl->clearance_mm[k0] : 0},
         {H_C1, "cmp_clear", 1, in ? fl->clearance_mm[k1] : 0},
-        {H_S0, "cmp_se", 0, in ? fl->se_mm[k0] : 0}, {H_S1, "cmp_se", 1, in ? fl->se_mm[k1] : 0}};
+        {H_S0, "cmp_se", 0, in ? fl->se_mm[k0] : 0}, {H_S1, "cmp_se", 1, in ? fl->se_mm[k1] : 0},
+        {H_A0, "cmp_asce", 0, in ? fl->asce_mm[k0] : 0},
+        {H_A1, "cmp_asce", 1, in ? fl->asce_mm[k1] : 0}};
     for (size_t k = 0; k < sizeof look / sizeof look[0]; k++) {
         char rowarg[40], colarg[60];
         snprintf(rowarg, sizeof rowarg, "%s", look[k].col <= H_MU1 ? "1" : h[H_ROW]);
@@ -294,8 +320,9 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
             snprintf(colarg, sizeof colarg, "%s", h[H_K]);
         snprintf(f, sizeof f, "=IF(%s=\"\",\"\",INDEX(%s,%s,%s))", h[H_K], look[k].what, rowarg,
                  colarg);
+        int asce_none = in && look[k].col >= H_A0 && !isfinite(look[k].val); /* "-" */
         fcell(ws, row, col_h(b, look[k].col), f, isfinite(look[k].val) ? look[k].val : 0,
-              in ? NULL : "", NULL);
+              !in ? "" : asce_none ? "-" : NULL, NULL);
     }
     /* the resolved building and floor id (the Summary counts by them) */
     snprintf(f, sizeof f, "=IF(%s=0,\"\",INDEX(cmp_bld,%s))", h[H_ROW], h[H_ROW]);
@@ -312,11 +339,18 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
              sl_rpt_interp_formula(ip, sizeof ip, D, h[H_MU0], h[H_MU1], h[H_S0], h[H_S1]));
     fcell(ws, row, col_res(b, R_SE), f, in && isfinite(w->se_mm) ? w->se_mm : 0, in ? NULL : "",
           b->mm);
+    snprintf(f, sizeof f, "=IF(OR(%s=\"\",NOT(ISNUMBER(%s)),NOT(ISNUMBER(%s))),\"\",%s)", h[H_K],
+             h[H_A0], h[H_A1],
+             sl_rpt_interp_formula(ip, sizeof ip, D, h[H_MU0], h[H_MU1], h[H_A0], h[H_A1]));
+    int asce = in && isfinite(w->asce_mm);
+    fcell(ws, row, col_res(b, R_ASCE), f, asce ? w->asce_mm : 0, asce ? NULL : "", b->mm);
     snprintf(f, sizeof f, "=IF(%s=\"\",\"\",%s-%s)", h[H_K], G, v[R_REQ]);
     fcell(ws, row, col_res(b, R_MARGIN), f, in ? w->margin_mm : 0, in ? NULL : "", b->mm);
+    /* the verdict (components.c, verdict()): the margin against SL_COMP_MARGIN_SE SE */
     snprintf(f, sizeof f, "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input\",IF(%s>=%s,\"rocking\","
-             "IF(%s=\"\",\"outside\",IF(%s>=0,\"ok\",\"short\")))))", h[H_CHK], h[H_CHK], D,
-             v[R_BH], h[H_K], v[R_MARGIN]);
+             "IF(%s=\"\",\"outside\",IF(%s<0,\"short\",IF(%s<%g*%s,\"marginal\",\"ok\"))))))",
+             h[H_CHK], h[H_CHK], D, v[R_BH], h[H_K], v[R_MARGIN], v[R_MARGIN], SL_COMP_MARGIN_SE,
+             v[R_SE]);
     fcell(ws, row, col_res(b, R_VERDICT), f, 0, ok ? SL_COMP_VERDICT_NAME[vi] : "", b->top);
     const char *V = v[R_VERDICT];
     snprintf(f, sizeof f,
@@ -324,21 +358,24 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
              "TEXT(%s,\"0.0##\")&\" >= b/h \"&TEXT(%s,\"0.0##\")&\": rocks before it slides, "
              "check rocking (ASCE 43-05)\",IF(%s=\"outside\",\"mu \"&TEXT(%s,\"0.0##\")&"
              "\" outside the computed grid %s-%s: no clearance computed\",\"required \"&"
-             "TEXT(%s,\"0.0\")&\" mm (SE \"&TEXT(%s,\"0.0\")&\") \"&IF(%s=\"ok\",\"<= available "
-             "\"&TEXT(%s,\"0.0\")&\" mm: margin \"&TEXT(%s,\"0.0\")&\" mm\",\"> available \"&"
-             "TEXT(%s,\"0.0\")&\" mm: \"&TEXT(-%s,\"0.0\")&\" mm short\")))))",
+             "TEXT(%s,\"0.0\")&\" mm (SE \"&TEXT(%s,\"0.0\")&\") \"&IF(%s=\"short\",\"> available "
+             "\"&TEXT(%s,\"0.0\")&\" mm: \"&TEXT(-%s,\"0.0\")&\" mm short\",\"<= available \"&"
+             "TEXT(%s,\"0.0\")&\" mm: margin \"&TEXT(%s,\"0.0\")&\" mm\"&IF(%s=\"marginal\","
+             "\" < %g SE (\"&TEXT(%g*%s,\"0.0\")&\" mm), inside the noise of the motion sets\","
+             "\"\"))))))",
              h[H_CHK], h[H_CHK], h[H_CHK], V, D, v[R_BH], V, D, b->g0, b->g1, v[R_REQ], v[R_SE],
-             V, G, v[R_MARGIN], G, v[R_MARGIN]);
+             V, G, v[R_MARGIN], G, v[R_MARGIN], V, SL_COMP_MARGIN_SE, SL_COMP_MARGIN_SE, v[R_SE]);
     fcell(ws, row, col_res(b, R_REASON), f, 0,
           ok ? sl_comp_reason(r, w, reason, sizeof reason) : "", b->reason);
     if (ok)
         height = fmax(height, sl_rpt_text_height(reason, W_REASON, 0));
     worksheet_set_row(ws, row, height, NULL);
     /* the chart's points: ok and short, #N/A otherwise (not drawn) */
-    const int pts[4][2] = {{H_OKX, SL_COMP_OK}, {H_OKY, SL_COMP_OK}, {H_SHX, SL_COMP_SHORT},
-                           {H_SHY, SL_COMP_SHORT}};
-    for (int k = 0; k < 4; k++) {
-        int y = pts[k][0] == H_OKY || pts[k][0] == H_SHY;
+    const int pts[6][2] = {{H_OKX, SL_COMP_OK}, {H_OKY, SL_COMP_OK},
+                           {H_MGX, SL_COMP_MARGINAL}, {H_MGY, SL_COMP_MARGINAL},
+                           {H_SHX, SL_COMP_SHORT}, {H_SHY, SL_COMP_SHORT}};
+    for (int k = 0; k < 6; k++) {
+        int y = pts[k][0] == H_OKY || pts[k][0] == H_MGY || pts[k][0] == H_SHY;
         snprintf(f, sizeof f, "=IF(%s=\"%s\",%s,NA())", V, SL_COMP_VERDICT_NAME[pts[k][1]],
                  y ? G : v[R_REQ]);
         int on = ok && vi == pts[k][1];
@@ -367,7 +404,7 @@ static void components_sheet(book *b, const sl_report *rep)
     lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Components");
     size_t vis = b->vis;
     /* widths */
-    const double w_in[SL_COMP_NCOLS] = {W_TAG, W_TEXT - 4, W_TEXT, 5, 7, 11, 13};
+    const double w_in[SL_COMP_NCOLS] = {W_TAG, W_TEXT - 4, W_TEXT, 5, 7.5, 12, 14};
     for (int c = 0; c < SL_COMP_NCOLS; c++)
         worksheet_set_column(ws, (lxw_col_t)c, (lxw_col_t)c, w_in[c], NULL);
     for (size_t e = 0; e < b->n_extra; e++) {
@@ -377,7 +414,7 @@ static void components_sheet(book *b, const sl_report *rep)
         worksheet_set_column(ws, (lxw_col_t)(SL_COMP_NCOLS + e), (lxw_col_t)(SL_COMP_NCOLS + e),
                              fmin(w, W_EXTRA_MAX), NULL);
     }
-    const double w_res[R_N] = {5, 8, 6, 7, 9, W_REASON};
+    const double w_res[R_N] = {6, 8.5, 6.5, 7, 7.5, 10, W_REASON};
     for (int k = 0; k < R_N; k++)
         worksheet_set_column(ws, col_res(b, k), col_res(b, k), w_res[k], NULL);
     lxw_row_col_options hid = {.hidden = 1};
@@ -388,12 +425,15 @@ static void components_sheet(book *b, const sl_report *rep)
     char note[2000];
     snprintf(note, sizeof note,
              "Required clearance: the floor's table (run in %s, created %s) at the component's "
-             "mu, linear interpolation on the grid %s-%s. Verdict, in this order: rocking when "
+             "mu, linear interpolation on the grid %s-%s (clearance policy %s; the ASCE/SEI "
+             "43-05 design value beside it). Verdict, in this order: rocking when "
              "mu >= b/h = base_m / (2 cg_height_m) (the block rocks before it slides: check "
-             "rocking, ASCE/SEI 43-05); outside when mu is off the grid; ok when the margin "
-             "(clearance_mm - required) is >= 0; short otherwise. More components: type them in "
-             "the yellow cells below the last one (%d rows are ready); building may be left "
-             "empty %s.", r->dir, r->created, b->g0, b->g1, SL_COMP_SPARE_ROWS,
+             "rocking, ASCE/SEI 43-05); outside when mu is off the grid; short when the margin "
+             "(clearance_mm - required) is < 0; marginal when it is below %g x the SE of the "
+             "required clearance (inside the noise of the motion sets); ok otherwise. More "
+             "components: type them in the yellow cells below the last one (%d rows are ready, "
+             "printed with the sheet); building may be left empty %s.", r->dir, r->created,
+             b->g0, b->g1, r->policy, SL_COMP_MARGIN_SE, SL_COMP_SPARE_ROWS,
              r->is_plant ? (r->n_buildings == 1 ? "(one building)" : "only in a one-building "
                             "plant") : "(one building)");
     worksheet_merge_range(ws, CS_NOTE, 0, CS_NOTE, (lxw_col_t)(vis - 1), note, b->F.wrap);
@@ -402,18 +442,22 @@ static void components_sheet(book *b, const sl_report *rep)
         width += c < SL_COMP_NCOLS ? w_in[c] : c >= (size_t)col_res(b, 0)
                  ? w_res[c - col_res(b, 0)] : W_EXTRA_MAX / 2;
     worksheet_set_row(ws, CS_NOTE, sl_rpt_text_height(note, width, 0), NULL);
-    for (int c = 0; c < SL_COMP_NCOLS; c++)
-        worksheet_write_string(ws, CS_HEAD, (lxw_col_t)c, SL_COMP_COL_NAME[c], b->F.header);
+    for (int c = 0; c < SL_COMP_NCOLS; c++) /* a heading over numbers at their right */
+        worksheet_write_string(ws, CS_HEAD, (lxw_col_t)c, SL_COMP_COL_NAME[c],
+                               c >= SL_COMP_MU ? b->F.header_num : b->F.header);
     for (size_t e = 0; e < b->n_extra; e++)
         worksheet_write_string(ws, CS_HEAD, (lxw_col_t)(SL_COMP_NCOLS + e),
-                               t->header[b->extra[e]], b->F.header);
-    static const char *const rh[R_N] = {"b/h", "required, mm", "its SE, mm", "margin, mm",
-                                        "verdict", "reason"};
+                               t->header[b->extra[e]], e ? b->F.header : b->head_text);
+    static const char *const rh[R_N] = {"b/h", "required, mm", "its SE, mm", "ASCE, mm",
+                                        "margin, mm", "verdict", "reason"};
     for (int k = 0; k < R_N; k++)
-        worksheet_write_string(ws, CS_HEAD, col_res(b, k), rh[k], b->F.header);
+        worksheet_write_string(ws, CS_HEAD, col_res(b, k), rh[k],
+                               k < R_VERDICT ? b->F.header_num
+                               : k == R_VERDICT ? b->head_text : b->F.header);
     static const char *const hh[H_N] = {"check", "floor row", "grid k", "mu0", "mu1", "c0", "c1",
-                                        "se0", "se1", "building", "floor id", "ok x", "ok y",
-                                        "short x", "short y"};
+                                        "se0", "se1", "asce0", "asce1", "building", "floor id",
+                                        "ok x", "ok y", "marginal x", "marginal y", "short x",
+                                        "short y"};
     for (int k = 0; k < H_N; k++)
         worksheet_write_string(ws, CS_HEAD, col_h(b, k), hh[k], b->F.header);
     worksheet_set_row(ws, CS_HEAD, 2 * 15.0 + 1, NULL);
@@ -439,7 +483,10 @@ static void components_sheet(book *b, const sl_report *rep)
     worksheet_freeze_panes(ws, CS_FIRST, 1);
     sl_rpt_page_setup(ws, rep, 1, "");
     worksheet_repeat_rows(ws, CS_HEAD, CS_HEAD);
-    worksheet_print_area(ws, 0, 0, (lxw_row_t)(CS_FIRST + t->n - 1), (lxw_col_t)(vis - 1));
+    /* every row, the empty ones ready for more included: rows typed in print (a
+     * print area that follows the rows in use is a formula, which LibreOffice
+     * does not read: it would print every row there is) */
+    worksheet_print_area(ws, 0, 0, (lxw_row_t)b->last, (lxw_col_t)(vis - 1));
     worksheet_fit_to_pages(ws, 1, 0);
     sl_rpt_protect(ws);
     worksheet_activate(ws);
@@ -453,14 +500,16 @@ static void summary_sheet(book *b, const sl_report *rep)
     lxw_worksheet *ws = workbook_add_worksheet(b->wb, "Summary");
     int plant = r->is_plant;
     lxw_col_t c0 = plant ? 1 : 0; /* the floor id column */
-    const double w_b = 14, w_id = 14, w_name = 30, w_n = 12;
+    /* a landscape page at about 100 % for one building (98 units) */
+    const double w_b = 14, w_id = 12, w_name = 24, w_all = 11, w_n = 8.5;
     if (plant)
         worksheet_set_column(ws, 0, 0, w_b, NULL);
     worksheet_set_column(ws, c0, c0, w_id, NULL);
     worksheet_set_column(ws, c0 + 1, c0 + 1, w_name, NULL);
-    worksheet_set_column(ws, c0 + 2, c0 + 2 + N_LABELS, w_n, NULL);
+    worksheet_set_column(ws, c0 + 2, c0 + 2, w_all, NULL);
+    worksheet_set_column(ws, c0 + 3, c0 + 2 + N_LABELS, w_n, NULL);
     lxw_col_t last = c0 + 2 + N_LABELS;
-    double width = (plant ? w_b : 0) + w_id + w_name + w_n * (N_LABELS + 1);
+    double width = (plant ? w_b : 0) + w_id + w_name + w_all + w_n * N_LABELS;
     sl_rpt_title_block(ws, &b->F, rep, "Components: counts per verdict and per floor", 0,
                        last, width);
     char src[1600];
@@ -478,7 +527,7 @@ static void summary_sheet(book *b, const sl_report *rep)
     /* per verdict */
     row += 2;
     worksheet_write_string(ws, row, 0, "Verdict", b->F.header);
-    worksheet_write_string(ws, row, 1, "Components", b->F.header);
+    worksheet_write_string(ws, row, 1, "Components", b->F.header_num);
     lxw_row_t v0 = row + 1;
     for (int v = 0; v < N_LABELS; v++) {
         worksheet_write_string(ws, v0 + (lxw_row_t)v, 0, verdict_label[v], b->vfmt[v]);
@@ -496,9 +545,11 @@ static void summary_sheet(book *b, const sl_report *rep)
         worksheet_write_string(ws, row, 0, "Building", b->F.header);
     worksheet_write_string(ws, row, c0, "Floor", b->F.header);
     worksheet_write_string(ws, row, c0 + 1, "Floor name", b->F.header);
-    worksheet_write_string(ws, row, c0 + 2, "Components", b->F.header);
-    for (int v = 0; v < N_LABELS; v++)
-        worksheet_write_string(ws, row, c0 + 3 + (lxw_col_t)v, verdict_label[v], b->F.header);
+    worksheet_write_string(ws, row, c0 + 2, "Components", b->F.header_num);
+    for (int v = 0; v < N_LABELS; v++) /* each count under its heading: both at the right */
+        worksheet_write_string(ws, row, c0 + 3 + (lxw_col_t)v, verdict_label[v],
+                               b->F.header_num);
+    worksheet_set_row(ws, row, sl_rpt_text_height("check input", w_n, 1), NULL);
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_comp_floor *fl = &r->floors[i];
         row++;
@@ -524,14 +575,14 @@ static void summary_sheet(book *b, const sl_report *rep)
                 all++;
             }
         snprintf(f, sizeof f, "=COUNTIFS(%s)", crit);
-        fcell(ws, row, c0 + 2, f, (double)all, NULL, NULL);
+        fcell(ws, row, c0 + 2, f, (double)all, NULL, b->count);
         for (int v = 0; v < N_LABELS; v++) {
             snprintf(f, sizeof f, "=COUNTIFS(%s,%s,\"%s\")", crit, vr, verdict_label[v]);
             fcell(ws, row, c0 + 3 + (lxw_col_t)v, f, v < SL_COMP_NVERDICTS ? (double)cnt[v] : 0,
-                  NULL, NULL);
+                  NULL, b->count);
         }
     }
-    sl_rpt_page_setup(ws, rep, 0, "");
+    sl_rpt_page_setup(ws, rep, 1, "");
     worksheet_repeat_rows(ws, head, head);
     worksheet_print_area(ws, 0, 0, row, last);
     worksheet_fit_to_pages(ws, 1, 0);
@@ -546,19 +597,39 @@ static void chart_sheet(book *b, const sl_report *rep)
     worksheet_set_column(ws, 0, 0, W_CHART, NULL);
     worksheet_write_string(ws, 0, 0, "Components: available against required clearance",
                            b->F.title);
-    const char *cap = "One point per component that slides (verdict ok or short): the required "
-                      "clearance at its mu on its floor against the gap it has. Points on or "
-                      "above the dashed line have enough gap; below it they are short. Rocking "
-                      "components and those whose mu is off the grid are not drawn (see the "
-                      "Components sheet).";
+    const char *cap = "One point per component that slides (verdict ok, marginal or short), "
+                      "tagged: the required clearance at its mu on its floor against the gap it "
+                      "has. Points on or above the dashed line have enough gap; below it they "
+                      "are short. Rocking components and those whose mu is off the grid are not "
+                      "drawn (see the Components sheet). The axes start at 0 and grow with the "
+                      "rows typed in; a point of a row typed in is labelled with its tag in "
+                      "Excel, with its available clearance in LibreOffice.";
     worksheet_write_string(ws, 1, 0, cap, b->F.wrap);
     worksheet_set_row(ws, 1, sl_rpt_text_height(cap, W_CHART, 0), NULL);
     lxw_chart *ch = workbook_add_chart(b->wb, LXW_CHART_SCATTER);
     char x[120], y[120];
     const struct { int hx, hy; const char *name; lxw_color_t color; uint8_t marker; } s[] = {
         {H_OKX, H_OKY, "ok", 0x2E7D32, LXW_CHART_MARKER_CIRCLE},
+        {H_MGX, H_MGY, "marginal", 0xC55A11, LXW_CHART_MARKER_SQUARE},
         {H_SHX, H_SHY, "short", 0xC00000, LXW_CHART_MARKER_DIAMOND}};
-    for (int k = 0; k < 2; k++) {
+    /* each point tagged: a label per row, the tag's cell (not drawn with the point) */
+    size_t np = b->last - CS_FIRST + 1;
+    lxw_chart_data_label *lab = calloc(np, sizeof *lab), **labp = calloc(np + 1, sizeof *labp);
+    char (*lref)[40] = calloc(np, sizeof *lref);
+    static lxw_chart_font lfont = {.size = 7, .color = 0x404040};
+    for (size_t i = 0; lab && labp && lref && i < np; i++) {
+        /* a written row: its tag as text (LibreOffice shows a label's text, not a cell
+         * it refers to); a row for typing: the tag's cell (Excel shows it; LibreOffice
+         * the point's value) */
+        if (i < b->t->n)
+            snprintf(lref[i], sizeof lref[i], "%s", b->t->rows[i].field[b->t->col[SL_COMP_TAG]]);
+        else
+            snprintf(lref[i], sizeof lref[i], "=Components!$A$%zu", CS_FIRST + i + 1);
+        lab[i].value = lref[i];
+        lab[i].font = &lfont;
+        labp[i] = &lab[i];
+    }
+    for (int k = 0; k < 3; k++) {
         char xr[80], yr[80];
         snprintf(x, sizeof x, "=%s", range(b, xr, sizeof xr, col_h(b, s[k].hx)));
         snprintf(y, sizeof y, "=%s", range(b, yr, sizeof yr, col_h(b, s[k].hy)));
@@ -570,6 +641,12 @@ static void chart_sheet(book *b, const sl_report *rep)
         lxw_chart_line mline = {.color = s[k].color};
         chart_series_set_marker_fill(se, &fill);
         chart_series_set_marker_line(se, &mline);
+        if (lab && labp && lref) {
+            chart_series_set_labels(se);
+            chart_series_set_labels_custom(se, labp);
+            chart_series_set_labels_position(se, LXW_CHART_LABEL_POSITION_RIGHT);
+            chart_series_set_labels_font(se, &lfont);
+        }
     }
     unsigned d = (unsigned)b->r->n_floors + 4; /* Floors: the diagonal's rows (1-based) */
     snprintf(x, sizeof x, "=Floors!$A$%u:$A$%u", d, d + 1);
@@ -583,13 +660,10 @@ static void chart_sheet(book *b, const sl_report *rep)
     chart_title_set_name(ch, "Available against required clearance");
     chart_axis_set_name(ch->x_axis, "Required clearance at the component's mu, mm");
     chart_axis_set_name(ch->y_axis, "Available clearance, mm");
-    /* both axes 0 to the same round value above every point: the diagonal at 45 degrees */
-    double top = b->diag_mm > 0 ? b->diag_mm : 1, step = pow(10, floor(log10(top)));
-    double axis_max = step * (top <= step ? 1 : top <= 2 * step ? 2 : top <= 5 * step ? 5 : 10);
+    /* both axes from 0, their ends left to the spreadsheet: they follow the points, rows
+     * typed in included (the diagonal ends a little above every point, Floors) */
     chart_axis_set_min(ch->x_axis, 0);
     chart_axis_set_min(ch->y_axis, 0);
-    chart_axis_set_max(ch->x_axis, axis_max);
-    chart_axis_set_max(ch->y_axis, axis_max);
     chart_axis_major_gridlines_set_visible(ch->x_axis, LXW_TRUE);
     chart_legend_set_position(ch, LXW_CHART_LEGEND_BOTTOM);
     lxw_chart_options co = {.x_scale = 1.5, .y_scale = 1.85};
@@ -598,6 +672,10 @@ static void chart_sheet(book *b, const sl_report *rep)
     worksheet_print_area(ws, 0, 0, 32, 0);
     worksheet_fit_to_pages(ws, 1, 1);
     sl_rpt_protect(ws);
+    /* libxlsxwriter copies the labels when the workbook is written: kept until then */
+    b->labels[0] = lab;
+    b->labels[1] = labp;
+    b->labels[2] = lref;
 }
 
 sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, const char *path,
@@ -631,5 +709,8 @@ sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, c
     summary_sheet(&b, &rep);
     chart_sheet(&b, &rep);
     floors_sheet(&b);
-    return sl_rpt_workbook_close(b.wb, a, path, err);
+    sl_status st = sl_rpt_workbook_close(b.wb, a, path, err);
+    for (int k = 0; k < 3; k++)
+        free(b.labels[k]);
+    return st;
 }

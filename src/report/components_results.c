@@ -59,6 +59,8 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
     int first = !r->program;
     while (sl_text_next(&t, &s, &n) && n && s[0] == '#') {
         const char *v;
+        if ((v = comment_value(s, n, "horizontal_zpa_g", b, sizeof b)))
+            fl->zpa_g = strtod(v, NULL);
         if ((v = comment_value(s, n, "floor_file_crc32", b, sizeof b))) {
             char *end;
             fl->crc32 = strtoul(v, &end, 16);
@@ -70,9 +72,9 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
             }
         }
         static const char *const keys[] = {"program", "command", "created", "seed", "project",
-                                           "document", "revision"};
+                                           "document", "revision", "clearance_policy"};
         char **dst[] = {&r->program, &r->command, &r->created, &r->seed, &r->project,
-                        &r->document, &r->revision};
+                        &r->document, &r->revision, &r->policy};
         for (size_t k = 0; first && k < sizeof keys / sizeof keys[0]; k++)
             if (!*dst[k] && (v = comment_value(s, n, keys[k], b, sizeof b)))
                 *dst[k] = dupstr(v);
@@ -83,9 +85,16 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
     int col[3];
     size_t k = 0;
     st = sl_csv_header(&rd, &h, names, 3, col, err);
+    /* the ASCE design value beside it (a table without the column: empty) */
+    int col_asce = st ? -1 : sl_csv_header_col(&h, "asce_design_mm");
+    int col_flags = st ? -1 : sl_csv_header_col(&h, "flags");
     if (!st && !(fl->clearance_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
         st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
     if (!st && !(fl->se_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
+        st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
+    if (!st && !(fl->asce_mm = calloc(r->n_mu ? r->n_mu : 64, sizeof(double))))
+        st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
+    if (!st && !(fl->flags = calloc(r->n_mu ? r->n_mu : 64, sizeof(char *))))
         st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
     int first_floor = !r->mu;
     double *mu = first_floor ? calloc(64, sizeof *mu) : NULL;
@@ -97,10 +106,11 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
             st = (sl_status)-got;
             break;
         }
-        double m, c, e;
+        double m, c, e, a = NAN;
         if ((st = sl_csv_num(&rd, &w, col[0], &m, 0, err)) ||
             (st = sl_csv_num(&rd, &w, col[1], &c, 0, err)) ||
-            (st = sl_csv_num(&rd, &w, col[2], &e, 1, err)))
+            (st = sl_csv_num(&rd, &w, col[2], &e, 1, err)) ||
+            (col_asce >= 0 && (st = sl_csv_num(&rd, &w, col_asce, &a, 1, err))))
             break;
         if (first_floor) {
             if (k == cap) {
@@ -113,7 +123,15 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
                 g[2] = realloc(fl->se_mm, 2 * cap * sizeof *mu);
                 if (g[2])
                     fl->se_mm = g[2];
-                if (!g[0] || !g[1] || !g[2]) {
+                double *ga = realloc(fl->asce_mm, 2 * cap * sizeof *mu);
+                if (ga)
+                    fl->asce_mm = ga;
+                char **gf = realloc(fl->flags, 2 * cap * sizeof *gf);
+                if (gf) {
+                    fl->flags = gf;
+                    memset(gf + cap, 0, cap * sizeof *gf);
+                }
+                if (!g[0] || !g[1] || !g[2] || !ga || !gf) {
                     st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
                     break;
                 }
@@ -133,6 +151,14 @@ static sl_status load_floor(sl_comp_results *r, sl_comp_floor *fl, const char *b
         }
         fl->clearance_mm[k] = c;
         fl->se_mm[k] = e;
+        fl->asce_mm[k] = a;
+        char fb[600];
+        if (!(fl->flags[k] = dupstr(col_flags >= 0 && (size_t)col_flags < w.n
+                                    ? sl_csv_trimmed(w.f[col_flags], fb, sizeof fb) : ""))) {
+            st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
+            break;
+        }
+        fl->n_flags = k + 1;
     }
     if (!st && k == 0)
         st = sl_error_set(err, SL_EPARSE, path, rd.line, "no rows under the header");
@@ -167,6 +193,11 @@ static sl_status load_building(sl_comp_results *r, const char *building, const c
     int col[2];
     const size_t first = r->n_floors;
     st = sl_csv_header(&rd, &h, names, 2, col, err);
+    /* what a floor's Lookup says besides its numbers (absent columns: empty) */
+    int c_sets = st ? -1 : sl_csv_header_col(&h, "n_sets"),
+        c_stop = st ? -1 : sl_csv_header_col(&h, "sets_stop"),
+        c_note = st ? -1 : sl_csv_header_col(&h, "note"),
+        c_warn = st ? -1 : sl_csv_header_col(&h, "warnings");
     for (int got; !st && (got = sl_csvread_next(&rd, &w, err)) != 0;) {
         if (got < 0) {
             st = (sl_status)-got;
@@ -187,7 +218,14 @@ static sl_status load_building(sl_comp_results *r, const char *building, const c
         fl->building = dupstr(building);
         fl->id = dupstr(w.f[col[0]]);
         fl->name = dupstr(w.f[col[1]]);
-        if (!fl->building || !fl->id || !fl->name)
+        fl->zpa_g = NAN;
+        fl->n_sets = c_sets >= 0 && (size_t)c_sets < w.n && *w.f[c_sets]
+                     ? strtol(w.f[c_sets], NULL, 10) : -1;
+        fl->sets_stop = dupstr(c_stop >= 0 && (size_t)c_stop < w.n ? w.f[c_stop] : "");
+        fl->note = dupstr(c_note >= 0 && (size_t)c_note < w.n ? w.f[c_note] : "");
+        fl->warnings = dupstr(c_warn >= 0 && (size_t)c_warn < w.n ? w.f[c_warn] : "");
+        if (!fl->building || !fl->id || !fl->name || !fl->sets_stop || !fl->note ||
+            !fl->warnings)
             st = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
         else
             st = load_floor(r, fl, bdir, err);
@@ -318,6 +356,13 @@ void sl_comp_results_free(sl_comp_results *r)
         free(f->file);
         free(f->clearance_mm);
         free(f->se_mm);
+        free(f->asce_mm);
+        for (size_t k = 0; f->flags && k < f->n_flags; k++)
+            free(f->flags[k]);
+        free(f->flags);
+        free(f->sets_stop);
+        free(f->note);
+        free(f->warnings);
     }
     for (size_t b = 0; b < r->n_buildings; b++) {
         free(r->buildings[b]);
@@ -330,7 +375,7 @@ void sl_comp_results_free(sl_comp_results *r)
     free(r->dir);
     free(r->single);
     char **s[] = {&r->program, &r->command, &r->created, &r->seed, &r->project, &r->document,
-                  &r->revision};
+                  &r->revision, &r->policy};
     for (size_t k = 0; k < sizeof s / sizeof s[0]; k++)
         free(*s[k]);
     memset(r, 0, sizeof *r);
@@ -397,7 +442,7 @@ sl_status sl_comp_results_load(const char *dir, sl_comp_results *r, sl_error *er
             st = load_building(r, "", dir, err);
     }
     char **s[] = {&r->program, &r->command, &r->created, &r->seed, &r->project, &r->document,
-                  &r->revision};
+                  &r->revision, &r->policy};
     for (size_t k = 0; !st && k < sizeof s / sizeof s[0]; k++)
         if (!*s[k] && !(*s[k] = dupstr("-")))
             st = sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");

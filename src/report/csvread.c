@@ -86,6 +86,7 @@ int sl_csvread_next(sl_csvread *c, sl_csvrec *r, sl_error *err)
         break;
     }
     r->line = c->line;
+    const char sep = c->sep ? c->sep : ',';
     for (;;) {
         long fl = c->line;
         size_t cap = 64, k = 0;
@@ -112,7 +113,7 @@ int sl_csvread_next(sl_csvread *c, sl_csvrec *r, sl_error *err)
                 } else {
                     c->pos++;
                     char nx = c->pos < c->len ? c->buf[c->pos] : '\n';
-                    if (nx != ',' && nx != '\r' && nx != '\n') {
+                    if (nx != sep && nx != '\r' && nx != '\n') {
                         free(s);
                         return -sl_error_set_at(err, SL_EPARSE, c->path, c->line,
                                                 (long)r->n + 1, "text after the closing quote "
@@ -121,7 +122,7 @@ int sl_csvread_next(sl_csvread *c, sl_csvrec *r, sl_error *err)
                     }
                     break;
                 }
-            } else if (!quoted && (ch == ',' || ch == '\r' || ch == '\n')) {
+            } else if (!quoted && (ch == sep || ch == '\r' || ch == '\n')) {
                 break;
             } else if (quoted && (ch == '\r' || ch == '\n')) {
                 line_end(c); /* a line break inside the field: kept as LF */
@@ -142,13 +143,50 @@ int sl_csvread_next(sl_csvread *c, sl_csvrec *r, sl_error *err)
         s[k] = '\0';
         if (rec_push(r, s, fl))
             return -sl_error_set(err, SL_ENOMEM, c->path, 0, "out of memory");
-        if (c->pos < c->len && c->buf[c->pos] == ',') {
+        if (c->pos < c->len && c->buf[c->pos] == sep) {
             c->pos++;
             continue;
         }
         line_end(c);
         return 1;
     }
+}
+
+sl_status sl_csvread_detect_sep(sl_csvread *c, sl_error *err)
+{
+    c->sep = ',';
+    long line = c->line;
+    for (size_t i = c->pos; i < c->len;) {
+        size_t e = i;
+        while (e < c->len && c->buf[e] != '\n' && c->buf[e] != '\r')
+            e++;
+        size_t k = i;
+        while (k < e && (c->buf[k] == ' ' || c->buf[k] == '\t'))
+            k++;
+        if (k < e && c->buf[k] != '#') {
+            size_t commas = 0, semis = 0;
+            int quoted = 0;
+            for (size_t j = k; j < e; j++) {
+                quoted ^= c->buf[j] == '"';
+                commas += !quoted && c->buf[j] == ',';
+                semis += !quoted && c->buf[j] == ';';
+            }
+            if (commas && semis)
+                return sl_error_set(err, SL_EPARSE, c->path, line, "the header row holds both "
+                                    "',' and ';': separate the columns with one of them (',' "
+                                    "with decimal points, or ';' with decimal commas)");
+            if (semis)
+                c->sep = ';';
+            return SL_OK;
+        }
+        i = e;
+        if (i < c->len && c->buf[i] == '\r')
+            i++;
+        if (i < c->len && c->buf[i] == '\n')
+            i++;
+        line++;
+    }
+    return SL_OK;
 }
 
 /* Trimmed copy of a field for matching and numbers (into buf). */

@@ -19,6 +19,7 @@ typedef struct sl_csvread {
     const char *path, *buf;
     size_t len, pos;
     long line;               /* the line at pos */
+    char sep;                /* the field separator; 0 is ',' */
 } sl_csvread;
 
 typedef struct sl_csvrec {
@@ -32,6 +33,12 @@ typedef struct sl_csvrec {
  * negated status with err filled (a quoted field left open, text after a
  * closing quote, no memory). */
 int sl_csvread_next(sl_csvread *c, sl_csvrec *r, sl_error *err);
+/* The separator of the table from its header row (the first line that is
+ * neither blank nor a comment), as the floor tables find it
+ * (io/floor_csv.c): ';' when it holds ';' and no ',' outside quotes (a
+ * European spreadsheet's CSV, with decimal commas), else ','; set in c.
+ * Both: SL_EPARSE naming the line. */
+sl_status sl_csvread_detect_sep(sl_csvread *c, sl_error *err);
 /* Free r's fields and arrays (r zeroed). */
 void sl_csvrec_free(sl_csvrec *r);
 /* s without blanks at either end, into buf of size n (cut to fit). */

@@ -15,12 +15,25 @@
 
 const double SL_PLANT_BOOK_MU[SL_PLANT_BOOK_NMU] = {0.05, 0.1, 0.2, 0.3, 0.4, 0.5};
 
-double sl_plant_book_clearance(const sl_design *d, double mu)
+/* The grid row of d at mu (within SL_PLANT_BOOK_MU_TOL), or NULL. */
+static const sl_design_row *row_at(const sl_design *d, double mu)
 {
     for (size_t k = 0; d && k < d->n; k++)
         if (fabs(d->rows[k].mu - mu) <= SL_PLANT_BOOK_MU_TOL)
-            return d->rows[k].clearance_m;
-    return NAN; /* not a computed point: never interpolated between two */
+            return &d->rows[k];
+    return NULL; /* not a computed point: never interpolated between two */
+}
+
+double sl_plant_book_clearance(const sl_design *d, double mu)
+{
+    const sl_design_row *r = row_at(d, mu);
+    return r ? r->clearance_m : NAN;
+}
+
+double sl_plant_book_asce(const sl_design *d, double mu)
+{
+    const sl_design_row *r = row_at(d, mu);
+    return r ? r->asce_design_m : NAN;
 }
 
 const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n)
@@ -127,11 +140,18 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
                     "(empty where the friction grid does not hold it: never interpolated)");
     sl_rpt_floors_free(&floors);
     sl_rpt_csv_comment(f, "units", "elevation in m; ZPA in g; clearance in mm, shown to the "
-                       "digit of its standard error (1 mm or 0.1 mm, as summary.csv)");
+                       "digit of its standard error (1 mm or 0.1 mm, as summary.csv); ASCE in "
+                       "mm to 0.1 mm");
+    sl_rpt_csv_comment(f, "asce_design_mm_mu_X", "the ASCE/SEI 43-05 design value at mu = X "
+                       "(asce_design_mm of the floor's table), beside the clearance the "
+                       "governing method gives (NLTHA under the default policy)");
     fputs("building,floor,floor_name,elevation_m,zpa_g,sets,convergence", f);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         fprintf(f, ",clearance_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
-    fputs(",governing,motion_checks\r\n", f);
+    fputs(",governing", f);
+    for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
+        fprintf(f, ",asce_design_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
+    fputs(",motion_checks\r\n", f);
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
         sl_rpt_csv_field(f, r->building);
@@ -150,8 +170,14 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
                 fprintf(f, "%.*f", csv_decimals(r, SL_PLANT_BOOK_MU[k]), 1e3 * c);
         }
         char chk[64];
-        fprintf(f, ",%s,%s\r\n", sl_plant_book_governing(r->design, gov, sizeof gov),
-                checks_text(r, chk, sizeof chk));
+        fprintf(f, ",%s", sl_plant_book_governing(r->design, gov, sizeof gov));
+        for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {
+            double asce = sl_plant_book_asce(r->design, SL_PLANT_BOOK_MU[k]);
+            fputc(',', f);
+            if (isfinite(asce))
+                fprintf(f, "%.1f", SL_RPT_MM_PER_M * asce);
+        }
+        fprintf(f, ",%s\r\n", checks_text(r, chk, sizeof chk));
     }
     return sl_atomic_commit(a, err);
 }
@@ -170,6 +196,9 @@ enum { LK_BUILDING = SL_RPT_TB_ROWS + 1, LK_FLOOR, LK_MU, LK_RANGE, LK_RESULT, L
  * under one heading), one row per floor. */
 enum { PL_NOTE = 1, PL_HEAD = 3, PL_SUBHEAD, PL_FIRST, PL_CLEAR = 7,
        PL_GOV = PL_CLEAR + SL_PLANT_BOOK_NMU, PL_CHECKS, PL_COLS };
+/* Each floor takes two rows: its clearances, then (grey) the ASCE design
+ * values at the same mu, labelled under Governing. */
+#define PL_ROWS_PER_FLOOR 2
 
 /* Data: A building, B floor name, C building|floor name, D.. clearance on the grid
  * (row 1: the grid); the building list in the column after the grid.
@@ -252,7 +281,12 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Plant");
     lxw_format *num = top_format(wb, NULL, 0), *mm = top_format(wb, "0.0", 0),
                *mm0 = top_format(wb, "0", 0), /* shown as plant.csv shows it */
-               *g = top_format(wb, "0.000", 0), *head_mu = top_format(wb, NULL, 1);
+               *g = top_format(wb, "0.000", 0), *head_mu = top_format(wb, NULL, 1),
+               *asce = top_format(wb, "0.0", 0), *asce_label = top_format(wb, NULL, 0);
+    format_set_font_color(asce, 0x595959);
+    format_set_font_color(asce_label, 0x595959);
+    format_set_italic(asce_label);
+    format_set_indent(asce_label, 1);
     size_t lb = 0, lf = 0, ln = 0;
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
@@ -281,7 +315,8 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
              "friction values, each where the run computed it (empty where the friction grid does "
              "not hold it: never interpolated); Governing: the design curve that gives it "
              "(clearance policy %s), \"(capped)\" "
-             "where the cap governs; Motion checks: FAILED where the floor's motions failed "
+             "where the cap governs; under each floor, in grey, the ASCE/SEI 43-05 design value "
+             "at the same friction values (ASCE design), beside it; Motion checks: FAILED where the floor's motions failed "
              "their SRP 3.7.1 checks and were accepted with --accept-failed-checks. Each building's workbook (<building>/"
              "seislide-clearance.xlsx) shows every floor's curves, standard errors and flags; "
              "the Lookup sheet interpolates at any mu.",
@@ -311,7 +346,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
     worksheet_set_row(ws, PL_SUBHEAD, fmax(16, need - h_head), NULL);
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
-        lxw_row_t row = (lxw_row_t)(PL_FIRST + i);
+        lxw_row_t row = (lxw_row_t)(PL_FIRST + PL_ROWS_PER_FLOOR * i);
         sl_plant_book_governing(r->design, gov, sizeof gov);
         worksheet_write_string(ws, row, 0, r->building, F->wrap);
         worksheet_write_string(ws, row, 1, r->id, F->wrap);
@@ -326,6 +361,12 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
                                                                           SL_PLANT_BOOK_MU[k]),
                                 csv_decimals(r, SL_PLANT_BOOK_MU[k]) ? mm : mm0);
         worksheet_write_string(ws, row, PL_GOV, gov, F->indent);
+        /* the ASCE design values beside it, on the row below */
+        for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
+            sl_rpt_num_or_blank(ws, row + 1, (lxw_col_t)(PL_CLEAR + k),
+                                SL_RPT_MM_PER_M * sl_plant_book_asce(r->design,
+                                                                     SL_PLANT_BOOK_MU[k]), asce);
+        worksheet_write_string(ws, row + 1, PL_GOV, "ASCE design", asce_label);
         char chk_buf[64];
         const char *chk = checks_text(r, chk_buf, sizeof chk_buf);
         worksheet_write_string(ws, row, PL_CHECKS, chk, r->n_failed_motions ? F->warn : F->indent);
@@ -335,6 +376,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
         rh = fmax(rh, sl_rpt_text_height(gov, width[PL_GOV] - 1, 0)); /* indented */
         rh = fmax(rh, sl_rpt_text_height(chk, width[PL_CHECKS] - 1, r->n_failed_motions > 0));
         worksheet_set_row(ws, row, rh, NULL);
+        worksheet_set_row(ws, row + 1, sl_rpt_text_height("ASCE design", width[PL_GOV] - 1, 0), NULL);
     }
     worksheet_freeze_panes(ws, PL_FIRST, 2);
     sl_rpt_page_setup(ws, rep, 1, "");

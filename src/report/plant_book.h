@@ -8,7 +8,8 @@
  * point; empty where the grid does not hold that mu) and the governing method: which design curve gives the
  * clearance at the grid rows where it is not zero ("NLTHA", "ASCE", "NLTHA
  * and ASCE" under the envelope policy), " (capped)" when the cap governs at
- * any of them; the motion checks ("passed", or "FAILED n of m" motion
+ * any of them; the ASCE/SEI 43-05 design value at the same six mu (beside
+ * the governing clearance); the motion checks ("passed", or "FAILED n of m" motion
  * components: a floor accepted with --accept-failed-checks).
  *
  * plant.csv starts with a "# WARNING: CHECKS FAILED: ..." line per floor whose
@@ -81,6 +82,11 @@ typedef struct sl_plant_book {
  * column of the plant index is a computed point, never interpolated across
  * a coarse grid (a curve between two computed points need not be straight). */
 double sl_plant_book_clearance(const sl_design *d, double mu);
+
+/* The ASCE/SEI 43-05 design value (m) of design d at the same grid row (NAN
+ * when the grid holds no such row, or ASCE is undefined there): plant.csv's
+ * asce_design_mm_mu_X, beside the governing clearance. */
+double sl_plant_book_asce(const sl_design *d, double mu);
 
 /* The governing method of a row as text (above), into buf of size n. */
 const char *sl_plant_book_governing(const sl_design *d, char *buf, size_t n);

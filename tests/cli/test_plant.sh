@@ -40,6 +40,27 @@ t_expect_err progress-per-floor "floor 4/4 'bldB/04-roof36' computed; 4/4 floors
 [ "$(grep -v '^#' "$D/out1/plant.csv" | wc -l)" -eq 5 ] && t_pass || t_fail "plant.csv: header + 4 rows expected"
 grep -v '^#' "$D/out1/plant.csv" | head -1 | grep -q '^building,floor,floor_name,elevation_m,zpa_g,sets,convergence,clearance_mm_mu_0.05,clearance_mm_mu_0.1,clearance_mm_mu_0.2,clearance_mm_mu_0.3,clearance_mm_mu_0.4,clearance_mm_mu_0.5,governing' && t_pass || t_fail "plant.csv header"
 [ "$(head -1 "$D/out1/plant.csv" | tail -c 2 | od -An -c | tr -d ' ')" = '\r\n' ] && t_pass || t_fail "plant.csv: CRLF line ends"
+# the ASCE value beside the governing clearance: each floor table's
+# asce_design_mm at the six mu, to 0.1 mm (issue 42)
+if command -v python3 >/dev/null 2>&1; then
+python3 - "$D/out1" > "$D/asce.txt" 2>&1 <<'PY'
+import csv, io, sys
+d = sys.argv[1]
+def rows(p):
+    return list(csv.DictReader(io.StringIO(''.join(l for l in open(p, encoding='utf-8') if not l.startswith('#')))))
+bad = n = 0
+for r in rows(d + '/plant.csv'):
+    t = {float(x['mu']): x['asce_design_mm'] for x in rows('%s/%s/floor_%s.csv' % (d, r['building'], r['floor']))}
+    for mu in (0.05, 0.1, 0.2, 0.3, 0.4, 0.5):
+        got, want = r['asce_design_mm_mu_%g' % mu], t.get(mu)
+        n += 1
+        if (want is None and got) or (want is not None and abs(float(got) - float(want)) > 0.05 + 1e-9):
+            bad += 1
+            print('FAIL %s/%s mu %g: %s, the table %s' % (r['building'], r['floor'], mu, got, want))
+print('checked %d bad %d' % (n, bad))
+PY
+grep -qx 'checked 24 bad 0' "$D/asce.txt" && t_pass || t_fail "plant.csv ASCE columns: $(head -3 "$D/asce.txt")"
+fi
 
 # plant.csv traces its run as every building CSV does (issue 25): # program:
 # first, then command, created, seed, and each floor file's CRC-32 line, the
@@ -130,7 +151,9 @@ else
   t_skip "soffice, pdftotext or python3 absent: plant.xlsx as printed not checked (apt-get install libreoffice-calc-nogui poppler-utils)"
 fi
 
-# per-building runs (no cache): the same files, byte for byte
+# per-building runs (no cache): the same files, byte for byte; plant.csv's
+# columns found by their names
+phead=$(grep -v '^#' "$D/out1/plant.csv" | head -1 | tr -d '\r')
 for b in bldA bldB; do
   t_run run "$D/plant/$b" -o "$D/single-$b" $OPTS --no-cache -q; t_expect_rc "run $b" 0
   [ ! -e "$D/single-$b/.seislide-cache" ] && t_pass || t_fail "--no-cache wrote a cache"
@@ -143,10 +166,11 @@ for b in bldA bldB; do
     id=$(basename "$fl" .csv); id=${id#floor_}
     row=$(awk -F, -v b="$b" -v id="$id" '$1 == b && $2 == id' "$D/out1/plant.csv")
     [ -n "$row" ] || { t_fail "plant.csv lacks $b/$id"; continue; }
-    res=$(grep -v '^#' "$fl" | awk -F, -v row="$row" '
+    res=$(grep -v '^#' "$fl" | awk -F, -v row="$row" -v head="$phead" '
       NR == 1 { for (i = 1; i <= NF; i++) if ($i == "clearance_mm") c = i; next }
       { v[$1 + 0] = $c }
-      END { nr = split(row, r, ","); n = split("0.05 0.1 0.2 0.3 0.5", m, " "); col[1] = nr - 7; col[2] = nr - 6; col[3] = nr - 5; col[4] = nr - 4; col[5] = nr - 2
+      END { nr = split(row, r, ","); n = split("0.05 0.1 0.2 0.3 0.5", m, " "); nh = split(head, hd, ",")
+            for (k = 1; k <= n; k++) for (i = 1; i <= nh; i++) if (hd[i] == "clearance_mm_mu_" m[k]) col[k] = nr - (nh - i)  # from the end: a name may hold a comma
             bad = 0; for (k = 1; k <= n; k++) { d = r[col[k]] - v[m[k] + 0]; if (d < 0) d = -d
               h = r[col[k]] ~ /\./ ? 0.05 : 0.5  # half the printed step
               if (d > h + 1e-9 || r[col[k]] == "") bad = 1 }
@@ -155,15 +179,16 @@ for b in bldA bldB; do
   done
   # plant.csv prints what the standard error supports: at a grid mu, the very text summary.csv
   # shows (the digit of the SE, 1 or 0.1 mm), never 0.001 mm
-  res=$(grep -v '^#' "$D/single-$b/summary.csv" | awk -F, -v b="$b" -v plant="$D/out1/plant.csv" '
+  res=$(grep -v '^#' "$D/single-$b/summary.csv" | awk -F, -v b="$b" -v plant="$D/out1/plant.csv" -v head="$phead" '
     { sub(/\r$/, "") }
     NR == 1 { for (i = 2; i <= NF; i++) { id[i] = $i; sub(/_clearance_mm$/, "", id[i]) } nc = NF; next }
     { for (i = 2; i <= nc; i++) s[id[i], $1 + 0] = $i }
-    END { n = split("0.05 0.1 0.2 0.3 0.5", m, " "); bad = ""; rows = 0
+    END { n = split("0.05 0.1 0.2 0.3 0.5", m, " "); bad = ""; rows = 0; nh = split(head, hd, ",")
+          for (k = 1; k <= n; k++) for (i = 1; i <= nh; i++) if (hd[i] == "clearance_mm_mu_" m[k]) back[k] = nh - i
           while ((getline l < plant) > 0) {
             if (l ~ /^#/ || l ~ /^building,/) continue
             nr = split(l, r, ","); if (r[1] != b) continue
-            col[1] = nr - 7; col[2] = nr - 6; col[3] = nr - 5; col[4] = nr - 4; col[5] = nr - 2
+            for (k = 1; k <= n; k++) col[k] = nr - back[k]  # from the end: a name may hold a comma
             for (k = 1; k <= n; k++) { rows++; if (r[col[k]] != s[r[2], m[k] + 0] || r[col[k]] ~ /\.[0-9][0-9]/) bad = bad " " r[2] "@" m[k] ":" r[col[k]] "/" s[r[2], m[k] + 0] } }
           print (bad == "" && rows == 2 * n) ? "ok" : "bad" bad }')
   [ "$res" = ok ] && t_pass || t_fail "plant.csv clearances of $b not as summary.csv shows them: $res"
