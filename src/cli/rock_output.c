@@ -112,7 +112,7 @@ int rock_write_history(const char *path, const sl_rock_history *h)
                 fprintf(f, "%.9g", v->omega_before_rad_s);
             fputc('\n', f);
         } else {
-            fprintf(f, "%.6f,%.9g,%.9g,,\n", h->t_s[i], h->theta_rad[i], h->omega_rad_s[i]);
+            fprintf(f, "%.9f,%.9g,%.9g,,\n", h->t_s[i], h->theta_rad[i], h->omega_rad_s[i]);
             i++;
         }
     }
