@@ -58,7 +58,8 @@ slow="tests/cli/test_faults.sh tests/cli/test_floor_csv.sh tests/cli/test_conver
   tests/cli/test_outputs.sh $SEISLIDE_TESTBIN/test_analysis tests/cli/test_plant.sh
   tests/cli/test_components.sh $SEISLIDE_TESTBIN/test_physical_floors tests/cli/test_workbook.sh
   tests/cli/test_run_errors.sh tests/cli/test_run.sh $SEISLIDE_TESTBIN/test_synth
-  tests/cli/test_deliver.sh $SEISLIDE_TESTBIN/test_lookup tests/cli/test_synth.sh"
+  tests/cli/test_deliver.sh $SEISLIDE_TESTBIN/test_lookup tests/cli/test_synth.sh
+  tests/cli/test_rock.sh"
 {
   for t in $slow; do [ -e "$t" ] && echo "$t"; done
   for t in "$SEISLIDE_TESTBIN"/test_* tests/cli/test_*.sh; do

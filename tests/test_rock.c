@@ -308,6 +308,502 @@ static void test_uplift_threshold(void)
     free(v);
 }
 
+/* ---- constant forcing and the rectangular pulse ------------------------- */
+
+/* Under a constant a_h = -beta g (no vertical) the block leaves rest at
+ * t = 0 and, integrating (K2) once, theta'^2/2 = F(theta) with
+ * F = p^2 [cos(alpha) - cos(alpha - theta) + beta (sin(alpha) - sin(alpha - theta))];
+ * the time to reach theta1 is int_0^theta1 dtheta / sqrt(2 F), F ~ theta near 0:
+ * QAWS with the weight theta^(-1/2). */
+typedef struct fpar {
+    double alpha, p, beta;
+} fpar;
+
+/* F without cancellation: cos(alpha) - cos(alpha - th) = -2 sin(alpha - th/2) sin(th/2),
+ * sin(alpha) - sin(alpha - th) = 2 cos(alpha - th/2) sin(th/2). */
+static double F_const(const fpar *f, double th)
+{
+    const double m = f->alpha - 0.5 * th;
+    return 2 * f->p * f->p * sin(0.5 * th) * (f->beta * cos(m) - sin(m));
+}
+
+static double time_w(double th, void *vp)
+{
+    const fpar *f = vp;
+    const double m = f->alpha - 0.5 * th;
+    const double q = th > 0 ? 0.5 * th / sin(0.5 * th) : 1.0; /* (th/2) / sin(th/2) */
+    return sqrt(q / (2 * f->p * f->p * (f->beta * cos(m) - sin(m))));
+}
+
+static double time_to(double alpha, double p, double beta, double th1)
+{
+    fpar f = {alpha, p, beta};
+    gsl_function F = {time_w, &f};
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+    gsl_integration_qaws_table *t = gsl_integration_qaws_table_alloc(-0.5, 0.0, 0, 0);
+    double v = NAN, e;
+    gsl_error_handler_t *was = gsl_set_error_handler_off();
+    if (gsl_integration_qaws(&F, 0.0, th1, t, 1e-15, 1e-12, 1000, w, &v, &e))
+        v = NAN;
+    gsl_set_error_handler(was);
+    gsl_integration_qaws_table_free(t);
+    gsl_integration_workspace_free(w);
+    return v;
+}
+
+/* A constant a_h of 2 g tan(alpha) from t = 0: tipping at t(alpha), the
+ * overturn at t(pi/2), located to the integrator's accuracy (the sampled
+ * record is constant, so piecewise linear is exact). */
+static void test_constant_push_times(void)
+{
+    const double b = 0.25, h = 1.0, beta = 2 * b / h;
+    blk_c c = consts(b, h);
+    const double dt = 0.01;
+    const size_t n = 501;
+    double *a = zeros(n);
+    for (size_t i = 0; i < n; i++)
+        a[i] = -beta * g;
+    sl_rock_block blk = {b, h, -1};
+    sl_rock_opts o = opts();
+    sl_rock_result r;
+    CHECK(sl_rock_run(&blk, a, NULL, n, dt, 1, 1, &o, &r, NULL) == SL_OK, "run");
+    CHECK(r.tipped && r.overturned && r.impacts == 0, "tipped %d overturned %d", r.tipped,
+          r.overturned);
+    CHECK_CLOSE(r.t_tip_s, time_to(c.alpha, c.p, beta, c.alpha), 0, 1e-8);
+    CHECK_CLOSE(r.t_overturn_s, time_to(c.alpha, c.p, beta, SL_PI / 2), 0, 1e-8);
+    CHECK(r.peak_theta_rad == SL_PI / 2 && r.excursion_m == 2 * h, "peak %g excursion %g",
+          r.peak_theta_rad, r.excursion_m);
+    /* tighter steps move the instants by less than the promise's share */
+    o.rtol = 1e-10;
+    sl_rock_result r2;
+    CHECK(sl_rock_run(&blk, a, NULL, n, dt, 1, 1, &o, &r2, NULL) == SL_OK, "run");
+    CHECK_CLOSE(r2.t_overturn_s, time_to(c.alpha, c.p, beta, SL_PI / 2), 0, 1e-11);
+    free(a);
+}
+
+/* The pulse's end state (theta1 at t_p under beta) by bisection on
+ * time_to, then the free rocking's energy decides: the block overturns
+ * when F(theta1) >= p^2 (1 - cos(alpha - theta1)) (enough to reach alpha).
+ * Returns that margin (> 0: overturns). */
+static double pulse_margin(double alpha, double p, double beta, double tp)
+{
+    double lo = 0, hi = SL_PI / 2;
+    if (time_to(alpha, p, beta, hi) <= tp)
+        return 1.0; /* lying on its side before the pulse ends */
+    for (int it = 0; it < 200 && hi - lo > 1e-15; it++) {
+        const double mid = 0.5 * (lo + hi);
+        if (time_to(alpha, p, beta, mid) < tp)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    const double th1 = 0.5 * (lo + hi);
+    fpar f = {alpha, p, beta};
+    return F_const(&f, th1) - p * p * (1 - cos(alpha - th1));
+}
+
+/* The smallest beta = A/g of a rectangular pulse of duration tp that
+ * overturns the exact block (bisection on pulse_margin). */
+static double pulse_threshold_exact(double alpha, double p, double tp)
+{
+    double lo = tan(alpha), hi = 20 * tan(alpha);
+    for (int it = 0; it < 100 && hi - lo > 1e-13 * hi; it++) {
+        const double mid = 0.5 * (lo + hi);
+        if (pulse_margin(alpha, p, mid, tp) > 0)
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/* The engine's threshold: bisection on its overturned flag for a sampled
+ * pulse of m + 1 samples of -A, then zeros (the last interval ramps A -> 0:
+ * a pulse of tp = (m + 1/2) dt to O(dt^2)). */
+static double pulse_threshold_engine(double b, double h, double dt, size_t m)
+{
+    const size_t n = m + 3;
+    double *a = zeros(n);
+    sl_rock_block blk = {b, h, -1};
+    sl_rock_opts o = opts();
+    double lo = b / h * g, hi = 20 * b / h * g;
+    for (int it = 0; it < 100 && hi - lo > 1e-12 * hi; it++) {
+        const double A = 0.5 * (lo + hi);
+        for (size_t i = 0; i <= m; i++)
+            a[i] = -A;
+        sl_rock_result r;
+        if (sl_rock_run(&blk, a, NULL, n, dt, 1, 1, &o, &r, NULL) != SL_OK) {
+            lo = hi = NAN;
+            break;
+        }
+        if (r.overturned)
+            hi = A;
+        else
+            lo = A;
+    }
+    free(a);
+    return 0.5 * (lo + hi) / g;
+}
+
+/* Overturning under a rectangular pulse. For the linearised block (theta'' =
+ * p^2 (theta - alpha + beta alpha') with beta' = A/(g alpha)), theta/alpha =
+ * (beta' - 1)(cosh(p t) - 1) during the pulse, and the free rocking after it
+ * reaches alpha when theta'/p >= alpha - theta at its end, which gives
+ *     A_min = g alpha / (1 - exp(-p t_p))                               (derived here)
+ * (an impulse A t_p >= g alpha / p for short pulses; A -> g alpha for long
+ * ones). The exact block's threshold comes from the quadrature above. */
+static void test_pulse_overturn(void)
+{
+    /* the exact block: engine against the quadrature */
+    const double b = 0.2, h = 1.0, dt = 2e-4;
+    blk_c c = consts(b, h);
+    const size_t ms[] = {999, 2499}; /* t_p = 0.2, 0.5 s */
+    for (int k = 0; k < 2; k++) {
+        const double tp = ((double)ms[k] + 0.5) * dt;
+        const double be = pulse_threshold_engine(b, h, dt, ms[k]);
+        const double bx = pulse_threshold_exact(c.alpha, c.p, tp);
+        CHECK_CLOSE(be, bx, 0, 1e-6);
+        CHECK(be > tan(c.alpha), "threshold %g below uplift", be);
+    }
+    /* a slender block: the linearised closed form, within O(alpha^2) */
+    const double bs = 0.01, hs = 1.0;
+    blk_c cs = consts(bs, hs);
+    const double tp = (999 + 0.5) * dt;
+    const double be = pulse_threshold_engine(bs, hs, dt, 999);
+    const double bl = cs.alpha / (1 - exp(-cs.p * tp));
+    CHECK_CLOSE(be, bl, 0, 2 * cs.alpha * cs.alpha);
+    CHECK_CLOSE(be, pulse_threshold_exact(cs.alpha, cs.p, tp), 0, 1e-6);
+}
+
+/* ---- the rest rule ------------------------------------------------------- */
+
+/* Free rocking with r < 1 from theta0: the impact speeds fall as r^k w0
+ * (energy is kept between impacts), so the cascade ends at the first
+ * impact k whose rebound reaches below rest_fraction alpha, i.e.
+ * (r^k w0)^2 < 2 p^2 sin(alpha) rest_fraction alpha: exactly k impacts,
+ * one rest, no step-size collapse (a few steps per impact), and at rest
+ * from there on. */
+static void test_rest_rule(void)
+{
+    const double b = 0.3, h = 1.0;
+    blk_c c = consts(b, h);
+    const double r = sl_rock_housner_r(b, h);
+    const double fr[] = {SL_ROCK_REST_FRACTION, 1e-3};
+    for (int q = 0; q < 2; q++) {
+        const double th0 = 0.5 * c.alpha;
+        const double w0 = c.p * sqrt(2 * (cos(c.alpha - th0) - cos(c.alpha)));
+        size_t K = 1;
+        while (pow(r, (double)K) * w0 * pow(r, (double)K) * w0 >=
+               2 * c.p * c.p * sin(c.alpha) * fr[q] * c.alpha)
+            K++;
+        const size_t n = 8001;
+        double *a = zeros(n);
+        sl_rock_block blk = {b, h, -1};
+        sl_rock_opts o = opts();
+        o.theta0_rad = th0;
+        o.rest_fraction = fr[q];
+        sl_rock_result res;
+        sl_rock_history hi;
+        CHECK(sl_rock_run_history(&blk, a, NULL, n, 0.005, 1, 1, &o, &res, &hi, NULL) == SL_OK,
+              "run");
+        CHECK(res.impacts == K, "impacts %zu, expected %zu", res.impacts, K);
+        CHECK(res.rests == 1, "rests %zu", res.rests);
+        CHECK(res.steps < 12 * K + n / 4, "steps %zu for %zu impacts", res.steps, K);
+        const sl_rock_event *e = event_n(&hi, SL_ROCK_EV_REST, 0);
+        const sl_rock_event *last = event_n(&hi, SL_ROCK_EV_IMPACT, K - 1);
+        CHECK(e && last && e->t_s == last->t_s, "rest at the last impact");
+        /* at rest after it: the history is zero there */
+        size_t i0 = e ? (size_t)(e->t_s / 0.005) + 1 : n;
+        int zero = 1;
+        for (size_t i = i0; i < n; i++)
+            zero &= hi.theta_rad[i] == 0 && hi.omega_rad_s[i] == 0;
+        CHECK(zero && i0 < n, "not at rest after the cascade");
+        /* the impact speeds fall as r^k w0 */
+        const sl_rock_event *ek = event_n(&hi, SL_ROCK_EV_IMPACT, K / 2);
+        if (ek)
+            CHECK_CLOSE(fabs(ek->omega_before_rad_s), pow(r, (double)(K / 2)) * w0, 0, 1e-6);
+        free(a);
+        sl_rock_history_free(&hi);
+    }
+    /* r = 0: the first impact ends the rocking */
+    const size_t n = 1001;
+    double *a = zeros(n);
+    sl_rock_block blk = {b, h, 0.0};
+    sl_rock_opts o = opts();
+    o.theta0_rad = 0.3 * c.alpha;
+    sl_rock_result res;
+    CHECK(sl_rock_run(&blk, a, NULL, n, 0.005, 1, 1, &o, &res, NULL) == SL_OK, "run");
+    CHECK(res.impacts == 1 && res.rests == 1 && res.t_end_s == (double)(n - 1) * 0.005,
+          "r = 0: impacts %zu rests %zu", res.impacts, res.rests);
+    free(a);
+}
+
+/* ---- invariance and convergence ----------------------------------------- */
+
+/* A pulse-like floor motion: one sine of period T and amplitude A from t0,
+ * then a smaller decaying tail, sampled at dt (n samples). */
+static double *pulse_motion(double A, double T, double dt, size_t n)
+{
+    double *a = zeros(n);
+    for (size_t i = 0; a && i < n; i++) {
+        const double t = (double)i * dt - 0.5;
+        if (t > 0 && t < T)
+            a[i] = A * sin(2 * SL_PI * t / T);
+        else if (t >= T)
+            a[i] = 0.3 * A * exp(-(t - T)) * sin(2 * SL_PI * (t - T) / (0.37 * T));
+    }
+    return a;
+}
+
+/* 1 when the run of the reference is insensitive (non-chaotic): inputs
+ * scaled by 1 +- 1e-6 and 1 +- 1e-5 move the peak by less than 1e-4 and keep
+ * the flags. */
+static int non_chaotic(const sl_rock_block *blk, const double *a, size_t n, double dt)
+{
+    sl_rock_opts o = opts();
+    o.rtol = 1e-10;
+    sl_rock_result r0, r;
+    if (sl_rock_run(blk, a, NULL, n, dt, 1, 1, &o, &r0, NULL))
+        return 0;
+    const double d[] = {1e-6, -1e-6, 1e-5, -1e-5};
+    for (int k = 0; k < 4; k++) {
+        if (sl_rock_run(blk, a, NULL, n, dt, 1 + d[k], 1, &o, &r, NULL))
+            return 0;
+        if (r.tipped != r0.tipped || r.overturned != r0.overturned ||
+            !(fabs(r.peak_theta_rad - r0.peak_theta_rad) <= 1e-4 * r0.peak_theta_rad))
+            return 0;
+    }
+    return 1;
+}
+
+/* The promise: every non-chaotic case's peak within 0.1 % of a converged
+ * reference (rtol 1e-10), and rtol halved gives the same peak within it;
+ * over blocks from 0.05 m to 2 m tall and pulses that rock, tip and
+ * overturn. */
+static void test_convergence(void)
+{
+    const double dt = 0.01;
+    const size_t n = 1201;
+    const double hs[] = {0.05, 0.2, 0.5, 1.0, 2.0}, kap[] = {1.3, 2.0, 3.5};
+    int cases = 0, checked = 0;
+    for (int i = 0; i < 5; i++)
+        for (int k = 0; k < 3; k++) {
+            const double h = hs[i], b = 0.2 * h;
+            sl_rock_block blk = {b, h, -1};
+            double *a = pulse_motion(kap[k] * g * b / h, 0.6, dt, n);
+            cases++;
+            if (!non_chaotic(&blk, a, n, dt)) {
+                free(a);
+                continue;
+            }
+            checked++;
+            sl_rock_opts o = opts(), oh = opts(), oref = opts();
+            oh.rtol = o.rtol / 2;
+            oref.rtol = 1e-10;
+            sl_rock_result r, rh, rr;
+            CHECK(sl_rock_run(&blk, a, NULL, n, dt, 1, 1, &o, &r, NULL) == SL_OK, "run");
+            CHECK(sl_rock_run(&blk, a, NULL, n, dt, 1, 1, &oh, &rh, NULL) == SL_OK, "run");
+            CHECK(sl_rock_run(&blk, a, NULL, n, dt, 1, 1, &oref, &rr, NULL) == SL_OK, "run");
+            CHECK_CLOSE(r.peak_theta_rad, rr.peak_theta_rad, 0, 1e-3);
+            CHECK_CLOSE(rh.peak_theta_rad, r.peak_theta_rad, 0, 1e-3);
+            CHECK(r.tipped == rr.tipped && r.overturned == rr.overturned, "h %g k %g flags", h,
+                  kap[k]);
+            free(a);
+        }
+    CHECK(checked >= cases / 2, "only %d of %d cases non-chaotic", checked, cases);
+}
+
+/* a_h -> -a_h is the mirror image: theta -> -theta at every sample, the same
+ * peak and events; an orientation of 180 degrees is -H1 (sl_rock_project),
+ * so the same peak as 0 degrees. */
+static void test_mirror(void)
+{
+    const double dt = 0.005;
+    const size_t n = 2401;
+    double *a = pulse_motion(0.3 * g, 0.5, dt, n), *m = zeros(n), *z = zeros(n);
+    sl_rock_block blk = {0.2, 1.0, -1};
+    sl_rock_opts o = opts();
+    sl_rock_result r1, r2, r3;
+    sl_rock_history h1, h2;
+    CHECK(sl_rock_run_history(&blk, a, NULL, n, dt, 1, 1, &o, &r1, &h1, NULL) == SL_OK, "run");
+    CHECK(sl_rock_run_history(&blk, a, NULL, n, dt, -1, 1, &o, &r2, &h2, NULL) == SL_OK, "run");
+    CHECK(r1.uplifted && r1.impacts > 2, "the case should rock: impacts %zu", r1.impacts);
+    CHECK(r1.peak_theta_rad == r2.peak_theta_rad && r1.impacts == r2.impacts &&
+              r1.t_peak_s == r2.t_peak_s,
+          "mirror: peak %.17g vs %.17g", r1.peak_theta_rad, r2.peak_theta_rad);
+    int same = h1.n == h2.n;
+    for (size_t i = 0; same && i < h1.n; i++)
+        same = h1.theta_rad[i] == -h2.theta_rad[i] && h1.omega_rad_s[i] == -h2.omega_rad_s[i];
+    CHECK(same, "mirror history");
+    sl_rock_project(a, z, n, 180.0, m);
+    CHECK(sl_rock_run(&blk, m, NULL, n, dt, 1, 1, &o, &r3, NULL) == SL_OK, "run");
+    CHECK(r3.peak_theta_rad == r1.peak_theta_rad, "180 deg: %.17g vs %.17g", r3.peak_theta_rad,
+          r1.peak_theta_rad);
+    /* the projection: 30 degrees is cos 30 H1 + sin 30 H2 */
+    sl_rock_project(a, a, n, 30.0, m);
+    CHECK_CLOSE(m[700], (cos(SL_PI / 6) + sin(SL_PI / 6)) * a[700], 1e-15, 1e-15);
+    sl_rock_project(a, NULL, n, 90.0, m);
+    CHECK(m[700] == 0, "90 degrees without H2");
+    sl_rock_history_free(&h1);
+    sl_rock_history_free(&h2);
+    free(a);
+    free(m);
+    free(z);
+}
+
+/* Results do not depend on where the samples fall: a record at a huge dt
+ * and the same piecewise-linear function sampled 50 times finer give the
+ * same peak, events and times (the input is the same function). And the
+ * floor at rest after the record: zeros appended change nothing. */
+static void test_resample_and_tail(void)
+{
+    const double dtc = 0.1;
+    const size_t nc = 41, k = 50, nf = (nc - 1) * k + 1;
+    double *ac = zeros(nc), *af = zeros(nf), *ap = zeros(nc + 200);
+    for (size_t i = 0; i < nc; i++) /* knots of a pulse, zero at the end */
+        ac[i] = i < 12 ? -0.45 * g * sin(SL_PI * (double)i / 6.0) : 0.0;
+    for (size_t i = 0; i < nf; i++) {
+        const size_t j = i / k;
+        const double f = (double)(i % k) / (double)k;
+        af[i] = j + 1 < nc ? ac[j] + (ac[j + 1] - ac[j]) * f : ac[nc - 1];
+    }
+    memcpy(ap, ac, nc * sizeof *ac);
+    const double hs[] = {0.1, 1.0};
+    for (int q = 0; q < 2; q++) {
+        sl_rock_block blk = {0.25 * hs[q], hs[q], -1};
+        sl_rock_opts o = opts();
+        sl_rock_result rc, rf, rp;
+        CHECK(sl_rock_run(&blk, ac, NULL, nc, dtc, 1, 1, &o, &rc, NULL) == SL_OK, "run");
+        CHECK(sl_rock_run(&blk, af, NULL, nf, dtc / (double)k, 1, 1, &o, &rf, NULL) == SL_OK,
+              "run");
+        CHECK(sl_rock_run(&blk, ap, NULL, nc + 200, dtc, 1, 1, &o, &rp, NULL) == SL_OK, "run");
+        CHECK(rc.uplifted && rc.peak_theta_rad > 0.05 * rc.alpha_rad, "h %g: peak %g", hs[q],
+              rc.peak_theta_over_alpha);
+        CHECK_CLOSE(rc.peak_theta_rad, rf.peak_theta_rad, 0, 1e-6);
+        CHECK_CLOSE(rc.t_uplift_s, rf.t_uplift_s, 1e-12, 0);
+        CHECK_CLOSE(rc.t_peak_s, rf.t_peak_s, 1e-6, 0);
+        CHECK(rc.impacts == rf.impacts && rc.tipped == rf.tipped, "impacts %zu vs %zu",
+              rc.impacts, rf.impacts);
+        /* the block still rocks at the record's end, the tail finds its peak */
+        CHECK(rc.t_end_s > (double)(nc - 1) * dtc || rc.t_peak_s <= (double)(nc - 1) * dtc,
+              "t_end %g", rc.t_end_s);
+        CHECK_CLOSE(rp.peak_theta_rad, rc.peak_theta_rad, 0, 1e-9);
+        CHECK(rp.tipped == rc.tipped && rp.overturned == rc.overturned, "padded flags");
+    }
+    free(ac);
+    free(af);
+    free(ap);
+}
+
+/* ---- hard cases (docs/hard-cases.md) ------------------------------------- */
+
+/* A huge block (p 0.4 rad/s) and a tiny one (p 38 rad/s, 0.4 rad a sample
+ * at dt 0.01: sub-steps by the step rule): the free-rocking period against
+ * the quadrature, and r = 1 over many impacts. */
+static void test_huge_and_tiny_blocks(void)
+{
+    const double bs[] = {10.0, 0.001}, hs[] = {50.0, 0.005}, dts[] = {0.05, 0.01};
+    for (int k = 0; k < 2; k++) {
+        blk_c c = consts(bs[k], hs[k]);
+        const double th0 = 0.6 * c.alpha, tq = quarter_exact(c.alpha, c.p, th0);
+        sl_rock_result r;
+        sl_rock_history hi;
+        CHECK(free_run(bs[k], hs[k], th0, 21 * tq, dts[k], SL_ROCK_DEFAULT_RTOL, &r, &hi) ==
+                  SL_OK,
+              "run");
+        const sl_rock_event *i1 = event_n(&hi, SL_ROCK_EV_IMPACT, 0);
+        const sl_rock_event *i9 = event_n(&hi, SL_ROCK_EV_IMPACT, 8);
+        CHECK(i1 && i9, "impacts %zu", r.impacts);
+        if (i1 && i9) {
+            CHECK_CLOSE(i1->t_s, tq, 0, 1e-6);
+            CHECK_CLOSE(i9->t_s - i1->t_s, 16 * tq, 0, 1e-6);
+        }
+        CHECK_CLOSE(r.peak_theta_rad, th0, 0, 1e-6);
+        sl_rock_history_free(&hi);
+    }
+}
+
+/* g + a_v < 0 for 51 samples: (K3) holds whatever a_h, so the block leaves
+ * rest, and (K2) as written (gravity reversed) drives it away from upright;
+ * the samples are counted (liftoff_samples) so that the result is flagged,
+ * and every number is finite. */
+static void test_liftoff(void)
+{
+    const double dt = 0.01;
+    const size_t n = 601;
+    double *a = zeros(n), *v = zeros(n);
+    for (size_t i = 0; i < n; i++)
+        a[i] = 0.01 * g * sin(0.3 * (double)i);
+    for (size_t i = 200; i <= 250; i++)
+        v[i] = -1.5 * g;
+    sl_rock_block blk = {0.3, 1.0, -1};
+    sl_rock_opts o = opts();
+    sl_rock_result r;
+    CHECK(sl_rock_run(&blk, a, v, n, dt, 1, 1, &o, &r, NULL) == SL_OK, "run");
+    CHECK(r.liftoff_samples == 51, "liftoff samples %zu", r.liftoff_samples);
+    CHECK(r.uplifted && r.t_uplift_s > 1.99 && r.t_uplift_s < 2.0, "uplift at %g", r.t_uplift_s);
+    CHECK(isfinite(r.peak_theta_rad) && isfinite(r.excursion_m) && isfinite(r.t_end_s),
+          "finite");
+    free(a);
+    free(v);
+}
+
+/* Grazing: a_h above the threshold by 1e-12 for one sample: a tiny
+ * excursion, impacts of tiny speed ended by the rest rule, no step-size
+ * collapse, at rest at the end. */
+static void test_grazing(void)
+{
+    const double dt = 0.01, b = 0.2, h = 1.0;
+    const size_t n = 301;
+    double *a = zeros(n);
+    a[100] = -g * b / h * (1 + 1e-12);
+    sl_rock_block blk = {b, h, -1};
+    sl_rock_opts o = opts();
+    sl_rock_result r;
+    CHECK(sl_rock_run(&blk, a, NULL, n, dt, 1, 1, &o, &r, NULL) == SL_OK, "run");
+    CHECK(r.uplifted && r.uplifts == 1 && r.peak_theta_rad < 1e-12 && r.steps < 500,
+          "uplifted %d peak %g steps %zu", r.uplifted, r.peak_theta_rad, r.steps);
+    CHECK(r.t_end_s == (double)(n - 1) * dt, "not at rest at the end: t_end %g", r.t_end_s);
+    free(a);
+}
+
+/* Bad input: SL_EINVAL with a message naming the value. */
+static void test_bad_input(void)
+{
+    double a[4] = {0, 1, NAN, 0};
+    sl_rock_block blk = {0.2, 1.0, -1};
+    sl_rock_opts o = opts();
+    sl_rock_result r;
+    sl_error e;
+    CHECK(sl_rock_run(&blk, a, NULL, 4, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL &&
+              strstr(e.msg, "sample 2"),
+          "NaN: %s", e.msg);
+    a[2] = INFINITY;
+    a[1] = 100;
+    CHECK(sl_rock_run(&blk, a, NULL, 4, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL, "inf");
+    a[2] = 0;
+    CHECK(sl_rock_run(&blk, a, NULL, 1, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL, "n = 1");
+    CHECK(sl_rock_run(&blk, a, NULL, 4, 0.0, 1, 1, &o, &r, &e) == SL_EINVAL, "dt 0");
+    CHECK(sl_rock_run(&blk, a, NULL, 4, 0.01, NAN, 1, &o, &r, &e) == SL_EINVAL, "scale");
+    sl_rock_block bad = {0.0, 1.0, -1};
+    CHECK(sl_rock_run(&bad, a, NULL, 4, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL, "b = 0");
+    bad = (sl_rock_block){0.2, 1.0, 1.5};
+    CHECK(sl_rock_run(&bad, a, NULL, 4, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL, "r = 1.5");
+    o.rtol = 1.0;
+    CHECK(sl_rock_run(&blk, a, NULL, 4, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL, "rtol");
+    o = opts();
+    o.theta0_rad = 2.0;
+    CHECK(sl_rock_run(&blk, a, NULL, 4, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL, "theta0");
+    /* a sample not finite found while at rest, after a long scan */
+    double *z = zeros(1000);
+    z[777] = NAN;
+    o = opts();
+    CHECK(sl_rock_run(&blk, z, NULL, 1000, 0.01, 1, 1, &o, &r, &e) == SL_EINVAL &&
+              strstr(e.msg, "777"),
+          "scan: %s", e.msg);
+    free(z);
+}
+
 int main(void)
 {
     RUN(test_free_period_exact);
@@ -315,5 +811,16 @@ int main(void)
     RUN(test_energy_r1);
     RUN(test_restitution);
     RUN(test_uplift_threshold);
+    RUN(test_constant_push_times);
+    RUN(test_pulse_overturn);
+    RUN(test_rest_rule);
+    RUN(test_convergence);
+    RUN(test_mirror);
+    RUN(test_resample_and_tail);
+    RUN(test_huge_and_tiny_blocks);
+    RUN(test_liftoff);
+    RUN(test_grazing);
+    RUN(test_bad_input);
     return HARNESS_END("test_rock");
 }
+

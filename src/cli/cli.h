@@ -30,6 +30,7 @@
 int cmd_run(int argc, char **argv);
 int cmd_merge(int argc, char **argv);
 int cmd_slide(int argc, char **argv);
+int cmd_rock(int argc, char **argv);
 int cmd_spectrum(int argc, char **argv);
 int cmd_rg160(int argc, char **argv);
 int cmd_asce(int argc, char **argv);

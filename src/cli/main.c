@@ -17,6 +17,7 @@ static const command commands[] = {
     {"run", cmd_run, "the main job: per-floor design sliding spectra and clearance workbook"},
     {"merge", cmd_merge, "the outputs of a plant run from its shards (run --shard K/N)"},
     {"slide", cmd_slide, "sliding of a rigid block under one 1-3 component motion"},
+    {"rock", cmd_rock, "rocking and overturning of a rigid block under one motion"},
     {"spectrum", cmd_spectrum, "response spectra of motions"},
     {"rg160", cmd_rg160, "Regulatory Guide 1.60 design spectra"},
     {"asce", cmd_asce, "ASCE/SEI 43-05 approximate sliding displacement"},

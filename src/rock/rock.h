@@ -86,8 +86,8 @@ typedef struct sl_rock_opts {
 #define SL_ROCK_RTOL_MIN 1e-12
 #define SL_ROCK_RTOL_MAX 1e-2
 /* H(rtol) = SL_ROCK_H_COEF rtol^(1/4): the step's share of a radian of the
- * block's fastest linearised motion (1.0 at rtol 1, 0.1 at rtol 1e-4). */
-#define SL_ROCK_H_COEF 1.0
+ * block's fastest linearised motion (0.5 at rtol 1, 0.05 at rtol 1e-4). */
+#define SL_ROCK_H_COEF 0.5
 #define SL_ROCK_SUBSTEPS_MAX 100000u
 /* The rest rule: a rebound that cannot reach this fraction of alpha ends
  * the cascade at rest. */
