@@ -90,19 +90,28 @@ double sl_rock_housner_r(double b_m, double h_m)
 
 void sl_rock_project(const double *h1, const double *h2, size_t n, double phi_deg, double *out)
 {
-    /* multiples of 90 degrees exactly (an orientation of 180 is -H1 to the bit) */
-    double c, s, q = phi_deg / 90.0;
-    if (q == floor(q) && fabs(q) < 1e15) {
-        static const double cq[4] = {1, 0, -1, 0}, sq[4] = {0, 1, 0, -1};
-        long k = (long)fmod(q, 4.0);
-        k = (k + 4) % 4;
-        c = cq[k];
-        s = sq[k];
-    } else {
-        const double phi = phi_deg * (SL_PI / 180.0);
-        c = cos(phi);
-        s = sin(phi);
+    /* phi = 90 k + r, r in [0, 90): the quarter turns exact (180 degrees is -H1 to the
+     * bit), and cos, sin of r taken so that r and 90 - r swap them bit for bit (cos r
+     * is computed as sin(90 - r) above 45 degrees, and both are sqrt(1/2) at 45): H1
+     * and H2 exchanged give the same projections at the mirrored angles */
+    double q = floor(phi_deg / 90.0), r = phi_deg - 90.0 * q, c0, s0, c, s;
+    if (r >= 90.0) { /* round-off of the division */
+        r -= 90.0;
+        q += 1.0;
     }
+    if (r == 45.0) {
+        c0 = s0 = sqrt(0.5);
+    } else if (r < 45.0) {
+        c0 = cos(r * (SL_PI / 180.0));
+        s0 = sin(r * (SL_PI / 180.0));
+    } else {
+        c0 = sin((90.0 - r) * (SL_PI / 180.0));
+        s0 = cos((90.0 - r) * (SL_PI / 180.0));
+    }
+    long k = (long)fmod(q, 4.0);
+    k = (k + 4) % 4;
+    c = k == 0 ? c0 : k == 1 ? -s0 : k == 2 ? -c0 : s0;
+    s = k == 0 ? s0 : k == 1 ? c0 : k == 2 ? -s0 : -c0;
     for (size_t i = 0; i < n; i++)
         out[i] = h2 ? c * h1[i] + s * h2[i] : c * h1[i];
 }

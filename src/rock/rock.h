@@ -141,8 +141,10 @@ SL_API sl_status sl_rock_run(const sl_rock_block *blk, const double *a_h_ms2,
                              double scale_v, const sl_rock_opts *o, sl_rock_result *out,
                              sl_error *err);
 
-/* The weak-axis history of a set at orientation theta_deg from H1:
- * out[i] = cos(phi) h1[i] + sin(phi) h2[i] (h2 NULL: cos(phi) h1[i]). */
+/* The weak-axis history of a set at orientation phi_deg from H1:
+ * out[i] = cos(phi) h1[i] + sin(phi) h2[i] (h2 NULL: cos(phi) h1[i]). Exact
+ * under the symmetries of the orientation grid: quarter turns are exact, and
+ * H1 and H2 exchanged at 90 - phi give the same bits as at phi. */
 SL_API void sl_rock_project(const double *h1, const double *h2, size_t n, double phi_deg,
                             double *out);
 
