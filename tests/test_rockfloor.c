@@ -138,6 +138,7 @@ static void test_stopping_rule(void)
     sl_rockf_item items[3] = {item(0.5, 1.0), item(0.05, 1.0), item(0.25, 1.0)};
     sl_rockf_opts o;
     sl_rockf_opts_default(&o);
+    o.sigma_ln = 0.3; /* x above is for 0.3 */
     sl_rockf_result r[3];
     sl_error err;
     CHECK(sl_rockf_floor_run(NULL, 1, NS, ss, items, 3, &o, r, &err) == SL_OK, "%s", err.msg);
@@ -352,7 +353,14 @@ static void test_verdict(void)
     r.level[0].p_tip = 0.011;
     CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_OVERTURNS, "1 %% at 1.0 x");
     r.level[0].p_tip = 0.01;
-    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_STANDS, "at the target");
+    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_STANDS, "at the target, SE 0");
+    r.level[0].p_tip_se = 0.002;
+    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_MARGINAL, "at the target, SE > 0");
+    r.level[0].p_tip = 0.0065;
+    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_MARGINAL, "1.75 SE below");
+    CHECK(sl_rockf_verdict_of(&r, t, 0.04) == SL_ROCKF_SHORT, "short before marginal");
+    r.level[0].p_tip = 0.0059;
+    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_STANDS, "2.05 SE below: decided");
     r.level[1].p_tip = 0.11;
     CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_OVERTURNS, "10 %% at 1.5 x");
     CHECK(!strcmp(sl_rockf_verdict_name(SL_ROCKF_OVERTURNS), "overturns"), "name");

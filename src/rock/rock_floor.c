@@ -34,7 +34,7 @@ struct sl_rockf_acc {
 void sl_rockf_opts_default(sl_rockf_opts *o)
 {
     memset(o, 0, sizeof *o);
-    o->sigma_ln = 0.30;
+    o->sigma_ln = SL_ROCKF_SCATTER;
     o->level[0] = SL_ROCKF_LEVEL_1;
     o->level[1] = SL_ROCKF_LEVEL_2;
     o->p_target[0] = SL_ROCKF_P_TARGET_1;
@@ -453,16 +453,20 @@ size_t sl_rockf_acc_update(sl_rockf_acc *a)
 sl_rockf_verdict sl_rockf_verdict_of(const sl_rockf_result *r,
                                      const double p_target[SL_ROCKF_NLEVELS], double clearance_m)
 {
-    for (int l = 0; l < SL_ROCKF_NLEVELS; l++)
-        if (r->level[l].p_tip > p_target[l])
+    int near = 0;
+    for (int l = 0; l < SL_ROCKF_NLEVELS; l++) {
+        const sl_rockf_level *v = &r->level[l];
+        if (v->p_tip > p_target[l])
             return SL_ROCKF_OVERTURNS;
+        near |= v->p_tip_se > 0 && p_target[l] - v->p_tip <= SL_ROCKF_SE_DECIDE * v->p_tip_se;
+    }
     if (!isnan(clearance_m) && r->excursion_m > clearance_m)
         return SL_ROCKF_SHORT;
-    return SL_ROCKF_STANDS;
+    return near ? SL_ROCKF_MARGINAL : SL_ROCKF_STANDS;
 }
 
 const char *sl_rockf_verdict_name(sl_rockf_verdict v)
 {
-    static const char *const names[] = {"stands", "short", "overturns"};
+    static const char *const names[] = {"stands", "marginal", "short", "overturns"};
     return (unsigned)v < sizeof names / sizeof *names ? names[v] : "?";
 }
