@@ -58,7 +58,8 @@ sl_status run_deliver(const run_args *a, const sl_plant *plant, const char *defa
     if (st)
         return st;
     if (a->components &&
-        (st = components_write(fresh, a->out, a->components, fresh, cmdline, dop.created, err)))
+        (st = components_write(fresh, a->out, a->components, fresh, cmdline, dop.created, plant,
+                               default_cache ? default_cache : a->cache, a->quiet, err)))
         return st;
     /* the default cache travels with the outputs across the swap */
     char moved[4400] = "";

@@ -19,8 +19,10 @@
 
 const char *const SL_COMP_COL_NAME[SL_COMP_NCOLS] = {"tag", "building", "floor", "mu", "base_m",
                                                      "cg_height_m", "clearance_mm"};
-const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS] = {"ok", "marginal", "short",
-                                                             "rocking", "outside"};
+const char *const SL_COMP_OPT_NAME[SL_COMP_NOPT] = {"mu_max", "restitution", "orientation_deg"};
+const char *const SL_COMP_MODE_NAME[SL_COMP_NMODES] = {"sliding", "rocking", "both"};
+const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS] = {
+    "ok", "marginal", "short", "rocking", "outside", "stands", "overturns"};
 /* Room for the list of known buildings or floors in a message. */
 #define KNOWN_MAX 600
 
@@ -82,13 +84,16 @@ static char *fmt_mu(double x, char *buf, size_t n)
     return buf;
 }
 
-char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, size_t n)
+/* The sliding check's reason, for verdict v. */
+static void slide_reason(const sl_comp_results *r, const sl_comp_row *w, sl_comp_verdict v,
+                         char *buf, size_t n)
 {
     char a[48], b[48], se[48];
-    switch (w->verdict) {
+    switch (v) {
     case SL_COMP_ROCKING:
-        snprintf(buf, n, "mu %s >= b/h %s: rocks before it slides, check rocking (ASCE 43-05)",
-                 fmt_mu(w->mu, a, sizeof a), fmt_mu(w->b_over_h, b, sizeof b));
+        snprintf(buf, n, "mu %s >= b/h %s: rocks before it slides; its rocking is computed by "
+                 "seislide components", fmt_mu(w->mu, a, sizeof a),
+                 fmt_mu(w->b_over_h, b, sizeof b));
         break;
     case SL_COMP_OUTSIDE: {
         char c[48];
@@ -102,10 +107,10 @@ char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, 
             snprintf(se, sizeof se, "%.1f", w->se_mm);
         else
             snprintf(se, sizeof se, "-");
-        if (w->verdict == SL_COMP_OK)
+        if (v == SL_COMP_OK)
             snprintf(buf, n, "required %.1f mm (SE %s) <= available %.1f mm: margin %.1f mm",
                      w->required_mm, se, w->clearance_mm, w->margin_mm);
-        else if (w->verdict == SL_COMP_MARGINAL)
+        else if (v == SL_COMP_MARGINAL)
             snprintf(buf, n, "required %.1f mm (SE %s) <= available %.1f mm: margin %.1f mm "
                      "< %g SE (%.1f mm), inside the noise of the motion sets", w->required_mm,
                      se, w->clearance_mm, w->margin_mm, SL_COMP_MARGIN_SE,
@@ -113,6 +118,61 @@ char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, 
         else
             snprintf(buf, n, "required %.1f mm (SE %s) > available %.1f mm: %.1f mm short",
                      w->required_mm, se, w->clearance_mm, -w->margin_mm);
+    }
+}
+
+char *sl_comp_rock_prefix(const sl_comp_row *w, char *buf, size_t n)
+{
+    const sl_rockf_result *x = &w->rock;
+    int k = snprintf(buf, n, "P(tip) %.1f %% (SE %.1f) at 1.0 x, %.1f %% (SE %.1f) at 1.5 x "
+                     "(targets %g %%, %g %%)", 100 * x->level[0].p_tip,
+                     100 * x->level[0].p_tip_se, 100 * x->level[1].p_tip,
+                     100 * x->level[1].p_tip_se, 100 * SL_ROCKF_P_TARGET_1,
+                     100 * SL_ROCKF_P_TARGET_2);
+    if (k < 0 || (size_t)k >= n)
+        return buf;
+    if (w->rock_verdict == SL_COMP_OVERTURNS)
+        snprintf(buf + k, n - (size_t)k, ": above its target");
+    else if (w->rock_verdict == SL_COMP_MARGINAL)
+        snprintf(buf + k, n - (size_t)k, ": within %g SE of its target after %zu sets",
+                 SL_ROCKF_SE_DECIDE, x->n_sets);
+    return buf;
+}
+
+/* The rocking check's reason: the prefix, then the excursion against the
+ * available clearance (not for an item that overturns). */
+static void rock_reason(const sl_comp_row *w, char *buf, size_t n)
+{
+    sl_comp_rock_prefix(w, buf, n);
+    if (w->rock_verdict == SL_COMP_OVERTURNS)
+        return;
+    size_t k = strlen(buf);
+    double e = 1000 * w->rock.excursion_m;
+    if (w->rock_verdict == SL_COMP_SHORT)
+        snprintf(buf + k, n - k, "; excursion %.1f mm > available %.1f mm: %.1f mm short", e,
+                 w->clearance_mm, e - w->clearance_mm);
+    else
+        snprintf(buf + k, n - k, "; excursion %.1f mm <= available %.1f mm", e, w->clearance_mm);
+}
+
+char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, size_t n)
+{
+    char a[48], b[48];
+    if (w->mode == SL_COMP_MODE_SLIDING || (w->mode == SL_COMP_MODE_ROCKING && !w->has_rock)) {
+        slide_reason(r, w, w->mode == SL_COMP_MODE_SLIDING ? w->verdict : SL_COMP_ROCKING, buf,
+                     n);
+    } else if (w->mode == SL_COMP_MODE_ROCKING) {
+        rock_reason(w, buf, n);
+    } else {
+        char s1[600], s2[600];
+        slide_reason(r, w, w->slide_verdict, s1, sizeof s1);
+        if (w->has_rock)
+            rock_reason(w, s2, sizeof s2);
+        else
+            snprintf(s2, sizeof s2, "mu_max %s >= b/h %s: its rocking is computed by seislide "
+                     "components", fmt_mu(w->mu_max, a, sizeof a),
+                     fmt_mu(w->b_over_h, b, sizeof b));
+        snprintf(buf, n, "slides: %s; rocks: %s", s1, s2);
     }
     return buf;
 }
@@ -282,6 +342,24 @@ static sl_status row_num(const char *path, char sep, const sl_csvrec *w, int col
     return SL_OK;
 }
 
+/* An optional number of a row: NAN when its column is absent or the field
+ * empty; else as row_num (>= 0), then within [lo, hi]. */
+static sl_status opt_num(const char *path, char sep, const sl_csvrec *w, int col, double lo,
+                         double hi, double *v, sl_error *err)
+{
+    char b[SL_TEXT_TOKEN_MAX + 1];
+    *v = NAN;
+    if (col < 0 || !*sl_csv_trimmed(w->f[col], b, sizeof b))
+        return SL_OK;
+    sl_status st = row_num(path, sep, w, col, lo >= 0, v, err);
+    if (!st && !(*v >= lo && *v <= hi))
+        st = sl_error_set_at(err, SL_EINVAL, path, w->fline[col], col + 1, "value %s outside "
+                             "[%g, %g]", sl_csv_trimmed(w->f[col], b, sizeof b), lo, hi);
+    if (st)
+        *v = NAN;
+    return st;
+}
+
 void sl_comp_table_free(sl_comp_table *t)
 {
     if (!t)
@@ -372,6 +450,8 @@ static sl_status read_header(const char *path, sl_csvread *rd, sl_csvrec *h, sl_
     char b[256];
     for (int k = 0; k < SL_COMP_NCOLS; k++)
         t->col[k] = -1;
+    for (int k = 0; k < SL_COMP_NOPT; k++)
+        t->opt[k] = -1;
     for (size_t c = 0; c < h->n; c++) {
         const char *s = sl_csv_trimmed(h->f[c], b, sizeof b);
         if (!*s)
@@ -385,6 +465,9 @@ static sl_status read_header(const char *path, sl_csvread *rd, sl_csvrec *h, sl_
         for (int k = 0; k < SL_COMP_NCOLS; k++)
             if (sl_comp_same_name(s, SL_COMP_COL_NAME[k]))
                 t->col[k] = (int)c;
+        for (int k = 0; k < SL_COMP_NOPT; k++)
+            if (sl_comp_same_name(s, SL_COMP_OPT_NAME[k]))
+                t->opt[k] = (int)c;
     }
     for (int k = 0; k < SL_COMP_NCOLS; k++)
         if (t->col[k] < 0)
@@ -518,6 +601,19 @@ static int read_row(const sl_comp_results *r, sl_comp_table *t, sl_csvrec *w, sl
     for (size_t q = 0; q < sizeof num / sizeof num[0] && !k->stop; q++)
         if (row_num(path, t->sep, w, col[num[q].c], num[q].nonneg, num[q].v, &e))
             note(k, &e);
+    /* the optional columns: mu_max >= mu, r in [0, 1], any finite orientation */
+    const struct { int c; double lo, hi; double *v; } opt[] = {
+        {SL_COMP_MU_MAX, 0, INFINITY, &x->mu_max}, {SL_COMP_RESTITUTION, 0, 1, &x->restitution},
+        {SL_COMP_ORIENTATION, -INFINITY, INFINITY, &x->orientation_deg}};
+    for (size_t q = 0; q < sizeof opt / sizeof opt[0] && !k->stop; q++)
+        if (opt_num(path, t->sep, w, t->opt[opt[q].c], opt[q].lo, opt[q].hi, opt[q].v, &e))
+            note(k, &e);
+    if (!k->stop && !isnan(x->mu_max) && isfinite(x->mu) && !(x->mu_max >= x->mu)) {
+        int c = t->opt[SL_COMP_MU_MAX];
+        sl_error_set_at(&e, SL_EINVAL, path, w->fline[c], c + 1, "mu_max %g below mu %g",
+                        x->mu_max, x->mu);
+        note(k, &e);
+    }
     if (k->n != n0)
         return 0;
     x->line = w->line;
@@ -529,8 +625,53 @@ static int read_row(const sl_comp_results *r, sl_comp_table *t, sl_csvrec *w, sl
     x->se_mm = at.se_mm;
     x->asce_mm = at.asce_mm;
     x->margin_mm = x->clearance_mm - x->required_mm;
-    x->verdict = verdict(x);
+    x->slide_verdict = verdict(x);
+    x->mode = x->mu >= x->b_over_h ? SL_COMP_MODE_ROCKING
+              : !isnan(x->mu_max) && x->mu_max >= x->b_over_h ? SL_COMP_MODE_BOTH
+                                                              : SL_COMP_MODE_SLIDING;
+    x->rock_verdict = SL_COMP_ROCKING; /* until sl_comp_set_rocking */
+    x->verdict = x->mode == SL_COMP_MODE_SLIDING ? x->slide_verdict : SL_COMP_ROCKING;
     return 1;
+}
+
+sl_rockf_item sl_comp_rock_item(const sl_comp_row *w)
+{
+    sl_rockf_item it = {{w->base_m / 2, w->cg_height_m,
+                         isnan(w->restitution) ? -1.0 : w->restitution},
+                        w->orientation_deg};
+    return it;
+}
+
+/* How bad a verdict is, for a row checked both ways (components.h). */
+static int badness(sl_comp_verdict v)
+{
+    switch (v) {
+    case SL_COMP_OVERTURNS: return 6;
+    case SL_COMP_SHORT: return 5;
+    case SL_COMP_ROCKING: return 4; /* not computed: no verdict yet */
+    case SL_COMP_OUTSIDE: return 3;
+    case SL_COMP_MARGINAL: return 2;
+    default: return 1; /* ok, stands */
+    }
+}
+
+void sl_comp_set_rocking(sl_comp_table *t, size_t i, const sl_rockf_result *res)
+{
+    sl_comp_row *w = &t->rows[i];
+    if (w->mode == SL_COMP_MODE_SLIDING)
+        return;
+    static const sl_comp_verdict of[] = {SL_COMP_STANDS, SL_COMP_MARGINAL, SL_COMP_SHORT,
+                                         SL_COMP_OVERTURNS};
+    const double target[SL_ROCKF_NLEVELS] = {SL_ROCKF_P_TARGET_1, SL_ROCKF_P_TARGET_2};
+    w->rock = *res;
+    w->has_rock = 1;
+    w->rock_verdict = of[sl_rockf_verdict_of(res, target, w->clearance_mm / 1000.0)];
+    sl_comp_verdict v = w->rock_verdict;
+    if (w->mode == SL_COMP_MODE_BOTH && badness(w->slide_verdict) >= badness(v))
+        v = w->slide_verdict; /* equal: the sliding word (ok rather than stands) */
+    t->count[w->verdict]--;
+    w->verdict = v;
+    t->count[v]++;
 }
 
 sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp_table *t,
@@ -691,19 +832,40 @@ static sl_status write_csv(const sl_comp_results *r, const sl_comp_table *t, con
     sl_rpt_csv_comment(f, "asce_design_mm", "the ASCE/SEI 43-05 design value at mu "
                        "(asce_design_mm of the floor table), interpolated the same way, beside "
                        "the required clearance");
-    snprintf(buf, sizeof buf, "rocking when mu >= b_over_h = base_m / (2 cg_height_m) (a rigid "
-             "block rocks before it slides, Shenton 1996: check rocking, ASCE/SEI 43-05); else "
-             "outside when mu is off the grid; else, with margin_mm = clearance_mm - "
-             "required_clearance_mm: short when margin_mm < 0; marginal when margin_mm < %g x "
-             "required_clearance_se_mm (inside the noise of the motion sets: more sets or more "
-             "gap decide it); else ok", SL_COMP_MARGIN_SE);
+    sl_rpt_csv_comment(f, "mode", "sliding when mu (mu_max when given) < b_over_h = base_m / "
+                       "(2 cg_height_m); rocking when mu >= b_over_h (a rigid block rocks before "
+                       "it slides, Shenton 1996); both when mu < b_over_h <= mu_max: both checks, "
+                       "the worse verdict governs (overturns, short, outside, marginal, ok)");
+    snprintf(buf, sizeof buf, "sliding: outside when mu is off the grid; else, with margin_mm = "
+             "clearance_mm - required_clearance_mm: short when margin_mm < 0; marginal when "
+             "margin_mm < %g x required_clearance_se_mm (inside the noise of the motion sets: "
+             "more sets or more gap decide it); else ok. Rocking (ASCE/SEI 43-05 section 1.3 "
+             "targets, tipping as unacceptable performance): overturns when p_tip > %g or "
+             "p_tip_15 > %g; short when excursion_mm > clearance_mm; marginal when a p_tip is "
+             "within %g standard errors of its target; else stands", SL_COMP_MARGIN_SE,
+             SL_ROCKF_P_TARGET_1, SL_ROCKF_P_TARGET_2, SL_ROCKF_SE_DECIDE);
     sl_rpt_csv_comment(f, "verdict", buf);
+    snprintf(buf, sizeof buf, "NLTHA of the rocking block (Housner 1963) on the floor's own "
+             "synthesized sets (rocking_sets of them: %d, then %d more while the verdict is "
+             "within %g SE of a target), the horizontals scaled by a log-normal intensity "
+             "factor of log standard deviation %.2f (mean 1; %g-point quadrature), the weak "
+             "axis the worst of every %g degrees (or orientation_deg); p_uplift, p_tip "
+             "(|theta| reaches alpha), p_overturn (pi/2): fractions at the floor motion, _15 "
+             "at 1.5 x it, each with its standard error over sets; theta_over_alpha: peak "
+             "rotation over alpha, mean and 84th percentile; excursion_mm: 2 h sin(peak "
+             "theta), the larger of its %g %% exceedance value at 1.0 x and %g %% at 1.5 x "
+             "(docs/rocking.md)", SL_ROCKF_MIN_SETS, SL_ROCKF_CHUNK, SL_ROCKF_SE_DECIDE,
+             SL_ROCKF_SCATTER, (SL_ROCKF_ZMAX - SL_ROCKF_ZMIN) / SL_ROCKF_DZ + 1,
+             SL_ROCKF_ORIENT_STEP_DEG, 100 * SL_ROCKF_P_TARGET_1, 100 * SL_ROCKF_P_TARGET_2);
+    sl_rpt_csv_comment(f, "rocking", buf);
     for (size_t c = 0; c < t->n_cols; c++) {
         sl_rpt_csv_field(f, t->header[c]);
         fputc(',', f);
     }
     fputs("b_over_h,required_clearance_mm,required_clearance_se_mm,asce_design_mm,margin_mm,"
-          "verdict,reason\r\n", f);
+          "verdict,reason,mode,sliding_verdict,rocking_verdict,rocking_sets,p_uplift,p_tip,"
+          "p_tip_se,p_tip_15,p_tip_15_se,p_overturn,p_overturn_15,theta_over_alpha_mean,"
+          "theta_over_alpha_p84,excursion_mm\r\n", f);
     for (size_t i = 0; i < t->n; i++) {
         const sl_comp_row *w = &t->rows[i];
         for (size_t c = 0; c < t->n_cols; c++) {
@@ -721,6 +883,19 @@ static sl_status write_csv(const sl_comp_results *r, const sl_comp_table *t, con
         csv_num(f, w->margin_mm, "%.1f");
         fprintf(f, ",%s,", SL_COMP_VERDICT_NAME[w->verdict]);
         sl_rpt_csv_field(f, sl_comp_reason(r, w, buf, sizeof buf));
+        fprintf(f, ",%s,%s,%s", SL_COMP_MODE_NAME[w->mode],
+                w->mode != SL_COMP_MODE_ROCKING ? SL_COMP_VERDICT_NAME[w->slide_verdict] : "",
+                w->mode != SL_COMP_MODE_SLIDING ? SL_COMP_VERDICT_NAME[w->rock_verdict] : "");
+        if (w->has_rock) {
+            const sl_rockf_result *x = &w->rock;
+            fprintf(f, ",%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.1f", x->n_sets,
+                    x->level[0].p_uplift, x->level[0].p_tip, x->level[0].p_tip_se,
+                    x->level[1].p_tip, x->level[1].p_tip_se, x->level[0].p_overturn,
+                    x->level[1].p_overturn, x->level[0].theta_ratio_mean,
+                    x->level[0].theta_ratio_q, 1000 * x->excursion_m);
+        } else {
+            fputs(",,,,,,,,,,,", f);
+        }
         fputs("\r\n", f);
     }
     return sl_atomic_commit(a, err);

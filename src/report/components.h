@@ -74,6 +74,7 @@
 
 #include "core/status.h"
 #include "report/report.h"
+#include "rock/rock_floor.h"
 
 #define SL_COMP_CSV "components.csv"
 #define SL_COMP_XLSX "components.xlsx"
@@ -100,11 +101,37 @@ typedef enum sl_comp_col {
 } sl_comp_col;
 extern const char *const SL_COMP_COL_NAME[SL_COMP_NCOLS];
 
+/* Optional columns (names compared by the one rule; empty field: not given):
+ *   mu_max           upper bound of the friction (>= mu): an item with
+ *                    mu < b/h <= mu_max may slide or rock, both are checked
+ *   restitution      r of the rocking impacts, in [0, 1] (Housner's by default)
+ *   orientation_deg  the rocking axis from H1, degrees (the worst of 12 by
+ *                    default) */
+typedef enum sl_comp_opt_col {
+    SL_COMP_MU_MAX, SL_COMP_RESTITUTION, SL_COMP_ORIENTATION, SL_COMP_NOPT
+} sl_comp_opt_col;
+extern const char *const SL_COMP_OPT_NAME[SL_COMP_NOPT];
+
+/* Verdicts. ok, marginal, short, outside: the sliding check; stands,
+ * marginal, short, overturns: the rocking check (rock/rock_floor.h); rocking:
+ * a slender item whose rocking was not computed (a row typed into the
+ * workbook, or a table read but not yet given its rocking results,
+ * sl_comp_set_rocking). */
 typedef enum sl_comp_verdict {
     SL_COMP_OK, SL_COMP_MARGINAL, SL_COMP_SHORT, SL_COMP_ROCKING, SL_COMP_OUTSIDE,
-    SL_COMP_NVERDICTS
+    SL_COMP_STANDS, SL_COMP_OVERTURNS, SL_COMP_NVERDICTS
 } sl_comp_verdict;
 extern const char *const SL_COMP_VERDICT_NAME[SL_COMP_NVERDICTS]; /* "ok", "marginal", ... */
+
+/* Which check a row gets (Shenton 1996: a rigid block slides first when
+ * mu < b/h and rocks first when mu >= b/h): sliding when mu_max (or, not
+ * given, mu) < b/h; rocking when mu >= b/h; both when mu < b/h <= mu_max.
+ * A row checked both ways takes the worse verdict, in the order overturns,
+ * short, outside, marginal, ok (= stands). */
+typedef enum sl_comp_mode {
+    SL_COMP_MODE_SLIDING, SL_COMP_MODE_ROCKING, SL_COMP_MODE_BOTH, SL_COMP_NMODES
+} sl_comp_mode;
+extern const char *const SL_COMP_MODE_NAME[SL_COMP_NMODES]; /* "sliding", "rocking", "both" */
 
 /* The one rule by which names are compared: a row's building and floor
  * with the results' (building, floor id, floor name), tags with each
@@ -166,7 +193,13 @@ typedef struct sl_comp_row {
     size_t floor;            /* index into the results' floors */
     double mu, base_m, cg_height_m, clearance_mm;
     double b_over_h, required_mm, se_mm, asce_mm, margin_mm; /* NAN off the grid */
-    sl_comp_verdict verdict;
+    double mu_max, restitution, orientation_deg; /* optional columns (NAN: not given) */
+    sl_comp_mode mode;
+    sl_comp_verdict slide_verdict; /* the sliding check (rocking: mu >= b/h) */
+    sl_comp_verdict rock_verdict;  /* the rocking check; rocking until it is given */
+    int has_rock;                  /* rock holds the rocking check's result */
+    sl_rockf_result rock;
+    sl_comp_verdict verdict;       /* the governing one */
 } sl_comp_row;
 
 typedef struct sl_comp_table {
@@ -176,6 +209,7 @@ typedef struct sl_comp_table {
     size_t n_cols;
     char **header;           /* as written */
     int col[SL_COMP_NCOLS];  /* the file's column of each required column */
+    int opt[SL_COMP_NOPT];   /* the file's column of each optional column (-1: absent) */
     char sep;                /* the field separator: ',' or ';' (decimal commas) */
     size_t n;
     sl_comp_row *rows;
@@ -207,6 +241,14 @@ sl_status sl_comp_table_read(const char *path, const sl_comp_results *r, sl_comp
                              sl_comp_problems *p, sl_error *err);
 void sl_comp_table_free(sl_comp_table *t);
 
+/* The rocking block of row w (b = base_m / 2, h = cg_height_m, its
+ * restitution and orientation, NAN: the defaults). */
+sl_rockf_item sl_comp_rock_item(const sl_comp_row *w);
+/* Give row i of t (mode rocking or both) its rocking result res: its
+ * rocking verdict (sl_rockf_verdict_of at the row's clearance, targets
+ * SL_ROCKF_P_TARGET_1, _2), the governing verdict, and t's counts. */
+void sl_comp_set_rocking(sl_comp_table *t, size_t i, const sl_rockf_result *res);
+
 /* The interpolation at mu on the grid mu[0..n) of the values c (the
  * Lookup's rule above): NAN when mu is off the grid or NAN. */
 double sl_comp_interp(const double *mu, const double *c, size_t n, double mu_at);
@@ -233,6 +275,12 @@ int sl_comp_floor_at(const sl_comp_results *r, size_t fi, double mu, sl_comp_at 
  * before it slides, check rocking (ASCE 43-05)"); the workbook's formula
  * writes the same text. */
 char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, size_t n);
+/* The part of a rocking row's reason that its clearance does not change
+ * ("P(tip) 0.4 % (SE 0.2) at 1.0 x, ... (targets 1 %, 10 %)", then ": above
+ * its target" or ": within 2 SE of its target after N sets"); the rest is
+ * "; excursion E mm > available C mm: D mm short" or "... <= available C
+ * mm" (none for overturns). Returns buf. */
+char *sl_comp_rock_prefix(const sl_comp_row *w, char *buf, size_t n);
 
 /* What the outputs record. */
 typedef struct sl_comp_opts {
