@@ -353,7 +353,7 @@ static void test_verdict(void)
     r.level[0].p_tip = 0.011;
     CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_OVERTURNS, "1 %% at 1.0 x");
     r.level[0].p_tip = 0.01;
-    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_STANDS, "at the target, SE 0");
+    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_MARGINAL, "at the target, SE 0");
     r.level[0].p_tip_se = 0.002;
     CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_MARGINAL, "at the target, SE > 0");
     r.level[0].p_tip = 0.0065;

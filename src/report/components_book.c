@@ -18,9 +18,10 @@
 enum { CS_TITLE, CS_NOTE, CS_HEAD, CS_FIRST };
 /* Helper columns after the visible ones (hidden, not printed). */
 enum { H_CHK, H_ROW, H_K, H_MU0, H_MU1, H_C0, H_C1, H_S0, H_S1, H_A0, H_A1, H_BLD, H_FID,
-       H_OKX, H_OKY, H_MGX, H_MGY, H_SHX, H_SHY, H_N };
+       H_OKX, H_OKY, H_MGX, H_MGY, H_SHX, H_SHY, H_SV, H_RV0, H_RPRE, H_RKX, H_RKY, H_N };
 /* Result columns after the inputs. */
-enum { R_BH, R_REQ, R_SE, R_ASCE, R_MARGIN, R_VERDICT, R_REASON, R_N };
+enum { R_BH, R_REQ, R_SE, R_ASCE, R_MARGIN, R_VERDICT, R_REASON, R_MODE, R_PTIP, R_PTIP15,
+       R_EXC, R_N };
 /* Floors sheet: A building, B floor id, C floor name, D key by id, E key
  * by name (the names' keys, sl_casefold_key: MATCH compares without case,
  * and TRIM reads a run of blanks as one), then the grid's clearance, its
@@ -35,19 +36,20 @@ enum { FS_BLD, FS_FID, FS_NAME, FS_KID, FS_KNAME, FS_GRID };
 #define W_EXTRA_MAX 13.0
 #define W_CHART 100.0 /* the Chart sheet's one column: a landscape page */
 
+/* The verdicts in the order of sl_comp_verdict, then "check input". */
 static const char *const verdict_label[] = {"ok", "marginal", "short", "rocking", "outside",
-                                            "check input"};
+                                            "stands", "overturns", "check input"};
 static const lxw_color_t verdict_bg[] = {0xC6EFCE, 0xF8CBAD, 0xFFC7CE, 0xFFEB9C, 0xD9D9D9,
-                                         0xE4DFEC};
+                                         0xC6EFCE, 0xC00000, 0xE4DFEC};
 static const lxw_color_t verdict_fg[] = {0x006100, 0x833C0B, 0x9C0006, 0x9C5700, 0x404040,
-                                         0x5B3C88};
-#define N_LABELS 6
+                                         0x006100, 0xFFFFFF, 0x5B3C88};
+#define N_LABELS 8
 
 typedef struct book {
     lxw_workbook *wb;
     sl_rpt_fmts F;
-    lxw_format *in_text, *in_num, *num3, *mm, *reason, *top, *count, *head_text,
-        *vfmt[N_LABELS];
+    lxw_format *in_text, *in_num, *in_fixed, *num3, *mm, *pct, *reason, *top, *count,
+        *head_text, *vfmt[N_LABELS];
     const sl_comp_results *r;
     const sl_comp_table *t;
     size_t n_extra, vis, last;   /* extra columns; visible columns; last formula row */
@@ -109,6 +111,16 @@ static void formats(book *b)
     format_set_border_color(b->in_num, 0xBFBFBF);
     format_set_unlocked(b->in_num);
     format_set_align(b->in_num, LXW_ALIGN_VERTICAL_TOP);
+    /* an input a computed rocking result depends on: shown, not edited (the list is
+     * edited and the command run again) */
+    b->in_fixed = workbook_add_format(b->wb);
+    format_set_bg_color(b->in_fixed, 0xEDEDED);
+    format_set_border(b->in_fixed, LXW_BORDER_THIN);
+    format_set_border_color(b->in_fixed, 0xBFBFBF);
+    format_set_align(b->in_fixed, LXW_ALIGN_VERTICAL_TOP);
+    b->pct = workbook_add_format(b->wb);
+    format_set_num_format(b->pct, "0.0");
+    format_set_align(b->pct, LXW_ALIGN_VERTICAL_TOP);
     b->num3 = workbook_add_format(b->wb);
     format_set_num_format(b->num3, "0.000");
     format_set_align(b->num3, LXW_ALIGN_VERTICAL_TOP);
@@ -203,12 +215,12 @@ static void floors_sheet(book *b)
     }
     /* the chart's diagonal: (0, 0) and (M, M), M a little above every clearance */
     lxw_row_t d = (lxw_row_t)(nf + 2);
-    char rq[80], cl[80], f[240];
+    char rq[80], cl[80], ex[80], f[300];
     worksheet_write_string(ws, d, 0, "chart diagonal, mm", b->F.header);
     worksheet_write_number(ws, d + 1, 0, 0, NULL);
     worksheet_write_number(ws, d + 1, 1, 0, NULL);
-    snprintf(f, sizeof f, "=1.05*MAX(%s,%s)", range(b, rq, sizeof rq, col_res(b, R_REQ)),
-             range(b, cl, sizeof cl, SL_COMP_CLEARANCE));
+    snprintf(f, sizeof f, "=1.05*MAX(%s,%s,%s)", range(b, rq, sizeof rq, col_res(b, R_REQ)),
+             range(b, cl, sizeof cl, SL_COMP_CLEARANCE), range(b, ex, sizeof ex, col_res(b, R_EXC)));
     fcell(ws, d + 2, 0, f, b->diag_mm, NULL, NULL);
     snprintf(f, sizeof f, "=A%u", (unsigned)d + 3);
     fcell(ws, d + 2, 1, f, b->diag_mm, NULL, NULL);
@@ -245,8 +257,9 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
         }
         const double nv[] = {0, 0, 0, w->mu, w->base_m, w->cg_height_m, w->clearance_mm};
         const char *s = w->field[t->col[c]];
-        if (num) {
-            worksheet_write_number(ws, row, (lxw_col_t)c, nv[c], b->in_num);
+        if (num) { /* a computed rocking result holds for its mu and block only */
+            int fixed = w->has_rock && c != SL_COMP_CLEARANCE;
+            worksheet_write_number(ws, row, (lxw_col_t)c, nv[c], fixed ? b->in_fixed : b->in_num);
         } else {
             worksheet_write_string(ws, row, (lxw_col_t)c, s, b->in_text);
             height = fmax(height, sl_rpt_text_height(s, c == SL_COMP_TAG ? W_TAG : W_TEXT, 0));
@@ -346,41 +359,112 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
     fcell(ws, row, col_res(b, R_ASCE), f, asce ? w->asce_mm : 0, asce ? NULL : "", b->mm);
     snprintf(f, sizeof f, "=IF(%s=\"\",\"\",%s-%s)", h[H_K], G, v[R_REQ]);
     fcell(ws, row, col_res(b, R_MARGIN), f, in ? w->margin_mm : 0, in ? NULL : "", b->mm);
-    /* the verdict (components.c, verdict()): the margin against SL_COMP_MARGIN_SE SE */
+    /* the sliding check's verdict (components.c, verdict()): the margin against
+     * SL_COMP_MARGIN_SE SE; "rocking" when mu >= b/h */
     snprintf(f, sizeof f, "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input\",IF(%s>=%s,\"rocking\","
              "IF(%s=\"\",\"outside\",IF(%s<0,\"short\",IF(%s<%g*%s,\"marginal\",\"ok\"))))))",
              h[H_CHK], h[H_CHK], D, v[R_BH], h[H_K], v[R_MARGIN], v[R_MARGIN], SL_COMP_MARGIN_SE,
              v[R_SE]);
+    int rk = ok && w->has_rock;
+    sl_comp_verdict sv = !ok ? SL_COMP_OK : w->has_rock ? w->slide_verdict : w->verdict;
+    fcell(ws, row, col_h(b, H_SV), f, 0, ok ? SL_COMP_VERDICT_NAME[sv] : "", NULL);
+    const char *SV = h[H_SV];
+    /* the sliding check's reason */
+    char sr[2400];
+    snprintf(sr, sizeof sr,
+             "IF(%s=\"rocking\",\"mu \"&"
+             "TEXT(%s,\"0.0##\")&\" >= b/h \"&TEXT(%s,\"0.0##\")&\": rocks before it slides; its "
+             "rocking is computed by seislide components\",IF(%s=\"outside\",\"mu \"&"
+             "TEXT(%s,\"0.0##\")&\" outside the computed grid %s-%s: no clearance computed\","
+             "\"required \"&TEXT(%s,\"0.0\")&\" mm (SE \"&TEXT(%s,\"0.0\")&\") \"&IF(%s=\"short\","
+             "\"> available \"&TEXT(%s,\"0.0\")&\" mm: \"&TEXT(-%s,\"0.0\")&\" mm short\",\"<= "
+             "available \"&TEXT(%s,\"0.0\")&\" mm: margin \"&TEXT(%s,\"0.0\")&\" mm\"&IF(%s="
+             "\"marginal\",\" < %g SE (\"&TEXT(%g*%s,\"0.0\")&\" mm), inside the noise of the "
+             "motion sets\",\"\"))))",
+             SV, D, v[R_BH], SV, D, b->g0, b->g1, v[R_REQ], v[R_SE], SV, G, v[R_MARGIN], G,
+             v[R_MARGIN], SV, SL_COMP_MARGIN_SE, SL_COMP_MARGIN_SE, v[R_SE]);
+    /* the rocking check (rk): its result as computed, the clearance live */
+    char rv[600] = "", rr[1600] = "", pre[800] = "";
+    if (rk) {
+        /* the rocking verdict before the excursion is set against the clearance */
+        static const sl_comp_verdict of[] = {SL_COMP_STANDS, SL_COMP_MARGINAL, SL_COMP_SHORT,
+                                             SL_COMP_OVERTURNS};
+        const double target[SL_ROCKF_NLEVELS] = {SL_ROCKF_P_TARGET_1, SL_ROCKF_P_TARGET_2};
+        worksheet_write_string(ws, row, col_h(b, H_RV0),
+                               SL_COMP_VERDICT_NAME[of[sl_rockf_verdict_of(&w->rock, target,
+                                                                           NAN)]],
+                               NULL);
+        worksheet_write_string(ws, row, col_h(b, H_RPRE), sl_comp_rock_prefix(w, pre, sizeof pre),
+                               NULL);
+        snprintf(rv, sizeof rv, "IF(%s=\"overturns\",\"overturns\",IF(%s>%s,\"short\",%s))",
+                 h[H_RV0], v[R_EXC], G, h[H_RV0]);
+        snprintf(rr, sizeof rr, "%s&IF(%s=\"overturns\",\"\",IF(%s>%s,\"; excursion \"&TEXT(%s,"
+                 "\"0.0\")&\" mm > available \"&TEXT(%s,\"0.0\")&\" mm: \"&TEXT(%s-%s,\"0.0\")&"
+                 "\" mm short\",\"; excursion \"&TEXT(%s,\"0.0\")&\" mm <= available \"&TEXT(%s,"
+                 "\"0.0\")&\" mm\"))", h[H_RPRE], h[H_RV0], v[R_EXC], G, v[R_EXC], G, v[R_EXC], G,
+                 v[R_EXC], G);
+        worksheet_write_string(ws, row, col_res(b, R_MODE), SL_COMP_MODE_NAME[w->mode],
+                               b->reason);
+        worksheet_write_number(ws, row, col_res(b, R_PTIP), 100 * w->rock.level[0].p_tip, b->pct);
+        worksheet_write_number(ws, row, col_res(b, R_PTIP15), 100 * w->rock.level[1].p_tip,
+                               b->pct);
+        worksheet_write_number(ws, row, col_res(b, R_EXC), 1000 * w->rock.excursion_m, b->mm);
+    } else {
+        snprintf(f, sizeof f, "=IF(%s<>\"ok\",\"\",IF(%s>=%s,\"rocking\",\"sliding\"))", h[H_CHK],
+                 D, v[R_BH]);
+        fcell(ws, row, col_res(b, R_MODE), f, 0,
+              ok ? SL_COMP_MODE_NAME[w->mode == SL_COMP_MODE_ROCKING ? SL_COMP_MODE_ROCKING
+                                                                     : SL_COMP_MODE_SLIDING]
+                 : "",
+              b->reason);
+    }
+    /* the verdict: the sliding check's, the rocking check's, or the worse of both */
+    if (!rk)
+        snprintf(f, sizeof f, "=%s", SV);
+    else if (w->mode == SL_COMP_MODE_ROCKING)
+        snprintf(f, sizeof f, "=IF(%s<>\"ok\",\"check input\",%s)", h[H_CHK], rv);
+    else
+        snprintf(f, sizeof f, "=IF(%s<>\"ok\",\"check input\",IF(OR(%s=\"overturns\",%s=\"overturns\"),"
+                 "\"overturns\",IF(OR(%s=\"short\",%s=\"short\"),\"short\",IF(OR(%s=\"outside\",%s="
+                 "\"outside\"),\"outside\",IF(OR(%s=\"marginal\",%s=\"marginal\"),\"marginal\",\"ok\")))))",
+                 h[H_CHK], SV, rv, SV, rv, SV, rv, SV, rv);
     fcell(ws, row, col_res(b, R_VERDICT), f, 0, ok ? SL_COMP_VERDICT_NAME[vi] : "", b->top);
-    const char *V = v[R_VERDICT];
-    snprintf(f, sizeof f,
-             "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input: \"&%s,IF(%s=\"rocking\",\"mu \"&"
-             "TEXT(%s,\"0.0##\")&\" >= b/h \"&TEXT(%s,\"0.0##\")&\": rocks before it slides, "
-             "check rocking (ASCE 43-05)\",IF(%s=\"outside\",\"mu \"&TEXT(%s,\"0.0##\")&"
-             "\" outside the computed grid %s-%s: no clearance computed\",\"required \"&"
-             "TEXT(%s,\"0.0\")&\" mm (SE \"&TEXT(%s,\"0.0\")&\") \"&IF(%s=\"short\",\"> available "
-             "\"&TEXT(%s,\"0.0\")&\" mm: \"&TEXT(-%s,\"0.0\")&\" mm short\",\"<= available \"&"
-             "TEXT(%s,\"0.0\")&\" mm: margin \"&TEXT(%s,\"0.0\")&\" mm\"&IF(%s=\"marginal\","
-             "\" < %g SE (\"&TEXT(%g*%s,\"0.0\")&\" mm), inside the noise of the motion sets\","
-             "\"\"))))))",
-             h[H_CHK], h[H_CHK], h[H_CHK], V, D, v[R_BH], V, D, b->g0, b->g1, v[R_REQ], v[R_SE],
-             V, G, v[R_MARGIN], G, v[R_MARGIN], V, SL_COMP_MARGIN_SE, SL_COMP_MARGIN_SE, v[R_SE]);
+    if (!rk)
+        snprintf(f, sizeof f, "=IF(%s=\"\",\"\",IF(%s<>\"ok\",\"check input: \"&%s,%s))", h[H_CHK],
+                 h[H_CHK], h[H_CHK], sr);
+    else if (w->mode == SL_COMP_MODE_ROCKING)
+        snprintf(f, sizeof f, "=IF(%s<>\"ok\",\"check input: \"&%s,%s)", h[H_CHK], h[H_CHK], rr);
+    else
+        snprintf(f, sizeof f, "=IF(%s<>\"ok\",\"check input: \"&%s,\"slides: \"&%s&\"; rocks: \"&%s)",
+                 h[H_CHK], h[H_CHK], sr, rr);
     fcell(ws, row, col_res(b, R_REASON), f, 0,
           ok ? sl_comp_reason(r, w, reason, sizeof reason) : "", b->reason);
     if (ok)
         height = fmax(height, sl_rpt_text_height(reason, W_REASON, 0));
     worksheet_set_row(ws, row, height, NULL);
-    /* the chart's points: ok and short, #N/A otherwise (not drawn) */
+    /* the chart's points: a sliding check's ok, marginal and short (x its required
+     * clearance), #N/A otherwise (not drawn); a rocking check's (x its excursion) */
     const int pts[6][2] = {{H_OKX, SL_COMP_OK}, {H_OKY, SL_COMP_OK},
                            {H_MGX, SL_COMP_MARGINAL}, {H_MGY, SL_COMP_MARGINAL},
                            {H_SHX, SL_COMP_SHORT}, {H_SHY, SL_COMP_SHORT}};
     for (int k = 0; k < 6; k++) {
         int y = pts[k][0] == H_OKY || pts[k][0] == H_MGY || pts[k][0] == H_SHY;
-        snprintf(f, sizeof f, "=IF(%s=\"%s\",%s,NA())", V, SL_COMP_VERDICT_NAME[pts[k][1]],
+        snprintf(f, sizeof f, "=IF(%s=\"%s\",%s,NA())", SV, SL_COMP_VERDICT_NAME[pts[k][1]],
                  y ? G : v[R_REQ]);
-        int on = ok && vi == pts[k][1];
+        int on = ok && (int)sv == pts[k][1];
         fcell(ws, row, col_h(b, pts[k][0]), f, on ? (y ? w->clearance_mm : w->required_mm) : 0,
               on ? NULL : "#N/A", NULL);
+    }
+    int ron = rk && w->rock_verdict != SL_COMP_OVERTURNS;
+    if (rk) {
+        snprintf(f, sizeof f, "=IF(%s=\"overturns\",NA(),%s)", h[H_RV0], v[R_EXC]);
+        fcell(ws, row, col_h(b, H_RKX), f, ron ? 1000 * w->rock.excursion_m : 0,
+              ron ? NULL : "#N/A", NULL);
+        snprintf(f, sizeof f, "=IF(%s=\"overturns\",NA(),%s)", h[H_RV0], G);
+        fcell(ws, row, col_h(b, H_RKY), f, ron ? w->clearance_mm : 0, ron ? NULL : "#N/A", NULL);
+    } else {
+        fcell(ws, row, col_h(b, H_RKX), "=NA()", 0, "#N/A", NULL);
+        fcell(ws, row, col_h(b, H_RKY), "=NA()", 0, "#N/A", NULL);
     }
 }
 
@@ -414,7 +498,7 @@ static void components_sheet(book *b, const sl_report *rep)
         worksheet_set_column(ws, (lxw_col_t)(SL_COMP_NCOLS + e), (lxw_col_t)(SL_COMP_NCOLS + e),
                              fmin(w, W_EXTRA_MAX), NULL);
     }
-    const double w_res[R_N] = {6, 8.5, 6.5, 7, 7.5, 10, W_REASON};
+    const double w_res[R_N] = {6, 8.5, 6.5, 7, 7.5, 10, W_REASON, 8, 7, 7, 9};
     for (int k = 0; k < R_N; k++)
         worksheet_set_column(ws, col_res(b, k), col_res(b, k), w_res[k], NULL);
     lxw_row_col_options hid = {.hidden = 1};
@@ -426,14 +510,22 @@ static void components_sheet(book *b, const sl_report *rep)
     snprintf(note, sizeof note,
              "Required clearance: the floor's table (run in %s, created %s) at the component's "
              "mu, linear interpolation on the grid %s-%s (clearance policy %s; the ASCE/SEI "
-             "43-05 design value beside it). Verdict, in this order: rocking when "
-             "mu >= b/h = base_m / (2 cg_height_m) (the block rocks before it slides: check "
-             "rocking, ASCE/SEI 43-05); outside when mu is off the grid; short when the margin "
-             "(clearance_mm - required) is < 0; marginal when it is below %g x the SE of the "
-             "required clearance (inside the noise of the motion sets); ok otherwise. More "
-             "components: type them in the yellow cells below the last one (%d rows are ready, "
-             "printed with the sheet); building may be left empty %s.", r->dir, r->created,
-             b->g0, b->g1, r->policy, SL_COMP_MARGIN_SE, SL_COMP_SPARE_ROWS,
+             "43-05 design value beside it). Sliding verdict: outside when mu is off the grid; "
+             "short when the margin (clearance_mm - required) is < 0; marginal when it is below "
+             "%g x the SE of the required clearance (inside the noise of the motion sets); ok "
+             "otherwise. A slender component (mu >= b/h = base_m / (2 cg_height_m): it rocks "
+             "before it slides; mode both when mu < b/h <= mu_max) was checked for rocking by "
+             "seislide components: P(tip), the probability that it tips (%%), at the floor "
+             "motion and at 1.5 x it against ASCE/SEI 43-05's targets of %g %% and %g %%, and "
+             "the excursion of its top (mm) against the available clearance: overturns, short, "
+             "marginal (within %g SE of a target) or stands; its mu and block (grey) are those "
+             "it was computed for: to change them, edit the list and run the command again. "
+             "A row typed in below with mu >= b/h reads rocking: its rocking is computed by "
+             "seislide components. More components: type them in the yellow cells below the "
+             "last one (%d rows are ready, printed with the sheet); building may be left "
+             "empty %s.", r->dir, r->created, b->g0, b->g1, r->policy, SL_COMP_MARGIN_SE,
+             100 * SL_ROCKF_P_TARGET_1, 100 * SL_ROCKF_P_TARGET_2, SL_ROCKF_SE_DECIDE,
+             SL_COMP_SPARE_ROWS,
              r->is_plant ? (r->n_buildings == 1 ? "(one building)" : "only in a one-building "
                             "plant") : "(one building)");
     worksheet_merge_range(ws, CS_NOTE, 0, CS_NOTE, (lxw_col_t)(vis - 1), note, b->F.wrap);
@@ -449,15 +541,17 @@ static void components_sheet(book *b, const sl_report *rep)
         worksheet_write_string(ws, CS_HEAD, (lxw_col_t)(SL_COMP_NCOLS + e),
                                t->header[b->extra[e]], e ? b->F.header : b->head_text);
     static const char *const rh[R_N] = {"b/h", "required, mm", "its SE, mm", "ASCE, mm",
-                                        "margin, mm", "verdict", "reason"};
+                                        "margin, mm", "verdict", "reason", "mode",
+                                        "P(tip), %", "P(tip) 1.5 x, %", "excursion, mm"};
     for (int k = 0; k < R_N; k++)
         worksheet_write_string(ws, CS_HEAD, col_res(b, k), rh[k],
-                               k < R_VERDICT ? b->F.header_num
-                               : k == R_VERDICT ? b->head_text : b->F.header);
+                               k < R_VERDICT || k > R_MODE ? b->F.header_num
+                               : k == R_VERDICT || k == R_MODE ? b->head_text : b->F.header);
     static const char *const hh[H_N] = {"check", "floor row", "grid k", "mu0", "mu1", "c0", "c1",
                                         "se0", "se1", "asce0", "asce1", "building", "floor id",
                                         "ok x", "ok y", "marginal x", "marginal y", "short x",
-                                        "short y"};
+                                        "short y", "sliding verdict", "rocking verdict",
+                                        "rocking reason", "rocking x", "rocking y"};
     for (int k = 0; k < H_N; k++)
         worksheet_write_string(ws, CS_HEAD, col_h(b, k), hh[k], b->F.header);
     worksheet_set_row(ws, CS_HEAD, 2 * 15.0 + 1, NULL);
@@ -597,13 +691,15 @@ static void chart_sheet(book *b, const sl_report *rep)
     worksheet_set_column(ws, 0, 0, W_CHART, NULL);
     worksheet_write_string(ws, 0, 0, "Components: available against required clearance",
                            b->F.title);
-    const char *cap = "One point per component that slides (verdict ok, marginal or short), "
-                      "tagged: the required clearance at its mu on its floor against the gap it "
-                      "has. Points on or above the dashed line have enough gap; below it they "
-                      "are short. Rocking components and those whose mu is off the grid are not "
-                      "drawn (see the Components sheet). The axes start at 0 and grow with the "
-                      "rows typed in; a point of a row typed in is labelled with its tag in "
-                      "Excel, with its available clearance in LibreOffice.";
+    const char *cap = "One point per component checked for sliding (its sliding verdict ok, "
+                      "marginal or short), tagged: the required clearance at its mu on its floor "
+                      "against the gap it has; and one per component checked for rocking that "
+                      "does not overturn (blue triangle): the excursion of its top against the "
+                      "gap. Points on or above the dashed line have enough gap; below it they "
+                      "are short. Components that overturn and those whose mu is off the grid "
+                      "are not drawn (see the Components sheet). The axes start at 0 and grow "
+                      "with the rows typed in; a point of a row typed in is labelled with its "
+                      "tag in Excel, with its available clearance in LibreOffice.";
     worksheet_write_string(ws, 1, 0, cap, b->F.wrap);
     worksheet_set_row(ws, 1, sl_rpt_text_height(cap, W_CHART, 0), NULL);
     lxw_chart *ch = workbook_add_chart(b->wb, LXW_CHART_SCATTER);
@@ -611,7 +707,8 @@ static void chart_sheet(book *b, const sl_report *rep)
     const struct { int hx, hy; const char *name; lxw_color_t color; uint8_t marker; } s[] = {
         {H_OKX, H_OKY, "ok", 0x2E7D32, LXW_CHART_MARKER_CIRCLE},
         {H_MGX, H_MGY, "marginal", 0xC55A11, LXW_CHART_MARKER_SQUARE},
-        {H_SHX, H_SHY, "short", 0xC00000, LXW_CHART_MARKER_DIAMOND}};
+        {H_SHX, H_SHY, "short", 0xC00000, LXW_CHART_MARKER_DIAMOND},
+        {H_RKX, H_RKY, "rocking (excursion)", 0x1F4E79, LXW_CHART_MARKER_TRIANGLE}};
     /* each point tagged: a label per row, the tag's cell (not drawn with the point) */
     size_t np = b->last - CS_FIRST + 1;
     lxw_chart_data_label *lab = calloc(np, sizeof *lab), **labp = calloc(np + 1, sizeof *labp);
@@ -629,7 +726,7 @@ static void chart_sheet(book *b, const sl_report *rep)
         lab[i].font = &lfont;
         labp[i] = &lab[i];
     }
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         char xr[80], yr[80];
         snprintf(x, sizeof x, "=%s", range(b, xr, sizeof xr, col_h(b, s[k].hx)));
         snprintf(y, sizeof y, "=%s", range(b, yr, sizeof yr, col_h(b, s[k].hy)));
@@ -658,7 +755,8 @@ static void chart_sheet(book *b, const sl_report *rep)
     chart_series_set_marker_type(dg, LXW_CHART_MARKER_NONE);
     chart_show_hidden_data(ch); /* the points are in hidden columns */
     chart_title_set_name(ch, "Available against required clearance");
-    chart_axis_set_name(ch->x_axis, "Required clearance at the component's mu, mm");
+    chart_axis_set_name(ch->x_axis, "Required clearance at the component's mu (sliding) or "
+                                    "excursion (rocking), mm");
     chart_axis_set_name(ch->y_axis, "Available clearance, mm");
     /* both axes from 0, their ends left to the spreadsheet: they follow the points, rows
      * typed in included (the diagonal ends a little above every point, Floors) */
@@ -692,10 +790,15 @@ sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, c
     b.vis = SL_COMP_NCOLS + b.n_extra + R_N;
     b.last = CS_FIRST + t->n + SL_COMP_SPARE_ROWS - 1;
     grid_text(r, b.g0, b.g1);
-    for (size_t i = 0; i < t->n; i++) /* the diagonal's end: a little above every point */
-        if (t->rows[i].verdict == SL_COMP_OK || t->rows[i].verdict == SL_COMP_SHORT)
-            b.diag_mm = fmax(b.diag_mm, 1.05 * fmax(t->rows[i].required_mm,
-                                                    t->rows[i].clearance_mm));
+    for (size_t i = 0; i < t->n; i++) { /* the diagonal's end, as its formula (Floors) */
+        const sl_comp_row *w = &t->rows[i];
+        double m = w->clearance_mm;
+        if (isfinite(w->required_mm))
+            m = fmax(m, w->required_mm);
+        if (w->has_rock)
+            m = fmax(m, 1000 * w->rock.excursion_m);
+        b.diag_mm = fmax(b.diag_mm, 1.05 * m);
+    }
     sl_report rep;
     sl_comp_report(r, o, &rep);
     sl_atomic *a;

@@ -421,19 +421,29 @@ sl_status sl_rockf_acc_result(const sl_rockf_acc *a, sl_rockf_result *out, sl_er
     return SL_OK;
 }
 
-/* (F6): item i is decided when some level's p_tip is above its target by
- * more than SE_DECIDE standard errors, or every level's is below it by more
- * than that, a level whose sets all agree (SE 0) counting as decided. */
+/* Is p decided against target t (F6)? Every set tips everywhere or nowhere
+ * (p 1 or 0: the sets agree, SE 0), or p is more than SL_ROCKF_SE_DECIDE
+ * standard errors from t; an SE of 0 at another p (sets that happen to agree
+ * on a share) decides nothing. */
+static int level_decided(double p, double se, double t)
+{
+    if (p == 0 || p == 1)
+        return 1;
+    return se > 0 && fabs(p - t) > SL_ROCKF_SE_DECIDE * se;
+}
+
+/* (F6): item i is decided when some level's p_tip is above its target and
+ * decided there, or every level's is at or below it and decided. */
 static int decided(const sl_rockf_acc *a, size_t i)
 {
     int all_below = 1;
     for (int l = 0; l < SL_ROCKF_NLEVELS; l++) {
         double p, se;
         prob(a, i, l, F_TIP, &p, &se);
-        const double t = a->o.p_target[l], k = SL_ROCKF_SE_DECIDE;
-        if (p > t && (se == 0 || p - t > k * se))
+        const double t = a->o.p_target[l];
+        if (p > t && level_decided(p, se, t))
             return 1;
-        if (!(p <= t && (se == 0 || t - p > k * se)))
+        if (!(p <= t && level_decided(p, se, t)))
             all_below = 0;
     }
     return all_below;
@@ -458,7 +468,7 @@ sl_rockf_verdict sl_rockf_verdict_of(const sl_rockf_result *r,
         const sl_rockf_level *v = &r->level[l];
         if (v->p_tip > p_target[l])
             return SL_ROCKF_OVERTURNS;
-        near |= v->p_tip_se > 0 && p_target[l] - v->p_tip <= SL_ROCKF_SE_DECIDE * v->p_tip_se;
+        near |= !level_decided(v->p_tip, v->p_tip_se, p_target[l]);
     }
     if (!isnan(clearance_m) && r->excursion_m > clearance_m)
         return SL_ROCKF_SHORT;

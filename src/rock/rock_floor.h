@@ -35,8 +35,8 @@
  * floor's sets in order, a batch at a time, until its verdict on tipping is
  * decided: some level's p_tip above its target by more than
  * SL_ROCKF_SE_DECIDE standard errors (it overturns), or every level's below
- * it by more than that (it stands), a level whose sets all agree (SE 0:
- * every set tips everywhere, or nowhere) counting as decided; at least
+ * it by more than that (it stands), a level where every set tips at every
+ * intensity, or at none (p_tip 1 or 0), counting as decided; at least
  * min_sets sets, at most the floor's. An item near its limit so gets every
  * set the floor has; one far from it, the first batch only. Each item's
  * statistics are over its own sets (a prefix of the floor's).
@@ -128,9 +128,11 @@ typedef struct sl_rockf_level {
  * this order:
  *   overturns  p_tip above its target at some level (the point estimate)
  *   short      the design excursion (F5) exceeds the available clearance
- *   marginal   p_tip at or below its target at every level, but within
- *              SL_ROCKF_SE_DECIDE standard errors of it at some level (the
- *              stopping rule (F6) ran out of sets before deciding)
+ *   marginal   p_tip at or below its target at every level, but not
+ *              decided at some level by the rule of (F6) (within
+ *              SL_ROCKF_SE_DECIDE standard errors of its target, or an SE of
+ *              0 at a p_tip between 0 and 1): the floor's sets ran out
+ *              first
  *   stands     p_tip below its target by more than that at every level (or
  *              every set agrees), and the excursion fits */
 typedef enum sl_rockf_verdict {
