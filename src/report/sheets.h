@@ -111,6 +111,8 @@ lxw_workbook *sl_rpt_workbook_open(const char *path, const char *title, const ch
                                    sl_atomic **a, sl_error *err);
 /* Close wb and rename it over `path` (or remove it on error). */
 sl_status sl_rpt_workbook_close(lxw_workbook *wb, sl_atomic *a, const char *path, sl_error *err);
+/* Close a workbook not wanted (an error before it was complete) and abort a. */
+void sl_rpt_workbook_discard(lxw_workbook *wb, sl_atomic *a);
 
 /* ---- lookup_formula.c: the Lookup chain of both workbooks ----------------- */
 /* The rows (0-based) of a Lookup's cells in column B: the mu input, the
