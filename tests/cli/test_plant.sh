@@ -146,7 +146,7 @@ for b in bldA bldB; do
     res=$(grep -v '^#' "$fl" | awk -F, -v row="$row" '
       NR == 1 { for (i = 1; i <= NF; i++) if ($i == "clearance_mm") c = i; next }
       { v[$1 + 0] = $c }
-      END { nr = split(row, r, ","); n = split("0.05 0.1 0.2 0.3 0.5", m, " "); col[1] = nr - 7; col[2] = nr - 6; col[3] = nr - 5; col[4] = nr - 4; col[5] = nr - 2
+      END { nr = split(row, r, ","); n = split("0.05 0.1 0.2 0.3 0.5", m, " "); col[1] = nr - 8; col[2] = nr - 7; col[3] = nr - 6; col[4] = nr - 5; col[5] = nr - 3
             bad = 0; for (k = 1; k <= n; k++) { d = r[col[k]] - v[m[k] + 0]; if (d < 0) d = -d
               h = r[col[k]] ~ /\./ ? 0.05 : 0.5  # half the printed step
               if (d > h + 1e-9 || r[col[k]] == "") bad = 1 }
@@ -163,7 +163,7 @@ for b in bldA bldB; do
           while ((getline l < plant) > 0) {
             if (l ~ /^#/ || l ~ /^building,/) continue
             nr = split(l, r, ","); if (r[1] != b) continue
-            col[1] = nr - 7; col[2] = nr - 6; col[3] = nr - 5; col[4] = nr - 4; col[5] = nr - 2
+            col[1] = nr - 8; col[2] = nr - 7; col[3] = nr - 6; col[4] = nr - 5; col[5] = nr - 3
             for (k = 1; k <= n; k++) { rows++; if (r[col[k]] != s[r[2], m[k] + 0] || r[col[k]] ~ /\.[0-9][0-9]/) bad = bad " " r[2] "@" m[k] ":" r[col[k]] "/" s[r[2], m[k] + 0] } }
           print (bad == "" && rows == 2 * n) ? "ok" : "bad" bad }')
   [ "$res" = ok ] && t_pass || t_fail "plant.csv clearances of $b not as summary.csv shows them: $res"
