@@ -61,7 +61,7 @@ STUDY_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(shell grep -l '^\#include
 PUBLIC_H  := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
 .PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant plausfloors \
-  rockfloors source-id FORCE
+  zpafloors rockfloors source-id FORCE
 all: $(PROG) $(SHLIB) $(TEST_BIN)
 
 # The fingerprint (above), for tests and release notes.
@@ -148,6 +148,12 @@ rockfloors: $(BUILD)/tools/rockfloors
 # files (docs/formats-floor.md, "Plausibility"; minutes).
 plausfloors: $(BUILD)/tools/plausfloors
 	nice $(BUILD)/tools/plausfloors floors templates/floor.ini templates/floor.csv tests/data/floors/sharp-8.ini
+
+# How far apart the ZPAs of one building's floors lie on physical floors: the bounds of
+# the check of a building's floors against each other (docs/formats-floor.md, "Floors of
+# one building"; seconds).
+zpafloors: $(BUILD)/tools/zpafloors
+	nice $(BUILD)/tools/zpafloors
 
 $(BUILD)/tools/%: tools/%.c $(STUDY_LIB) $(LIB)
 	@mkdir -p $(dir $@)

@@ -29,12 +29,15 @@
  *
  * Conventions (every header): SI units inside (m, s, m/s^2), named units at
  * the boundary; one status enum with file:line messages (core/status.h);
- * the library never prints or exits, and leaves GSL's error handler as the
+ * the library never prints or exits (libxlsxwriter's own error lines are
+ * held off the standard error while it writes a workbook and go into the
+ * error message: report/workbook.c), and leaves GSL's error handler as the
  * caller set it (a GSL failure is returned as SL_ESOLVER); sl_X_alloc with
  * sl_X_free and sl_X_read with sl_X_free in pairs; every exported name
  * starts with sl_ or SL_, and libseislide.so exports exactly the functions
  * marked SL_API (core/api.h). The version: SEISLIDE_VERSION_* (the headers,
- * core/version.h) and sl_version() (the library).
+ * core/version.h) and sl_version() (the library); the build's identity,
+ * the version with a fingerprint of the library's sources: sl_build_id().
  *
  * Threads: every function is reentrant - it may run in several threads at
  * once (POSIX threads or OpenMP) on different objects, and on the same

@@ -431,6 +431,129 @@ static void test_plausibility_thresholds(void)
     rmdir(dir);
 }
 
+/* Both ends of a table are checked as its inside is (issue 39: the last row
+ * of 02-el12 divided by 10 passed, ZPA 0.039 g): h1_5 of 1 at 0.5, 1, 2, 20,
+ * 33, 40 and 50 Hz with one end changed by k, each rule at its bound (loads)
+ * and a hair beyond it (refused at that cell): the dip at the last frequency
+ * (a ZPA given, so that only the dip can refuse it) and at the first, the
+ * spike at either end, and, with the ZPA taken from the table's end, its
+ * step from the value before it in the rigid range. */
+static void test_table_ends(void)
+{
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "e.csv"), "mkdtemp");
+    enum { DIP_LAST, DIP_FIRST, SPIKE_LAST, SPIKE_FIRST, STEP_LOW, STEP_HIGH };
+    const struct {
+        const char *what;
+        int rule;
+        double k;
+        int ok;
+    } c[] = {
+        {"dip at the last frequency", DIP_LAST, SL_FLOOR_DIP_MAX, 1},
+        {"dip at the last frequency", DIP_LAST, SL_FLOOR_DIP_MAX * 1.001, 0},
+        {"dip at the first frequency", DIP_FIRST, SL_FLOOR_DIP_FIRST_MAX, 1},
+        {"dip at the first frequency", DIP_FIRST, SL_FLOOR_DIP_FIRST_MAX * 1.001, 0},
+        {"spike at the last frequency", SPIKE_LAST, SL_FLOOR_SPIKE_MAX, 1},
+        {"spike at the last frequency", SPIKE_LAST, SL_FLOOR_SPIKE_MAX * 1.001, 0},
+        {"spike at the first frequency", SPIKE_FIRST, SL_FLOOR_SPIKE_MAX, 1},
+        {"spike at the first frequency", SPIKE_FIRST, SL_FLOOR_SPIKE_MAX * 1.001, 0},
+        {"a ZPA from the end, low", STEP_LOW, SL_FLOOR_END_STEP_MIN, 1},
+        {"a ZPA from the end, low", STEP_LOW, SL_FLOOR_END_STEP_MIN / 1.001, 0},
+        {"a ZPA from the end, high", STEP_HIGH, SL_FLOOR_END_STEP_MAX, 1},
+        {"a ZPA from the end, high", STEP_HIGH, SL_FLOOR_END_STEP_MAX * 1.001, 0},
+    };
+    static const double fz[] = {0.5, 1, 2, 20, 33, 40, 50};
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+        double v[7] = {1, 1, 1, 1, 1, 1, 1}, zpa = 0;
+        int last = c[i].rule != DIP_FIRST && c[i].rule != SPIKE_FIRST;
+        double end = c[i].rule == DIP_LAST || c[i].rule == DIP_FIRST ? 1.0 / c[i].k : c[i].k;
+        if (c[i].rule == STEP_LOW)
+            end = c[i].k;
+        v[last ? 6 : 0] = end;
+        if (c[i].rule == DIP_LAST || c[i].rule == SPIKE_LAST)
+            zpa = end; /* given: the step rule stays out */
+        FILE *f = fopen(path, "w");
+        CHECK(f != NULL, "fopen");
+        if (!f)
+            return;
+        fprintf(f, "# name: t\n# units: g\n# h2: same_as_h1\n");
+        if (zpa > 0)
+            fprintf(f, "# zpa_h1: %.17g\n", zpa);
+        fprintf(f, "f_hz,h1_5,v_5\n");
+        for (int j = 0; j < 7; j++)
+            fprintf(f, "%g,%.17g,1\n", fz[j], v[j]);
+        fclose(f);
+        sl_error e;
+        sl_error_clear(&e);
+        sl_floor *fl = sl_floor_load(path, &e);
+        long line = zpa > 0 ? 5 : 4; /* the header row's line */
+        long want = line + (last ? 7 : 1);
+        if (c[i].ok)
+            CHECK(fl != NULL, "%s at the bound %.17g refused: %s", c[i].what, c[i].k, e.msg);
+        else
+            CHECK(!fl && e.line == want && e.col == 2, "%s at %.17g: refused at %ld:%ld, "
+                  "expected %ld:2 (%s)", c[i].what, c[i].k, e.line, e.col, want, e.msg);
+        sl_floor_free(fl);
+    }
+    /* a steady steep rise into the table (x 32 per octave, as f^5: the trend
+     * gives the first value exactly) loads, though its neighbour is 32 x it */
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL, "fopen");
+    if (f) {
+        fprintf(f, "# name: t\n# units: g\n# h2: same_as_h1\nf_hz,h1_5,v_5\n0.1,0.001,1\n"
+                   "0.2,0.032,1\n0.4,1.024,1\n2,1.024,1\n20,1.024,1\n33,1.024,1\n50,1.024,1\n");
+        fclose(f);
+        sl_error e;
+        sl_floor *fl = sl_floor_load(path, &e);
+        CHECK(fl != NULL, "a steady rise into the table refused: %s", fl ? "" : e.msg);
+        sl_floor_free(fl);
+    }
+    remove(path);
+    rmdir(dir);
+}
+
+/* The slip of issue 39 itself: 02-el12 without its zpa keys, the last row of
+ * H1 and H2 divided by 10 (ZPA 0.039 g, `asce --floor` gave 0 mm), is refused
+ * at H1's last value, naming the value and its neighbour; divided by 5 (dip
+ * 5, under the dip's bound) the ZPA from the end is refused against the
+ * value before it; the file as shipped, without its zpa keys, loads. */
+static void test_last_row_slip(void)
+{
+    char dir[] = "/tmp/sl-floor-XXXXXX", path[64];
+    CHECK(tmp_path(dir, path, sizeof path, "el12.ini"), "mkdtemp");
+    const double div[] = {1, 10, 5};
+    for (size_t t = 0; t < 3; t++) {
+        char cmd[600];
+        /* the zpa lines out; in [h1] and [h2] the last value of each sa_ list
+         * (the line that ends the list: "0.3900" or "0.3750") divided */
+        snprintf(cmd, sizeof cmd,
+                 "awk -v d=%g '/^\\[/{s=$0} /^zpa/{next} "
+                 "(s==\"[h1]\"||s==\"[h2]\") && /0\\.3(900|750)$/ && !/^[a-z]/"
+                 "{n=split($0,a,\", \"); a[n]=sprintf(\"%%.5f\", a[n]/d); "
+                 "l=a[1]; for(i=2;i<=n;i++) l=l \", \" a[i]; print l; next} {print}' "
+                 "floors/02-el12.ini > %s", div[t], path);
+        CHECK(system(cmd) == 0, "awk");
+        sl_error e;
+        sl_error_clear(&e);
+        sl_floor *fl = sl_floor_load(path, &e);
+        if (t == 0)
+            CHECK(fl != NULL && !fl->comp[0].zpa_given &&
+                      fabs(fl->comp[0].zpa_ms2 / SL_G - 0.39) < 1e-12,
+                  "02-el12 without zpa: %s", e.msg);
+        else if (t == 1)
+            CHECK(!fl && e.line == 16 && strstr(e.msg, "[h1] sa_0.02 at 50 Hz, the last") &&
+                      strstr(e.msg, "value 0.039 g is 1/10") && strstr(e.msg, "(0.39 g at 40 Hz)"),
+                  "the last row / 10: %s:%ld: %s", e.file, e.line, e.msg);
+        else
+            CHECK(!fl && e.line == 16 && strstr(e.msg, "gives the ZPA (none is given)") &&
+                      strstr(e.msg, "value 0.078 g"),
+                  "the last row / 5: %s:%ld: %s", e.file, e.line, e.msg);
+        sl_floor_free(fl);
+    }
+    remove(path);
+    rmdir(dir);
+}
+
 /* A given ZPA against the lowest damping's value at the table's last
  * frequency (5 m/s2 at 50 Hz, 2 %): accepted at SL_FLOOR_ZPA_END_MIN and
  * _MAX, refused just beyond them naming the zpa line; the worst physical
@@ -632,6 +755,8 @@ int main(void)
     RUN(test_plausibility_thresholds);
     RUN(test_zpa_warning);
     RUN(test_zpa_end_thresholds);
+    RUN(test_table_ends);
+    RUN(test_last_row_slip);
     RUN(test_utf16_no_bom);
     RUN(test_every_fixture_listed);
     RUN(test_missing_file);

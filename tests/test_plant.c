@@ -321,7 +321,7 @@ static void test_plant_csv_computed_points(void)
     for (int g = 0; dc && df && g < 2; g++) {
         const sl_design *d = g ? df : dc;
         const sl_plant_book_row rows[1] = {{"B", "f", "floor", 0, 0.6 * SL_G, 2, "fixed", d,
-                                            NULL, 0, 0, 0, NULL}};
+                                            NULL, 0, 0, 0, NULL, NULL}};
         sl_plant_book b = {.version = "seislide test", .command_line = "-", .n = 1, .rows = rows};
         sl_error e;
         CHECK(sl_plant_book_write_csv(&b, dir, &e) == SL_OK, "plant.csv: %s", e.msg);
@@ -374,12 +374,13 @@ static void test_plant_lookup_libreoffice(void)
         return;
     const sl_plant_book_row rows[4] = {
         {"Aux", "ground", "Aux ground", 0, 0.3 * SL_G, 2, "fixed", d[0], "p/Aux/ground.ini",
-         0x1a2b3c4dUL, 1001, 0, NULL},
+         0x1a2b3c4dUL, 1001, 0, NULL, NULL},
         {"Aux", "el12", "Aux el. 12 m", 12, 0.39 * SL_G, 2, "fixed", d[1], "p/Aux/el12.ini",
-         0xdeadbeefUL, 1002, 0, NULL},
+         0xdeadbeefUL, 1002, 0, NULL, NULL},
         {RB, "ground", "Rez-de-chaussée", 0, 0.3 * SL_G, 2, "fixed", d[2],
-         "p/" RB "/ground.ini", 0x0000beefUL, 1003, 0, NULL},
-        {RB, "Niveau_-3", "Niveau −3 m", -3, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0, 0, NULL}};
+         "p/" RB "/ground.ini", 0x0000beefUL, 1003, 0, NULL, NULL},
+        {RB, "Niveau_-3", "Niveau −3 m", -3, 0.63 * SL_G, 2, "fixed", d[3], NULL, 0, 0, 0, NULL,
+         NULL}};
     /* plant.csv: the building CSVs' trace lines, # program: first, a CRC
      * line per floor named building/id (a floor without a path: "-") */
     {

@@ -22,7 +22,7 @@
  * the plausibility rules (must be 0) and by any other rule (the ZPA's
  * agreement with the table's end), and the worst of each ratio of
  * sl_floor_plausibility_of() with the floor that has it (over the floors
- * read), and the range of a given ZPA over the lowest damping's value at
+ * read; the ends of a table on a line of their own), and the range of a given ZPA over the lowest damping's value at
  * the table's last frequency (SL_FLOOR_ZPA_END_MIN/_MAX). Exit 0, or 1 on bad input.
  */
 #include <math.h>
@@ -51,7 +51,7 @@ typedef struct family {
     const char *name;
     size_t n, refused, refused_other; /* by the plausibility rules; by any other rule */
     sl_floor_plausibility w;
-    char at[5][260];
+    char at[8][260];
     char refusal[2400];
     double zlo, zhi; /* given ZPA / lowest damping's SA at the last frequency */
     size_t zbin[ZBINS];
@@ -64,6 +64,7 @@ static void family_init(family *f, const char *name)
     f->name = name;
     f->w.order = INFINITY;
     f->w.order_mean = INFINITY;
+    f->w.end_step_lo = f->w.end_step_hi = 1.0;
     f->zlo = INFINITY;
     f->zhi = 0;
 }
@@ -101,8 +102,9 @@ static void note(family *f, const char *path, const char *label)
     sl_floor *fl = sl_floor_load(path, &e);
     f->n++;
     if (!fl) { /* the plausibility rules' messages (io/floor.c) */
-        int plaus = strstr(e.msg, "of its neighbours") || strstr(e.msg, "higher damping's") ||
-                    strstr(e.msg, "below the rigid range") || strstr(e.msg, "on average over");
+        int plaus = strstr(e.msg, "of its neighbour") || strstr(e.msg, "higher damping's") ||
+                    strstr(e.msg, "below the rigid range") || strstr(e.msg, "on average over") ||
+                    strstr(e.msg, "gives the ZPA (none is given)");
         if (plaus ? !f->refused++ : !f->refused_other++ && !f->refused)
             snprintf(f->refusal, sizeof f->refusal, "%s (%s): %s:%ld: %s", label, path,
                      e.file, e.line, e.msg);
@@ -112,11 +114,15 @@ static void note(family *f, const char *path, const char *label)
     sl_floor_plausibility_of(fl, &p);
     const char *who = label ? label : path;
     note_zpa(f, fl, who);
-    const int worse[5] = {p.spike > f->w.spike, p.dip > f->w.dip, p.order < f->w.order,
-                          p.spread > f->w.spread, p.order_mean < f->w.order_mean};
-    const double v[5] = {p.spike, p.dip, p.order, p.spread, p.order_mean};
-    double *w[5] = {&f->w.spike, &f->w.dip, &f->w.order, &f->w.spread, &f->w.order_mean};
-    for (int i = 0; i < 5; i++)
+    const int worse[8] = {p.spike > f->w.spike, p.dip > f->w.dip, p.order < f->w.order,
+                          p.spread > f->w.spread, p.order_mean < f->w.order_mean,
+                          p.dip_first > f->w.dip_first, p.end_step_lo < f->w.end_step_lo,
+                          p.end_step_hi > f->w.end_step_hi};
+    const double v[8] = {p.spike, p.dip, p.order, p.spread, p.order_mean, p.dip_first,
+                         p.end_step_lo, p.end_step_hi};
+    double *w[8] = {&f->w.spike, &f->w.dip, &f->w.order, &f->w.spread, &f->w.order_mean,
+                    &f->w.dip_first, &f->w.end_step_lo, &f->w.end_step_hi};
+    for (int i = 0; i < 8; i++)
         if (worse[i]) {
             *w[i] = v[i];
             snprintf(f->at[i], sizeof f->at[i], "%s, %s %g %% at %.3g Hz", who,
@@ -132,6 +138,9 @@ static void print_family(const family *f)
            "|\n",
            f->name, f->n, f->refused, f->refused_other, f->w.spike, f->at[0], f->w.dip, f->at[1],
            f->w.order, f->at[2], f->w.spread, f->at[3], f->w.order_mean, f->at[4]);
+    printf("  the ends: dip at the first frequency %.3f (%s); last step in the rigid range "
+           "%.3f (%s) to %.3f (%s)\n",
+           f->w.dip_first, f->at[5], f->w.end_step_lo, f->at[6], f->w.end_step_hi, f->at[7]);
     if (f->zhi > 0)
         printf("  given ZPA / lowest damping's SA at the last frequency: %.3f (%s) to %.3f "
                "(%s)\n",

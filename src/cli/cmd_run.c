@@ -54,7 +54,21 @@ int cmd_run(int argc, char **argv)
     for (size_t i = 0; i < plant.n; i++) /* what the operands reach through a link */
         if ((rc = cli_outdir_apart_floor("run", a.out, plant.floors[i].path, plant.is_plant)))
             goto done;
+    /* the floors of each building against each other (a units slip), but those
+     * accepted in writing; an --accept-floor that names no floor is a usage error */
+    for (size_t k = 0; k < a.n_accept; k++)
+        if (sl_plant_accept(&plant, a.accept_floor[k], &err)) {
+            rc = cli_usage("run", "%s", err.msg);
+            goto done;
+        }
     rc = CLI_EXIT_ERROR;
+    if (sl_plant_check_intensity(&plant, &err))
+        goto fail;
+    for (size_t i = 0; i < plant.n; i++) /* an accepted floor's warning (the others: below) */
+        if (plant.floors[i].accepted && plant.floors[i].warnings &&
+            strstr(plant.floors[i].warnings, "accepted by --accept-floor"))
+            cli_msg("run: warning: %s: %s", plant.floors[i].path,
+                    strstr(plant.floors[i].warnings, "accepted by --accept-floor"));
     for (const char *w = warn; *w;) { /* one line each: file:line: text */
         size_t len = strcspn(w, "\n");
         cli_msg("run: warning: %.*s", (int)len, w);

@@ -32,7 +32,8 @@ static const char run_tail[] =
 #define A(f) .off = offsetof(run_args, f)
 enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
        O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
-       O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT, O_SHARD, O_CACHE, O_NO_CACHE, O_COMPONENTS };
+       O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT, O_SHARD, O_CACHE, O_NO_CACHE, O_COMPONENTS,
+       O_ACCEPT_FLOOR };
 static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/), swapped in whole: new (parents\n"
      "made), empty or one seislide wrote; files it did not write stay", .kind = CLI_STRING,
@@ -73,6 +74,10 @@ static const cli_opt opts[] = {
     CLI_OPT_CREATED(O_CREATED),
     {"force", O_FORCE, NULL, "run a floor whose horizontal ZPA is outside %g-%g g (warning)",
      {SL_FLOOR_ZPA_MIN_G, SL_FLOOR_ZPA_MAX_G}, .kind = CLI_FLAG, A(force)},
+    {"accept-floor", O_ACCEPT_FLOOR, "ID", "run a floor whose ZPA is out of line with its\n"
+     "building's other floors (by default the run stops naming it: a units slip;\n"
+     "docs/formats-floor.md); ID as in floors.csv, BUILDING/ID in a plant; once\n"
+     "per floor; recorded in the outputs", .kind = CLI_CALL},
     {"accept-failed-checks", O_ACCEPT, NULL, "write the outputs although some motions failed\n"
      "their SRP 3.7.1 checks (default: the run stops, exit 1, no output\nwritten); the "
      "failures are listed on stderr, also with -q", .kind = CLI_FLAG, A(accept_failed)},
@@ -101,6 +106,12 @@ static int take(void *dst, int key, const char *v)
 {
     run_args *a = dst;
     unsigned long ul = 0;
+    if (key == O_ACCEPT_FLOOR) {
+        if (a->n_accept == RUN_MAX_ACCEPT)
+            return cli_usage("run", "--accept-floor given more than %d times", RUN_MAX_ACCEPT);
+        a->accept_floor[a->n_accept++] = v;
+        return CLI_EXIT_OK;
+    }
     if (key == O_SHARD) {
         unsigned long k = 0, n = 0;
         char tail;

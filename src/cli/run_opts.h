@@ -15,6 +15,7 @@
 #define RUN_MAX_SETS 10000      /* --sets, --max-sets */
 #define RUN_MAX_MU 1000         /* friction values */
 #define RUN_MAX_SUBSTEPS 1000000 /* --substeps (as `seislide slide`) */
+#define RUN_MAX_ACCEPT 256       /* --accept-floor, given again for each floor */
 
 typedef struct run_args {
     const char *out;
@@ -29,6 +30,8 @@ typedef struct run_args {
     const char *cache;                      /* NULL: OUT/.seislide-cache */
     int no_cache;
     const char *components;                 /* --components FILE (docs/components.md) */
+    const char *accept_floor[RUN_MAX_ACCEPT]; /* --accept-floor ID (plant/intensity.h) */
+    size_t n_accept;
 } run_args;
 
 /* Parse the command line into a (defaults first), check it and complete

@@ -257,10 +257,27 @@ static double spike_ratio(const double *v, size_t n, size_t j)
     return v[j] / nb;
 }
 
-/* The smaller neighbour of v[j] over v[j] (interior points; 0 at an end). */
-static double dip_ratio(const double *v, size_t n, size_t j)
+/* The value the trend of a table's two values next to an end gives at the
+ * end's frequency (j = 0 or n - 1; n >= 3): the straight line in log SA
+ * over log f through them, extended, e.g. at the last frequency
+ * v[n-2] (v[n-2] / v[n-3])^(ln(f[n-1] / f[n-2]) / ln(f[n-2] / f[n-3])). */
+static double end_trend(const double *f, const double *v, size_t n, size_t j)
 {
-    return j == 0 || j == n - 1 ? 0.0 : fmin(v[j - 1], v[j + 1]) / v[j];
+    size_t a = j == 0 ? 1 : n - 2, b = j == 0 ? 2 : n - 3; /* next, and next but one */
+    return v[a] * pow(v[a] / v[b], log(f[j] / f[a]) / log(f[a] / f[b]));
+}
+
+/* The smaller neighbour of v[j] over v[j]. At an end, whose other neighbour
+ * is missing, the smaller of its one neighbour and the trend (end_trend)
+ * stands for the pair: a value far below both is a slip, as inside the
+ * table, while a steep but steady slope is not. 0 for a table of 2 values. */
+static double dip_ratio(const double *f, const double *v, size_t n, size_t j)
+{
+    if (j > 0 && j < n - 1)
+        return fmin(v[j - 1], v[j + 1]) / v[j];
+    if (n < 3)
+        return 0.0;
+    return fmin(v[j == 0 ? 1 : n - 2], end_trend(f, v, n, j)) / v[j];
 }
 
 /* SA(lower damping z_lo) / SA(higher damping z_hi), over z_hi / z_lo. */
@@ -295,6 +312,7 @@ void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p)
     memset(p, 0, sizeof *p);
     p->order = INFINITY;
     p->order_mean = INFINITY;
+    p->end_step_lo = p->end_step_hi = 1.0;
     for (int k = 0; k < SL_FLOOR_NCOMP; k++) {
         const sl_floor_component *c = &fl->comp[k];
         for (size_t s = 0; s < c->nspec; s++) {
@@ -302,9 +320,16 @@ void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p)
             for (size_t q = s + 1; q < c->nspec; q++)
                 worst(p, 4, &p->order_mean, order_mean(a->sa_ms2, c->spec[q].sa_ms2, a->n), 1, k,
                       a, 0);
+            const size_t n = a->n;
+            if (n >= 3 && a->f_hz[n - 2] >= SL_FLOOR_RIGID_HZ) {
+                double r = a->sa_ms2[n - 1] / a->sa_ms2[n - 2];
+                worst(p, 6, &p->end_step_lo, r, 1, k, a, n - 1);
+                worst(p, 7, &p->end_step_hi, r, 0, k, a, n - 1);
+            }
             for (size_t j = 0; a->n >= 2 && j < a->n; j++) {
                 worst(p, 0, &p->spike, spike_ratio(a->sa_ms2, a->n, j), 0, k, a, j);
-                worst(p, 1, &p->dip, dip_ratio(a->sa_ms2, a->n, j), 0, k, a, j);
+                worst(p, j ? 1 : 5, j ? &p->dip : &p->dip_first,
+                      dip_ratio(a->f_hz, a->sa_ms2, a->n, j), 0, k, a, j);
                 for (size_t q = s + 1; q < c->nspec; q++) { /* ascending damping */
                     const sl_spectrum *b = &c->spec[q];
                     worst(p, 2, &p->order, a->sa_ms2[j] / b->sa_ms2[j], 1, k, a, j);
@@ -576,14 +601,42 @@ static void check_plausible_values(sl_floor_desc *d, const char *u)
                                SL_FLOOR_SPIKE_MAX);
                     continue;
                 }
-                r = dip_ratio(v, n, j);
-                if (r > SL_FLOOR_DIP_MAX)
+                r = dip_ratio(f, v, n, j);
+                if (r > SL_FLOOR_DIP_MAX && j > 0 && j < n - 1)
                     fail_first(d, SL_EINVAL, line, col,
                                "%s at %g Hz: value %g %s is 1/%.3g of the smaller of its "
                                "neighbours (%g %s); a floor spectrum does not drop more than "
                                "%g x between neighbouring frequencies of its table: check the "
                                "value (a typo or a misplaced decimal point)",
                                name.s, f[j], v[j], u, r, v[j] * r, u, SL_FLOOR_DIP_MAX);
+                else if ((j == 0 || j == n - 1) &&
+                         r > (j ? SL_FLOOR_DIP_MAX : SL_FLOOR_DIP_FIRST_MAX))
+                    fail_first(d, SL_EINVAL, line, col,
+                               "%s at %g Hz, the %s frequency of its table: value %g %s is "
+                               "1/%.3g of the smaller of its neighbour (%g %s at %g Hz) and the "
+                               "trend of the two values next to it (%.4g %s there); a floor "
+                               "spectrum does not drop more than %g x at %s of its table: check "
+                               "the value (a typo, a misplaced decimal point, a row slipped)",
+                               name.s, f[j], j ? "last" : "first", v[j], u, r,
+                               v[j ? n - 2 : 1], u, f[j ? n - 2 : 1], end_trend(f, v, n, j), u,
+                               j ? SL_FLOOR_DIP_MAX : SL_FLOOR_DIP_FIRST_MAX,
+                               j ? "the high-frequency end" : "the low-frequency end");
+                else if (j == n - 1 && !rc->zpa_line && n >= 3 && f[n - 2] >= SL_FLOOR_RIGID_HZ &&
+                         !(v[j] >= SL_FLOOR_END_STEP_MIN * v[j - 1] &&
+                           v[j] <= SL_FLOOR_END_STEP_MAX * v[j - 1]))
+                    fail_first(d, SL_EINVAL, line, col,
+                               "%s at %g Hz: value %g %s, the last of the table, gives the ZPA "
+                               "(none is given) and is %.3g x the value before it (%g %s at %g "
+                               "Hz); in the rigid range (at or above %g Hz) a floor spectrum "
+                               "stays within %g-%g x from one frequency of its table to the "
+                               "next: check the value (the last row slipped?) or give the ZPA "
+                               "(%s)",
+                               name.s, f[j], v[j], u, v[j] / v[j - 1], v[j - 1], u, f[j - 1],
+                               SL_FLOOR_RIGID_HZ, SL_FLOOR_END_STEP_MIN, SL_FLOOR_END_STEP_MAX,
+                               csv ? (k == SL_FLOOR_H1 ? "'# zpa_h1: <value>'"
+                                      : k == SL_FLOOR_H2 ? "'# zpa_h2: <value>'"
+                                                         : "'# zpa_v: <value>'")
+                                   : "'zpa = <value>' in the section");
                 for (size_t q = 0; q < rc->nsa; q++) {
                     const sl_floor_sa_desc *b = &rc->sa[q];
                     if (!(b->damping > a->damping))

@@ -58,7 +58,8 @@
  *
  * Zero-period acceleration of a component: the `zpa` key (CSV: `# zpa_h1:`)
  * when given, else the largest over its dampings of the value at its
- * highest frequency. A given ZPA is checked against the value at the
+ * highest frequency, each such value checked against the one before it
+ * (SL_FLOOR_END_STEP_MIN/_MAX). A given ZPA is checked against the value at the
  * highest frequency of the table at its lowest damping (the spectrum that
  * is last to reach the ZPA): a ratio outside 0.2-1.25 is an input error
  * naming the zpa line (a typo or a units slip, e.g. zpa = 1e-300; a ZPA in
@@ -118,6 +119,22 @@
  * a higher damping's. */
 #define SL_FLOOR_SPIKE_MAX 10.0
 #define SL_FLOOR_DIP_MAX 6.0
+/* The ends of a table are checked as its inside: a value at the first or
+ * last frequency lacks one neighbour, and the trend of the two values next
+ * to it (the straight line in log SA over log f through them, extended to
+ * the end's frequency) stands in for it; the dip is the smaller of the one
+ * neighbour and the trend over the value. At the last frequency the bound
+ * is SL_FLOOR_DIP_MAX (physical floors: 2.81 at most); at the first, the
+ * low-frequency end where the spectrum of a processed record falls steeply
+ * into its table (physical floors: up to 13.3), SL_FLOOR_DIP_FIRST_MAX. */
+#define SL_FLOOR_DIP_FIRST_MAX 17.0
+/* A ZPA taken from the table's end (no ZPA given) is checked against the
+ * trend before it: where the table's last two frequencies lie in the rigid
+ * range (>= SL_FLOOR_RIGID_HZ), the last value of each damping over the one
+ * before it lies within SL_FLOOR_END_STEP_MIN-MAX (physical floors:
+ * 0.356-1.232), else the last row slipped. */
+#define SL_FLOOR_END_STEP_MIN 0.28
+#define SL_FLOOR_END_STEP_MAX 1.55
 #define SL_FLOOR_ORDER_MIN 0.5
 #define SL_FLOOR_SPREAD_MAX 1.5
 /* A lower damping's spectrum is refused when the geometric mean over the
@@ -201,14 +218,21 @@ SL_API int sl_floor_zpa_warning(const sl_floor *fl, char *buf, size_t n);
  * rules bound, above), over every direction, damping and frequency. */
 typedef struct sl_floor_plausibility {
     double spike;  /* largest value / larger neighbour (ends: the one neighbour) */
-    double dip;    /* largest smaller neighbour / value (interior points) */
+    double dip;    /* largest smaller neighbour / value (inside the table, and at its last
+                      frequency the smaller of its neighbour and the trend) */
     double order;  /* smallest SA(lower damping) / SA(higher damping), same frequency */
     double spread; /* largest SA(lower) / SA(higher) / (z_hi / z_lo) */
     double order_mean; /* smallest geometric mean over frequency of SA(lower) / SA(higher) */
-    /* where each is: direction, frequency (Hz; order_mean: the first) and
-     * (lower) damping ratio */
-    int at_comp[5];
-    double at_f_hz[5], at_damping[5];
+    double dip_first;  /* the dip at the first frequency (SL_FLOOR_DIP_FIRST_MAX) */
+    /* the last value over the one before it where both frequencies are in the
+     * rigid range (SL_FLOOR_END_STEP_MIN-MAX): lowest and highest; 1 when no
+     * table ends so */
+    double end_step_lo, end_step_hi;
+    /* where each is (in this order: spike, dip, order, spread, order_mean,
+     * dip_first, end_step_lo, end_step_hi): direction, frequency (Hz;
+     * order_mean: the first) and (lower) damping ratio */
+    int at_comp[8];
+    double at_f_hz[8], at_damping[8];
 } sl_floor_plausibility;
 SL_API void sl_floor_plausibility_of(const sl_floor *fl, sl_floor_plausibility *p);
 

@@ -7,10 +7,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "core/units.h"
 #include "plant/cache.h"
+#include "plant/intensity.h"
 #include "report/plant_book.h"
 #include "report/components.h"
 
@@ -106,6 +108,8 @@ static sl_status add_building(sl_plant *p, const char *id, const char *const *ar
         f->elevation_m = m.elevation_m;
         f->crc32 = m.crc32;
         f->size_bytes = m.size_bytes;
+        if (in->warn[i] && !(f->warnings = strdup(in->warn[i])))
+            return sl_error_set(err, SL_ENOMEM, fl->path, 0, "out of memory");
         if (!f->id || !f->name || !f->path || !f->description || !f->units)
             return sl_error_set(err, SL_ENOMEM, fl->path, 0, "out of memory");
     }
@@ -143,6 +147,82 @@ sl_status sl_plant_load(sl_plant *p, const char *const *args, size_t nargs, int 
         }
         free(sub[i]);
     }
+    return st;
+}
+
+/* Append text to a floor's warnings ("; "-separated). */
+static sl_status add_warning(sl_plant_floor *f, const char *text, sl_error *err)
+{
+    size_t had = f->warnings ? strlen(f->warnings) : 0, len = strlen(text);
+    char *w = realloc(f->warnings, had + 2 + len + 1);
+    if (!w)
+        return sl_error_set(err, SL_ENOMEM, f->path, 0, "out of memory");
+    snprintf(w + had, 2 + len + 1, "%s%s", had ? "; " : "", text);
+    f->warnings = w;
+    return SL_OK;
+}
+
+sl_status sl_plant_accept(sl_plant *p, const char *ref, sl_error *err)
+{
+    const char *slash = p->is_plant ? strrchr(ref, '/') : NULL;
+    size_t blen = slash ? (size_t)(slash - ref) : 0, hits = 0, hit = 0;
+    const char *id = slash ? slash + 1 : ref;
+    char known[600] = "";
+    size_t used = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        const sl_plant_floor *f = &p->floors[i];
+        const char *b = p->building[f->building];
+        int w = snprintf(known + used, used < sizeof known ? sizeof known - used : 0, "%s%s%s%s",
+                         used ? ", " : "", p->is_plant ? b : "", p->is_plant ? "/" : "", f->id);
+        used += w > 0 ? (size_t)w : 0;
+        if (strcasecmp(f->id, id) || (slash && (strlen(b) != blen || strncasecmp(b, ref, blen))))
+            continue;
+        hits++;
+        hit = i;
+    }
+    if (used >= sizeof known)
+        strcpy(known + sizeof known - 4, "...");
+    if (hits == 1) {
+        p->floors[hit].accepted = 1;
+        return SL_OK;
+    }
+    if (hits)
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "--accept-floor %s: %zu floors have that "
+                            "id: give BUILDING/ID (the floors: %s)", ref, hits, known);
+    return sl_error_set(err, SL_EINVAL, NULL, 0, "--accept-floor %s: no such floor (the floors: "
+                        "%s)", ref, known);
+}
+
+sl_status sl_plant_check_intensity(sl_plant *p, sl_error *err)
+{
+    sl_intensity_floor *f = calloc(p->n ? p->n : 1, sizeof *f);
+    size_t *at = calloc(p->n ? p->n : 1, sizeof *at);
+    char (*warn)[SL_INTENSITY_WARN_MAX] = calloc(p->n ? p->n : 1, sizeof *warn);
+    sl_status st = SL_OK;
+    if (!f || !at || !warn)
+        st = sl_error_set(err, SL_ENOMEM, NULL, 0, "out of memory");
+    for (size_t b = 0; !st && b < p->n_buildings; b++) {
+        size_t n = 0;
+        for (size_t i = 0; i < p->n; i++) {
+            const sl_plant_floor *pf = &p->floors[i];
+            if (pf->building != b || !pf->floor)
+                continue;
+            const sl_floor *fl = pf->floor;
+            f[n] = (sl_intensity_floor){
+                .id = pf->id, .name = pf->name, .path = pf->path, .units = fl->units,
+                .units_text = fl->units_text,
+                .zpa_h_ms2 = fmax(fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2),
+                .elevation_m = fl->elevation_m, .accepted = pf->accepted};
+            at[n++] = i;
+        }
+        st = sl_intensity_check(f, n, p->building[b], warn, err);
+        for (size_t k = 0; !st && k < n; k++)
+            if (warn[k][0])
+                st = add_warning(&p->floors[at[k]], warn[k], err);
+    }
+    free(f);
+    free(at);
+    free(warn);
     return st;
 }
 
@@ -216,6 +296,7 @@ void sl_plant_free(sl_plant *p)
         free(f->path);
         free(f->description);
         free(f->units);
+        free(f->warnings);
         sl_entry_key_free(&f->key);
         sl_analysis_free(f->an);
     }
@@ -245,8 +326,9 @@ static sl_status deliver_building(const sl_plant *p, size_t b, const char *dir,
         const sl_plant_floor *f = &p->floors[i];
         if (f->building != b)
             continue;
-        m[n] = (sl_deliver_meta){f->name, f->path, f->description, f->units, f->elevation_m,
-                                 f->crc32, f->size_bytes};
+        m[n] = (sl_deliver_meta){f->name,        f->path,       f->description,
+                                 f->units,       f->elevation_m, f->crc32,
+                                 f->size_bytes,  f->warnings,    f->accepted};
         ids[n] = f->id;
         an[n++] = f->an;
     }
@@ -285,7 +367,8 @@ sl_status sl_plant_deliver(const sl_plant *p, const char *dir, const sl_deliver_
                                       .design = f->an->design, .path = f->path,
                                       .crc32 = f->crc32, .size_bytes = f->size_bytes,
                                       .n_failed_motions = f->an->n_failed_motions,
-                                      .design_se_m = f->an->design_se_m};
+                                      .design_se_m = f->an->design_se_m,
+                                      .warnings = f->warnings};
     }
     char seed[32]; /* as the building CSVs record it (deliver.c) */
     snprintf(seed, sizeof seed, "%llu", (unsigned long long)o->seed);

@@ -51,6 +51,10 @@ typedef struct sl_plant_floor {
     unsigned shard;           /* 1..N when sharded */
     sl_analysis *an;          /* its result, once computed or read */
     int reused;               /* 1: read from the cache */
+    char *warnings;           /* the run's warnings about it, "; "-separated (owned; NULL:
+                                 none): its units, its ZPA's plausibility, accepted out of
+                                 line with its building (sl_plant_check_intensity) */
+    int accepted;             /* accepted in writing (sl_plant_accept) */
 } sl_plant_floor;
 
 typedef struct sl_plant {
@@ -69,6 +73,15 @@ sl_status sl_plant_load(sl_plant *p, const char *const *args, size_t nargs, int 
 /* Keys and costs of every floor under options o for program `version`. */
 sl_status sl_plant_keys(sl_plant *p, const sl_analysis_opts *o, const char *version,
                         sl_error *err);
+/* Accept in writing the floor named by ref (--accept-floor): a floor id, or
+ * BUILDING/ID in a plant (an id alone when one building has it), compared
+ * without case. SL_EINVAL naming the floors when ref names none or several. */
+sl_status sl_plant_accept(sl_plant *p, const char *ref, sl_error *err);
+/* Check the floors of each building against each other (plant/intensity.h):
+ * SL_EINVAL naming the floor out of line; an accepted floor the rules
+ * would refuse gets what they say of it in its warnings. */
+sl_status sl_plant_check_intensity(sl_plant *p, sl_error *err);
+
 /* Deal the floors to n_shards shards (floor.shard = 1..n_shards; see above). */
 void sl_plant_assign(sl_plant *p, unsigned n_shards);
 void sl_plant_free(sl_plant *p);

@@ -9,7 +9,7 @@
 
 #include "io/atomic.h"
 
-#define MAGIC "SLSHARD1"
+#define MAGIC "SLSHARD2"
 #define STR_MAX 65536
 
 static void put_body(sl_pbuf *w, const sl_plant *p, const sl_shard_settings *s)
@@ -45,6 +45,8 @@ static void put_body(sl_pbuf *w, const sl_plant *p, const sl_shard_settings *s)
         sl_pbuf_u64(w, (uint64_t)f->size_bytes);
         sl_pbuf_str(w, f->key.hash);
         sl_pbuf_u64(w, f->shard);
+        sl_pbuf_str(w, f->warnings ? f->warnings : "");
+        sl_pbuf_u64(w, (uint64_t)f->accepted);
     }
 }
 
@@ -134,6 +136,8 @@ static sl_status parse_body(sl_shard *sh, const char *path, sl_error *err)
         f->size_bytes = (long)sl_preader_count(&r, INT64_MAX, "bad size");
         sl_preader_str(&r, f->key.hash, 16);
         f->shard = (unsigned)sl_preader_count(&r, sh->n, "bad shard number");
+        f->warnings = sl_preader_strdup(&r, STR_MAX);
+        f->accepted = (int)sl_preader_count(&r, 1, "bad flag");
         if (!r.bad && (strlen(f->key.hash) != 16 || strspn(f->key.hash, "0123456789abcdef") != 16))
             return bad(err, path, "bad key hash");
     }

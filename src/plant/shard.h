@@ -5,13 +5,14 @@
  * `seislide run PLANT --shard K/N -o DIR` writes DIR/seislide-shard.bin (the
  * manifest) and DIR/results/<hash>.slr, the entries (cache.h) of the floors
  * dealt to shard K (plant.h, "Cost model"). The manifest (pbuf.h encoding):
- *     "SLSHARD1"  K  N  body length  body  CRC-32 (4 bytes LE)
+ *     "SLSHARD2"  K  N  body length  body  CRC-32 (4 bytes LE)
  * where the body is the same for every shard of one plant and one set of
  * settings: the program version, the settings the outputs record (seed,
  * sub-steps, accuracy, the title block as given), the friction grid, whether
  * it is a plant, the building ids and every floor of the plant in plant
  * order (building, id, name, file, description, units, elevation, CRC-32 and
- * size of the file, key hash, shard). Merge checks each manifest (magic,
+ * size of the file, key hash, shard, the run's warnings about it and whether
+ * it was accepted with --accept-floor). Merge checks each manifest (magic,
  * lengths, CRC, every count bounded), that all bodies are equal byte for
  * byte, that the shards are exactly 1..N, and reads every floor's entry
  * from the shard that holds it (its key must hash to the recorded hash).

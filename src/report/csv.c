@@ -236,10 +236,13 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
                 "highest set-mean S/T over all of them, ok when each is within the synthesis "
                 "limits (0.9-1.3), 'none' when the file gives one damping; reported, not a pass "
                 "condition (docs/run.md)");
+    csv_comment(f, "warnings", "every warning the run gave about the floor (its units, the "
+                "plausibility of its ZPA, a floor accepted with --accept-floor), '; '-separated; "
+                "empty when none");
     fputs("floor_id,floor,file,elevation_m,zpa_h_g,crossover_mu,crossover_mu_g_over_zpa,"
           "n_asce_below_nltha_ranges,clearance_policy,mu_without_nltha,n_sets,sets_stop,note,"
           "other_dampings_min_ratio,other_dampings_max_ratio,other_dampings_check,"
-          "other_dampings\r\n",
+          "other_dampings,warnings\r\n",
           f);
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
@@ -269,6 +272,8 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         } else {
             fputs(",none,none,none,none", f);
         }
+        fputc(',', f);
+        csv_field(f, sl_rpt_floor_warnings(fl));
         fputs("\r\n", f);
     }
     if (sl_atomic_commit(a, err))

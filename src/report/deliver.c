@@ -121,7 +121,9 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
                                   .dampings_min = NAN, .dampings_max = NAN,
                                   .dampings_ok = an[i]->dampings_ok,
                                   .n_failed_motions = an[i]->n_failed_motions,
-                                  .sa10_fallback = an[i]->sa10_fallback};
+                                  .sa10_fallback = an[i]->sa10_fallback,
+                                  .warnings = fl->warnings ? fl->warnings : "",
+                                  .accepted = fl->accepted};
         for (size_t k = 0; k < an[i]->n_dampings; k++) {
             const sl_analysis_damping *dk = &an[i]->dampings[k];
             rf[i].dampings_min = isnan(rf[i].dampings_min) ? dk->set_min
@@ -154,9 +156,20 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
     if (st)
         goto done;
     const sl_design *d0 = an[0]->design;
-    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160], s_scat[200];
-    /* per floor: the sets it needed and why it stopped */
+    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160], s_scat[200],
+        s_acc[1024] = "none";
+    /* the floors accepted in writing out of line with their building */
     size_t used = 0;
+    for (size_t i = 0; i < n && used + 20 < sizeof s_acc; i++)
+        if (floors[i].accepted) {
+            int w = snprintf(s_acc + used, sizeof s_acc - 20 - used, "%s%s", used ? ", " : "",
+                             ids[i]);
+            used += w > 0 ? (size_t)w : 0;
+        }
+    if (used)
+        snprintf(s_acc + used, sizeof s_acc - used, " (--accept-floor)");
+    /* per floor: the sets it needed and why it stopped */
+    used = 0;
     for (size_t i = 0; i < n && used < sizeof s_sets; i++) {
         int w = snprintf(s_sets + used, sizeof s_sets - used, "%s%s: %zu (%s)", i ? "; " : "",
                          ids[i], an[i]->n_sets, sl_analysis_stop_name(an[i]->stop));
@@ -183,6 +196,7 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
         {"2-D sub-steps", s_sub}, {"factors", s_fs}, {"synthetic motions", s_synth},
         {"record-to-record intensity scatter", s_scat},
         {"clearance policy", sl_clearance_policy_name(d0->policy)},
+        {"accepted floors", s_acc},
         {"units", "displacements in mm; accelerations in g; SI inside"}};
     sl_report rep;
     sl_report_init(&rep);
@@ -228,11 +242,17 @@ sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args,
             size_t used = strlen(warnings);
             snprintf(warnings + used, nw - used, "%s:%ld: %s; run anyway (--force)\n", w.file,
                      w.line, w.msg);
-            st = SL_OK;
-        } else if (!st && nw && sl_floor_zpa_warning(in->floors[i], zw, sizeof zw)) {
-            size_t used = strlen(warnings);
-            snprintf(warnings + used, nw - used, "%s:%ld: %s\n", in->floors[i]->path,
-                     in->floors[i]->units_line, zw);
+            char fw[sizeof w.msg + 40];
+            snprintf(fw, sizeof fw, "%s; run anyway (--force)", w.msg);
+            in->warn[i] = strdup(fw);
+            st = in->warn[i] ? SL_OK : sl_error_set(err, SL_ENOMEM, w.file, 0, "out of memory");
+        } else if (!st && sl_floor_zpa_warning(in->floors[i], zw, sizeof zw)) {
+            size_t used = nw ? strlen(warnings) : 0;
+            if (nw)
+                snprintf(warnings + used, nw - used, "%s:%ld: %s\n", in->floors[i]->path,
+                         in->floors[i]->units_line, zw);
+            if (!(in->warn[i] = strdup(zw)))
+                st = sl_error_set(err, SL_ENOMEM, in->paths[i], 0, "out of memory");
         }
         in->idp[i] = sl_report_floor_id(in->paths[i], in->ids[i], sizeof in->ids[i]);
         rf[i] = (sl_report_floor){.id = in->idp[i], .name = in->floors[i]->name,
@@ -252,6 +272,7 @@ void sl_deliver_inputs_free(sl_deliver_inputs *in)
     for (size_t i = 0; i < in->n; i++) {
         sl_floor_free(in->floors[i]);
         free(in->paths[i]);
+        free(in->warn[i]);
     }
     memset(in, 0, sizeof *in);
 }

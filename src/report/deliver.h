@@ -40,12 +40,14 @@ typedef struct sl_deliver_inputs {
     sl_floor *floors[SL_DELIVER_MAX_FLOORS];
     char ids[SL_DELIVER_MAX_FLOORS][SL_DELIVER_ID_MAX];
     const char *idp[SL_DELIVER_MAX_FLOORS]; /* ids[i] */
+    char *warn[SL_DELIVER_MAX_FLOORS];      /* each floor's warnings (below), NULL: none */
 } sl_deliver_inputs;
 
 /* Read every floor file named by args (files or folders of *.ini;
  * sl_floor_list), check each (sl_floor_check_plausible: an error, or with
  * `force` a line appended to `warnings`, size nw; an unusual ZPA,
- * sl_floor_zpa_warning, appends "file:line: text\n") and the uniqueness of
+ * sl_floor_zpa_warning, appends "file:line: text\n"; each floor's own
+ * warnings, without the place, also in in->warn[i]) and the uniqueness of
  * their ids and names (sl_report_check_floors). in must be zeroed; free it
  * with sl_deliver_inputs_free() whatever the result. */
 sl_status sl_deliver_inputs_load(sl_deliver_inputs *in, const char *const *args, size_t nargs,
@@ -59,6 +61,8 @@ typedef struct sl_deliver_meta {
     double elevation_m;       /* NAN when not given */
     unsigned long crc32;      /* of the file's bytes */
     long size_bytes;
+    const char *warnings;     /* the run's warnings about it (sl_report_floor.warnings) */
+    int accepted;             /* accepted in writing (--accept-floor) */
 } sl_deliver_meta;
 
 /* The meta of floor fl (its strings borrowed from fl); reads the file for

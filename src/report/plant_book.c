@@ -145,13 +145,16 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
     sl_rpt_csv_comment(f, "asce_design_mm_mu_X", "the ASCE/SEI 43-05 design value at mu = X "
                        "(asce_design_mm of the floor's table), beside the clearance the "
                        "governing method gives (NLTHA under the default policy)");
+    sl_rpt_csv_comment(f, "warnings", "every warning the run gave about the floor (its units, "
+                       "the plausibility of its ZPA, a floor accepted with --accept-floor), as "
+                       "the building's floors.csv; empty when none");
     fputs("building,floor,floor_name,elevation_m,zpa_g,sets,convergence", f);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         fprintf(f, ",clearance_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
     fputs(",governing", f);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         fprintf(f, ",asce_design_mm_mu_%g", SL_PLANT_BOOK_MU[k]);
-    fputs(",motion_checks\r\n", f);
+    fputs(",motion_checks,warnings\r\n", f);
     for (size_t i = 0; i < b->n; i++) {
         const sl_plant_book_row *r = &b->rows[i];
         sl_rpt_csv_field(f, r->building);
@@ -177,7 +180,9 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
             if (isfinite(asce))
                 fprintf(f, "%.1f", SL_RPT_MM_PER_M * asce);
         }
-        fprintf(f, ",%s\r\n", checks_text(r, chk, sizeof chk));
+        fprintf(f, ",%s,", checks_text(r, chk, sizeof chk));
+        sl_rpt_csv_field(f, r->warnings ? r->warnings : "");
+        fputs("\r\n", f);
     }
     return sl_atomic_commit(a, err);
 }
@@ -398,18 +403,30 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
     worksheet_set_column(ws, 1, 1, LK_W_B, NULL);
     sl_rpt_title_block(ws, F, rep, "Required clearance around a component: whole plant", 0, 1,
                        LK_W_B);
-    char failed[600] = "", warn[800];
-    size_t used = 0;
+    char failed[600] = "", warn[2200], wl[1200] = "";
+    size_t used = 0, wused = 0;
     for (size_t i = 0; i < b->n && used + 1 < sizeof failed; i++)
         if (b->rows[i].n_failed_motions) {
             int w = snprintf(failed + used, sizeof failed - used, "%s%s/%s", used ? ", " : "",
                              b->rows[i].building, b->rows[i].id);
             used = w > 0 && used + (size_t)w < sizeof failed ? used + (size_t)w : sizeof failed - 1;
         }
-    if (failed[0]) { /* as the building Lookup says it (sheet_lookup.c) */
-        snprintf(warn, sizeof warn, "CHECKS FAILED: motions of floor(s) %s failed their SRP "
-                 "3.7.1 checks; their results were kept by --accept-failed-checks (sheet Plant, "
-                 "column Motion checks; each building's Motion quality sheet)", failed);
+    for (size_t i = 0; i < b->n && wused + 1 < sizeof wl; i++) /* the run's warnings, also here */
+        if (b->rows[i].warnings && b->rows[i].warnings[0]) {
+            int w = snprintf(wl + wused, sizeof wl - wused, "%s%s/%s: %s",
+                             wused ? "; " : "WARNINGS (plant.csv column warnings; each "
+                             "building's Notes): ", b->rows[i].building, b->rows[i].id,
+                             b->rows[i].warnings);
+            wused = w > 0 && wused + (size_t)w < sizeof wl ? wused + (size_t)w : sizeof wl - 1;
+        }
+    if (failed[0] || wl[0]) { /* as the building Lookup says it (sheet_lookup.c) */
+        if (failed[0])
+            snprintf(warn, sizeof warn, "CHECKS FAILED: motions of floor(s) %s failed their SRP "
+                     "3.7.1 checks; their results were kept by --accept-failed-checks (sheet "
+                     "Plant, column Motion checks; each building's Motion quality sheet)%s%s",
+                     failed, wl[0] ? ". " : "", wl);
+        else
+            snprintf(warn, sizeof warn, "%s", wl);
         worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, 1, warn, F->warn);
         worksheet_set_row(ws, SL_RPT_WARN_ROW, sl_rpt_text_height(warn, LK_W_A + LK_W_B, 1), NULL);
     }

@@ -58,6 +58,8 @@ typedef struct sl_plant_book_row {
                                  3 n_sets (kept only by --accept-failed-checks) */
     const double *design_se_m; /* per grid row, the SE of the NLTHA design value (NULL:
                                   FS sd / sqrt(N), as text.c) */
+    const char *warnings;     /* the run's warnings about the floor (sl_report_floor.warnings;
+                                 NULL or "": none): plant.csv's column warnings, the Lookup */
 } sl_plant_book_row;
 
 typedef struct sl_plant_book {

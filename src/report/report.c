@@ -221,8 +221,7 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
         return err ? err->code : SL_EIO;
     char (*names)[SL_RPT_SHEET_NAME_MAX * 4 + 1] = calloc(r->n_floors, sizeof *names);
     if (!names) {
-        workbook_close(wb);
-        sl_atomic_abort(a);
+        sl_rpt_workbook_discard(wb, a);
         return sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
     }
     sl_rpt_sheet_names(r, names);

@@ -93,6 +93,14 @@ typedef struct sl_report_floor {
     size_t n_failed_motions;
     int sa10_fallback;       /* 1: the file had no 10 % table (sl_analysis.sa10_fallback):
                                 a Notes entry and a line on the floor's sheet say so */
+    /* Every warning the run gave about the floor (an unusual ZPA for its units,
+     * a ZPA outside the plausible range run anyway with --force, a floor out of
+     * line with its building accepted with --accept-floor), "; "-separated; ""
+     * or NULL: none (NULL: the workbook's Notes work the ZPA warning out
+     * itself). floors.csv's column warnings, a line on the Lookup and Summary
+     * sheets, the Notes. */
+    const char *warnings;
+    int accepted;            /* 1: accepted in writing (--accept-floor; Inputs) */
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */

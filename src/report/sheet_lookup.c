@@ -55,15 +55,20 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     size_t n = d0->n, nf = r->n_floors;
     int zc = r->lookup_zero_cache;
     double mu_min = d0->rows[0].mu, mu_max = d0->rows[n - 1].mu;
-    char f[3000], msg[160], list_formula[40], buf[1600], ids[400];
+    char f[3000], msg[160], list_formula[40], buf[2000], ids[400];
     worksheet_set_column(ws, 0, 0, W_A, NULL);
     worksheet_set_column(ws, 1, 1, W_B, NULL);
     sl_rpt_title_block(ws, F, r, "Required clearance around an unanchored component", 0, 1, W_B);
     sl_rpt_failed_ids(r, ids, sizeof ids);
-    if (ids[0]) {
-        snprintf(buf, sizeof buf, "CHECKS FAILED: motions of floor(s) %s failed their SRP 3.7.1 "
-                 "checks; their results were kept by --accept-failed-checks (sheet Motion "
-                 "quality)", ids);
+    char wl[1200];
+    sl_rpt_warnings_line(r, wl, sizeof wl); /* the run's warnings, also here */
+    if (ids[0] || wl[0]) {
+        if (ids[0])
+            snprintf(buf, sizeof buf, "CHECKS FAILED: motions of floor(s) %s failed their SRP "
+                     "3.7.1 checks; their results were kept by --accept-failed-checks (sheet "
+                     "Motion quality)%s%s", ids, wl[0] ? ". " : "", wl);
+        else
+            snprintf(buf, sizeof buf, "%s", wl);
         worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, 1, buf, F->warn);
         worksheet_set_row(ws, SL_RPT_WARN_ROW, sl_rpt_text_height(buf, W_A + W_B, 1), NULL);
     }

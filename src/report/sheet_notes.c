@@ -51,13 +51,14 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         if (fl->n_failed_motions)
             sl_rpt_failed_text(r, fl, add(&s, 1), NOTE_MAX);
     }
-    for (size_t i = 0; i < r->n_floors; i++) { /* an unusual ZPA: as the run's stderr said */
+    for (size_t i = 0; i < r->n_floors; i++) { /* its warnings: as the run's stderr said */
         const sl_report_floor *fl = &r->floors[i];
-        char zw[600];
-        if (fl->units && fl->path &&
-            sl_floor_zpa_warning_text(fl->zpa_h_ms2, fl->units, sl_floor_format_of(fl->path), zw,
-                                      sizeof zw))
-            snprintf(add(&s, 1), NOTE_MAX, "Floor %s (%s): %s.", fl->id, fl->path, zw);
+        const char *w = sl_rpt_floor_warnings(fl);
+        if (*w)
+            snprintf(add(&s, 1), NOTE_MAX, "Floor %s (%s): %s.", fl->id, fl->path, w);
+        else if (fl->accepted)
+            snprintf(add(&s, 1), NOTE_MAX, "Floor %s (%s): accepted by --accept-floor; its ZPA is "
+                     "in line with its building's other floors.", fl->id, fl->path);
     }
     snprintf(add(&s, 0), NOTE_MAX, "Model: a rigid block standing on a level floor, free to "
              "slide in both horizontal directions at once; the floor moves in three components "

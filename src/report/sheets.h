@@ -73,6 +73,12 @@ const char *sl_rpt_sa10_text(const sl_report_floor *fl);
 /* "FLOOR: N sets; FLOOR: N sets; ..." (every floor's own count). */
 char *sl_rpt_sets_text(const sl_report *r, const char *fmt, char *buf, size_t n);
 const char *sl_rpt_or_dash(const char *s);
+/* The floor's warnings (sl_report_floor.warnings; when NULL, the unusual-ZPA
+ * warning worked out from its units and ZPA); "" when none. */
+const char *sl_rpt_floor_warnings(const sl_report_floor *fl);
+/* "WARNINGS (...): ID: text; ID: text" over every floor with a warning, cut
+ * to n with "..."; "" when none. The Lookup and Summary sheets show it. */
+char *sl_rpt_warnings_line(const sl_report *r, char *buf, size_t n);
 
 /* ---- csv.c: what the plant index (plant_book.c) shares ------------------ */
 /* The comment lines every CSV of the run starts with (report.h,
@@ -111,6 +117,8 @@ lxw_workbook *sl_rpt_workbook_open(const char *path, const char *title, const ch
                                    sl_atomic **a, sl_error *err);
 /* Close wb and rename it over `path` (or remove it on error). */
 sl_status sl_rpt_workbook_close(lxw_workbook *wb, sl_atomic *a, const char *path, sl_error *err);
+/* Close a workbook not wanted (an error before it was complete) and abort a. */
+void sl_rpt_workbook_discard(lxw_workbook *wb, sl_atomic *a);
 
 /* ---- lookup_formula.c: the Lookup chain of both workbooks ----------------- */
 /* The rows (0-based) of a Lookup's cells in column B: the mu input, the

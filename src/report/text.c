@@ -4,10 +4,43 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "io/floor.h"
 #include "method/stats.h"
 #include "report/sheets.h"
 
 const char *sl_rpt_or_dash(const char *s) { return s && *s ? s : "-"; }
+
+const char *sl_rpt_floor_warnings(const sl_report_floor *fl)
+{
+    static _Thread_local char zw[600];
+    if (fl->warnings)
+        return fl->warnings;
+    if (fl->units && fl->path &&
+        sl_floor_zpa_warning_text(fl->zpa_h_ms2, fl->units, sl_floor_format_of(fl->path), zw,
+                                  sizeof zw))
+        return zw;
+    return "";
+}
+
+char *sl_rpt_warnings_line(const sl_report *r, char *buf, size_t n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < r->n_floors && used + 1 < n; i++) {
+        const char *w = sl_rpt_floor_warnings(&r->floors[i]);
+        if (!*w)
+            continue;
+        int k = snprintf(buf + used, n - used, "%s%s: %s", used ? "; " : "WARNINGS (floors.csv "
+                         "column warnings; Notes): ", r->floors[i].id, w);
+        if (k < 0 || (size_t)k >= n - used) {
+            if (n > 4)
+                strcpy(buf + n - 4, "...");
+            break;
+        }
+        used += (size_t)k;
+    }
+    return buf;
+}
 
 /* The standard error of the NLTHA design value at row k, m: the one the
  * convergence statistics give (sl_report_floor.design_se_m: FS SE(mean)

@@ -125,10 +125,11 @@ t_expect_rc progress 0; t_expect_err progress-msg "floor 2/2 'Roof el. 36 m': sy
 # spectra: floors.csv columns appended after note, finite set-mean S/T in
 # [0.5, 2], a verdict; the run summary line on stderr (docs/run.md)
 FC="$D/floors-table.csv"; grep -v "^#" "$D/out1/floors.csv" | tr -d '\r' > "$FC"
-head -1 "$FC" | grep -q ",sets_stop,note,other_dampings_min_ratio,other_dampings_max_ratio,other_dampings_check,other_dampings$" \
+head -1 "$FC" | grep -q ",sets_stop,note,other_dampings_min_ratio,other_dampings_max_ratio,other_dampings_check,other_dampings,warnings$" \
   && t_pass || t_fail "floors.csv: other_dampings columns: $(head -1 "$FC")"
-# the last four fields (the note before them has no comma in these floors' rows)
-awk -F, 'NR > 1 { lo = $(NF-3); hi = $(NF-2); v = $(NF-1); d = $NF;
+# the four fields before the last, warnings (empty here; the note before them has no
+# comma in these floors' rows)
+awk -F, 'NR > 1 { lo = $(NF-4); hi = $(NF-3); v = $(NF-2); d = $(NF-1);
   if (!(lo + 0 >= 0.5 && hi + 0 <= 2 && lo + 0 <= hi + 0 && lo ~ /^[0-9.]+$/ && hi ~ /^[0-9.]+$/)) bad++;
   if (v != "ok" && v != "outside") bad++;
   if (d !~ /H1 10 %: / || d !~ /H2 2 %: / || d !~ /V 10 %: /) bad++;
@@ -161,7 +162,7 @@ t_run run "$D/doct" -o "$D/outd" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_
 for c in H1 H2 V; do
   t_expect_err "doctored-$c" "$c 10 %: 0\.[0-9]+-[0-9.]+ OUTSIDE"
 done
-tr -d '\r' < "$D/outd/floors.csv" | grep -v "^#" | awk -F, 'NR == 2 { exit !($(NF-1) == "outside" && $(NF-3) + 0 < 0.9 && $(NF-3) + 0 > 0.5) }' \
+tr -d '\r' < "$D/outd/floors.csv" | grep -v "^#" | awk -F, 'NR == 2 { exit !($(NF-2) == "outside" && $(NF-4) + 0 < 0.9 && $(NF-4) + 0 > 0.5) }' \
   && t_pass || t_fail "doctored 10 % table not reported outside: $(tail -1 "$D/outd/floors.csv")"
 # the 10 % set mean falls by the factor: doctored / original = 1 / 1.2 (same motions),
 # within the rounding of the two printed digits (0.005 on 0.6: 0.8 %, on both: 1.5 %)
@@ -174,7 +175,7 @@ t_run run "$D/one" -o "$D/out1d" --sets 3 --mu-range 0.1:0.3:0.1 --created 0; t_
 t_expect_err one-damping-msg "floor 'Roof el. 36 m': other dampings: none"
 # no 10 % table: a warning naming the file (the ASCE estimate on the motions' mean spectrum)
 t_expect_err no-sa10-warning "run: warning: .*one/04-roof36.ini: no 10 %-damped table for H1 and H2: the ASCE estimate of floor 'Roof el. 36 m' uses the mean 10 % spectrum of its 3 synthesized sets"
-tr -d '\r' < "$D/out1d/floors.csv" | grep -v "^#" | tail -1 | grep -q ",none,none,none,none$" \
+tr -d '\r' < "$D/out1d/floors.csv" | grep -v "^#" | tail -1 | grep -q ",none,none,none,none,$" \
   && t_pass || t_fail "one damping: floors.csv $(tail -1 "$D/out1d/floors.csv")"
 
 # a bad floor file: file and line named, exit 1, no output written

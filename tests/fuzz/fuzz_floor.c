@@ -48,7 +48,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         /* a floor read keeps within the plausibility rules (floor.h) */
         sl_floor_plausibility p;
         sl_floor_plausibility_of(fl, &p);
-        fuzz_require(p.spike <= SL_FLOOR_SPIKE_MAX && p.dip <= SL_FLOOR_DIP_MAX);
+        fuzz_require(p.spike <= SL_FLOOR_SPIKE_MAX && p.dip <= SL_FLOOR_DIP_MAX &&
+                     p.dip_first <= SL_FLOOR_DIP_FIRST_MAX);
         fuzz_require(p.order >= SL_FLOOR_ORDER_MIN && p.spread <= SL_FLOOR_SPREAD_MAX);
         fuzz_require(p.order_mean >= SL_FLOOR_ORDER_MEAN_MIN * (1 - 1e-12));
         char w[600];
