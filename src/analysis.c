@@ -76,6 +76,7 @@ void sl_analysis_free(sl_analysis *a)
             sl_synth_set_clear(&a->sets[s]);
     free(a->sets);
     free(a->pgd_m);
+    free(a->rock_lookup);
     free(a);
 }
 

@@ -193,6 +193,10 @@ typedef struct sl_analysis {
     sl_analysis_damping dampings[SL_ANALYSIS_MAX_DAMPINGS];
     double damping_lim_lo, damping_lim_hi; /* the limits of the set mean (0.9, 1.3) */
     int dampings_ok;            /* 1: every one within the limits (or none) */
+    /* The floor's rocking lookup (rock/rock_lookup.h: SL_ROCKL_N results), when the
+     * caller computed it (`run --rocking-lookup`); NULL otherwise. Not part of a
+     * cache entry (it has its own, rock/rock_cache.h); freed with the analysis. */
+    struct sl_rockf_result *rock_lookup;
 } sl_analysis;
 
 /* Run the study of one floor. Returns NULL and fills err on failure (bad

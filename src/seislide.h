@@ -69,6 +69,7 @@
 #include "slide/slide.h"
 #include "rock/rock.h"
 #include "rock/rock_floor.h"
+#include "rock/rock_lookup.h"
 
 #include "method/asce.h"
 #include "method/asce_input.h"

@@ -19,6 +19,7 @@
 #include "run_floors.h"
 #include "run_opts.h"
 #include "run_report.h"
+#include "run_rocking.h"
 
 #include "core/standards.h"
 
@@ -117,6 +118,9 @@ int cmd_run(int argc, char **argv)
         if (mine[i] && ++k && run_report_checks(k, n_mine, plant.floors[i].floor,
                                                  plant.floors[i].an, a.accept_failed))
             goto done;
+    if (a.rocking_lookup &&
+        run_rocking_lookup(&plant, mine, ao->seed, r.cache, a.quiet, &err))
+        goto fail;
     if (run_deliver(&a, &plant, r.cache && !a.cache ? cache_dir : NULL, argc, argv, &out, &err))
         goto fail;
     rc = CLI_EXIT_OK;

@@ -33,7 +33,7 @@ static const char run_tail[] =
 enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_MOTIONS,
        O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
        O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT, O_SHARD, O_CACHE, O_NO_CACHE, O_COMPONENTS,
-       O_ACCEPT_FLOOR };
+       O_ACCEPT_FLOOR, O_ROCKING_LOOKUP };
 static const cli_opt opts[] = {
     {"output", 'o', "DIR", "output folder (default output/), swapped in whole: new (parents\n"
      "made), empty or one seislide wrote; files it did not write stay", .kind = CLI_STRING,
@@ -87,6 +87,10 @@ static const cli_opt opts[] = {
     {"components", O_COMPONENTS, "FILE", "check the components listed in FILE against the floor\n"
      "tables: DIR/components.csv and components.xlsx (docs/components.md)",
      .kind = CLI_STRING, A(components)},
+    {"rocking-lookup", O_ROCKING_LOOKUP, NULL, "also the rocking lookup of every floor: the\n"
+     "probability that a slender item tips, over a grid of b/h and size, at the\n"
+     "floor motion and 1.5 x it (DIR/rocking_lookup.csv, the Rocking sheet;\n"
+     "docs/rocking.md; adds minutes)", .kind = CLI_FLAG, A(rocking_lookup)},
     {"cache", O_CACHE, "CDIR", "keep and reuse floor results in CDIR (default DIR/.seislide-cache);\n"
      "may be shared by runs at the same time", .kind = CLI_STRING, A(cache)},
     {"no-cache", O_NO_CACHE, NULL, "recompute every floor and keep no results", .kind = CLI_FLAG,
@@ -158,6 +162,9 @@ static int check(void *dst)
     if (a->shard_n && a->dop.write_motions)
         return cli_usage(r, "--motions cannot be combined with --shard (a shard writes results, "
                          "not outputs)");
+    if (a->shard_n && a->rocking_lookup)
+        return cli_usage(r, "--rocking-lookup cannot be combined with --shard (a shard writes "
+                         "results, not outputs)");
     if (a->shard_n && a->components)
         return cli_usage(r, "--components applies to a whole run, not to a shard (give it to "
                          "merge's results: seislide components)");

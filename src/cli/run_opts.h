@@ -30,6 +30,7 @@ typedef struct run_args {
     const char *cache;                      /* NULL: OUT/.seislide-cache */
     int no_cache;
     const char *components;                 /* --components FILE (docs/components.md) */
+    int rocking_lookup;                     /* --rocking-lookup (docs/rocking.md) */
     const char *accept_floor[RUN_MAX_ACCEPT]; /* --accept-floor ID (plant/intensity.h) */
     size_t n_accept;
 } run_args;
