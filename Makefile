@@ -178,8 +178,10 @@ mutate:
 # <seislide/core/status.h> so that Cflags -I$${includedir} finds them and no
 # generic name (analysis.h, core/status.h) lands on a user's include path;
 # seislide.pc, written here from this install's PREFIX and LIBDIR (nothing
-# cached: a second install with another PREFIX writes its own), and the
-# manual page.
+# cached: a second install with another PREFIX writes its own), the
+# manual page, and the documentation under share/doc/seislide (README.md,
+# docs/*.md and the figures of docs/validation/: the manuals a record such as
+# `seislide verify`'s verification.csv refers to, by that installed path).
 install: $(PROG) $(LIB) $(SHLIB)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/pkgconfig \
 	  $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/include/seislide
@@ -197,6 +199,9 @@ install: $(PROG) $(LIB) $(SHLIB)
 	  seislide.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/seislide.pc
 	chmod 644 $(DESTDIR)$(LIBDIR)/pkgconfig/seislide.pc
 	install -m 644 docs/seislide.1 $(DESTDIR)$(PREFIX)/share/man/man1/seislide.1
+	install -d $(DESTDIR)$(PREFIX)/share/doc/seislide/validation
+	install -m 644 README.md docs/*.md $(DESTDIR)$(PREFIX)/share/doc/seislide/
+	install -m 644 docs/validation/*.svg $(DESTDIR)$(PREFIX)/share/doc/seislide/validation/
 
 clean:
 	rm -rf build build-asan build-clang $(PROG)

@@ -168,6 +168,8 @@ int cmd_verify(int argc, char **argv)
     host_text(info.host, sizeof info.host);
     time_t now = time(NULL);
     strftime(info.date, sizeof info.date, "%Y-%m-%d %H:%M:%S UTC", gmtime(&now));
+    info.created = now;
+    verify_docs_path(info.docs, sizeof info.docs);
     snprintf(info.checked_by, sizeof info.checked_by, "%s",
              a.checked_by ? a.checked_by : "not given");
     cli_command_line(info.command, sizeof info.command, argc, argv);

@@ -351,7 +351,9 @@ sl_status sl_plant_deliver(const sl_plant *p, const char *dir, const sl_deliver_
                  sl_report_file_name(p->building[b], file, sizeof file));
         if (mkdir(sub, 0777) != 0)
             return sl_error_set(err, SL_EIO, sub, 0, "cannot create: %s", strerror(errno));
-        sl_status st = deliver_building(p, b, sub, o, err);
+        sl_deliver_opts ob = *o; /* the building named on every page of its workbook */
+        ob.building = p->building[b];
+        sl_status st = deliver_building(p, b, sub, &ob, err);
         if (st)
             return st;
     }

@@ -10,6 +10,7 @@
 #include <zlib.h>
 
 #include "method/asce.h"
+#include "method/scatter.h"
 #include "synth/synth.h"
 
 /* CRC-32 and size of a file (recorded so the inputs can be recognised). */
@@ -156,7 +157,7 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
     if (st)
         goto done;
     const sl_design *d0 = an[0]->design;
-    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160], s_scat[200],
+    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160], s_scat[400],
         s_acc[1024] = "none";
     /* the floors accepted in writing out of line with their building */
     size_t used = 0;
@@ -181,14 +182,17 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
         snprintf(s_sub, sizeof s_sub, "%u per sample (fixed)", o->substeps);
     else
         snprintf(s_sub, sizeof s_sub, "error-controlled, relative error %g", o->accuracy);
-    snprintf(s_fs, sizeof s_fs, "NLTHA %g x mean; ASCE %g x best estimate; cap %g x mean PGD",
+    snprintf(s_fs, sizeof s_fs, "NLTHA %g x mean; ASCE %g x best estimate; cap %g x mean peak "
+             "floor displacement",
              d0->fs_nltha, d0->fs_asce, d0->cap_factor);
     snprintf(s_synth, sizeof s_synth, "%g s at %g s, matched at %g %% damping (SRP 3.7.1 checks)",
              SL_SYNTH_DURATION_S, SL_SYNTH_DT_S, 100 * SL_SYNTH_DAMPING);
     if (an[0]->scatter > 0)
         snprintf(s_scat, sizeof s_scat, "log standard deviation %g of the horizontal intensity, "
-                 "mean 1, averaged exactly over each set (NLTHA at %zu friction values)",
-                 an[0]->scatter, an[0]->n_nltha_mu);
+                 "mean 1, averaged exactly over each set: each set's NLTHA runs at %zu "
+                 "log-spaced friction values (%d a decade, every mu / intensity of the average), "
+                 "from which its peak on the %zu values of the friction grid is computed",
+                 an[0]->scatter, an[0]->n_nltha_mu, SL_SCATTER_PER_DECADE, d0->n);
     else
         snprintf(s_scat, sizeof s_scat, "none: the sets as synthesized");
     const sl_report_setting settings[] = {
@@ -205,6 +209,7 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
     rep.seed = s_seed;
     rep.created = o->created;
     rep.project = o->project;
+    rep.building = o->building;
     rep.n_floors = n;
     rep.floors = rf;
     rep.n_quality = q;

@@ -27,6 +27,8 @@ typedef struct sl_deliver_opts {
     unsigned substeps;
     double accuracy;          /* the requested accuracy (for the record) */
     int write_motions;        /* also motions/<floor id>/setNN_{h1,h2,v}.AT2 */
+    const char *building;     /* a plant's building, named on every page of its workbook
+                                 (NULL: a one-building run) */
 } sl_deliver_opts;
 
 /* Most floors in one run, and the longest floor id. */

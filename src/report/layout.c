@@ -25,7 +25,7 @@
 #define XLSX_CHART_PX 480.0
 #define CHARS_PER_WIDTH 1.12
 #define CHARS_PER_WIDTH_BOLD 1.05
-#define HEAD_CHARS_PER_WIDTH 1.2
+#define HEAD_CHARS_PER_WIDTH 1.1
 
 void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
 {
@@ -40,6 +40,8 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     F->title = workbook_add_format(wb);
     format_set_bold(F->title);
     format_set_font_size(F->title, 14);
+    /* numbers at the top of their rows, as the labels beside them (a label
+     * wrapped to two lines does not leave its value a line below) */
     F->mm = workbook_add_format(wb);
     format_set_num_format(F->mm, "0.0");
     F->mm0 = workbook_add_format(wb);
@@ -47,12 +49,20 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     F->mmbold = workbook_add_format(wb);
     format_set_num_format(F->mmbold, "0.0");
     format_set_bold(F->mmbold);
+    F->mm0bold = workbook_add_format(wb);
+    format_set_num_format(F->mm0bold, "0");
+    format_set_bold(F->mm0bold);
     F->ratio = workbook_add_format(wb);
     format_set_num_format(F->ratio, "0.000");
     F->sci = workbook_add_format(wb);
     format_set_num_format(F->sci, "0.0E+00");
     F->mu = workbook_add_format(wb);
     format_set_num_format(F->mu, "0.00");
+    F->dxf_mm0 = workbook_add_format(wb);
+    format_set_num_format(F->dxf_mm0, "0");
+    lxw_format *top[] = {F->mm, F->mm0, F->mmbold, F->mm0bold, F->ratio, F->sci, F->mu};
+    for (size_t k = 0; k < sizeof top / sizeof top[0]; k++)
+        format_set_align(top[k], LXW_ALIGN_VERTICAL_TOP);
     F->wrap = workbook_add_format(wb);
     format_set_text_wrap(F->wrap);
     format_set_align(F->wrap, LXW_ALIGN_VERTICAL_TOP);
@@ -82,6 +92,12 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     format_set_align(F->header_num, LXW_ALIGN_VERTICAL_TOP);
     format_set_align(F->header_num, LXW_ALIGN_RIGHT);
     format_set_bottom(F->header_num, LXW_BORDER_THIN);
+    F->header_ind = workbook_add_format(wb); /* a text heading after a number's */
+    format_set_bold(F->header_ind);
+    format_set_text_wrap(F->header_ind);
+    format_set_align(F->header_ind, LXW_ALIGN_VERTICAL_TOP);
+    format_set_bottom(F->header_ind, LXW_BORDER_THIN);
+    format_set_indent(F->header_ind, 1);
     F->indent = workbook_add_format(wb); /* text after a number: kept off it */
     format_set_text_wrap(F->indent);
     format_set_align(F->indent, LXW_ALIGN_VERTICAL_TOP);
@@ -189,13 +205,16 @@ static int break_lines(const char *s, size_t max, char *buf, size_t n)
 char *sl_rpt_header_text(const char *s, double width, char *buf, size_t n)
 {
     /* a line a character short of what LibreOffice fits in bold (measured:
-     * "cap (1.5 x" in a column 8.5 wide), then as short as the same number
-     * of lines allows: balanced lines, no word left alone */
+     * "cap (1.5 x" fits in a column 8.5 wide, "ASCE best" and "clearance,"
+     * do not: letters are wider than blanks and brackets), then as short as
+     * the same number of lines allows: balanced lines, no word left alone */
     size_t max = (size_t)fmax(1, floor(HEAD_CHARS_PER_WIDTH * width) - 1);
-    int lines = break_lines(s, max, NULL, 0);
-    while (max > 1 && break_lines(s, max - 1, NULL, 0) == lines)
+    char kept[1200]; /* a number and its unit: one word */
+    sl_rpt_keep_units(s, kept, sizeof kept);
+    int lines = break_lines(kept, max, NULL, 0);
+    while (max > 1 && break_lines(kept, max - 1, NULL, 0) == lines)
         max--;
-    break_lines(s, max, buf, n);
+    break_lines(kept, max, buf, n);
     return buf;
 }
 
@@ -219,7 +238,8 @@ static void hf_escape(const char *s, size_t max, char *buf, size_t n)
 void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
                        const char *failed_ids)
 {
-    char proj[4 * HF_PROJECT_MAX + 8], doc[140], rev[120], ids[180], h[4 * HF_MAX], ver[260];
+    char proj[4 * HF_PROJECT_MAX + 8], doc[140], rev[120], ids[180], h[4 * HF_MAX], ver[260],
+        bld[4 * HF_PROJECT_MAX + 32] = "";
     const sl_report_project *p = &r->project;
     hf_escape(p->project && *p->project ? p->project : "not given",
               HF_PROJECT_MAX, proj, sizeof proj);
@@ -229,6 +249,11 @@ void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
               sizeof rev);
     hf_escape(failed_ids, 40, ids, sizeof ids);
     hf_escape(r->version, 60, ver, sizeof ver);
+    if (r->building && *r->building) { /* a plant's building: on every page, beside the sheet */
+        char b[4 * HF_PROJECT_MAX + 8];
+        hf_escape(r->building, HF_PROJECT_MAX / 2, b, sizeof b);
+        snprintf(bld, sizeof bld, "Building %s: ", b);
+    }
     worksheet_set_paper(ws, 9); /* A4 */
     worksheet_set_margins(ws, 0.5, 0.5, 0.85, 0.75);
     if (landscape)
@@ -237,8 +262,8 @@ void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
         worksheet_set_portrait(ws);
     /* left: who and what (two lines), right: the sheet, and the floors whose
      * motions failed their checks; nothing in the centre to run into */
-    snprintf(h, sizeof h, "&L&8Project: %s\nDocument %s, revision %s&R&8&A%s%s", proj, doc, rev,
-             ids[0] ? "\n&\"-,Bold\"checks failed: " : "", ids);
+    snprintf(h, sizeof h, "&L&8Project: %s\nDocument %s, revision %s&R&8%s&A%s%s", proj, doc, rev,
+             bld, ids[0] ? "\n&\"-,Bold\"checks failed: " : "", ids);
     worksheet_set_header(ws, h);
     snprintf(h, sizeof h, "&L&8%s&C&8&F&R&8Page &P of &N", ver);
     worksheet_set_footer(ws, h);
@@ -254,13 +279,18 @@ void sl_rpt_protect(lxw_worksheet *ws)
 void sl_rpt_title_block(lxw_worksheet *ws, const sl_rpt_fmts *F, const sl_report *r,
                         const char *title, lxw_col_t c, lxw_col_t c_last, double width)
 {
-    worksheet_write_string(ws, 0, c, title, F->title);
+    char full[1200];
+    if (r->building && *r->building) /* a plant's building names its workbook */
+        snprintf(full, sizeof full, "%s: building %s", title, r->building);
+    else
+        snprintf(full, sizeof full, "%s", title);
+    worksheet_write_string(ws, 0, c, full, F->title);
     const char *const label[] = {"Project", "Document no.", "Revision", "Prepared by",
                                  "Checked by", "Date", "Units"};
     const char *const value[] = {r->project.project, r->project.document, r->project.revision,
                                  r->project.prepared, r->project.checked, r->project.date,
-                                 "clearance and displacements in mm; accelerations in g; "
-                                 "mu (friction coefficient) dimensionless"};
+                                 "displacements and clearances in mm, accelerations in g, "
+                                 "mu dimensionless"};
     for (lxw_row_t i = 0; i < SL_RPT_TB_ROWS - 1; i++) {
         const char *v = sl_rpt_or_dash(value[i]);
         worksheet_write_string(ws, i + 1, c, label[i], F->label);
@@ -324,10 +354,12 @@ sl_rpt_axes sl_rpt_shared_axes(const sl_report *r)
     return a;
 }
 
-void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax)
+void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax, const char *quantity)
 {
+    char y[200];
+    snprintf(y, sizeof y, "%s, mm (log scale)", quantity);
     chart_axis_set_name(ch->x_axis, "friction coefficient mu");
-    chart_axis_set_name(ch->y_axis, "mm (log scale)");
+    chart_axis_set_name(ch->y_axis, y);
     chart_axis_set_min(ch->x_axis, ax->mu_min);
     chart_axis_set_max(ch->x_axis, ax->mu_max);
     chart_axis_set_num_format(ch->x_axis, "0.00");
@@ -358,6 +390,87 @@ void sl_rpt_add_series(lxw_chart *ch, const char *sheet, lxw_col_t xc, lxw_col_t
                            .transparency = transparency};
     chart_series_set_line(s, &line);
     chart_series_set_marker_type(s, LXW_CHART_MARKER_NONE);
+}
+
+/* The units a number is kept with (sl_rpt_keep_units). */
+static const char *const UNITS[] = {"g", "m", "mm", "cm", "km", "s", "ms", "Hz", "%", "kg", "t",
+                                    "kN", "N", "m/s", "m/s2", "cm/s2", "in", "ft", "Gal"};
+
+char *sl_rpt_keep_units(const char *s, char *buf, size_t n)
+{
+    size_t k = 0;
+    if (!n)
+        return buf;
+    for (const char *p = s ? s : ""; *p && k + 3 < n; p++) {
+        int nb = 0;
+        if (*p == ' ' && p > s && p[-1] >= '0' && p[-1] <= '9') {
+            size_t len = strcspn(p + 1, " ,;:)]\n");
+            for (size_t u = 0; !nb && u < sizeof UNITS / sizeof UNITS[0]; u++)
+                nb = len == strlen(UNITS[u]) && !strncmp(p + 1, UNITS[u], len);
+        }
+        if (nb) { /* U+00A0 */
+            buf[k++] = (char)0xC2;
+            buf[k++] = (char)0xA0;
+        } else {
+            buf[k++] = *p;
+        }
+    }
+    buf[k] = '\0';
+    return buf;
+}
+
+char *sl_rpt_shown_path(const char *path, char *buf, size_t n)
+{
+    if (!path || path[0] != '/') {
+        snprintf(buf, n, "%s", path ? path : "-");
+        return buf;
+    }
+    const char *p = path + strlen(path);
+    for (int parts = 0; p > path; p--) /* the start of the last two parts */
+        if (p[-1] == '/' && ++parts == 2)
+            break;
+    snprintf(buf, n, p > path ? ".../%s" : "%s", p > path ? p : path);
+    return buf;
+}
+
+int sl_rpt_command_lines(const char *cmd, size_t width, char *buf, size_t n)
+{
+    size_t k = 0, col = 0;
+    int lines = 1;
+    if (!n)
+        return 0;
+    buf[0] = '\0';
+    for (const char *p = cmd ? cmd : ""; *p;) {
+        while (*p == ' ')
+            p++;
+        if (!*p)
+            break;
+        const char *e = p; /* a word: up to a blank outside single quotes */
+        for (int q = 0; *e && (q || *e != ' '); e++)
+            q ^= *e == '\'';
+        size_t len = (size_t)(e - p), w = utf8_chars(p, len);
+        if (col && col + 1 + w + 2 > width) { /* " \" ends the line */
+            if (k + 3 >= n)
+                break;
+            memcpy(buf + k, " \\\n", 3);
+            k += 3;
+            col = 0;
+            lines++;
+        } else if (col) {
+            if (k + 1 >= n)
+                break;
+            buf[k++] = ' ';
+            col++;
+        }
+        if (k + len >= n)
+            break;
+        memcpy(buf + k, p, len);
+        k += len;
+        col += w;
+        p = e;
+    }
+    buf[k < n ? k : n - 1] = '\0';
+    return lines;
 }
 
 /* The sheet name of an id: Excel's forbidden characters []:*?/\ and an

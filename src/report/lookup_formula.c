@@ -9,7 +9,27 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "method/design.h"
 #include "report/sheets.h"
+
+/* A standard error of 1 mm or more shows the clearance to the whole mm
+ * (text.c, sl_rpt_shown_decimals: the tables' rule). */
+#define WHOLE_MM_SE 1.0
+
+/* Cell B<row+1> shown to the whole mm while the standard error in B<se+1>
+ * is WHOLE_MM_SE or more (a conditional number format: the value is not
+ * rounded). */
+static void whole_mm_when(lxw_worksheet *ws, const sl_rpt_fmts *F, int row, int se)
+{
+    char crit[64];
+    snprintf(crit, sizeof crit, "=AND(ISNUMBER($B$%d),$B$%d>=%g)", se + 1, se + 1, WHOLE_MM_SE);
+    lxw_conditional_format cf;
+    memset(&cf, 0, sizeof cf);
+    cf.type = LXW_CONDITIONAL_TYPE_FORMULA;
+    cf.value_string = crit;
+    cf.format = F->dxf_mm0;
+    worksheet_conditional_format_cell(ws, (lxw_row_t)row, 1, &cf);
+}
 
 void sl_rpt_lookup_formula(lxw_worksheet *ws, int zero_cache, lxw_row_t row, const char *f,
                            double v, const char *s, lxw_format *fmt)
@@ -100,9 +120,8 @@ double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cac
     const char *const label[6] = {t->floor_step, t->mu_step, "mu at or below", "mu above",
                                   "clearance at the mu at or below, mm",
                                   "clearance at the mu above, mm"};
-    const char *how = "How it is computed: the clearance at mu is interpolated linearly "
-                      "between the two grid rows around it (every CSV and table of the run "
-                      "interpolates so):";
+    const char *how = "How it is computed: linear interpolation between the two grid rows "
+                      "around mu (as every CSV and table of the run):";
     worksheet_merge_range(ws, c->steps - 1, 0, c->steps - 1, 1, how, F->bold);
     worksheet_set_row(ws, c->steps - 1, sl_rpt_text_height(how, t->width, 1), NULL);
     for (int s = 0; s < 6; s++)
@@ -139,10 +158,24 @@ double sl_rpt_lookup_chain(lxw_worksheet *ws, const sl_rpt_fmts *F, int zero_cac
     worksheet_write_string(ws, c->result, 0, "Required clearance, mm", F->title);
     sl_rpt_lookup_result_text(f, sizeof f, c);
     sl_rpt_lookup_formula(ws, zero_cache, c->result, f, res, ok ? NULL : "-", F->result);
+    if (c->se) /* one rule for the digits: the tables' (summary.csv, plant.csv) */
+        for (int k = 0; k < 3; k++)
+            whole_mm_when(ws, F, k == 0 ? c->result : k == 1 ? (int)c0 : (int)c1, c->se);
     worksheet_write_string(ws, c->note, 0, "Note", F->bold);
-    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",IF(B%d=0,\"%s\",\"\"))", chk, c->result + 1,
-             SL_RPT_LOOKUP_NO_SLIDING);
-    sl_rpt_lookup_formula(ws, zero_cache, c->note, f, 0,
-                          ok && res == 0 ? SL_RPT_LOOKUP_NO_SLIDING : "", F->wrap);
+    char few[200] = "", few_text[200] = "";
+    if (c->sets) { /* fewer sets than the standard asks for: said first */
+        snprintf(few, sizeof few, "IF(AND(ISNUMBER(B%d),B%d<%d),\"only \"&B%d&\" motion sets "
+                 "(ASCE/SEI 43-05: at least %d). \",\"\")&", c->sets + 1, c->sets + 1,
+                 SL_NLTHA_MIN_SETS, c->sets + 1, SL_NLTHA_MIN_SETS);
+        if (ok && d->n_sets < SL_NLTHA_MIN_SETS)
+            snprintf(few_text, sizeof few_text, "only %zu motion sets (ASCE/SEI 43-05: at least "
+                     "%d). ", d->n_sets, SL_NLTHA_MIN_SETS);
+    }
+    char note[400];
+    snprintf(note, sizeof note, "%s%s", few_text,
+             ok && res == 0 ? SL_RPT_LOOKUP_NO_SLIDING : "");
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",%sIF(B%d=0,\"%s\",\"\"))", chk, few,
+             c->result + 1, SL_RPT_LOOKUP_NO_SLIDING);
+    sl_rpt_lookup_formula(ws, zero_cache, c->note, f, 0, note, F->wrap);
     return res;
 }

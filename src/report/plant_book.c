@@ -191,7 +191,8 @@ sl_status sl_plant_book_write_csv(const sl_plant_book *b, const char *dir, sl_er
  * (rows 0-7, layout.c), the range of mu under its input. tests/test_plant.c
  * reads B14 (the clearance) and B15 (the input check). */
 enum { LK_BUILDING = SL_RPT_TB_ROWS + 1, LK_FLOOR, LK_MU, LK_RANGE, LK_RESULT, LK_CHECK, LK_NOTE,
-       LK_HOW = LK_NOTE + 2, LK_ROW, LK_C1 = LK_ROW + 5 };
+       LK_ZPA, LK_X, LK_SE, LK_FLAGS, LK_LEGEND, LK_SETS, LK_HOW, LK_ROW,
+       LK_C1 = LK_ROW + 5 };
 /* Lookup columns: labels, values; 64 units in all, a portrait A4 page at
  * 100 % (as the building Lookup, sheet_lookup.c). */
 #define LK_W_A 36.0
@@ -206,9 +207,16 @@ enum { PL_NOTE = 1, PL_HEAD = 3, PL_SUBHEAD, PL_FIRST, PL_CLEAR = 7,
 #define PL_ROWS_PER_FLOOR 2
 
 /* Data: A building, B floor name, C building|floor name, D.. clearance on the grid
- * (row 1: the grid); the building list in the column after the grid.
+ * (row 1: the grid); the building list in the column after the grid; then
+ * each floor's horizontal ZPA (g) and motion sets, the standard error of
+ * its NLTHA design value on the grid (mm) and its flags on the grid (what
+ * the Lookup shows beside the clearance, as the building Lookup does).
  * Hidden: not printed (the Plant sheet and each building's workbook hold
  * the same numbers), as the building workbook's Data (sheet_data.c). */
+static size_t data_col_zpa(size_t n) { return 3 + n + 2; }
+static size_t data_col_sets(size_t n) { return 3 + n + 3; }
+static size_t data_col_se(size_t n) { return 3 + n + 4; }
+static size_t data_col_flags(size_t n) { return 3 + 2 * n + 4; }
 static void data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_book *b,
                        const sl_report *rep)
 {
@@ -234,6 +242,25 @@ static void data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_bo
                                    SL_RPT_MM_PER_M * r->design->rows[k].clearance_m, F->mm);
         if (i == 0 || strcmp(r->building, b->rows[i - 1].building))
             worksheet_write_string(ws, (lxw_row_t)(1 + nb++), (lxw_col_t)bcol, r->building, NULL);
+        worksheet_write_number(ws, row, (lxw_col_t)data_col_zpa(d0->n), r->zpa_h_ms2 / SL_G, NULL);
+        worksheet_write_number(ws, row, (lxw_col_t)data_col_sets(d0->n), (double)r->n_sets, NULL);
+        const sl_report_floor fl = {.design = r->design, .design_se_m = r->design_se_m};
+        char flags[256];
+        for (size_t k = 0; k < r->design->n; k++) {
+            worksheet_write_number(ws, row, (lxw_col_t)(data_col_se(d0->n) + k),
+                                   SL_RPT_MM_PER_M * sl_rpt_design_se_m(&fl, k), NULL);
+            sl_report_flags(r->design->rows[k].flags, flags, sizeof flags);
+            worksheet_write_string(ws, row, (lxw_col_t)(data_col_flags(d0->n) + k),
+                                   flags[0] ? flags : "-", NULL);
+        }
+    }
+    worksheet_write_string(ws, 0, (lxw_col_t)data_col_zpa(d0->n), "zpa_g", F->header);
+    worksheet_write_string(ws, 0, (lxw_col_t)data_col_sets(d0->n), "sets", F->header);
+    for (size_t k = 0; k < d0->n; k++) {
+        worksheet_write_number(ws, 0, (lxw_col_t)(data_col_se(d0->n) + k), d0->rows[k].mu,
+                               F->ratio);
+        worksheet_write_number(ws, 0, (lxw_col_t)(data_col_flags(d0->n) + k), d0->rows[k].mu,
+                               F->ratio);
     }
     char c0[8], c1[8], def[200];
     sl_rpt_col_name(3, c0);
@@ -249,6 +276,17 @@ static void data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_bo
     sl_rpt_col_name(bcol, c0);
     snprintf(def, sizeof def, "=Data!$%s$2:$%s$%zu", c0, c0, nb + 1);
     workbook_define_name(wb, "plant_buildings", def);
+    const struct { const char *name; size_t c0, c1; } more[] = {
+        {"plant_zpa_g", data_col_zpa(d0->n), data_col_zpa(d0->n)},
+        {"plant_sets", data_col_sets(d0->n), data_col_sets(d0->n)},
+        {"plant_se_mm", data_col_se(d0->n), data_col_se(d0->n) + d0->n - 1},
+        {"plant_flags", data_col_flags(d0->n), data_col_flags(d0->n) + d0->n - 1}};
+    for (size_t k = 0; k < sizeof more / sizeof more[0]; k++) {
+        sl_rpt_col_name(more[k].c0, c0);
+        sl_rpt_col_name(more[k].c1, c1);
+        snprintf(def, sizeof def, "=Data!$%s$2:$%s$%zu", c0, c1, b->n + 1);
+        workbook_define_name(wb, more[k].name, def);
+    }
     worksheet_set_column(ws, 0, 2, 24, NULL);
     sl_rpt_page_setup(ws, rep, 1, "");
     worksheet_hide(ws); /* not printed: LibreOffice and Excel print visible sheets only */
@@ -303,7 +341,7 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
      * building workbook's tables. Ids have no blanks: their columns grow
      * to 24 units (longer ids wrap inside); headings wrap between words. */
     double width[PL_COLS] = {text_width(lb, 9, 24), text_width(lf, 9, 24), text_width(ln, 12, 20),
-                             9.5, 9.5, 6.5, 12};
+                             11, 10, 6.5, 12}; /* "Elevation," and "Horizontal" on one line */
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++)
         width[PL_CLEAR + k] = 6;
     width[PL_GOV] = 13;
@@ -355,7 +393,9 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
         sl_plant_book_governing(r->design, gov, sizeof gov);
         worksheet_write_string(ws, row, 0, r->building, F->wrap);
         worksheet_write_string(ws, row, 1, r->id, F->wrap);
-        worksheet_write_string(ws, row, 2, r->name, F->wrap);
+        char name[600];
+        worksheet_write_string(ws, row, 2, sl_rpt_keep_units(r->name, name, sizeof name),
+                               F->wrap);
         sl_rpt_num_or_blank(ws, row, 3, r->elevation_m, num);
         worksheet_write_number(ws, row, 4, r->zpa_h_ms2 / SL_G, g);
         worksheet_write_number(ws, row, 5, (double)r->n_sets, num);
@@ -512,7 +552,8 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
         {t_f, "choose a floor from the list", !*f0},
         {t_fu, "unknown floor in this building: choose one from the list", fi == b->n}};
     const sl_rpt_lookup_cells cells = {.mu = LK_MU, .result = LK_RESULT, .check = LK_CHECK,
-                                       .note = LK_NOTE, .steps = LK_ROW};
+                                       .note = LK_NOTE, .steps = LK_ROW, .se = LK_SE,
+                                       .sets = LK_SETS};
     int ok = sl_rpt_lookup_check(ws, F, z, &cells, tests, 4, NULL, mu0, mu_min, mu_max);
     /* the longest check text wraps to two lines in column B */
     worksheet_set_row(ws, LK_CHECK, sl_rpt_text_height(tests[3].message, LK_W_B, 1), NULL);
@@ -523,10 +564,61 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
                                        .floors_down = 1, .width = LK_W_A + LK_W_B};
     sl_rpt_lookup_chain(ws, F, z, &cells, &table, ok ? b->rows[fi].design : d0, ok ? fi : 0,
                         mu0, ok);
-    worksheet_set_row(ws, LK_NOTE, sl_rpt_text_height(SL_RPT_LOOKUP_NO_SLIDING, LK_W_B, 0), NULL);
-    snprintf(f, sizeof f, "%zu buildings, %zu floors; clearance policy %s. Each building's own "
-             "workbook (<building>/seislide-clearance.xlsx) shows every floor's curves, their "
-             "standard errors, flags and the assumptions; the Plant sheet lists every floor.",
+    char longest[400]; /* room for both notes at once */
+    snprintf(longest, sizeof longest, "only 9 motion sets (ASCE/SEI 43-05: at least 5). %s",
+             SL_RPT_LOOKUP_NO_SLIDING);
+    worksheet_set_row(ws, LK_NOTE, sl_rpt_text_height(longest, LK_W_B, 0), NULL);
+    /* what the building Lookup shows beside the clearance (sheet_lookup.c): the
+     * floor's ZPA, mu g/ZPA, the standard error interpolated as the clearance
+     * is, the flags of the grid rows around mu, the floor's motion sets */
+    const sl_plant_book_row *fr = ok ? &b->rows[fi] : NULL;
+    const int CHK = LK_CHECK + 1, FR = LK_ROW + 1, KR = LK_ROW + 2, M0 = LK_ROW + 3,
+              M1 = LK_ROW + 4;
+    size_t k1, k0 = sl_rpt_lookup_bracket(d0, ok, mu0, &k1);
+    worksheet_write_string(ws, LK_ZPA, 0, "Floor's horizontal ZPA, g", F->bold);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_zpa_g,B%d))", CHK, FR);
+    sl_rpt_lookup_formula(ws, z, LK_ZPA, f, ok ? fr->zpa_h_ms2 / SL_G : 0, ok ? NULL : "",
+                          F->ratio);
+    worksheet_write_string(ws, LK_X, 0, "mu g / ZPA", F->bold);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",B%d/B%d)", CHK, LK_MU + 1, LK_ZPA + 1);
+    sl_rpt_lookup_formula(ws, z, LK_X, f, ok ? mu0 * SL_G / fr->zpa_h_ms2 : 0, ok ? NULL : "",
+                          F->ratio);
+    worksheet_write_string(ws, LK_SE, 0, "Standard error of the NLTHA design value, mm", F->bold);
+    worksheet_set_row(ws, LK_SE, sl_rpt_text_height("Standard error of the NLTHA design value, "
+                                                    "mm", LK_W_A, 1), NULL);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_se_mm,B%d,B%d)+IF(B%d=B%d,0,"
+             "(B%d-B%d)*(INDEX(plant_se_mm,B%d,MIN(B%d+1,%zu))-INDEX(plant_se_mm,B%d,B%d))/"
+             "(B%d-B%d)))", CHK, FR, KR, M1, M0, LK_MU + 1, M0, FR, KR, d0->n, FR, KR, M1, M0);
+    double se = 0;
+    if (ok) {
+        const sl_report_floor rf = {.design = fr->design, .design_se_m = fr->design_se_m};
+        double s0 = sl_rpt_design_se_m(&rf, k0), s1 = sl_rpt_design_se_m(&rf, k1);
+        double m0 = fr->design->rows[k0].mu, m1 = fr->design->rows[k1].mu;
+        se = SL_RPT_MM_PER_M * (s0 + (m1 == m0 ? 0 : (mu0 - m0) * (s1 - s0) / (m1 - m0)));
+    }
+    sl_rpt_lookup_formula(ws, z, LK_SE, f, se, ok ? NULL : "", F->mm);
+    worksheet_write_string(ws, LK_FLAGS, 0, "Flags at the grid rows around mu", F->bold);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_flags,B%d,B%d)&\" | \"&"
+             "INDEX(plant_flags,B%d,MIN(B%d+1,%zu)))", CHK, FR, KR, FR, KR, d0->n);
+    char fl0[256], fl1[256], flc[600] = "";
+    if (ok) {
+        sl_report_flags(fr->design->rows[k0].flags, fl0, sizeof fl0);
+        sl_report_flags(fr->design->rows[k1].flags, fl1, sizeof fl1);
+        snprintf(flc, sizeof flc, "%s | %s", fl0[0] ? fl0 : "-", fl1[0] ? fl1 : "-");
+    }
+    sl_rpt_lookup_formula(ws, z, LK_FLAGS, f, 0, flc, F->wrap);
+    worksheet_set_row(ws, LK_FLAGS, sl_rpt_text_height("nltha_capped asce_capped "
+                      "asce_below_nltha | nltha_capped asce_capped asce_below_nltha", LK_W_B, 0),
+                      NULL);
+    worksheet_merge_range(ws, LK_LEGEND, 0, LK_LEGEND, 1, sl_rpt_flags_legend(), F->note);
+    worksheet_set_row(ws, LK_LEGEND, sl_rpt_text_height(sl_rpt_flags_legend(), LK_W_A + LK_W_B,
+                                                        0), NULL);
+    worksheet_write_string(ws, LK_SETS, 0, "Motion sets of the floor", F->bold);
+    snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(plant_sets,B%d))", CHK, FR);
+    sl_rpt_lookup_formula(ws, z, LK_SETS, f, ok ? (double)fr->n_sets : 0, ok ? NULL : "", NULL);
+    snprintf(f, sizeof f, "%zu buildings, %zu floors; clearance policy %s. Each building's "
+             "workbook (<building>/seislide-clearance.xlsx) shows every floor's curves and the "
+             "assumptions; the Plant sheet lists every floor.",
              nb, b->n, sl_clearance_policy_name(d0->policy));
     worksheet_merge_range(ws, LK_C1 + 2, 0, LK_C1 + 2, 1, f, F->note);
     worksheet_set_row(ws, LK_C1 + 2, sl_rpt_text_height(f, LK_W_A + LK_W_B, 0), NULL);

@@ -135,6 +135,8 @@ typedef struct sl_report {
     const char *seed;        /* the run's seed as text, for the record (NULL: "-") */
     time_t created;          /* workbook creation date (pin it for reproducible files) */
     sl_report_project project;
+    const char *building;    /* the building of a plant's workbook, as written (NULL: a
+                                one-building run): named in every page's title and header */
     size_t n_floors;
     const sl_report_floor *floors;
     size_t n_quality;

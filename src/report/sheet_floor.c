@@ -13,10 +13,11 @@ enum { CHART_ROWS = 33 }; /* rows of 20 pixels the chart covers, and one */
 /* Column widths (characters): mu, mu g/ZPA, the values; flags as wide as
  * its longest text, at most FLAGS_MAX (then wrapped, rows grown). */
 #define W_MU 6.0
-#define W_X 6.5
+#define W_X 6.0
 #define W_VAL 8.5
+#define W_REQ 10.0 /* the required clearance: its heading's "clearance," on one line */
 #define W_FLAGS_MIN 10.0
-#define W_FLAGS_MAX 17.0 /* 89 units in all: a portrait A4 page at 72 % (about 8 points a unit) */
+#define W_FLAGS_MAX 17.0 /* 90 units in all: a portrait A4 page at 72 % (about 8 points a unit) */
 /* the sheet's title: 14 points against the 11 the heights are reckoned in */
 #define TITLE_PT 14.0
 #define BODY_PT 11.0
@@ -24,7 +25,7 @@ enum { CHART_ROWS = 33 }; /* rows of 20 pixels the chart covers, and one */
 #define C_NLTHA 0x1F4E79
 #define C_ASCE 0xC55A11
 #define C_MEAN 0x5B9BD5
-#define C_CAP 0x000000
+#define C_CAP LXW_COLOR_BLACK /* libxlsxwriter's black: a colour 0 is "automatic" */
 #define C_BAND 0xFF0000
 
 static lxw_chart *floor_chart(lxw_workbook *wb, const sl_report *r, size_t i,
@@ -73,7 +74,7 @@ static lxw_chart *floor_chart(lxw_workbook *wb, const sl_report *r, size_t i,
     }
     snprintf(title, sizeof title, "%s: design sliding displacement", fl->name);
     chart_title_set_name(ch, title);
-    sl_rpt_chart_axes(ch, ax);
+    sl_rpt_chart_axes(ch, ax, "design sliding displacement");
     return ch;
 }
 
@@ -81,8 +82,10 @@ static lxw_chart *floor_chart(lxw_workbook *wb, const sl_report *r, size_t i,
 static lxw_row_t info_row(lxw_worksheet *ws, const sl_rpt_fmts *F, lxw_row_t row,
                           const char *label, const char *value, double w_value)
 {
+    char kept[2400];
     worksheet_merge_range(ws, row, 0, row, 2, label, F->label);
-    worksheet_merge_range(ws, row, 3, row, FL_COLS - 1, value, F->note);
+    worksheet_merge_range(ws, row, 3, row, FL_COLS - 1,
+                          sl_rpt_keep_units(value, kept, sizeof kept), F->note);
     double h = fmax(sl_rpt_text_height(label, W_MU + W_X + W_VAL, 1),
                     sl_rpt_text_height(value, w_value, 0));
     worksheet_set_row(ws, row, h, NULL);
@@ -95,7 +98,7 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     const sl_report_floor *fl = &r->floors[i];
     lxw_worksheet *ws = workbook_add_worksheet(wb, sheet_name);
     const sl_design *d = fl->design;
-    char buf[1200], flags[256];
+    char buf[1200], flags[256], path[1100];
     /* the flags column: as wide as its longest text */
     size_t longest = 0;
     for (size_t k = 0; k < d->n; k++) {
@@ -103,14 +106,19 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         longest = len > longest ? len : longest;
     }
     double w_flags = fmin(W_FLAGS_MAX, fmax(W_FLAGS_MIN, (double)longest * 0.9 + 3));
-    double w_all = W_MU + W_X + 7 * W_VAL + w_flags, w_value = 6 * W_VAL + w_flags;
+    double w_all = W_MU + W_X + 6 * W_VAL + W_REQ + w_flags,
+           w_value = 5 * W_VAL + W_REQ + w_flags;
     worksheet_set_column(ws, 0, 0, W_MU, NULL);
     worksheet_set_column(ws, 1, 1, W_X, NULL);
-    worksheet_set_column(ws, 2, 8, W_VAL, NULL);
+    worksheet_set_column(ws, 2, 7, W_VAL, NULL);
+    worksheet_set_column(ws, 8, 8, W_REQ, NULL);
     worksheet_set_column(ws, 9, 9, w_flags, NULL);
 
     lxw_row_t row = 0;
-    snprintf(buf, sizeof buf, "Floor %s: %s", fl->id, fl->name);
+    if (r->building && *r->building)
+        snprintf(buf, sizeof buf, "Building %s, floor %s: %s", r->building, fl->id, fl->name);
+    else
+        snprintf(buf, sizeof buf, "Floor %s: %s", fl->id, fl->name);
     worksheet_merge_range(ws, row, 0, row, FL_COLS - 1, buf, F->title);
     worksheet_set_row(ws, row++, sl_rpt_text_height(buf, w_all * BODY_PT / TITLE_PT, 1) *
                                      TITLE_PT / BODY_PT, NULL);
@@ -119,7 +127,8 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         worksheet_merge_range(ws, row, 0, row, FL_COLS - 1, buf, F->warn);
         worksheet_set_row(ws, row++, sl_rpt_text_height(buf, w_all, 1), NULL);
     }
-    snprintf(buf, sizeof buf, "%s (%s, %s)", fl->id, fl->path, sl_rpt_or_dash(fl->units));
+    snprintf(buf, sizeof buf, "%s (%s, %s)", fl->id, sl_rpt_shown_path(fl->path, path, sizeof path),
+             sl_rpt_or_dash(fl->units));
     row = info_row(ws, F, row, "id and file", buf, w_value);
     if (isfinite(fl->elevation_m))
         snprintf(buf, sizeof buf, "%g m; %s", fl->elevation_m, sl_rpt_or_dash(fl->description));
@@ -134,12 +143,15 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     row = info_row(ws, F, row, "crossover", sl_rpt_crossover_text(d, buf, sizeof buf), w_value);
     snprintf(buf, sizeof buf,
              "policy %s; NLTHA design %g x mean of this floor's %zu sets, ASCE design %g x best "
-             "estimate, both capped at %g x the mean peak floor displacement (PGD, 100-40 rule)",
+             "estimate, both capped at %g x the mean peak floor displacement (the horizontals "
+             "combined by the 100-40 rule)",
              sl_clearance_policy_name(d->policy), d->fs_nltha, d->n_sets, d->fs_asce,
              d->cap_factor);
     row = info_row(ws, F, row, "clearance; factors", buf, w_value);
     row = info_row(ws, F, row, "ASCE best estimate", sl_rpt_asce_shape_text(d, buf, sizeof buf),
                    w_value);
+    if (*sl_rpt_asce_drops_text(d, 0, buf, sizeof buf))
+        row = info_row(ws, F, row, "ASCE drops", buf, w_value);
     if (fl->sa10_fallback)
         row = info_row(ws, F, row, "ASCE spectrum", sl_rpt_sa10_text(fl), w_value);
     const char *note = fl->note ? fl->note : "";
@@ -159,7 +171,7 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     lxw_row_t chart_row = row + 1;
     /* as wide as the table and about as high (LibreOffice draws a column
      * half as wide again as libxlsxwriter's model, a row as high) */
-    const double widths[FL_COLS] = {W_MU, W_X, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL,
+    const double widths[FL_COLS] = {W_MU, W_X, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_VAL, W_REQ,
                                     w_flags};
     double xs = sl_rpt_chart_scale(widths, FL_COLS);
     lxw_chart_options co = {.x_offset = 0, .y_offset = 0, .x_scale = xs, .y_scale = 1.6 * xs};
@@ -171,23 +183,35 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     worksheet_merge_range(ws, band_row, 0, band_row, FL_COLS - 1, band, F->note);
     worksheet_set_row(ws, band_row, sl_rpt_text_height(band, w_all, 0), NULL);
 
-    lxw_row_t head = band_row + 2;
+    /* what the columns hold, above the table (its headings stay short: no
+     * factor in brackets broken across lines) */
+    char legend[1600];
+    snprintf(legend, sizeof legend, "Columns: NLTHA design = %g x NLTHA mean; ASCE design = %g x "
+             "ASCE best estimate; cap = %g x the mean over the sets of the peak floor "
+             "displacement (the horizontals combined by the 100-40 rule); each design value is "
+             "at most the cap; required clearance by the policy (%s), shown to the digit of its "
+             "standard error (whole mm from 1 mm). %s", d->fs_nltha, d->fs_asce, d->cap_factor,
+             sl_clearance_policy_name(d->policy), sl_rpt_flags_legend());
+    lxw_row_t legend_row = band_row + 2;
+    worksheet_merge_range(ws, legend_row, 0, legend_row, FL_COLS - 1, legend, F->note);
+    worksheet_set_row(ws, legend_row, sl_rpt_text_height(legend, w_all, 0), NULL);
+    lxw_row_t head = legend_row + 1;
     char h[FL_COLS][96], hb[160];
     snprintf(h[0], sizeof h[0], "mu");
     snprintf(h[1], sizeof h[1], "mu g / ZPA");
     snprintf(h[2], sizeof h[2], "NLTHA mean, mm");
-    snprintf(h[3], sizeof h[3], "NLTHA design (%g x mean), mm", d->fs_nltha);
+    snprintf(h[3], sizeof h[3], "NLTHA design, mm");
     snprintf(h[4], sizeof h[4], "its standard error, mm");
     snprintf(h[5], sizeof h[5], "ASCE best estimate, mm");
-    snprintf(h[6], sizeof h[6], "ASCE design (%g x best), mm", d->fs_asce);
-    snprintf(h[7], sizeof h[7], "cap (%g x PGD), mm", d->cap_factor);
-    snprintf(h[8], sizeof h[8], "required clearance in mm");
+    snprintf(h[6], sizeof h[6], "ASCE design, mm");
+    snprintf(h[7], sizeof h[7], "cap, mm");
+    snprintf(h[8], sizeof h[8], "required clearance, mm");
     snprintf(h[9], sizeof h[9], "flags");
     double hh = 0;
     for (lxw_col_t c = 0; c < FL_COLS; c++) {
-        double w = c == 0 ? W_MU : c == 1 ? W_X : c == 9 ? w_flags : W_VAL;
+        double w = c == 0 ? W_MU : c == 1 ? W_X : c == 8 ? W_REQ : c == 9 ? w_flags : W_VAL;
         sl_rpt_header_text(h[c], w, hb, sizeof hb);
-        worksheet_write_string(ws, head, c, hb, c == 9 ? F->header : F->header_num);
+        worksheet_write_string(ws, head, c, hb, c == 9 ? F->header_ind : F->header_num);
         hh = fmax(hh, sl_rpt_text_height(hb, 1e3, 1)); /* its own lines */
     }
     worksheet_set_row(ws, head, hh, NULL);
@@ -198,16 +222,17 @@ void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
         worksheet_write_number(ws, rr, 1, w->x, F->ratio);
         const double v[7] = {w->nltha_mean_m, w->nltha_design_m, sl_rpt_design_se_m(fl, k),
                              w->asce_best_m, w->asce_design_m, w->cap_m, w->clearance_m};
+        int dec = sl_rpt_shown_decimals(fl, k); /* the clearance as summary.csv shows it */
         for (lxw_col_t c = 0; c < 7; c++)
             sl_rpt_num_or_blank(ws, rr, (lxw_col_t)(2 + c), SL_RPT_MM_PER_M * v[c],
-                                c == 6 ? F->mmbold : F->mm);
+                                c < 6 ? F->mm : dec ? F->mmbold : F->mm0bold);
         sl_report_flags(w->flags, flags, sizeof flags);
         worksheet_write_string(ws, rr, 9, flags[0] ? flags : "-", F->indent);
         double fh = sl_rpt_text_height(flags, w_flags - 1, 0); /* less the indent */
         if (fh > 20) /* more than a line */
             worksheet_set_row(ws, rr, fh, NULL);
     }
-    lxw_row_t breaks[] = {head, 0};
+    lxw_row_t breaks[] = {head, 0}; /* the legend under the chart, the table from a new page */
     worksheet_set_h_pagebreaks(ws, breaks);
     sl_rpt_page_setup(ws, r, 0, fl->n_failed_motions ? fl->id : "");
     worksheet_set_print_scale(ws, SL_RPT_FLOOR_PRINT_SCALE);

@@ -9,6 +9,9 @@
 #define W_NAME 24.0
 #define W_VALUE 36.0
 #define W_REST 36.0 /* id 12, units 6, bytes 8, CRC-32 10 */
+/* Characters of a line of the command (the value's 72 units: no line
+ * wraps again, so no option is broken at its hyphens) */
+#define CMD_CHARS 70
 
 void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r)
 {
@@ -35,9 +38,18 @@ void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     const sl_report_setting fixed[] = {{"program", r->version},
                                        {"command", r->command_line ? r->command_line : ""},
                                        {"created (UTC)", created}};
+    /* the command as lines broken between its words, each but the last
+     * ending in " \\": copied from the cell it runs as one command */
+    char cmd[6000];
+    sl_rpt_command_lines(r->command_line ? r->command_line : "", CMD_CHARS, cmd, sizeof cmd);
+    if (r->building && *r->building) { /* a plant's building: named before the record */
+        worksheet_write_string(ws, row, 0, "building", F->label);
+        worksheet_merge_range(ws, row, 1, row, 5, r->building, F->note);
+        worksheet_set_row(ws, row++, sl_rpt_text_height(r->building, W_VALUE + W_REST, 0), NULL);
+    }
     for (size_t s = 0; s < 3 + r->n_settings; s++) {
         const sl_report_setting *e = s < 3 ? &fixed[s] : &r->settings[s - 3];
-        const char *v = sl_rpt_or_dash(e->value);
+        const char *v = s == 1 ? cmd : sl_rpt_or_dash(e->value);
         worksheet_write_string(ws, row, 0, e->name, F->label);
         worksheet_merge_range(ws, row, 1, row, 5, v, F->note);
         worksheet_set_row(ws, row++, sl_rpt_text_height(v, W_VALUE + W_REST, 0), NULL);
@@ -49,15 +61,19 @@ void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     row++;
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];
-        worksheet_write_string(ws, row, 0, fl->name, F->wrap);
-        worksheet_write_string(ws, row, 1, fl->path, F->wrap);
+        char name[600];
+        worksheet_write_string(ws, row, 0, sl_rpt_keep_units(fl->name, name, sizeof name),
+                               F->wrap);
+        char path[1100];
+        sl_rpt_shown_path(fl->path, path, sizeof path);
+        worksheet_write_string(ws, row, 1, path, F->wrap);
         worksheet_write_string(ws, row, 2, fl->id, F->wrap);
         worksheet_write_string(ws, row, 3, sl_rpt_or_dash(fl->units), F->wrap); /* all at the top */
         worksheet_write_number(ws, row, 4, (double)fl->size_bytes, F->wrap);
         snprintf(buf, sizeof buf, "%08lx", fl->crc32 & 0xffffffffUL);
         worksheet_write_string(ws, row, 5, buf, F->indent);
         double h = sl_rpt_text_height(fl->name, W_NAME, 0);
-        h = h > sl_rpt_text_height(fl->path, W_VALUE, 0) ? h : sl_rpt_text_height(fl->path, W_VALUE, 0);
+        h = h > sl_rpt_text_height(path, W_VALUE, 0) ? h : sl_rpt_text_height(path, W_VALUE, 0);
         h = h > sl_rpt_text_height(fl->id, 12, 0) ? h : sl_rpt_text_height(fl->id, 12, 0);
         worksheet_set_row(ws, row++, h, NULL);
     }

@@ -15,7 +15,7 @@
 /* Lookup cells (0-based rows; values in column B). */
 enum {
     LK_FLOOR = 10, LK_MU, LK_RESULT = 13, LK_CHECK, LK_NOTE, LK_ZPA, LK_X, LK_SE, LK_FLAGS,
-    LK_HOW = 21, LK_COL, LK_ROW, LK_MU0, LK_MU1, LK_C0, LK_C1, LK_SETS, LK_POLICY = 30
+    LK_HOW = 21, LK_COL, LK_ROW, LK_MU0, LK_MU1, LK_C0, LK_C1, LK_SETS, LK_POLICY = 29
 };
 #define W_A 36.0 /* column A: labels */
 #define W_B 28.0 /* column B: inputs and values; 64 in all, a portrait A4 page */
@@ -126,7 +126,8 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
         {t_blank, "choose a floor from the list", !*floor0},
         {t_unknown, "unknown floor: choose one from the list", fi == nf}};
     const sl_rpt_lookup_cells cells = {.mu = LK_MU, .result = LK_RESULT, .check = LK_CHECK,
-                                       .note = LK_NOTE, .steps = LK_COL};
+                                       .note = LK_NOTE, .steps = LK_COL, .se = LK_SE,
+                                       .sets = LK_SETS};
     int ok = sl_rpt_lookup_check(ws, F, zc, &cells, tests, 2, r->lookup_mu_text, mu0, mu_min,
                                  mu_max);
     snprintf(match, sizeof match, "MATCH(B%d,floor_names,0)", LK_FLOOR + 1);
@@ -138,7 +139,10 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     const sl_design *dsel = ok ? r->floors[fi].design : d0;
     sl_rpt_lookup_chain(ws, F, zc, &cells, &table, dsel, ok ? fi : 0, mu0, ok);
     const int B_CHECK = LK_CHECK + 1, B_COL = LK_COL + 1, B_ROW = LK_ROW + 1;
-    worksheet_set_row(ws, LK_NOTE, 2 * 15.0 + 1, NULL);
+    char longest[400];
+    snprintf(longest, sizeof longest, "only 9 motion sets (ASCE/SEI 43-05: at least 5). %s",
+             SL_RPT_LOOKUP_NO_SLIDING);
+    worksheet_set_row(ws, LK_NOTE, sl_rpt_text_height(longest, W_B, 0), NULL);
     worksheet_write_string(ws, LK_ZPA, 0, "Floor's horizontal ZPA, g", F->bold);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(floor_zpa_g,1,B%d))", B_CHECK, B_COL);
     sl_rpt_lookup_formula(ws, zc, LK_ZPA, f, ok ? r->floors[fi].zpa_h_ms2 / SL_G : 0,
@@ -186,6 +190,9 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     worksheet_set_row(ws, LK_FLAGS, sl_rpt_text_height("nltha_capped asce_capped "
                       "asce_below_nltha | nltha_capped asce_capped asce_below_nltha", W_B, 0),
                       NULL);
+    worksheet_merge_range(ws, LK_FLAGS + 1, 0, LK_FLAGS + 1, 1, sl_rpt_flags_legend(), F->note);
+    worksheet_set_row(ws, LK_FLAGS + 1, sl_rpt_text_height(sl_rpt_flags_legend(), W_A + W_B, 0),
+                      NULL);
 
     worksheet_write_string(ws, LK_SETS, 0, "motion sets of the floor", NULL);
     snprintf(f, sizeof f, "=IF(B%d<>\"ok\",\"\",INDEX(floor_sets,1,B%d))", B_CHECK, B_COL);
@@ -213,7 +220,7 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
         worksheet_write_formula_num(ws, LK_POLICY + 1, 0, f, F->wrap, 0);
     else
         worksheet_write_formula_str(ws, LK_POLICY + 1, 0, f, F->wrap, buf);
-    worksheet_set_row(ws, LK_POLICY + 1, sl_rpt_text_height(buf, W_A + W_B, 0) + 15, NULL);
+    worksheet_set_row(ws, LK_POLICY + 1, sl_rpt_text_height(buf, W_A + W_B, 0), NULL);
     sl_rpt_page_setup(ws, r, 0, ids);
     worksheet_fit_to_pages(ws, 1, 1);
     sl_rpt_protect(ws);

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "io/floor.h"
+#include "method/asce.h"
 #include "report/sheets.h"
 
 #define W_TEXT 64.0   /* the one column: a portrait A4 page at 100 % */
@@ -24,15 +25,18 @@ static char *add(notes *s, int warn)
     return s->t[s->n++];
 }
 
-/* "01-ground: <text>; 02-el12: <text>" of each floor's asce_shape_text. */
+/* "01-ground: <shape>, <drops>; 02-el12: ..." of each floor's asce_shape_text
+ * and asce_drops_text. */
 static void asce_shapes(const sl_report *r, char *buf, size_t n)
 {
     size_t used = 0;
-    char one[600];
+    char one[600], drops[800];
     buf[0] = '\0';
     for (size_t i = 0; i < r->n_floors; i++) {
-        int w = snprintf(buf + used, n - used, "%s%s: %s", i ? "; " : "", r->floors[i].id,
-                         sl_rpt_asce_shape_text(r->floors[i].design, one, sizeof one));
+        sl_rpt_asce_drops_text(r->floors[i].design, 1, drops, sizeof drops);
+        int w = snprintf(buf + used, n - used, "%s%s: %s%s%s", i ? "; " : "", r->floors[i].id,
+                         sl_rpt_asce_shape_text(r->floors[i].design, one, sizeof one),
+                         drops[0] ? "; " : "", drops);
         if (w < 0 || (size_t)w >= n - used)
             break;
         used += (size_t)w;
@@ -44,7 +48,7 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     lxw_worksheet *ws = workbook_add_worksheet(wb, "Notes");
     const sl_design *d = r->floors[0].design; /* factors and policy: one per run */
     static _Thread_local notes s; /* 120 kB: off the stack, one per thread */
-    char sets[1200], se[1200], shapes[2000], ids[400];
+    char sets[1200], se[1200], shapes[NOTE_MAX - 1000], ids[400];
     memset(&s, 0, sizeof s);
     for (size_t i = 0; i < r->n_floors; i++) { /* what the reader must know first */
         const sl_report_floor *fl = &r->floors[i];
@@ -85,26 +89,31 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
                  "g = ZPA grows faster than the intensity (docs/run.md, Intensity scatter). This "
                  "goes beyond A.1's mean of spectrum-compatible analyses: --scatter 0 gives that "
                  "procedure. The motions written with --motions carry no factor. Above the ZPA the "
-                 "NLTHA value comes from the strongest intensities alone, which is why ASCE (zero "
-                 "there) can be listed below NLTHA at high mu.", sc);
+                 "NLTHA value comes from the strongest intensities alone, while the ASCE estimate "
+                 "is 0 once mu_e g reaches the ZPA (below): from there on ASCE is listed below "
+                 "NLTHA.", sc);
     snprintf(add(&s, 0), NOTE_MAX, "NLTHA design value = %g x the mean over the floor's sets of "
              "the peak vector sliding displacement (ASCE/SEI 43-05 A.1 asks for 3.0 x the mean of "
              "at least 5 analyses).%s", d->fs_nltha, scat);
     asce_shapes(r, shapes, sizeof shapes);
     snprintf(add(&s, 0), NOTE_MAX, "ASCE design value = %g x the ASCE/SEI 43-05 best estimate "
-             "delta = c_s / (2 pi f_es)^2 with c_s = 2 mu_e g and f_es the lowest frequency where "
-             "the 10 %%-damped spectrum SA_vH reaches c_s: delta is the spectral displacement "
-             "SD_vH(f_es) = SA_vH / (2 pi f)^2 there. Where f_es lies in a part of the spectrum "
-             "with constant spectral displacement (RG 1.60 below 0.25 Hz) the estimate is flat in "
-             "mu; where f_es lies on a rising flank that grows faster than f^2 (a floor's "
-             "amplification below its mode) the estimate rises with mu, until mu g reaches the "
-             "ZPA and it drops to 0. Per floor: %s.", d->fs_asce, shapes);
+             "delta = c_s / (2 pi f_es)^2 with c_s = 2 mu_e g, mu_e = mu (1 - %g a_v/g) the "
+             "effective friction coefficient (a_v the peak vertical acceleration), and f_es the "
+             "lowest frequency where the 10 %%-damped spectrum SA_vH reaches c_s: delta is the "
+             "spectral displacement SA_vH / (2 pi f)^2 there. Where f_es lies where the spectral "
+             "displacement is constant (RG 1.60 below 0.25 Hz) the estimate is flat in mu; on a "
+             "flank that grows faster than f^2 (a floor's amplification below its mode) it rises "
+             "with mu; where c_s rises past a peak of the spectrum, f_es jumps to the peak's far "
+             "side and the estimate steps down between two grid rows. It is 0 once mu_e g "
+             "reaches the ZPA, from mu g/ZPA = 1 / (1 - %g a_v/g), a little above 1 (not where "
+             "mu g does). Per floor: %s.", d->fs_asce, SL_ASCE_VERTICAL_COEF,
+             SL_ASCE_VERTICAL_COEF, shapes);
     for (size_t i = 0; i < r->n_floors; i++)
         if (r->floors[i].sa10_fallback)
             snprintf(add(&s, 1), NOTE_MAX, "Floor %s: %s (docs/run.md).", r->floors[i].id,
                      sl_rpt_sa10_text(&r->floors[i]));
     snprintf(add(&s, 0), NOTE_MAX, "Cap = %g x the mean over the floor's sets of the peak floor "
-             "displacement (PGD), the horizontals combined by the 100-40 rule: a block cannot "
+             "displacement, the horizontals combined by the 100-40 rule: a block cannot "
              "slide much further than the floor moves. Design values are min(value, cap); flags "
              "nltha_capped and asce_capped mark where the cap governs.", d->cap_factor);
     snprintf(add(&s, 0), NOTE_MAX, "Crossover and ranges: every range of mu where the ASCE design "
@@ -132,8 +141,9 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     for (size_t i = 0; i < s.n; i++) {
         lxw_row_t row = (lxw_row_t)(i + 2);
         worksheet_write_string(ws, row, 0, s.t[i], s.warn[i] ? F->warn : F->note);
-        /* a blank line's room under each paragraph */
-        worksheet_set_row(ws, row, sl_rpt_text_height(s.t[i], W_TEXT, s.warn[i]) + 12, NULL);
+        /* a little room under each paragraph (the height errs tall already: a
+         * long paragraph gets a line or two more than it takes) */
+        worksheet_set_row(ws, row, sl_rpt_text_height(s.t[i], W_TEXT, s.warn[i]) + 4, NULL);
     }
     sl_rpt_page_setup(ws, r, 0, sl_rpt_failed_ids(r, ids, sizeof ids));
     worksheet_fit_to_pages(ws, 1, 0);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "report/sheets.h"
+#include "synth/synth.h"
 
 enum { Q_COLS = 10 };
 #define W_VERDICT 19.0
@@ -18,7 +19,7 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
     for (size_t i = 0; i < r->n_floors; i++)
         w_id = strlen(r->floors[i].id) > w_id ? strlen(r->floors[i].id) : w_id;
     /* about 86 units: a portrait A4 page at 75 % */
-    const double width[Q_COLS] = {(double)w_id * 0.9 + 1.5, 4, 6.5, 6.5, 6.5, 7.5, 7.5, 7.5, 10.5,
+    const double width[Q_COLS] = {(double)w_id * 0.9 + 1.5, 4, 6.5, 6.5, 6.5, 7.5, 7.5, 9.5, 10.5,
                                   W_VERDICT};
     double w_all = 0;
     for (lxw_col_t c = 0; c < Q_COLS; c++) {
@@ -30,8 +31,12 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
     worksheet_write_string(ws, row++, 0, "Motion quality: the SRP 3.7.1 checks, one row per set",
                            F->title);
     const char *intro = "Each row is one synthesized three-component set: the extremes over its "
-                        "components H1, H2 and V. Every component's values, and which check it "
-                        "failed, are in motion_quality.csv.";
+                        "components H1, H2 and V. S/T: the ratio of the motion's 5 %-damped "
+                        "spectrum S to the target T at each frequency point; a run: consecutive "
+                        "frequency points below the target; correlation: the largest |correlation| "
+                        "of two components of the set; each heading gives the SRP 3.7.1 limit. "
+                        "Every component's values, and which check it failed, are in "
+                        "motion_quality.csv.";
     worksheet_merge_range(ws, row, 0, row, Q_COLS - 1, intro, F->note);
     worksheet_set_row(ws, row++, sl_rpt_text_height(intro, w_all, 0), NULL);
     for (size_t i = 0; i < r->n_floors; i++) {
@@ -46,14 +51,21 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
                           NULL);
     }
     lxw_row_t head = ++row;
-    static const char *const hd[Q_COLS] = {
-        "floor id", "set", "PGA H1, g", "PGA H2, g", "PGA V, g", "lowest ratio to target",
-        "highest ratio to target", "longest run below target (limit 9)",
-        "largest correlation of two components", "verdict"};
+    /* each check's limit under its heading (synth.h: the SRP 3.7.1 defaults) */
+    char h5[64], h6[64], h7[96], h8[96];
+    snprintf(h5, sizeof h5, "lowest S/T (>= %g)", 1 - SL_SYNTH_TOL_BELOW);
+    snprintf(h6, sizeof h6, "highest S/T (<= %g)", 1 + SL_SYNTH_TOL_ABOVE);
+    snprintf(h7, sizeof h7, "run below target (<= %d points)", SL_SYNTH_MAX_RUN_BELOW);
+    snprintf(h8, sizeof h8, "largest correlation (<= %g)", SL_SYNTH_MAX_CORR);
+    const char *const hd[Q_COLS] = {"floor id", "set", "PGA H1, g", "PGA H2, g", "PGA V, g", h5,
+                                    h6, h7, h8, "verdict"};
     double hh = 0;
-    for (lxw_col_t c = 0; c < Q_COLS; c++) {
-        worksheet_write_string(ws, head, c, hd[c], F->header);
-        hh = fmax(hh, sl_rpt_text_height(hd[c], width[c], 1));
+    for (lxw_col_t c = 0; c < Q_COLS; c++) { /* a heading over numbers at their right */
+        char hb[200];
+        sl_rpt_header_text(hd[c], width[c], hb, sizeof hb);
+        worksheet_write_string(ws, head, c, hb, c == 0 ? F->header : c == Q_COLS - 1
+                               ? F->header_ind : F->header_num);
+        hh = fmax(hh, sl_rpt_text_height(hb, 1e3, 1)); /* its own lines */
     }
     worksheet_set_row(ws, head, hh, NULL);
     worksheet_freeze_panes(ws, head + 1, 0);

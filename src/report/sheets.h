@@ -30,6 +30,9 @@
 typedef struct sl_rpt_fmts {
     lxw_format *bold, *title, *mm, *mm0, *mmbold, *ratio, *mu, *wrap, *result, *input, *header,
         *note, *label, *sci, *warn, *indent, *header_num;
+    lxw_format *mm0bold;     /* a clearance shown to the whole mm, bold */
+    lxw_format *dxf_mm0;     /* a conditional format: the number to the whole mm */
+    lxw_format *header_ind;  /* a text heading after a number's heading: kept off it */
 } sl_rpt_fmts;
 
 /* Layout (0-based rows). */
@@ -68,6 +71,16 @@ char *sl_rpt_asce_shape_text(const sl_design *d, char *buf, size_t n);
 char *sl_rpt_failed_text(const sl_report *r, const sl_report_floor *fl, char *buf, size_t n);
 /* The ids of the floors whose motions failed ("" when none), ", "-separated. */
 char *sl_rpt_failed_ids(const sl_report *r, char *buf, size_t n);
+/* What every flag word means (the legend under the tables that show them). */
+const char *sl_rpt_flags_legend(void);
+/* The other-damping check explained for a page ("informational: ..."),
+ * with the floor's text (sl_report_floor.dampings) after it. */
+char *sl_rpt_dampings_text(const sl_report_floor *fl, char *buf, size_t n);
+/* Where the ASCE estimate of d drops: to 0 from the first grid row where it
+ * stays 0 (mu_e g reaches the ZPA), and every step between two grid rows
+ * (f_es jumps past a peak of the spectrum): "" when none; brief: without
+ * the why (said once around it, the Notes). */
+char *sl_rpt_asce_drops_text(const sl_design *d, int brief, char *buf, size_t n);
 /* "" when the floor file has a 10 % table; else what ASCE used instead. */
 const char *sl_rpt_sa10_text(const sl_report_floor *fl);
 /* "FLOOR: N sets; FLOOR: N sets; ..." (every floor's own count). */
@@ -127,6 +140,12 @@ void sl_rpt_workbook_discard(lxw_workbook *wb, sl_atomic *a);
  * above, their clearances), under a heading in row steps - 1. */
 typedef struct sl_rpt_lookup_cells {
     int mu, result, check, note, steps;
+    /* the rows of the standard error of the result (mm) and of the floor's
+     * number of motion sets, 0 when the sheet has none: the result and the
+     * clearances of the steps are shown to the digit of the standard error
+     * (whole mm from 1 mm, as the tables), and the note says when the sets
+     * are fewer than the standard's minimum (SL_NLTHA_MIN_SETS) */
+    int se, sets;
 } sl_rpt_lookup_cells;
 /* Where a Lookup's table lies: named ranges of the friction grid and the
  * clearances in mm; floors_down: 1 when the table has a row per floor and
@@ -209,7 +228,21 @@ void sl_rpt_col_name(size_t c, char *buf);
 void sl_rpt_num_or_blank(lxw_worksheet *ws, lxw_row_t row, lxw_col_t col, double v,
                          lxw_format *f);
 sl_rpt_axes sl_rpt_shared_axes(const sl_report *r);
-void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax);
+/* The shared axes (x mu, y log), y titled "<quantity>, mm (log scale)". */
+void sl_rpt_chart_axes(lxw_chart *ch, const sl_rpt_axes *ax, const char *quantity);
+/* s with the blank between a number and its unit ("0.3 g", "12 m", "5 %")
+ * made a no-break space (U+00A0), so that a wrapped text never leaves a
+ * number at a line's end and its unit on the next (into buf). */
+char *sl_rpt_keep_units(const char *s, char *buf, size_t n);
+/* A path as a printed page shows it: as written when relative; an absolute
+ * one (a machine's own folders) as ".../<folder>/<file>", its last two
+ * parts (the CSV files keep it whole, for the record). Into buf. */
+char *sl_rpt_shown_path(const char *path, char *buf, size_t n);
+/* A command line broken into lines of at most width characters at the
+ * blanks between its words (a word in quotes is one word), each line but
+ * the last ending in " \": the cell copies into a shell as one command.
+ * Into buf; returns the lines. */
+int sl_rpt_command_lines(const char *cmd, size_t width, char *buf, size_t n);
 void sl_rpt_add_series(lxw_chart *ch, const char *sheet, lxw_col_t xc, lxw_col_t yc,
                        lxw_row_t r0, lxw_row_t r1, const char *name, lxw_color_t color,
                        float width, uint8_t dash, uint8_t transparency);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "io/floor.h"
+#include "method/asce.h"
 #include "method/stats.h"
 #include "report/sheets.h"
 
@@ -130,6 +131,67 @@ char *sl_rpt_asce_shape_text(const sl_design *d, char *buf, size_t n)
     }
     if (!used)
         snprintf(buf, n, "falls with mu over the whole grid");
+    return buf;
+}
+
+const char *sl_rpt_flags_legend(void)
+{
+    return "Flags: asce_below_nltha: ASCE design below NLTHA design; nltha_capped, "
+           "asce_capped: that design value is the cap; no_sliding: mu g at or above every "
+           "motion's demand (0); asce_undefined: no ASCE value; -: none.";
+}
+
+/* The synthesis limits the other dampings are held to (SRP 3.7.1: S/T of
+ * the set-mean spectrum), as the floor's text compares them. */
+#define DAMPINGS_LO 0.9
+#define DAMPINGS_HI 1.3
+
+char *sl_rpt_dampings_text(const sl_report_floor *fl, char *buf, size_t n)
+{
+    snprintf(buf, n, "other dampings of the file (informational, not a pass condition: the "
+             "motions are matched at one damping; at each other one, the lowest and highest "
+             "set-mean S/T of the motions' own spectra to the file's table, ok within %g-%g, "
+             "OUTSIDE beyond): %s", DAMPINGS_LO, DAMPINGS_HI, fl->dampings);
+    return buf;
+}
+
+/* A fall between two grid rows steeper than mu^-8 (its slope in log-log)
+ * is a step of the ASCE estimate (f_es jumping past a peak of the
+ * spectrum); the estimate's smooth fall is far less steep (measured on the
+ * example floors, default grid: slope -1.6 to -2.4 everywhere but the one
+ * step of 02-el12, -39 between mu 0.42 and 0.43). */
+#define ASCE_STEP_SLOPE (-8.0)
+
+char *sl_rpt_asce_drops_text(const sl_design *d, int brief, char *buf, size_t n)
+{
+    size_t used = 0, z = d->n; /* z: the first row from which the estimate stays 0 */
+    buf[0] = '\0';
+    while (z > 0 && d->rows[z - 1].asce_best_m == 0)
+        z--;
+    for (size_t k = 0; k + 1 < d->n && k + 1 < z; k++) {
+        double a = d->rows[k].asce_best_m, b = d->rows[k + 1].asce_best_m;
+        if (!(a > 0 && b > 0 &&
+              log(b / a) / log(d->rows[k + 1].mu / d->rows[k].mu) < ASCE_STEP_SLOPE))
+            continue;
+        int w = snprintf(buf + used, n - used, "%sthe design value steps from %.1f to %.1f mm "
+                         "between mu %.2f and %.2f%s", used ? "; " : "",
+                         1e3 * d->rows[k].asce_design_m, 1e3 * d->rows[k + 1].asce_design_m,
+                         d->rows[k].mu, d->rows[k + 1].mu,
+                         brief ? "" : " (c_s = 2 mu_e g rises past a peak of the 10 % spectrum: "
+                                      "f_es jumps to its far side)");
+        if (w < 0 || (size_t)w >= n - used)
+            return buf;
+        used += (size_t)w;
+    }
+    if (z < d->n && z > 0)
+    {
+        char why[96] = "";
+        if (!brief)
+            snprintf(why, sizeof why, ", where mu_e g = mu (1 - %g a_v/g) g reaches the ZPA",
+                     SL_ASCE_VERTICAL_COEF);
+        snprintf(buf + used, n - used, "%s0 from mu %.2f (mu g/ZPA %.2f)%s", used ? "; " : "",
+                 d->rows[z].mu, d->rows[z].x, why);
+    }
     return buf;
 }
 

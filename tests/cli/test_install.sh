@@ -274,5 +274,11 @@ else
 fi
 [ -s rec/verification.csv ] && [ -s rec/verification.xlsx ] && t_pass ||
   t_fail "installed verify: the record is missing ($(ls rec 2>&1))"
+# the record names the explanations where make install put them (issue 42)
+for f in verification.md run.md components.md README.md validation/fig1_rinaldi_228.svg; do
+  [ -s "$D$P/share/doc/seislide/$f" ] && t_pass || t_fail "make install did not install share/doc/seislide/$f"
+done
+grep -q "^# explanations: $D$P/share/doc/seislide/verification.md" rec/verification.csv && t_pass ||
+  t_fail "installed verify: the record does not name the installed docs: $(grep '^# explanations' rec/verification.csv)"
 cd "$ROOT" || exit 2
 t_end

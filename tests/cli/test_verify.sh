@@ -26,12 +26,19 @@ n=$(($(grep -c '^pass ' "$T_OUT") + y07))
 areas=$(grep -E '^(pass|FAIL) ' "$T_OUT" | awk '{print $2}' | sort -u | wc -l)
 [ "$areas" -ge 6 ] && t_pass || t_fail "only $areas areas"
 cp "$T_OUT" full.out
-h=$(head -1 rec/verification.csv | tr -d '\r')
+# the trace lines every CSV of the project starts with, then the build
+grep -v '^#' rec/verification.csv | tr -d '\r' > rec.body
+h=$(head -1 rec.body)
 [ "$h" = "area,problem,checks,reference,reference_source,computed,error,tolerance,tolerance_basis,verdict" ] &&
   t_pass || t_fail "CSV header: $h"
-rows=$(($(wc -l < rec/verification.csv) - 1))
+head -1 rec/verification.csv | grep -q '^# program: seislide ' && t_pass || t_fail "verification.csv: '# program:' not first"
+for l in '# command: seislide verify ' '# created: 20[0-9][0-9]-' '# build: .*ffp-contract=off' '# host: ' \
+         '# checked_by: Test Engineer' '# result: [0-9]+ passed, [0-9]+ failed' '# explanations: .*verification.md'; do
+  grep -Eq "^$l" rec/verification.csv && t_pass || t_fail "verification.csv lacks /$l/"
+done
+rows=$(($(wc -l < rec.body) - 1))
 [ "$rows" -eq "$n" ] && t_pass || t_fail "CSV rows $rows, problems $n"
-bad=$(tail -n +2 rec/verification.csv | grep -v '^synth,Y07,' | grep -vc ',pass$')
+bad=$(tail -n +2 rec.body | grep -v '^synth,Y07,' | grep -vc ',pass$')
 [ "$bad" -eq 0 ] && t_pass || t_fail "$bad CSV rows without the verdict pass"
 [ -s rec/verification.xlsx ] && t_pass || t_fail "no verification.xlsx"
 # The workbook holds the checker's name and the build (its shared strings).

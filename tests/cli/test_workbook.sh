@@ -61,6 +61,14 @@ for n in ('Lookup', 'Summary'):
 notes = ' '.join(strings('Notes'))
 for k in ('rigid block', 'Sliding only', 'rocking, overturning', 'static coefficient equal to the kinetic', 'level floor', 'Cap = 1.5', '3 x the mean', '2 x the ASCE', 'standard error'):
     ok(k in notes, 'notes mention ' + k)
+# the command on Inputs copies into a shell (issue 42): lines broken between words, each
+# but the last ending in " \\", none longer than the cell holds (no option broken at its
+# hyphens), the lines together the command summary.csv records
+rec = [l[len('# command: '):].rstrip('\r\n') for l in open(d + '/summary.csv') if l.startswith('# command: ')][0]
+cmd = [t for t in strings('Inputs') if t.startswith('seislide run')]
+ok(len(cmd) == 1 and '\n' in cmd[0] and cmd[0].replace(' \\\n', ' ') == rec and
+   all(len(l) <= 70 and (l.endswith(' \\') or i == len(cmd[0].split('\n')) - 1) for i, l in enumerate(cmd[0].split('\n'))),
+   'Inputs: the command in lines that copy: %r' % cmd[:1])
 # protection everywhere; on Lookup only the two inputs are unlocked
 for n in names:
     ok('<sheetProtection' in xml[n] and 'password' not in xml[n], 'protected without password: ' + n)
@@ -87,7 +95,7 @@ for i, n in enumerate(names):
         brk = [int(b) for b in re.findall(r'<brk id="(\d+)"', xml[n])]
         ok(max(brk or [0]) == (int(m.group(1)) - 1 if brk else 0), n + ': header row %s repeated, last page break %s' % (m.group(1), brk))
 # column headings over numbers: broken into lines, right-aligned, none longer than its column holds
-heads = [t for t in strings('Summary') if t.replace('\n', ' ') in ('Ground level (RG 1.60, 0.3 g)', 'Roof el. 36 m')]
+heads = [t for t in strings('Summary') if t.replace('\n', ' ').replace('\u00a0', ' ') in ('Ground level (RG 1.60, 0.3 g)', 'Roof el. 36 m')]
 ok(len(heads) == 2 and '\n' in heads[0] and all(len(l) <= 13 for t in heads for l in t.split('\n')), 'Summary headings broken into lines of 13 characters at most (a column 12 wide): %s' % heads)
 # charts: one per floor + Summary; x = mu on the same axis limits, log y with the same limits
 charts = sorted(n for n in z.namelist() if re.match(r'xl/charts/chart\d+\.xml$', n))
@@ -137,15 +145,16 @@ grep '^FAIL' "$D/check.txt" | while read -r l; do echo "  FAIL cli_workbook: $l"
 np=$(grep -c '^ok ' "$D/check.txt"); nf=$(grep -c '^FAIL' "$D/check.txt")
 [ "$np" -gt 40 ] && [ "$nf" -eq 0 ] && t_pass || t_fail "workbook checks: $np ok, $nf failed ($(grep -v '^ok ' "$D/check.txt" | head -5))"
 
-# render to PDF: Lookup 1 page, Summary 3 (table, floors, chart), each floor 2 (table at
-# 72 %, chart), Motion quality 1 (one row per set), Notes 2 (its paragraphs in rows tall
-# enough to show them whole), Inputs 1; Data is hidden: 12 pages for two floors
+# render to PDF: Lookup 1 page, Summary 4 (chart; the floors' records, two pages since a
+# record is never split across pages and these two do not fit on one; table), each floor 2
+# (table at 72 %, chart), Motion quality 1 (one row per set), Notes 2 (its paragraphs in rows
+# tall enough to show them whole), Inputs 1; Data is hidden: 13 pages for two floors
 if command -v soffice >/dev/null 2>&1; then
   (cd "$D" && timeout 180 soffice -env:UserInstallation=file://$D/lo --headless --convert-to pdf --outdir pdf res/seislide-clearance.xlsx >/dev/null 2>&1)
   if [ -s "$D/pdf/seislide-clearance.pdf" ]; then
     t_pass
     pages=$(python3 -c "import re,sys; print(len(re.findall(rb'/Type\s*/Page[^s]', open(sys.argv[1], 'rb').read())))" "$D/pdf/seislide-clearance.pdf")
-    [ "$pages" -eq 12 ] && t_pass || t_fail "PDF has $pages pages, expected 12 (a sheet spilled over its page width?)"
+    [ "$pages" -eq 13 ] && t_pass || t_fail "PDF has $pages pages, expected 13 (a sheet spilled over its page width?)"
     # a table's header row is printed only over its rows: every page that shows a heading
     # line starting "mu" shows rows of the table under it
     if command -v pdftotext >/dev/null 2>&1; then
