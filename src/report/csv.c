@@ -328,6 +328,17 @@ sl_status sl_report_write_csv(const sl_report *r, const char *dir, sl_error *err
         csv_field(f, m->why ? m->why : "");
         fputs("\r\n", f);
     }
+    if (sl_atomic_commit(a, err))
+        return err ? err->code : SL_EIO;
+    /* the rocking lookup (run --rocking-lookup) */
+    if (!sl_rpt_has_rocking(r))
+        return SL_OK;
+    if (csv_open(dir, "rocking_lookup.csv", &a, err))
+        return err ? err->code : SL_EIO;
+    if (sl_rpt_rocking_csv(r, sl_atomic_file(a))) {
+        sl_atomic_abort(a);
+        return sl_error_set(err, SL_EIO, dir, 0, "cannot write rocking_lookup.csv");
+    }
     return sl_atomic_commit(a, err);
 }
 

@@ -124,7 +124,8 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
                                   .n_failed_motions = an[i]->n_failed_motions,
                                   .sa10_fallback = an[i]->sa10_fallback,
                                   .warnings = fl->warnings ? fl->warnings : "",
-                                  .accepted = fl->accepted};
+                                  .accepted = fl->accepted,
+                                  .rock_lookup = an[i]->rock_lookup};
         for (size_t k = 0; k < an[i]->n_dampings; k++) {
             const sl_analysis_damping *dk = &an[i]->dampings[k];
             rf[i].dampings_min = isnan(rf[i].dampings_min) ? dk->set_min

@@ -232,6 +232,8 @@ sl_status sl_report_write_xlsx(const sl_report *r, const char *path, sl_error *e
     sl_rpt_summary_sheet(wb, &F, r, &ax);
     for (size_t i = 0; i < r->n_floors; i++)
         sl_rpt_floor_sheet(wb, &F, r, i, names[i], &ax);
+    if (sl_rpt_has_rocking(r))
+        sl_rpt_rocking_sheet(wb, &F, r);
     sl_rpt_quality_sheet(wb, &F, r);
     sl_rpt_notes_sheet(wb, &F, r);
     sl_rpt_inputs_sheet(wb, &F, r);

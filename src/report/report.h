@@ -101,6 +101,10 @@ typedef struct sl_report_floor {
      * sheets, the Notes. */
     const char *warnings;
     int accepted;            /* 1: accepted in writing (--accept-floor; Inputs) */
+    /* The floor's rocking lookup (rock/rock_lookup.h: SL_ROCKL_N results), NULL:
+     * not computed (`run --rocking-lookup`): rocking_lookup.csv and the Rocking
+     * sheet when some floor has it. */
+    const struct sl_rockf_result *rock_lookup;
 } sl_report_floor;
 
 /* One synthesized motion component and its checks. */

@@ -260,6 +260,11 @@ void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
 void sl_rpt_floor_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r, size_t i,
                         const char *sheet_name, const sl_rpt_axes *ax);
 void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
+/* sheet_rocking.c: 1 when some floor has its rocking lookup; the Rocking
+ * sheet; rocking_lookup.csv's content into f (after its trace lines). */
+int sl_rpt_has_rocking(const sl_report *r);
+void sl_rpt_rocking_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
+sl_status sl_rpt_rocking_csv(const sl_report *r, FILE *f);
 void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
 void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r);
 void sl_rpt_data_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report *r,
