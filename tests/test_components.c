@@ -333,11 +333,91 @@ static void test_names(void)
     CHECK(n > 1000 && bad == 0, "%zu of %zu letters disagree with the C library", bad, n);
 }
 
+/* Rocking rows (components.h): the mode from mu, b/h and mu_max (a bound
+ * equal to b/h is both), the block an item gives (b = base / 2), the
+ * optional columns, and the verdicts once the rocking results are given:
+ * the rocking one by rock_floor.h's rule at the row's clearance, the worse
+ * governing a row checked both ways, the counts following. */
+static void test_rocking_rows(void)
+{
+    char dir[] = "/tmp/sl-components-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "temporary folder");
+    make_results(dir);
+    sl_comp_results r;
+    sl_error e;
+    CHECK(sl_comp_results_load(dir, &r, &e) == SL_OK, "results: %s", e.msg);
+    /* b/h: 0.5 / (2 x 1) = 0.25 */
+    put(dir, "list.csv", "tag,building,floor,mu,base_m,cg_height_m,clearance_mm,mu_max,"
+                         "restitution,orientation_deg\n"
+                         "S,,gf,0.2,0.5,1,80,,,\n"      /* mu < b/h: sliding */
+                         "R,,gf,0.25,0.5,1,80,,0.7,\n"  /* mu = b/h: rocking */
+                         "B,,gf,0.2,0.5,1,80,0.25,,45\n"  /* mu < b/h = mu_max: both */
+                         "N,,gf,0.2,0.5,1,80,0.249,,\n");  /* mu_max below b/h: sliding */
+    char path[600];
+    snprintf(path, sizeof path, "%s/list.csv", dir);
+    sl_comp_table t;
+    CHECK(sl_comp_table_read(path, &r, &t, NULL, &e) == SL_OK, "list: %s", e.msg);
+    if (t.n == 4) {
+        const sl_comp_mode m[4] = {SL_COMP_MODE_SLIDING, SL_COMP_MODE_ROCKING, SL_COMP_MODE_BOTH,
+                                   SL_COMP_MODE_SLIDING};
+        for (int i = 0; i < 4; i++)
+            CHECK(t.rows[i].mode == m[i], "row %d: mode %d", i + 1, (int)t.rows[i].mode);
+        CHECK(t.rows[1].verdict == SL_COMP_ROCKING && t.rows[2].verdict == SL_COMP_ROCKING &&
+                  t.count[SL_COMP_ROCKING] == 2, "rocking rows pending until given results");
+        sl_rockf_item it = sl_comp_rock_item(&t.rows[1]);
+        CHECK(it.block.b_m == 0.25 && it.block.h_m == 1 && it.block.restitution == 0.7 &&
+                  isnan(it.orientation_deg), "block of R: b %g h %g r %g", it.block.b_m,
+              it.block.h_m, it.block.restitution);
+        it = sl_comp_rock_item(&t.rows[2]);
+        CHECK(it.block.restitution < 0 && it.orientation_deg == 45, "block of B");
+        /* R stands (decided, excursion 50 mm <= 80 mm); then short at 90 mm */
+        sl_rockf_result x;
+        memset(&x, 0, sizeof x);
+        x.n_sets = 20;
+        x.excursion_m = 0.050;
+        sl_comp_set_rocking(&t, 1, &x);
+        CHECK(t.rows[1].verdict == SL_COMP_STANDS && t.rows[1].rock_verdict == SL_COMP_STANDS,
+              "R stands");
+        x.excursion_m = 0.090;
+        sl_comp_set_rocking(&t, 1, &x);
+        CHECK(t.rows[1].verdict == SL_COMP_SHORT, "R short: excursion 90 mm > 80 mm");
+        /* B: sliding ok or marginal; rocking overturns at 1.5 x: overturns governs */
+        sl_comp_verdict sv = t.rows[2].slide_verdict;
+        CHECK(sv == SL_COMP_OK || sv == SL_COMP_MARGINAL, "B slides %d", (int)sv);
+        x.level[1].p_tip = 0.2;
+        x.level[1].p_tip_se = 0.01;
+        sl_comp_set_rocking(&t, 2, &x);
+        CHECK(t.rows[2].verdict == SL_COMP_OVERTURNS, "B: the worse (overturns)");
+        /* B stands as a rocking block: the sliding verdict governs, as its word */
+        memset(&x, 0, sizeof x);
+        sl_comp_set_rocking(&t, 2, &x);
+        CHECK(t.rows[2].rock_verdict == SL_COMP_STANDS && t.rows[2].verdict == sv,
+              "B: stands and slides %s: %s", SL_COMP_VERDICT_NAME[sv],
+              SL_COMP_VERDICT_NAME[t.rows[2].verdict]);
+        size_t total = 0;
+        for (int v = 0; v < SL_COMP_NVERDICTS; v++)
+            total += t.count[v];
+        CHECK(total == 4 && t.count[SL_COMP_SHORT] >= 1 && t.count[SL_COMP_ROCKING] == 0,
+              "counts follow: %zu rows", total);
+        /* a sliding row is never given a rocking result */
+        sl_comp_verdict s0 = t.rows[0].verdict;
+        x.level[0].p_tip = 1;
+        sl_comp_set_rocking(&t, 0, &x);
+        CHECK(t.rows[0].verdict == s0 && !t.rows[0].has_rock, "sliding row untouched");
+        sl_comp_table_free(&t);
+    }
+    sl_comp_results_free(&r);
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0, "clean up");
+}
+
 int main(void)
 {
     RUN(test_names);
     RUN(test_interp_twin);
     RUN(test_table);
     RUN(test_ambiguous_floor);
+    RUN(test_rocking_rows);
     return HARNESS_END("components");
 }

@@ -65,7 +65,8 @@ static void test_step_probability(void)
     const double A = 0.25 * SL_G, sigma = 0.3;
     sl_motion *m = step_motion(A);
     sl_set set = {m, NULL, NULL};
-    sl_rockf_item items[3] = {item(0.20, 1.0), item(0.25, 1.0), item(0.30, 1.2)};
+    /* the last: P(tip) 0.7 % at 1.0 x, 13 % at 1.5 x (the design excursion from 1.5 x) */
+    sl_rockf_item items[4] = {item(0.20, 1.0), item(0.25, 1.0), item(0.30, 1.2), item(0.5, 1.0)};
     for (int fine = 0; fine <= 1; fine++) {
         sl_rockf_opts o;
         sl_rockf_opts_default(&o);
@@ -75,9 +76,9 @@ static void test_step_probability(void)
             o.zmin = -6;
             o.zmax = 6;
         }
-        sl_rockf_result r[3];
-        run_items(&set, 1, items, 3, &o, r);
-        for (int i = 0; i < 3; i++)
+        sl_rockf_result r[4];
+        run_items(&set, 1, items, 4, &o, r);
+        for (int i = 0; i < 4; i++) {
             for (int l = 0; l < SL_ROCKF_NLEVELS; l++) {
                 double x = SL_G * items[i].block.b_m / items[i].block.h_m / (o.level[l] * A);
                 double exact = gsl_cdf_ugaussian_Q((log(x) + 0.5 * sigma * sigma) / sigma);
@@ -94,10 +95,20 @@ static void test_step_probability(void)
                                ? M_PI_2 / alpha : 0.0;
                 if (fabs(r[i].level[l].p_overturn - (1 - SL_ROCKF_THETA_Q)) > 1e-6)
                     CHECK_CLOSE(r[i].level[l].theta_ratio_q, q, 1e-9, 1e-9);
-                /* the excursion of a block that overturns is its height 2h */
+                /* the excursion of a block that overturns is its height 2h; its
+                 * (1 - target) quantile is 2h when P(overturn) exceeds the target */
                 CHECK_CLOSE(r[i].level[l].excursion_mean_m,
                             r[i].level[l].p_overturn * 2 * items[i].block.h_m, 1e-9, 1e-9);
+                double t = o.p_target[l];
+                if (fabs(r[i].level[l].p_overturn - t) > 1e-6)
+                    CHECK_CLOSE(r[i].level[l].excursion_q_m,
+                                r[i].level[l].p_overturn > t ? 2 * items[i].block.h_m : 0.0, 1e-12,
+                                0);
             }
+            /* the design excursion: the larger of the two levels' */
+            CHECK_CLOSE(r[i].excursion_m,
+                        fmax(r[i].level[0].excursion_q_m, r[i].level[1].excursion_q_m), 0, 0);
+        }
     }
     sl_motion_free(m);
 }
@@ -354,6 +365,9 @@ static void test_verdict(void)
     CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_OVERTURNS, "1 %% at 1.0 x");
     r.level[0].p_tip = 0.01;
     CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_MARGINAL, "at the target, SE 0");
+    r.level[0].p_tip = 0.005;
+    CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_MARGINAL, "between 0 and 1, SE 0");
+    r.level[0].p_tip = 0.01;
     r.level[0].p_tip_se = 0.002;
     CHECK(sl_rockf_verdict_of(&r, t, 0.06) == SL_ROCKF_MARGINAL, "at the target, SE > 0");
     r.level[0].p_tip = 0.0065;
