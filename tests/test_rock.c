@@ -628,6 +628,9 @@ static void test_mirror(void)
     CHECK(sl_rock_run_history(&blk, a, NULL, n, dt, 1, 1, &o, &r1, &h1, NULL) == SL_OK, "run");
     CHECK(sl_rock_run_history(&blk, a, NULL, n, dt, -1, 1, &o, &r2, &h2, NULL) == SL_OK, "run");
     CHECK(r1.uplifted && r1.impacts > 2, "the case should rock: impacts %zu", r1.impacts);
+    /* the top corner passes the footprint by 2 h sin(peak) */
+    CHECK_CLOSE(r1.excursion_m, 2 * blk.h_m * sin(r1.peak_theta_rad), 0, 1e-15);
+    CHECK_CLOSE(r1.peak_theta_over_alpha, r1.peak_theta_rad / atan(blk.b_m / blk.h_m), 0, 1e-15);
     CHECK(r1.peak_theta_rad == r2.peak_theta_rad && r1.impacts == r2.impacts &&
               r1.t_peak_s == r2.t_peak_s,
           "mirror: peak %.17g vs %.17g", r1.peak_theta_rad, r2.peak_theta_rad);

@@ -186,8 +186,9 @@ void bench_report(FILE *f, const sl_bench *b, unsigned long repeat)
 void bench_report_rock(FILE *f, const sl_bench_rock *r)
 {
     out(f, "\n## 8. The rocking engine: cost per run against its error\n\n");
-    out(f, "One thread; %s, H1 (%zu samples at %g s, peak %.3f g) along the weak axis of three\n"
-        "blocks sized against that peak; the default step rule (rtol %g). Error: the peak\n"
+    out(f, "One thread; %s:\n"
+        "H1 (%zu samples at %g s, peak %.3f g) along the weak axis of three blocks sized\n"
+        "against that peak; the default step rule (rtol %g). Error: the peak\n"
         "rotation against the engine at rtol %g. Sensitivity: the largest relative change\n"
         "of that reference's peak when the input is scaled by 1 +- 1e-6 and 1 +- 1e-5\n"
         "('inf': the tipped or overturned flag changes); above %g the case is chaotic and\n"
