@@ -7,6 +7,7 @@
 #include "analysis.h"
 #include "bench_report.h"
 #include "study/bench_engine.h"
+#include "rock/rock.h"
 #include "signal/spectrum.h"
 
 /* Output to stdout and to the report at once. */
@@ -180,6 +181,34 @@ void bench_report(FILE *f, const sl_bench *b, unsigned long repeat)
 {
     print_models(f, b, repeat);
     print_rest(f, b);
+}
+
+void bench_report_rock(FILE *f, const sl_bench_rock *r)
+{
+    out(f, "\n## 8. The rocking engine: cost per run against its error\n\n");
+    out(f, "One thread; %s:\n"
+        "H1 (%zu samples at %g s, peak %.3f g) along the weak axis of three blocks sized\n"
+        "against that peak; the default step rule (rtol %g). Error: the peak\n"
+        "rotation against the engine at rtol %g. Sensitivity: the largest relative change\n"
+        "of that reference's peak when the input is scaled by 1 +- 1e-6 and 1 +- 1e-5\n"
+        "('inf': the tipped or overturned flag changes); above %g the case is chaotic and\n"
+        "its error measures the chaos, not the integrator (docs/integrators.md, \"Rocking\").\n\n",
+        r->source, r->n, r->dt_s, r->pga_ms2 / SL_G, SL_ROCK_DEFAULT_RTOL, SL_BENCH_ROCK_REF_RTOL,
+        SL_BENCH_ROCK_CHAOS);
+    out(f, "| block | b/h | h, m | what it does | us per run | runs per s | ns per sample | steps | impacts | peak theta/alpha | rel. error | sensitivity |\n");
+    out(f, "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < SL_BENCH_ROCK_NCASE; k++) {
+        const sl_bench_rock_case *c = &r->c[k];
+        char sens[32];
+        if (isfinite(c->sensitivity))
+            snprintf(sens, sizeof sens, "%.1e", c->sensitivity);
+        else
+            snprintf(sens, sizeof sens, "inf");
+        out(f, "| %d | %.3f | %.2f | %s | %.1f | %.0f | %.2f | %zu | %zu | %.4f | %.1e | %s |\n",
+            k + 1, c->b_m / c->h_m, c->h_m, c->name, 1e6 * c->s_per_run, 1.0 / c->s_per_run,
+            1e9 * c->s_per_run / (double)r->n, c->steps, c->impacts, c->peak_over_alpha,
+            c->err_rel, sens);
+    }
 }
 
 /* The engine's work-precision data and its ratio to the arithmetic floor

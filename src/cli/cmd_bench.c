@@ -11,12 +11,14 @@
 #include "io/atomic.h"
 #include "study/bench.h"
 #include "study/bench_engine.h"
+#include "study/bench_rock.h"
 
 static const char bench_help[] =
     "usage: seislide bench [--shared DIR] [--repeat N] [--out FILE] [--quick]\n"
     "\n"
     "Speed against error: the engine, the reference models (smoothed Park-Wen with\n"
-    "GSL stiff solvers; elastic-plastic Newmark) and response spectra, on the\n"
+    "GSL stiff solvers; elastic-plastic Newmark), response spectra and the rocking\n"
+    "engine (cost per run against its error), on the\n"
     "three-component records in DIR/records (default ../shared; synthesized motions\n"
     "when absent). Errors of the peak vector sliding displacement are against the\n"
     "converged Coulomb solution (engine at %u sub-steps, checked against %u).\n"
@@ -65,6 +67,14 @@ int cmd_bench(int argc, char **argv)
     }
     bench_report(sl_atomic_file(af), b, a.repeat);
     sl_bench_free(b);
+    progress(NULL, "rocking engine: cost per run against its error");
+    sl_bench_rock br;
+    if (sl_bench_rock_run(a.repeat, &br, &err)) {
+        sl_atomic_abort(af);
+        cli_print_error(&err);
+        return CLI_EXIT_ERROR;
+    }
+    bench_report_rock(sl_atomic_file(af), &br);
     progress(NULL, "engine: work-precision on every record set, ratio to the floor");
     sl_bench_wp *w = sl_bench_wp_run(a.shared, a.repeat, &err);
     if (!w) {

@@ -25,7 +25,7 @@ int rock_worse(const sl_rock_result *a, const sl_rock_result *b)
 static void put_time(double t, int last)
 {
     if (isfinite(t))
-        printf("%.6f", t);
+        printf("%.9f", t);
     putchar(last ? '\n' : ',');
 }
 

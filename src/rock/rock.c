@@ -202,21 +202,61 @@ typedef struct rk {
     rk_hist *hist;
 } rk;
 
-/* theta'' at tau within the piece (K2). */
-static inline double acc(const rk *c, double tau, double th)
+/* A step's origin: the state at tau, sin and cos of (s alpha - theta) there
+ * (libm) and theta'' there (K2). */
+typedef struct rk_org {
+    double tau, th, om, S, C, k1;
+} rk_org;
+
+static inline void org_set(const rk *c, rk_org *o, double tau, double th, double om)
 {
     const double a = c->sa - th;
-    return (c->A0 + c->Ak * tau) * sin(a) + (c->B0 + c->Bk * tau) * cos(a);
+    o->tau = tau;
+    o->th = th;
+    o->om = om;
+    o->S = sin(a);
+    o->C = cos(a);
+    o->k1 = (c->A0 + c->Ak * tau) * o->S + (c->B0 + c->Bk * tau) * o->C;
 }
 
-/* One Runge-Kutta-Nystrom step of size h from (tau, th, om), k1 = acc(tau, th):
- * the state at tau + h and the last stage's acceleration (about theta'' there). */
-static inline void rkn(const rk *c, double tau, double th, double om, double k1, double h,
-                       double *th1, double *om1, double *a1)
+/* theta'' at tau and theta = o->th + d (K2). sin and cos of (s alpha -
+ * theta) by the angle-difference formulas from the origin's, with sin d and
+ * cos d from their Taylor series: to d^7 and d^8 for |d| <= 2^-7 and to d^11
+ * and d^12 for |d| <= 1/8 (the first term left out is below 1e-20 relative,
+ * under the rounding of the formulas); libm for a larger d. */
+static inline double acc_d(const rk *c, const rk_org *o, double tau, double d)
 {
-    const double k2 = acc(c, tau + 0.5 * h, th + 0.5 * h * om + 0.125 * h * h * k1);
-    const double k3 = acc(c, tau + h, th + h * om + 0.5 * h * h * k2);
-    *th1 = th + h * om + h * h * (k1 + 2.0 * k2) / 6.0;
+    /* Taylor coefficients: (-1)^k / (2k + 1)! and (-1)^k / (2k)! */
+    static const double s3 = -1.0 / 6, s5 = 1.0 / 120, s7 = -1.0 / 5040, s9 = 1.0 / 362880,
+                        s11 = -1.0 / 39916800;
+    static const double c2 = -0.5, c4 = 1.0 / 24, c6 = -1.0 / 720, c8 = 1.0 / 40320,
+                        c10 = -1.0 / 3628800, c12 = 1.0 / 479001600;
+    const double z = d * d;
+    double sd, cd;
+    if (z <= 0x1p-14) {
+        sd = d + d * z * (s3 + z * (s5 + z * s7));
+        cd = 1 + z * (c2 + z * (c4 + z * (c6 + z * c8)));
+    } else if (z <= 0x1p-6) {
+        sd = d + d * z * (s3 + z * (s5 + z * (s7 + z * (s9 + z * s11))));
+        cd = 1 + z * (c2 + z * (c4 + z * (c6 + z * (c8 + z * (c10 + z * c12)))));
+    } else {
+        const double a = c->sa - (o->th + d);
+        return (c->A0 + c->Ak * tau) * sin(a) + (c->B0 + c->Bk * tau) * cos(a);
+    }
+    const double S = o->S * cd - o->C * sd; /* sin(a - d) */
+    const double C = o->C * cd + o->S * sd; /* cos(a - d) */
+    return (c->A0 + c->Ak * tau) * S + (c->B0 + c->Bk * tau) * C;
+}
+
+/* One Runge-Kutta-Nystrom step of size h from the origin o: the state at
+ * o->tau + h and the last stage's acceleration (about theta'' there). */
+static inline void rkn(const rk *c, const rk_org *o, double h, double *th1, double *om1,
+                       double *a1)
+{
+    const double tau = o->tau, om = o->om, k1 = o->k1;
+    const double k2 = acc_d(c, o, tau + 0.5 * h, 0.5 * h * om + 0.125 * h * h * k1);
+    const double k3 = acc_d(c, o, tau + h, h * om + 0.5 * h * h * k2);
+    *th1 = o->th + h * om + h * h * (k1 + 2.0 * k2) / 6.0;
     *om1 = om + h * (k1 + 4.0 * k2 + k3) / 6.0;
     *a1 = k3;
 }
@@ -257,21 +297,21 @@ static void set_side(rk *c, int s)
 
 enum { Q_THETA, Q_OMEGA };
 
-/* The step size in (0, hb] at which a step from (tau, th, om; k1) meets
+/* The step size in (0, hb] at which a step from the origin o meets
  * q = s theta - level (Q_THETA) or q = s omega (Q_OMEGA), given that q at
  * h = 0 (q0) and at hb (qb) lie on the two sides of 0 (qb may be 0). Newton
  * on the step's own result, bracketed. The state there in *th1, *om1. */
-static double locate(const rk *c, double tau, double th, double om, double k1, double hb,
-                     double q0, double qb, int kind, double level, double *th1, double *om1)
+static double locate(const rk *c, const rk_org *o, double hb, double q0, double qb, int kind,
+                     double level, double *th1, double *om1)
 {
-    const double s = c->s;
+    const double s = c->s, tau = o->tau;
     double lo = 0.0, hi = hb, qlo = q0;
     double h = q0 != qb ? hb * q0 / (q0 - qb) : hb; /* regula falsi */
     double t1 = 0, o1 = 0, a1 = 0;
     for (int it = 0; it < SL_ROCK_LOCATE_MAX; it++) {
         if (!(h > lo && h < hi))
             h = 0.5 * (lo + hi);
-        rkn(c, tau, th, om, k1, h, &t1, &o1, &a1);
+        rkn(c, o, h, &t1, &o1, &a1);
         c->res->steps++;
         const double q = kind == Q_THETA ? s * t1 - level : s * o1;
         const double dq = kind == Q_THETA ? s * o1 : s * a1;
@@ -290,7 +330,7 @@ static double locate(const rk *c, double tau, double th, double om, double k1, d
         if (fabs(hn - h) <= tol || hi - lo <= tol) {
             if (fabs(hn - h) <= tol && hn != h) {
                 h = hn;
-                rkn(c, tau, th, om, k1, h, &t1, &o1, &a1);
+                rkn(c, o, h, &t1, &o1, &a1);
                 c->res->steps++;
             }
             break;
@@ -375,28 +415,29 @@ static int rock_piece(rk *c, double *ptau, double tend, int tail)
         const double rem = tend - tau;
         const double hs = rem <= c->hmax * (1 + 1e-12) ? rem : rem / ceil(rem / c->hmax);
         const double s = c->s, th = c->th, om = c->om;
-        const double k1 = acc(c, tau, th);
+        rk_org o;
+        org_set(c, &o, tau, th, om);
         double th1, om1, a1;
-        rkn(c, tau, th, om, k1, hs, &th1, &om1, &a1);
+        rkn(c, &o, hs, &th1, &om1, &a1);
         c->res->steps++;
         const double u0 = s * th, v0 = s * om, u1 = s * th1, v1 = s * om1;
         double h, te, tq, oq;
         if (v0 > 0 && v1 <= 0) {
             /* |theta| turns: a peak inside; tipping or overturning may come first */
-            h = v1 == 0 ? hs : locate(c, tau, th, om, k1, hs, v0, v1, Q_OMEGA, 0, &tq, &oq);
+            h = v1 == 0 ? hs : locate(c, &o, hs, v0, v1, Q_OMEGA, 0, &tq, &oq);
             if (v1 == 0) {
                 tq = th1;
             }
             const double up = s * tq;
             if (up >= SL_PI / 2) {
-                te = locate(c, tau, th, om, k1, h, u0 - SL_PI / 2, up - SL_PI / 2, Q_THETA,
+                te = locate(c, &o, h, u0 - SL_PI / 2, up - SL_PI / 2, Q_THETA,
                             SL_PI / 2, &tq, &oq);
                 overturn(c, c->ti + tau + te);
                 rc = P_OVER;
                 break;
             }
             if (up >= c->alpha && !c->res->tipped) {
-                te = locate(c, tau, th, om, k1, h, u0 - c->alpha, up - c->alpha, Q_THETA,
+                te = locate(c, &o, h, u0 - c->alpha, up - c->alpha, Q_THETA,
                             c->alpha, &th1, &om1);
                 tip(c, c->ti + tau + te);
             }
@@ -413,9 +454,9 @@ static int rock_piece(rk *c, double *ptau, double tend, int tail)
         }
         if (v0 < 0 && v1 > 0) {
             /* |theta| turns back out: an impact may come before */
-            h = locate(c, tau, th, om, k1, hs, v0, v1, Q_OMEGA, 0, &tq, &oq);
+            h = locate(c, &o, hs, v0, v1, Q_OMEGA, 0, &tq, &oq);
             if (s * tq <= 0) {
-                te = locate(c, tau, th, om, k1, h, u0, s * tq, Q_THETA, 0, &tq, &oq);
+                te = locate(c, &o, h, u0, s * tq, Q_THETA, 0, &tq, &oq);
                 tau += te;
                 if ((rc = impact(c, tau, oq)) == P_REST)
                     break;
@@ -429,14 +470,14 @@ static int rock_piece(rk *c, double *ptau, double tend, int tail)
         if (v1 > 0 || (v1 == 0 && v0 >= 0 && u1 > 0)) {
             /* |theta| grows */
             if (u1 >= SL_PI / 2) {
-                te = locate(c, tau, th, om, k1, hs, u0 - SL_PI / 2, u1 - SL_PI / 2, Q_THETA,
+                te = locate(c, &o, hs, u0 - SL_PI / 2, u1 - SL_PI / 2, Q_THETA,
                             SL_PI / 2, &tq, &oq);
                 overturn(c, c->ti + tau + te);
                 rc = P_OVER;
                 break;
             }
             if (u1 >= c->alpha && !c->res->tipped) {
-                te = locate(c, tau, th, om, k1, hs, u0 - c->alpha, u1 - c->alpha, Q_THETA,
+                te = locate(c, &o, hs, u0 - c->alpha, u1 - c->alpha, Q_THETA,
                             c->alpha, &tq, &oq);
                 tip(c, c->ti + tau + te);
             }
@@ -449,7 +490,7 @@ static int rock_piece(rk *c, double *ptau, double tend, int tail)
                 *ptau = tau + hs;
                 return P_REST;
             }
-            te = locate(c, tau, th, om, k1, hs, u0, u1, Q_THETA, 0, &tq, &oq);
+            te = locate(c, &o, hs, u0, u1, Q_THETA, 0, &tq, &oq);
             tau += te;
             if ((rc = impact(c, tau, oq)) == P_REST)
                 break;
@@ -497,34 +538,61 @@ static double uplift_in_piece(const rk *c, double tau, int *side)
 
 /* The first sample j >= from whose point holds (K3), or n (or the first
  * sample that is not finite: the caller checks). The work of a block at
- * rest: one multiply and one compare per sample, 16 at a time. */
+ * rest: one multiply, one mask and one unordered compare per sample, two
+ * samples at a time (GCC's and Clang's vector extensions: SSE2 on x86-64,
+ * plain scalar code elsewhere), 16 samples between branches; a NaN stops
+ * the scan as an uplift would (!(|x| <= T)). */
+typedef double rk_v2d __attribute__((vector_size(16)));
+typedef long long rk_v2l __attribute__((vector_size(16)));
+#define RK_SCAN_BLOCK 16
+
+/* |x|, a lane at a time (the sign bit cleared). */
+static inline rk_v2d v2_abs(rk_v2d x)
+{
+    const rk_v2l mask = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+    rk_v2l b;
+    memcpy(&b, &x, sizeof b);
+    b &= mask;
+    memcpy(&x, &b, sizeof x);
+    return x;
+}
+
 static size_t uplift_scan(const rk *c, size_t from)
 {
     const double *ah = c->ah, *av = c->av, sh = c->sh, sv = c->sv, ta = c->ta, gta = c->gta;
     const size_t n = c->n;
+    const rk_v2d vsh = {sh, sh}, vgta = {gta, gta}, vsv = {sv, sv}, vta = {ta, ta},
+                 vg = {SL_G, SL_G};
     size_t j = from;
     if (!av) {
-        for (; j + 16 <= n; j += 16) {
-            int hit = 0;
-            for (size_t k = 0; k < 16; k++)
-                hit |= !(fabs(sh * ah[j + k]) <= gta);
-            if (hit)
+        for (; j + RK_SCAN_BLOCK <= n; j += RK_SCAN_BLOCK) {
+            rk_v2l hit = {0, 0};
+            for (size_t k = 0; k < RK_SCAN_BLOCK; k += 2) {
+                rk_v2d x;
+                memcpy(&x, ah + j + k, sizeof x);
+                hit |= ~(v2_abs(vsh * x) <= vgta);
+            }
+            if ((hit[0] | hit[1]) != 0)
                 break;
         }
-        for (; j < n; j++)
-            if (!(fabs(sh * ah[j]) <= gta))
-                break;
     } else {
-        for (; j + 16 <= n; j += 16) {
-            int hit = 0;
-            for (size_t k = 0; k < 16; k++)
-                hit |= !(fabs(sh * ah[j + k]) <= (SL_G + sv * av[j + k]) * ta);
-            if (hit)
+        for (; j + RK_SCAN_BLOCK <= n; j += RK_SCAN_BLOCK) {
+            rk_v2l hit = {0, 0};
+            for (size_t k = 0; k < RK_SCAN_BLOCK; k += 2) {
+                rk_v2d x, y;
+                memcpy(&x, ah + j + k, sizeof x);
+                memcpy(&y, av + j + k, sizeof y);
+                /* (g + sv a_v) tan(alpha), the same operations as below */
+                hit |= ~(v2_abs(vsh * x) <= (vg + vsv * y) * vta);
+            }
+            if ((hit[0] | hit[1]) != 0)
                 break;
         }
-        for (; j < n; j++)
-            if (!(fabs(sh * ah[j]) <= (SL_G + sv * av[j]) * ta))
-                break;
+    }
+    for (; j < n; j++) {
+        const double T = av ? (SL_G + sv * av[j]) * ta : gta;
+        if (!(fabs(sh * ah[j]) <= T))
+            break;
     }
     return j;
 }

@@ -34,7 +34,7 @@ defaults() {
 }
 
 nd=0
-for c in run merge slide synth spectrum rg160 asce bench study components lookup verify; do
+for c in run merge slide rock synth spectrum rg160 asce bench study components lookup verify; do
   grep -q "^\.SS $c\$" "$M" && t_pass || t_fail "no section for '$c' in docs/seislide.1"
   t_run "$c" --help; t_expect_rc "$c --help" 0
   missing=""
