@@ -16,6 +16,12 @@
 
 #define SCATTER_STREAM 0x7363617474657221ULL /* "scatter!" */
 
+double sl_scatter_sigma_of_floor(const sl_floor *fl)
+{
+    (void)fl;
+    return 0.30;
+}
+
 sl_status sl_scatter_factor(uint64_t seed, size_t set, double sigma_ln, double *eps,
                             sl_error *err)
 {

@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include "core/status.h"
+#include "io/floor.h"
 #include "io/motion.h"
 #include "slide/model.h"
 
@@ -49,6 +50,9 @@
 #define SL_SCATTER_DZ 0.1
 #define SL_SCATTER_PER_DECADE 32
 #define SL_SCATTER_SIGMA_MAX 1.0 /* log standard deviation, largest accepted */
+
+/* The scatter of a floor (placeholder while measuring). */
+double sl_scatter_sigma_of_floor(const sl_floor *fl);
 
 /* eps of (R1) for set `set` into *eps, z = Phi^-1(u), u from GSL's mt19937
  * seeded with sl_synth_stream_seed(seed ^ "scatter!", set, H1, 0): a random

@@ -1,0 +1,524 @@
+/*
+ * tailfloors.c - the intensity tail near the sliding threshold: synthesized
+ * floor sets against the physical floor motions behind their spectra, on
+ * buildings of any period and damping (docs/validation.md, "The intensity
+ * tail"; method/scatter.h (R4)).
+ *
+ * Physical floor motions: the records of study/physfloor.h (every usable
+ * three-component record, scaled to a larger horizontal PGA of 0.3 g)
+ * through a uniform shear building (study/building.h). Their mean 2, 5 and
+ * 10 % spectra and mean PGA are written as a floor file, read back, and
+ * sets are synthesized for it (synth.h defaults, as `seislide run`); the
+ * same engine slides a block on both at mu g/ZPA = 0.1, 0.2, ..., 1.0 (ZPA
+ * = the physical motions' mean larger horizontal PGA). The synthesized sets
+ * are slid the run's way, with the intensity scatter of method/scatter.h
+ * (R1)-(R3), at several sigma from ONE NLTHA per set on the friction
+ * lattice 10^(q/SL_SCATTER_PER_DECADE) (every sigma's grid is part of it).
+ *
+ *   make tailfloors               (= nice build/tools/tailfloors: the buildings below)
+ *   options: -r RECORDS_DIR (default $SEISLIDE_SHARED/records or
+ *            ../shared/records), -n MAX_RECORDS (0 = all), -s NSYN (24),
+ *            -S SEED (12), -b N:f1_h1:f1_h2:f1_v:damping (a building,
+ *            repeatable; default: the buildings of the default list),
+ *            -d (descriptors only: the physical floor motions and the
+ *            floor spectra, no synthesis, no sliding; fast),
+ *            -R SIGMA (one more column: a fixed scatter)
+ * Prints markdown tables and one "DATA" line per floor; exit 0, or 1 with
+ * a message.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "analysis.h"
+#include "core/compare.h"
+#include "core/units.h"
+#include "io/floor.h"
+#include "io/setdir.h"
+#include "method/scatter.h"
+#include "signal/realism.h"
+#include "signal/spectrum.h"
+#include "slide/slide.h"
+#include "study/building.h"
+#include "study/physfloor.h"
+#include "synth/synth.h"
+
+#define NMU 10      /* mu g/ZPA = 0.1, 0.2, ..., 1.0 */
+#define NF 136      /* floor spectra: 0.1-50 Hz, 50 a decade */
+#define PGA_G 0.3   /* the records' larger horizontal PGA */
+#define SIG_LAT 0.7 /* the lattice covers every sigma up to this */
+#define MAX_B 16
+#define SE_OK 0.35  /* points whose physical mean has a relative SE up to this count */
+#define NVAR 5      /* sigma 0, the default, the physical PGA's, the rule, -R */
+
+static const char *const default_b[] = {
+    "3:3.0:4.2:14:0.05",   /* the building of docs/synthesis.md 10 */
+    "3:5.0:6.5:18:0.03",   /* stiff, 3 % */
+    "5:1.6:1.9:12:0.02",   /* soft, 2 % */
+};
+
+typedef struct tf_opts {
+    const char *records;
+    size_t max_records, nsyn, nb;
+    uint64_t seed;
+    int descr_only;
+    double fixed; /* -R, NAN: none */
+    sl_building b[MAX_B];
+    const char *bspec[MAX_B];
+} tf_opts;
+
+/* per building: the points of the summary */
+typedef struct tf_sum {
+    double lr_hi[NVAR], lr_lo[NVAR];  /* sums of ln R at mu g/ZPA >= 0.5 and < 0.5 */
+    size_t n_hi, n_lo;
+    double min_hi[NVAR];              /* smallest R at >= 0.5 where the physical SE <= SE_OK */
+} tf_sum;
+
+static void die(const sl_error *e)
+{
+    char buf[2200];
+    fprintf(stderr, "tailfloors: %s\n", sl_error_format(e, buf, sizeof buf));
+    exit(1);
+}
+
+static void *xcalloc(size_t n, size_t s)
+{
+    void *p = calloc(n ? n : 1, s);
+    if (!p) {
+        fprintf(stderr, "tailfloors: out of memory\n");
+        exit(1);
+    }
+    return p;
+}
+
+/* peaks[i * nq + q] of sets at grid[nq] */
+static double *slide(const sl_set *sets, size_t n, const double *grid, size_t nq)
+{
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    sl_slide_result *res = xcalloc(n * nq, sizeof *res);
+    double *pk = xcalloc(n * nq, sizeof *pk);
+    sl_error e;
+    if (sl_slide_batch(sets, n, grid, nq, &so, res, &e))
+        die(&e);
+    for (size_t i = 0; i < n * nq; i++)
+        pk[i] = res[i].peak_m;
+    free(res);
+    return pk;
+}
+
+static long lattice(double mu)
+{
+    return lround(log10(mu) * SL_SCATTER_PER_DECADE);
+}
+
+/* y[i * NMU + k]: (R3) at sigma for set i from its peaks uL on the lattice
+ * grid L[nL] (sigma's grid is a part of it) */
+static void scatter_y(double sigma, const double *mu, size_t n, const double *L, size_t nL,
+                      const double *uL, double *y)
+{
+    sl_error e;
+    sl_scatter *sc = sl_scatter_alloc(sigma, mu, NMU, &e);
+    if (!sc)
+        die(&e);
+    size_t nq;
+    const double *g = sl_scatter_grid(sc, &nq);
+    double *u = xcalloc(nq, sizeof *u);
+    for (size_t i = 0; i < n; i++) {
+        for (size_t q = 0; q < nq; q++) {
+            long j = lattice(g[q]) - lattice(L[0]);
+            if (j < 0 || (size_t)j >= nL) {
+                fprintf(stderr, "tailfloors: sigma %g needs mu %g outside the lattice\n", sigma,
+                        g[q]);
+                exit(1);
+            }
+            u[q] = uL[i * nL + (size_t)j];
+        }
+        if (sl_scatter_mean(sc, u, y + i * NMU, &e))
+            die(&e);
+    }
+    free(u);
+    sl_scatter_free(sc);
+}
+
+static void mean_sd_log(const double *x, size_t n, double *sd)
+{
+    double m = 0, q = 0;
+    for (size_t i = 0; i < n; i++)
+        m += log(x[i]) / (double)n;
+    for (size_t i = 0; i < n; i++)
+        q += (log(x[i]) - m) * (log(x[i]) - m);
+    *sd = sqrt(q / (double)(n - 1));
+}
+
+static double corr_log(const double *a, const double *b, size_t n)
+{
+    double ma = 0, mb = 0, sab = 0, saa = 0, sbb = 0;
+    for (size_t i = 0; i < n; i++)
+        ma += log(a[i]) / (double)n, mb += log(b[i]) / (double)n;
+    for (size_t i = 0; i < n; i++) {
+        double x = log(a[i]) - ma, y = log(b[i]) - mb;
+        sab += x * y, saa += x * x, sbb += y * y;
+    }
+    return sab / sqrt(saa * sbb);
+}
+
+/* The motions' intensity descriptors: sigma_ln of the larger H PGA, of H1
+ * and H2, their correlation; peaks above 0.9 PGA per H component (mean,
+ * max); D5-75 mean. */
+typedef struct tf_desc {
+    double s_pga, s_h1, s_h2, rho, peaks, d575;
+    size_t peaks_max;
+} tf_desc;
+
+static void describe(const sl_set *s, size_t n, tf_desc *d)
+{
+    double *p = xcalloc(3 * n, sizeof *p);
+    memset(d, 0, sizeof *d);
+    for (size_t i = 0; i < n; i++) {
+        p[i] = sl_set_pga_h(&s[i]);
+        p[n + i] = sl_motion_pga(s[i].h1);
+        p[2 * n + i] = sl_motion_pga(s[i].h2);
+        for (int c = 0; c < 2; c++) {
+            const sl_motion *m = c ? s[i].h2 : s[i].h1;
+            size_t k = sl_realism_peaks_above(m->acc_ms2, m->n, 0.9);
+            d->peaks += (double)k / (2.0 * (double)n);
+            d->peaks_max = k > d->peaks_max ? k : d->peaks_max;
+            d->d575 += sl_motion_d5_75(m) / (2.0 * (double)n);
+        }
+    }
+    mean_sd_log(p, n, &d->s_pga);
+    mean_sd_log(p + n, n, &d->s_h1);
+    mean_sd_log(p + 2 * n, n, &d->s_h2);
+    d->rho = corr_log(p + n, p + 2 * n, n);
+    free(p);
+}
+
+/* What the floor spectrum of component c shows (its matched damping):
+ * the peak / ZPA, where, and the 2 % / 5 % ratio at the peak (NAN without
+ * a 2 % table). */
+static void spectrum_desc(const sl_floor *fl, int c, double *pz, double *fpk, double *r25)
+{
+    const sl_floor_component *k = &fl->comp[c];
+    double z = sl_synth_floor_damping(fl, (sl_floor_comp)c);
+    const sl_spectrum *s5 = NULL, *s2 = NULL;
+    for (size_t j = 0; j < k->nspec; j++) {
+        if (fabs(k->spec[j].damping - z) < 1e-9)
+            s5 = &k->spec[j];
+        if (fabs(k->spec[j].damping - 0.02) < 1e-9)
+            s2 = &k->spec[j];
+    }
+    size_t jp = 0;
+    for (size_t j = 0; j < s5->n; j++)
+        jp = s5->sa_ms2[j] > s5->sa_ms2[jp] ? j : jp;
+    *pz = s5->sa_ms2[jp] / k->zpa_ms2;
+    *fpk = s5->f_hz[jp];
+    *r25 = s2 ? s2->sa_ms2[jp] / s5->sa_ms2[jp] : NAN;
+}
+
+/* the sigma in [0, SIG_LAT] (steps of 0.01) that brings the synthesized
+ * mean closest to the physical one at mu g/ZPA >= 0.5 (least squares in
+ * ln R weighted by 1 / SE(ln R)^2) */
+static double sigma_star(const double *mu, size_t nsyn, const double *L, size_t nL,
+                         const double *uL, const double *phys, size_t nrec)
+{
+    double best = NAN, bestq = INFINITY;
+    double *y = xcalloc(nsyn * NMU, sizeof *y);
+    for (int t = 1; t <= (int)lround(SIG_LAT * 100); t++) {
+        double sg = 0.01 * t, q = 0;
+        scatter_y(sg, mu, nsyn, L, nL, uL, y);
+        for (int k = 4; k < NMU; k++) {
+            double se, r = sl_pf_ratio(y + k, nsyn, NMU, phys + k, nrec, NMU, &se);
+            if (r > 0 && se > 0)
+                q += pow(log(r) / (se / r), 2);
+            else
+                q += 1e6;
+        }
+        if (q < bestq)
+            bestq = q, best = sg;
+    }
+    free(y);
+    return best;
+}
+
+static sl_set *synth(const tf_opts *o, const sl_floor *flr, sl_synth_set **outp)
+{
+    sl_error e;
+    sl_synth_params sp;
+    sl_synth_params_default(&sp);
+    sl_synth_target tgt[3];
+    if (sl_synth_targets_floor(flr, 0, tgt, &e))
+        die(&e);
+    size_t n_t = (size_t)(SL_SYNTH_DURATION_S / SL_SYNTH_DT_S + 0.5) + 1;
+    sl_synth *s = sl_synth_alloc(n_t, SL_SYNTH_DT_S, &sp, &e);
+    sl_synth_set *out = xcalloc(o->nsyn, sizeof *out);
+    if (!s)
+        die(&e);
+    sl_status st = sl_synth_make_sets(s, tgt, o->seed, 0, o->nsyn, out, NULL, NULL, &e);
+    if (st && st != SL_ENOCONV)
+        die(&e);
+    sl_synth_free(s);
+    sl_set *sets = xcalloc(o->nsyn, sizeof *sets);
+    for (size_t k = 0; k < o->nsyn; k++)
+        sets[k] = out[k].set;
+    *outp = out;
+    return sets;
+}
+
+static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, size_t nrec,
+                       tf_sum *sum)
+{
+    const sl_building *b = &o->b[ib];
+    sl_error e;
+    sl_set *fm = xcalloc(nrec, sizeof *fm);
+    for (size_t r = 0; r < nrec; r++)
+        if (sl_building_floor(b, fl, &g[r], &fm[r], &e))
+            die(&e);
+    double zpa = 0, mu[NMU], f[NF];
+    for (size_t r = 0; r < nrec; r++)
+        zpa += sl_set_pga_h(&fm[r]) / (double)nrec;
+    for (int k = 0; k < NMU; k++)
+        mu[k] = 0.1 * (k + 1) * zpa / SL_G;
+    for (size_t j = 0; j < NF; j++)
+        f[j] = 0.1 * pow(500.0, (double)j / (NF - 1));
+    char dir[] = "/tmp/seislide-tail-XXXXXX", path[64];
+    if (!mkdtemp(dir)) {
+        fprintf(stderr, "tailfloors: cannot make a temporary directory\n");
+        exit(1);
+    }
+    snprintf(path, sizeof path, "%s/floor.ini", dir);
+    if (sl_pf_write_floor(path, "physical floor", fm, nrec, f, NF, 0, &e))
+        die(&e);
+    sl_floor *flr = sl_floor_load(path, &e);
+    remove(path);
+    rmdir(dir);
+    if (!flr)
+        die(&e);
+    tf_desc dp, ds;
+    describe(fm, nrec, &dp);
+    double pz[2], fpk[2], r25[2];
+    for (int c = 0; c < 2; c++)
+        spectrum_desc(flr, c, &pz[c], &fpk[c], &r25[c]);
+    double s_rule = sl_scatter_sigma_of_floor(flr);
+    printf("\n%s floor %zu: ZPA %.3f g; floor spectrum (5 %%) peak/ZPA %.2f at %.2f Hz (H1), %.2f at "
+           "%.2f Hz (H2), 2 %%/5 %% there %.2f %.2f; rule sigma %.3f\n",
+           o->bspec[ib], fl, zpa / SL_G, pz[0], fpk[0], pz[1], fpk[1], r25[0], r25[1], s_rule);
+    printf("  physical: sigma_ln larger-H PGA %.3f (H1 %.3f, H2 %.3f, correlation %.2f); peaks "
+           "above 0.9 PGA %.1f (max %zu); D5-75 %.1f s\n",
+           dp.s_pga, dp.s_h1, dp.s_h2, dp.rho, dp.peaks, dp.peaks_max, dp.d575);
+    if (o->descr_only) {
+        printf("DATA %s %zu %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.3f\n", o->bspec[ib], fl,
+               pz[0], fpk[0], pz[1], fpk[1], r25[0], r25[1], dp.s_pga, dp.s_h1, dp.s_h2, s_rule);
+        goto done;
+    }
+    double *phys = slide(fm, nrec, mu, NMU);
+    /* the physical motions at one intensity: H scaled to the mean larger-H PGA (V as it is) */
+    sl_set *fn = xcalloc(nrec, sizeof *fn);
+    for (size_t r = 0; r < nrec; r++)
+        if (sl_set_scaled_h_copy(&fm[r], zpa / sl_set_pga_h(&fm[r]), &fn[r], &e))
+            die(&e);
+    double *physn = slide(fn, nrec, mu, NMU);
+    sl_synth_set *out;
+    sl_set *syn = synth(o, flr, &out);
+    describe(syn, o->nsyn, &ds);
+    printf("  synthesized: sigma_ln larger-H PGA %.3f; peaks above 0.9 PGA %.1f (max %zu); D5-75 "
+           "%.1f s\n",
+           ds.s_pga, ds.peaks, ds.peaks_max, ds.d575);
+    double *s0 = slide(syn, o->nsyn, mu, NMU);
+    sl_scatter *lat = sl_scatter_alloc(SIG_LAT, mu, NMU, &e);
+    if (!lat)
+        die(&e);
+    size_t nL;
+    const double *L = sl_scatter_grid(lat, &nL);
+    double *uL = slide(syn, o->nsyn, L, nL);
+    double sig[NVAR] = {0, SL_ANALYSIS_SCATTER, dp.s_pga, s_rule, o->fixed};
+    const char *nm[NVAR] = {"sigma 0", "sigma 0.30", "sigma = physical PGA's", "rule", "-R"};
+    double *y[NVAR];
+    for (int v = 0; v < NVAR; v++) {
+        y[v] = NULL;
+        if (v == 4 && !(o->fixed >= 0))
+            continue;
+        y[v] = xcalloc(o->nsyn * NMU, sizeof *y[v]);
+        if (sig[v] > 0)
+            scatter_y(sig[v], mu, o->nsyn, L, nL, uL, y[v]);
+        else
+            memcpy(y[v], s0, o->nsyn * NMU * sizeof *s0);
+    }
+    double sst = sigma_star(mu, o->nsyn, L, nL, uL, phys, nrec);
+    printf("\n| %s floor %zu | μg/ZPA 0.1 | 0.2 | 0.3 | 0.4 | 0.5 | 0.6 | 0.7 | 0.8 | 0.9 | 1.0 "
+           "|\n|---|---|---|---|---|---|---|---|---|---|---|\n| physical mean, mm (SE %%) |",
+           o->bspec[ib], fl);
+    double pse[NMU];
+    for (int k = 0; k < NMU; k++) {
+        double m, sd;
+        sl_pf_mean_sd(phys + k, nrec, NMU, &m, &sd);
+        pse[k] = sd / sqrt((double)nrec) / m;
+        printf(" %.2f (%.0f) |", 1e3 * m, 100 * pse[k]);
+    }
+    printf("\n");
+    for (int v = 0; v < NVAR; v++) {
+        if (!y[v])
+            continue;
+        printf("| syn, %s (%.2f) / physical |", nm[v], sig[v]);
+        for (int k = 0; k < NMU; k++) {
+            double se, r = sl_pf_ratio(y[v] + k, o->nsyn, NMU, phys + k, nrec, NMU, &se);
+            printf(" %.2f ± %.2f |", r, se);
+            if (!(r > 0))
+                r = 1e-3;
+            if (k >= 4) {
+                sum->lr_hi[v] += log(r);
+                if (pse[k] <= SE_OK)
+                    sum->min_hi[v] = fmin(sum->min_hi[v], r);
+            } else {
+                sum->lr_lo[v] += log(r);
+            }
+        }
+        printf("\n");
+    }
+    sum->n_hi += NMU - 4;
+    sum->n_lo += 4;
+    printf("| physical at one PGA / physical |");
+    for (int k = 0; k < NMU; k++) {
+        double se, r = sl_pf_ratio(physn + k, nrec, NMU, phys + k, nrec, NMU, &se);
+        printf(" %.2f ± %.2f |", r, se);
+    }
+    printf("\n| syn, sigma 0 / physical at one PGA |");
+    for (int k = 0; k < NMU; k++) {
+        double se, r = sl_pf_ratio(s0 + k, o->nsyn, NMU, physn + k, nrec, NMU, &se);
+        printf(" %.2f ± %.2f |", r, se);
+    }
+    printf("\n  sigma that fits at μg/ZPA 0.5-1.0: %.2f\n", sst);
+    printf("DATA %s %zu %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.2f %.1f %.1f\n",
+           o->bspec[ib], fl, pz[0], fpk[0], pz[1], fpk[1], r25[0], r25[1], dp.s_pga, dp.s_h1,
+           dp.s_h2, s_rule, sst, dp.peaks, ds.peaks);
+    for (int v = 0; v < NVAR; v++)
+        free(y[v]);
+    free(uL);
+    sl_scatter_free(lat);
+    free(s0);
+    for (size_t k = 0; k < o->nsyn; k++)
+        sl_synth_set_clear(&out[k]);
+    free(out);
+    free(syn);
+    free(phys);
+    free(physn);
+    for (size_t r = 0; r < nrec; r++)
+        sl_set_free_motions(&fn[r]);
+    free(fn);
+done:
+    sl_floor_free(flr);
+    for (size_t r = 0; r < nrec; r++)
+        sl_set_free_motions(&fm[r]);
+    free(fm);
+}
+
+static int parse_options(int argc, char **argv, tf_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->nsyn = 24;
+    o->seed = 12;
+    o->fixed = NAN;
+    int opt;
+    sl_error e;
+    while ((opt = getopt(argc, argv, "r:n:s:S:b:dR:")) != -1) {
+        switch (opt) {
+        case 'r': o->records = optarg; break;
+        case 'n': o->max_records = (size_t)atol(optarg); break;
+        case 's': o->nsyn = (size_t)atol(optarg); break;
+        case 'S': o->seed = (uint64_t)atoll(optarg); break;
+        case 'd': o->descr_only = 1; break;
+        case 'R': o->fixed = atof(optarg); break;
+        case 'b':
+            if (o->nb == MAX_B) {
+                fprintf(stderr, "tailfloors: at most %d buildings\n", MAX_B);
+                return 1;
+            }
+            if (sl_building_parse(optarg, &o->b[o->nb], &e))
+                die(&e);
+            o->bspec[o->nb++] = optarg;
+            break;
+        default:
+            fprintf(stderr, "usage: tailfloors [-r dir] [-n max] [-s nsyn] [-S seed] "
+                            "[-b N:f1_h1:f1_h2:f1_v:damping]... [-d] [-R sigma]\n");
+            return 1;
+        }
+    }
+    if (o->nsyn < 2) {
+        fprintf(stderr, "tailfloors: -s %zu: at least 2 sets\n", o->nsyn);
+        return 1;
+    }
+    if (!isnan(o->fixed) && !(o->fixed >= 0 && o->fixed <= SIG_LAT)) {
+        fprintf(stderr, "tailfloors: -R %g outside [0, %g]\n", o->fixed, SIG_LAT);
+        return 1;
+    }
+    for (size_t i = 0; o->nb == 0 && i < sizeof default_b / sizeof *default_b; i++) {
+        if (sl_building_parse(default_b[i], &o->b[i], &e))
+            die(&e);
+        o->bspec[i] = default_b[i];
+    }
+    if (o->nb == 0)
+        o->nb = sizeof default_b / sizeof *default_b;
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    tf_opts o;
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    if (parse_options(argc, argv, &o))
+        return 1;
+    char buf[1024];
+    const char *rdir = o.records;
+    if (!rdir) {
+        const char *sh = getenv("SEISLIDE_SHARED");
+        snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
+        rdir = buf;
+    }
+    sl_error e;
+    char **names;
+    size_t nd = sl_pf_list_dirs(rdir, &names, &e);
+    if (!nd)
+        die(&e);
+    sl_pf_rule rule;
+    sl_pf_rule_default(&rule);
+    sl_set *g = xcalloc(nd, sizeof *g);
+    size_t nrec = 0;
+    for (size_t i = 0; i < nd && (!o.max_records || nrec < o.max_records); i++) {
+        char d[4096];
+        snprintf(d, sizeof d, "%s/%s", rdir, names[i]);
+        if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) == SL_OK)
+            nrec++;
+    }
+    sl_pf_names_free(names, nd);
+    if (nrec < 2) {
+        fprintf(stderr, "tailfloors: fewer than 2 records of %s pass the rule\n", rdir);
+        return 1;
+    }
+    printf("records: %zu of %s, scaled to %.1f g; %zu synthesized sets per floor, seed %llu\n",
+           nrec, rdir, PGA_G, o.nsyn, (unsigned long long)o.seed);
+    for (size_t ib = 0; ib < o.nb; ib++) {
+        tf_sum sum;
+        memset(&sum, 0, sizeof sum);
+        for (int v = 0; v < NVAR; v++)
+            sum.min_hi[v] = INFINITY;
+        for (size_t fl = 1; fl <= o.b[ib].storeys; fl++)
+            floor_case(&o, ib, fl, g, nrec, &sum);
+        if (o.descr_only)
+            continue;
+        printf("\nSUMMARY %s: geometric mean of synthesized / physical at μg/ZPA 0.5-1.0 "
+               "(0.1-0.4), smallest point at 0.5-1.0 where the physical SE <= %.0f %%:\n",
+               o.bspec[ib], 100 * SE_OK);
+        const char *nm[NVAR] = {"sigma 0", "sigma 0.30", "sigma = physical PGA's", "rule", "-R"};
+        for (int v = 0; v < NVAR; v++)
+            if (v < 4 || o.fixed >= 0)
+                printf("  %-24s %.3f (%.3f), smallest %.2f\n", nm[v],
+                       exp(sum.lr_hi[v] / (double)sum.n_hi), exp(sum.lr_lo[v] / (double)sum.n_lo),
+                       sum.min_hi[v]);
+    }
+    for (size_t r = 0; r < nrec; r++)
+        sl_set_free_motions(&g[r]);
+    free(g);
+    return 0;
+}
