@@ -64,7 +64,9 @@ typedef struct tf_opts {
     size_t max_records, nsyn, nb;
     uint64_t seed;
     int descr_only;
+    int ground_scatter; /* -g: how the records' spectra scatter at one PGA */
     double fixed; /* -R, NAN: none */
+    FILE *dump;   /* -D: every mean and SD for offline fits */
     sl_building b[MAX_B];
     const char *bspec[MAX_B];
 } tf_opts;
@@ -199,6 +201,42 @@ static void describe(const sl_set *s, size_t n, tf_desc *d)
 /* What the floor spectrum of component c shows (its matched damping):
  * the peak / ZPA, where, and the 2 % / 5 % ratio at the peak (NAN without
  * a 2 % table). */
+/* More of what the spectrum of component c shows (its matched damping):
+ * the width around the peak where SA >= peak / sqrt(2), octaves; the
+ * centroid frequency of the part above the ZPA, exp(sum (SA - ZPA)+ ln f /
+ * sum (SA - ZPA)+) on the file's points (Hz); the expected V/A x 2 pi
+ * f_peak (realism.h; 1 for a motion narrow-banded at f_peak) */
+static void spectrum_more(const sl_floor *fl, int c, double *bw_oct, double *fc_hz, double *va_n)
+{
+    const sl_floor_component *k = &fl->comp[c];
+    double z = sl_synth_floor_damping(fl, (sl_floor_comp)c);
+    const sl_spectrum *s = NULL;
+    for (size_t j = 0; j < k->nspec; j++)
+        if (fabs(k->spec[j].damping - z) < 1e-9)
+            s = &k->spec[j];
+    size_t jp = 0;
+    for (size_t j = 0; j < s->n; j++)
+        jp = s->sa_ms2[j] > s->sa_ms2[jp] ? j : jp;
+    size_t a = jp, b = jp;
+    while (a > 0 && s->sa_ms2[a - 1] >= s->sa_ms2[jp] / sqrt(2.0))
+        a--;
+    while (b + 1 < s->n && s->sa_ms2[b + 1] >= s->sa_ms2[jp] / sqrt(2.0))
+        b++;
+    *bw_oct = log2(s->f_hz[b] / s->f_hz[a]);
+    double w = 0, wl = 0;
+    for (size_t j = 0; j < s->n; j++) {
+        double e = fmax(s->sa_ms2[j] - k->zpa_ms2, 0);
+        w += e;
+        wl += e * log(s->f_hz[j]);
+    }
+    *fc_hz = exp(wl / w);
+    double va, da, adv;
+    sl_error e;
+    if (sl_realism_expected(s, &va, &da, &adv, &e))
+        die(&e);
+    *va_n = va * 2 * SL_PI * s->f_hz[jp];
+}
+
 static void spectrum_desc(const sl_floor *fl, int c, double *pz, double *fpk, double *r25)
 {
     const sl_floor_component *k = &fl->comp[c];
@@ -267,6 +305,23 @@ static sl_set *synth(const tf_opts *o, const sl_floor *flr, sl_synth_set **outp)
     return sets;
 }
 
+/* -D: "tag building floor [sigma] mean[NMU] sd[NMU] n" */
+static void dump_row(FILE *f, const char *tag, const char *b, size_t fl, double sigma,
+                     const double *x, size_t n)
+{
+    if (!f)
+        return;
+    double m[NMU], sd[NMU];
+    for (int k = 0; k < NMU; k++)
+        sl_pf_mean_sd(x + k, n, NMU, &m[k], &sd[k]);
+    fprintf(f, "%s %s %zu %.2f", tag, b, fl, sigma);
+    for (int k = 0; k < NMU; k++)
+        fprintf(f, " %.6g", m[k]);
+    for (int k = 0; k < NMU; k++)
+        fprintf(f, " %.6g", sd[k]);
+    fprintf(f, " %zu\n", n);
+}
+
 static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, size_t nrec,
                        tf_sum *sum)
 {
@@ -302,6 +357,13 @@ static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, 
     for (int c = 0; c < 2; c++)
         spectrum_desc(flr, c, &pz[c], &fpk[c], &r25[c]);
     double s_rule = sl_scatter_sigma_of_floor(flr);
+    double bw[2], fc[2], va[2];
+    for (int c = 0; c < 2; c++)
+        spectrum_more(flr, c, &bw[c], &fc[c], &va[c]);
+    if (o->dump)
+        fprintf(o->dump, "E %s %zu %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.3f %.2f\n",
+                o->bspec[ib], fl, pz[0], fpk[0], pz[1], fpk[1], bw[0], bw[1], fc[0], fc[1],
+                va[0], va[1], dp.s_pga, dp.s_h1, dp.s_h2, dp.rho, dp.peaks, dp.d575);
     printf("\n%s floor %zu: ZPA %.3f g; floor spectrum (5 %%) peak/ZPA %.2f at %.2f Hz (H1), %.2f at "
            "%.2f Hz (H2), 2 %%/5 %% there %.2f %.2f; rule sigma %.3f\n",
            o->bspec[ib], fl, zpa / SL_G, pz[0], fpk[0], pz[1], fpk[1], r25[0], r25[1], s_rule);
@@ -347,6 +409,21 @@ static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, 
             memcpy(y[v], s0, o->nsyn * NMU * sizeof *s0);
     }
     double sst = sigma_star(mu, o->nsyn, L, nL, uL, phys, nrec);
+    if (o->dump) {
+        fprintf(o->dump, "F %s %zu %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.2f %.2f %.2f %.2f\n",
+                o->bspec[ib], fl, pz[0], fpk[0], pz[1], fpk[1], r25[0], r25[1], dp.s_pga,
+                dp.s_h1, dp.s_h2, dp.rho, dp.peaks, ds.peaks, dp.d575, ds.d575);
+        dump_row(o->dump, "P", o->bspec[ib], fl, 0, phys, nrec);
+        dump_row(o->dump, "Q", o->bspec[ib], fl, 0, physn, nrec);
+        double *yy = xcalloc(o->nsyn * NMU, sizeof *yy);
+        dump_row(o->dump, "Y", o->bspec[ib], fl, 0, s0, o->nsyn);
+        for (int t = 1; t <= (int)lround(SIG_LAT * 100); t++) {
+            scatter_y(0.01 * t, mu, o->nsyn, L, nL, uL, yy);
+            dump_row(o->dump, "Y", o->bspec[ib], fl, 0.01 * t, yy, o->nsyn);
+        }
+        free(yy);
+        fflush(o->dump);
+    }
     printf("\n| %s floor %zu | μg/ZPA 0.1 | 0.2 | 0.3 | 0.4 | 0.5 | 0.6 | 0.7 | 0.8 | 0.9 | 1.0 "
            "|\n|---|---|---|---|---|---|---|---|---|---|---|\n| physical mean, mm (SE %%) |",
            o->bspec[ib], fl);
@@ -414,6 +491,39 @@ done:
     free(fm);
 }
 
+/* -g: sigma of ln SA(f, zeta) over the H components of the records, each
+ * record scaled to one larger horizontal PGA (method/scatter.h (R4)) */
+static void ground_scatter(const sl_set *g, size_t nrec)
+{
+    enum { NG = 25 };
+    static const double zeta[3] = {0.02, 0.05, 0.10};
+    double f[NG], *ls = xcalloc(2 * nrec * NG, sizeof *ls);
+    for (int j = 0; j < NG; j++)
+        f[j] = 0.1 * pow(10.0, (double)j / 8.0); /* 0.1-100 Hz, 8 a decade: to 50 */
+    printf("\n| f, Hz | sigma_ln SA, 2 %% | 5 %% | 10 %% |\n|---|---|---|---|\n");
+    double sd[3][NG];
+    for (int z = 0; z < 3; z++) {
+        for (size_t q = 0; q < 2 * nrec; q++) {
+            const sl_motion *m = q % 2 ? g[q / 2].h2 : g[q / 2].h1;
+            sl_error e;
+            if (sl_spectrum_compute(m->acc_ms2, m->n, m->dt_s, f, NG, zeta[z], ls + q * NG, NULL,
+                                    NULL, &e))
+                die(&e);
+        }
+        for (int j = 0; j < NG; j++) {
+            double m = 0, v = 0;
+            for (size_t q = 0; q < 2 * nrec; q++)
+                m += log(ls[q * NG + j]) / (double)(2 * nrec);
+            for (size_t q = 0; q < 2 * nrec; q++)
+                v += pow(log(ls[q * NG + j]) - m, 2) / (double)(2 * nrec - 1);
+            sd[z][j] = sqrt(v);
+        }
+    }
+    for (int j = 0; j < NG && f[j] <= 50.5; j++)
+        printf("| %.3g | %.3f | %.3f | %.3f |\n", f[j], sd[0][j], sd[1][j], sd[2][j]);
+    free(ls);
+}
+
 static int parse_options(int argc, char **argv, tf_opts *o)
 {
     memset(o, 0, sizeof *o);
@@ -422,14 +532,21 @@ static int parse_options(int argc, char **argv, tf_opts *o)
     o->fixed = NAN;
     int opt;
     sl_error e;
-    while ((opt = getopt(argc, argv, "r:n:s:S:b:dR:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:s:S:b:dgR:D:")) != -1) {
         switch (opt) {
         case 'r': o->records = optarg; break;
         case 'n': o->max_records = (size_t)atol(optarg); break;
         case 's': o->nsyn = (size_t)atol(optarg); break;
         case 'S': o->seed = (uint64_t)atoll(optarg); break;
         case 'd': o->descr_only = 1; break;
+        case 'g': o->ground_scatter = 1; break;
         case 'R': o->fixed = atof(optarg); break;
+        case 'D':
+            if (!(o->dump = fopen(optarg, "w"))) {
+                fprintf(stderr, "tailfloors: cannot write %s\n", optarg);
+                return 1;
+            }
+            break;
         case 'b':
             if (o->nb == MAX_B) {
                 fprintf(stderr, "tailfloors: at most %d buildings\n", MAX_B);
@@ -441,7 +558,7 @@ static int parse_options(int argc, char **argv, tf_opts *o)
             break;
         default:
             fprintf(stderr, "usage: tailfloors [-r dir] [-n max] [-s nsyn] [-S seed] "
-                            "[-b N:f1_h1:f1_h2:f1_v:damping]... [-d] [-R sigma]\n");
+                            "[-b N:f1_h1:f1_h2:f1_v:damping]... [-d] [-g] [-R sigma] [-D dumpfile]\n");
             return 1;
         }
     }
@@ -498,7 +615,9 @@ int main(int argc, char **argv)
     }
     printf("records: %zu of %s, scaled to %.1f g; %zu synthesized sets per floor, seed %llu\n",
            nrec, rdir, PGA_G, o.nsyn, (unsigned long long)o.seed);
-    for (size_t ib = 0; ib < o.nb; ib++) {
+    if (o.ground_scatter)
+        ground_scatter(g, nrec);
+    for (size_t ib = 0; !o.ground_scatter && ib < o.nb; ib++) {
         tf_sum sum;
         memset(&sum, 0, sizeof sum);
         for (int v = 0; v < NVAR; v++)
