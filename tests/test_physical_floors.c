@@ -130,14 +130,16 @@ static void slide_all(const sl_set *sets, size_t n, const double *mu, double *pk
 }
 
 /* As slide_all, the way `seislide run` slides a floor's synthesized sets:
- * with its default intensity scatter, each set's expected peak over the
- * intensity factor (method/scatter.h (R3)). */
-static void slide_run_way(const sl_set *sets, size_t n, const double *mu, double *pk)
+ * with the floor's intensity scatter sigma (method/scatter.h (R4), the
+ * run's default), each set's expected peak over the intensity factor
+ * (method/scatter.h (R3)). */
+static void slide_run_way(const sl_set *sets, size_t n, const double *mu, double sigma,
+                          double *pk)
 {
     sl_error e;
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    sl_scatter *sc = sl_scatter_alloc(SL_ANALYSIS_SCATTER, mu, NMU, &e);
+    sl_scatter *sc = sl_scatter_alloc(sigma, mu, NMU, &e);
     CHECK(sc && sl_scatter_slide_batch(sc, sets, n, &so, pk, NULL, &e) == SL_OK, "%s", e.msg);
     sl_scatter_free(sc);
 }
@@ -199,7 +201,7 @@ static void floor_synth(const char *path, const double *mu, double *syn, double 
     sl_set sets[NSYN];
     for (int k = 0; k < NSYN; k++)
         sets[k] = out[k].set;
-    slide_run_way(sets, NSYN, mu, syn);
+    slide_run_way(sets, NSYN, mu, sl_scatter_sigma_of_floor(fl), syn);
     *pga_zpa = 0;
     for (int k = 0; k < NSYN; k++)
         *pga_zpa += (sl_motion_pga(sets[k].h1) / fl->comp[SL_FLOOR_H1].zpa_ms2 +
@@ -445,7 +447,9 @@ static void test_ground(void)
      * seeds 12-14; docs/synthesis.md 12). Weak with 8 sets (scatter 0.05
      * still passes: 0.61 ± 0.15 at 0.9); the floors' band catches 0.10. */
     double synr[NSYN * NMU];
-    slide_run_way(sets, NSYN, mu, synr);
+    const sl_spectrum *h[2] = {tgt[0].spec, tgt[1].spec};
+    const double zpa[2] = {tgt[0].zpa_ms2, tgt[1].zpa_ms2};
+    slide_run_way(sets, NSYN, mu, sl_scatter_sigma_of_fc(sl_scatter_fc_hz(h, zpa)), synr);
     if (verbose())
         fprintf(stderr, "  ground, slid the run's way (intensity scatter) / matched:");
     for (int k = 0; k < NMU; k++) {

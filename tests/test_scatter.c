@@ -309,9 +309,12 @@ static void test_analysis_wiring(void)
     sl_analysis *a = sl_analysis_run(fl, &o, &err);
     CHECK(a != NULL, "analysis: %s", err.msg);
     if (a) {
-        CHECK(a->scatter == SL_ANALYSIS_SCATTER && a->n_nltha_mu > 2, "scatter %g, %zu mu",
-              a->scatter, a->n_nltha_mu);
-        sl_scatter *s = sl_scatter_alloc(o.scatter, mu, 2, &err);
+        /* the default: the floor's own sigma (R4), reported as used */
+        CHECK(o.scatter < 0 && a->scatter == sl_scatter_sigma_of_floor(fl) && a->scatter > 0 &&
+                  a->n_nltha_mu > 2,
+              "scatter %g (floor's %g), %zu mu", a->scatter, sl_scatter_sigma_of_floor(fl),
+              a->n_nltha_mu);
+        sl_scatter *s = sl_scatter_alloc(a->scatter, mu, 2, &err);
         sl_slide_opts so;
         sl_slide_opts_default(&so);
         sl_set sets[3] = {a->sets[0].set, a->sets[1].set, a->sets[2].set};
@@ -325,6 +328,14 @@ static void test_analysis_wiring(void)
     o.scatter = 1.5;
     CHECK(sl_analysis_run(fl, &o, &err) == NULL && strstr(err.msg, "scatter"), "bad scatter: %s",
           err.msg);
+    o.scatter = NAN; /* not "derive": a NaN is refused */
+    CHECK(sl_analysis_run(fl, &o, &err) == NULL && strstr(err.msg, "scatter"), "NaN scatter: %s",
+          err.msg);
+    o.scatter = 0.25; /* an override is used as given */
+    o.n_sets = 2;
+    sl_analysis *a2 = sl_analysis_run(fl, &o, &err);
+    CHECK(a2 && a2->scatter == 0.25, "override: %s", a2 ? "scatter differs" : err.msg);
+    sl_analysis_free(a2);
     sl_floor_free(fl);
 }
 

@@ -59,12 +59,12 @@ static const sl_spectrum *matched(const sl_floor *fl, sl_floor_comp c)
     return NULL;
 }
 
-double sl_scatter_floor_fc_hz(const sl_floor *fl)
+double sl_scatter_fc_hz(const sl_spectrum *const h[2], const double zpa_ms2[2])
 {
     double w = 0, wl = 0, best = -1, f_best = NAN; /* (R5) sums; the highest SA */
-    for (int c = SL_FLOOR_H1; c <= SL_FLOOR_H2; c++) {
-        const sl_spectrum *s = fl ? matched(fl, (sl_floor_comp)c) : NULL;
-        const double zpa = fl ? fl->comp[c].zpa_ms2 : 0;
+    for (int c = 0; c < 2; c++) {
+        const sl_spectrum *s = h[c];
+        const double zpa = zpa_ms2[c];
         if (!s || s->n < 1 || !(zpa > 0))
             return NAN;
         for (size_t j = 0; j < s->n; j++)
@@ -74,16 +74,26 @@ double sl_scatter_floor_fc_hz(const sl_floor *fl)
             continue;
         const double l0 = log(s->f_hz[0]), l1 = log(s->f_hz[s->n - 1]);
         const size_t m = (size_t)ceil((l1 - l0) / log(10.0) * SL_SCATTER_FC_PER_DECADE) + 1;
-        const double h = (l1 - l0) / (double)(m - 1);
+        const double h_ln = (l1 - l0) / (double)(m - 1);
         for (size_t q = 0; q < m; q++) { /* trapezoid rule in ln f */
-            double lf = q + 1 == m ? l1 : l0 + h * (double)q;
+            const int end = q == 0 || q + 1 == m;
+            double lf = q + 1 == m ? l1 : l0 + h_ln * (double)q;
             double f = q == 0 ? s->f_hz[0] : q + 1 == m ? s->f_hz[s->n - 1] : exp(lf);
-            double e = fmax(sl_spectrum_interp(s, f) / zpa - 1, 0) * (q == 0 || q + 1 == m ? 0.5 : 1);
+            double e = fmax(sl_spectrum_interp(s, f) / zpa - 1, 0) * (end ? 0.5 : 1.0);
             w += e;
             wl += e * lf;
         }
     }
     return w > 0 ? exp(wl / w) : f_best;
+}
+
+double sl_scatter_floor_fc_hz(const sl_floor *fl)
+{
+    if (!fl)
+        return NAN;
+    const sl_spectrum *h[2] = {matched(fl, SL_FLOOR_H1), matched(fl, SL_FLOOR_H2)};
+    const double zpa[2] = {fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2};
+    return sl_scatter_fc_hz(h, zpa);
 }
 
 double sl_scatter_sigma_of_floor(const sl_floor *fl)

@@ -88,8 +88,14 @@
  * (the run, the probability of tipping). */
 double sl_scatter_sigma_of_floor(const sl_floor *fl);
 
-/* f_c of (R5), Hz; NAN as above. */
+/* f_c of (R5), Hz, of a floor; NAN as above. */
 double sl_scatter_floor_fc_hz(const sl_floor *fl);
+
+/* f_c of (R5), Hz, of two horizontal spectra h[0], h[1] (each at the
+ * damping the motions are matched at) with their ZPAs zpa_ms2[] (e.g. the
+ * targets of synth.h: spec and zpa); NAN when one is missing, empty or its
+ * ZPA not > 0. */
+double sl_scatter_fc_hz(const sl_spectrum *const h[2], const double zpa_ms2[2]);
 
 /* sigma of (R4) at a centroid frequency f_hz (> 0; NAN otherwise). */
 double sl_scatter_sigma_of_fc(double f_hz);
