@@ -1,4 +1,4 @@
-# seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate physfloors.
+# seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate physfloors tailfloors.
 CC      ?= cc
 PREFIX  ?= /usr/local
 LIBDIR  ?= $(PREFIX)/lib
@@ -53,7 +53,7 @@ STUDY_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(shell grep -l '^\#include
 # found by the compiler, so a header added to or moved under seislide.h follows.
 PUBLIC_H  := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
-.PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant plausfloors
+.PHONY: all test bench study install clean asan check-tools mutate physfloors tailfloors bench-plant plausfloors
 all: $(PROG) $(SHLIB) $(TEST_BIN)
 
 # (the library's objects are rebuilt when the Makefile changes: a tree
@@ -116,6 +116,12 @@ study: $(PROG)
 # three-component record of ../shared/records (docs/synthesis.md 10; minutes).
 physfloors: $(BUILD)/tools/physfloors
 	nice $(BUILD)/tools/physfloors -x
+
+# The intensity tail near the sliding threshold on buildings of other periods and
+# dampings (docs/validation.md, "The intensity tail"; the default buildings: the
+# 5 % building, a stiff 3 % and a soft 2 % one; minutes).
+tailfloors: $(BUILD)/tools/tailfloors
+	nice $(BUILD)/tools/tailfloors -s 48
 
 # The worst ratios of physical floor spectra behind the plausibility rules of floor
 # files (docs/formats-floor.md, "Plausibility"; minutes).

@@ -22,7 +22,11 @@
  *            repeatable; default: the buildings of the default list),
  *            -d (descriptors only: the physical floor motions and the
  *            floor spectra, no synthesis, no sliding; fast),
- *            -R SIGMA (one more column: a fixed scatter)
+ *            -R SIGMA (one more column: a fixed scatter),
+ *            -x (what else carries the tail, one change at a time: the two
+ *            horizontals' intensities correlated as the physical motions'
+ *            instead of one common factor; a shorter strong motion; the
+ *            physical motions' near-peak cycles against their sliding)
  * Prints markdown tables and one "DATA" line per floor; exit 0, or 1 with
  * a message.
  */
@@ -31,6 +35,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include <gsl/gsl_cdf.h>
 
 #include "analysis.h"
 #include "core/compare.h"
@@ -51,7 +57,8 @@
 #define SIG_LAT 0.7 /* the lattice covers every sigma up to this */
 #define MAX_B 16
 #define SE_OK 0.35  /* points whose physical mean has a relative SE up to this count */
-#define NVAR 5      /* sigma 0, the default, the physical PGA's, the rule, -R */
+#define NVAR 5      /* sigma 0, the former default, the physical PGA's, the rule, -R */
+#define FORMER 0.30 /* the former default sigma, one for every floor */
 
 static const char *const default_b[] = {
     "3:3.0:4.2:14:0.05",   /* the building of docs/synthesis.md 10 */
@@ -64,6 +71,7 @@ typedef struct tf_opts {
     size_t max_records, nsyn, nb;
     uint64_t seed;
     int descr_only;
+    int experiments;    /* -x: one change at a time (experiments()) */
     int ground_scatter; /* -g: how the records' spectra scatter at one PGA */
     double fixed; /* -R, NAN: none */
     FILE *dump;   /* -D: every mean and SD for offline fits */
@@ -281,11 +289,13 @@ static double sigma_star(const double *mu, size_t nsyn, const double *L, size_t 
     return best;
 }
 
-static sl_set *synth(const tf_opts *o, const sl_floor *flr, sl_synth_set **outp)
+static sl_set *synth(const tf_opts *o, const sl_floor *flr, double hold_frac, sl_synth_set **outp)
 {
     sl_error e;
     sl_synth_params sp;
     sl_synth_params_default(&sp);
+    if (hold_frac > 0)
+        sp.hold_frac = hold_frac;
     sl_synth_target tgt[3];
     if (sl_synth_targets_floor(flr, 0, tgt, &e))
         die(&e);
@@ -320,6 +330,118 @@ static void dump_row(FILE *f, const char *tag, const char *b, size_t fl, double 
     for (int k = 0; k < NMU; k++)
         fprintf(f, " %.6g", sd[k]);
     fprintf(f, " %zu\n", n);
+}
+
+/* mean over sets of (R3) at sigma, sets slid directly (sl_scatter_slide_batch) */
+static double *run_way(const sl_set *sets, size_t n, const double *mu, double sigma)
+{
+    sl_error e;
+    sl_slide_opts so;
+    sl_slide_opts_default(&so);
+    sl_scatter *sc = sl_scatter_alloc(sigma, mu, NMU, &e);
+    double *y = xcalloc(n * NMU, sizeof *y);
+    if (!sc || sl_scatter_slide_batch(sc, sets, n, &so, y, NULL, &e))
+        die(&e);
+    sl_scatter_free(sc);
+    return y;
+}
+
+static void ratio_row(const char *label, const double *a, size_t na, const double *b, size_t nb)
+{
+    printf("| %s |", label);
+    for (int k = 0; k < NMU; k++) {
+        double se, r = sl_pf_ratio(a + k, na, NMU, b + k, nb, NMU, &se);
+        printf(" %.2f ± %.2f |", r, se);
+    }
+    printf("\n");
+}
+
+/* -x: one change at a time against the run's model (one factor on both
+ * horizontals, sigma of (R4), the default synthesis). */
+static void experiments(const tf_opts *o, const sl_floor *flr, const sl_set *fm, const sl_set *fn,
+                        size_t nrec, const sl_set *syn, const double *mu, double sigma,
+                        double rho, const double *phys, const double *physn)
+{
+    enum { K = 8 }; /* factor draws per set (Latin hypercube in z1, z2) */
+    const size_t n = o->nsyn;
+    sl_set *t = xcalloc(n * K, sizeof *t);
+    double *mc[2];
+    sl_error e;
+    /* 1. the two horizontals' factors correlated as the physical motions'
+     * ln PGA (rho) instead of one common factor (rho = 1); the same z1 */
+    for (int v = 0; v < 2; v++) {
+        const double r = v ? rho : 1.0;
+        for (size_t i = 0; i < n; i++)
+            for (size_t k = 0; k < K; k++) {
+                double z1 = gsl_cdf_ugaussian_Pinv(((double)k + 0.5) / K);
+                double w = gsl_cdf_ugaussian_Pinv(((double)((k * 3 + i) % K) + 0.5) / K);
+                double z2 = r * z1 + sqrt(fmax(1 - r * r, 0)) * w;
+                double f1 = exp(sigma * z1 - 0.5 * sigma * sigma);
+                double f2 = exp(sigma * z2 - 0.5 * sigma * sigma);
+                sl_set *c = &t[i * K + k];
+                c->h1 = sl_motion_copy(syn[i].h1);
+                c->h2 = sl_motion_copy(syn[i].h2);
+                c->v = sl_motion_copy(syn[i].v);
+                if (!c->h1 || !c->h2 || !c->v) {
+                    fprintf(stderr, "tailfloors: out of memory\n");
+                    exit(1);
+                }
+                sl_motion_scale(c->h1, f1);
+                sl_motion_scale(c->h2, f2);
+            }
+        mc[v] = slide(t, n * K, mu, NMU);
+        for (size_t i = 0; i < n * K; i++)
+            sl_set_free_motions(&t[i]);
+    }
+    printf("\n| -x: one change at a time | μg/ZPA 0.1 | 0.2 | 0.3 | 0.4 | 0.5 | 0.6 | 0.7 | 0.8 | 0.9 "
+           "| 1.0 |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    char lab[160];
+    snprintf(lab, sizeof lab, "H1, H2 factors correlated %.2f (physical) / one common factor "
+             "(sigma %.2f, %d draws a set)", rho, sigma, K);
+    ratio_row(lab, mc[1], n * K, mc[0], n * K);
+    /* 2. a shorter strong motion: the envelope's hold 0.40 instead of 0.55 */
+    sl_synth_set *out2;
+    sl_set *syn2 = synth(o, flr, 0.40, &out2);
+    tf_desc d2, d1;
+    describe(syn2, n, &d2);
+    describe(syn, n, &d1);
+    double *y2 = run_way(syn2, n, mu, sigma), *y1 = run_way(syn, n, mu, sigma);
+    snprintf(lab, sizeof lab, "hold 0.40 (D5-75 %.1f s) / hold 0.55 (%.1f s; physical %.1f s)",
+             d2.d575, d1.d575, 0.0);
+    tf_desc dp;
+    describe(fm, nrec, &dp);
+    snprintf(lab, sizeof lab, "hold 0.40 (D5-75 %.1f s) / hold 0.55 (%.1f s; physical %.1f s)",
+             d2.d575, d1.d575, dp.d575);
+    ratio_row(lab, y2, n, y1, n);
+    ratio_row("synthesized, hold 0.40, rule / physical", y2, n, phys, nrec);
+    for (size_t k = 0; k < n; k++)
+        sl_synth_set_clear(&out2[k]);
+    free(out2);
+    free(syn2);
+    /* 3. near-peak cycles: the physical motions at one PGA, grouped by the
+     * peaks above 0.9 PGA of their stronger horizontal */
+    double grp[3][NMU] = {{0}};
+    size_t ng[3] = {0};
+    for (size_t r = 0; r < nrec; r++) {
+        const sl_motion *m = sl_motion_pga(fn[r].h1) >= sl_motion_pga(fn[r].h2) ? fn[r].h1 : fn[r].h2;
+        size_t c = sl_realism_peaks_above(m->acc_ms2, m->n, 0.9);
+        int gi = c <= 1 ? 0 : c == 2 ? 1 : 2;
+        ng[gi]++;
+        for (int k = 0; k < NMU; k++)
+            grp[gi][k] += physn[r * NMU + k];
+    }
+    printf("| physical at one PGA, mean sliding (mm) with 1 / 2 / >= 3 peaks above 0.9 PGA (%zu / "
+           "%zu / %zu motions) |", ng[0], ng[1], ng[2]);
+    for (int k = 0; k < NMU; k++)
+        printf(" %.1f / %.1f / %.1f |", 1e3 * grp[0][k] / (double)(ng[0] ? ng[0] : 1),
+               1e3 * grp[1][k] / (double)(ng[1] ? ng[1] : 1), 1e3 * grp[2][k] / (double)(ng[2] ? ng[2] : 1));
+    printf("\n");
+    (void)e;
+    free(y1);
+    free(y2);
+    free(mc[0]);
+    free(mc[1]);
+    free(t);
 }
 
 static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, size_t nrec,
@@ -383,7 +505,7 @@ static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, 
             die(&e);
     double *physn = slide(fn, nrec, mu, NMU);
     sl_synth_set *out;
-    sl_set *syn = synth(o, flr, &out);
+    sl_set *syn = synth(o, flr, 0, &out);
     describe(syn, o->nsyn, &ds);
     printf("  synthesized: sigma_ln larger-H PGA %.3f; peaks above 0.9 PGA %.1f (max %zu); D5-75 "
            "%.1f s\n",
@@ -395,7 +517,7 @@ static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, 
     size_t nL;
     const double *L = sl_scatter_grid(lat, &nL);
     double *uL = slide(syn, o->nsyn, L, nL);
-    double sig[NVAR] = {0, SL_ANALYSIS_SCATTER, dp.s_pga, s_rule, o->fixed};
+    double sig[NVAR] = {0, FORMER, dp.s_pga, s_rule, o->fixed};
     const char *nm[NVAR] = {"sigma 0", "sigma 0.30", "sigma = physical PGA's", "rule", "-R"};
     double *y[NVAR];
     for (int v = 0; v < NVAR; v++) {
@@ -409,6 +531,8 @@ static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, 
             memcpy(y[v], s0, o->nsyn * NMU * sizeof *s0);
     }
     double sst = sigma_star(mu, o->nsyn, L, nL, uL, phys, nrec);
+    if (o->experiments)
+        experiments(o, flr, fm, fn, nrec, syn, mu, s_rule, dp.rho, phys, physn);
     if (o->dump) {
         fprintf(o->dump, "F %s %zu %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.2f %.2f %.2f %.2f\n",
                 o->bspec[ib], fl, pz[0], fpk[0], pz[1], fpk[1], r25[0], r25[1], dp.s_pga,
@@ -532,7 +656,7 @@ static int parse_options(int argc, char **argv, tf_opts *o)
     o->fixed = NAN;
     int opt;
     sl_error e;
-    while ((opt = getopt(argc, argv, "r:n:s:S:b:dgR:D:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:s:S:b:dgxR:D:")) != -1) {
         switch (opt) {
         case 'r': o->records = optarg; break;
         case 'n': o->max_records = (size_t)atol(optarg); break;
@@ -540,6 +664,7 @@ static int parse_options(int argc, char **argv, tf_opts *o)
         case 'S': o->seed = (uint64_t)atoll(optarg); break;
         case 'd': o->descr_only = 1; break;
         case 'g': o->ground_scatter = 1; break;
+        case 'x': o->experiments = 1; break;
         case 'R': o->fixed = atof(optarg); break;
         case 'D':
             if (!(o->dump = fopen(optarg, "w"))) {
@@ -558,7 +683,7 @@ static int parse_options(int argc, char **argv, tf_opts *o)
             break;
         default:
             fprintf(stderr, "usage: tailfloors [-r dir] [-n max] [-s nsyn] [-S seed] "
-                            "[-b N:f1_h1:f1_h2:f1_v:damping]... [-d] [-g] [-R sigma] [-D dumpfile]\n");
+                            "[-b N:f1_h1:f1_h2:f1_v:damping]... [-d] [-g] [-x] [-R sigma] [-D dumpfile]\n");
             return 1;
         }
     }
