@@ -11,11 +11,12 @@
  * NLTHA engine (sl_slide_batch) slides a block on the physical and on the
  * synthesized sets. The issue asks for the ratio of the mean peak sliding,
  * synthesized / physical, in [0.75, 1.33] at mu g/ZPA = 0.1 ... 0.9 on every
- * floor. MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 10):
- * 0.79-0.97 at mu g/ZPA 0.1-0.5, 0.78-0.88 at 0.7, 0.75-1.07 at 0.9 (SE
- * 0.07-0.17), inside the band everywhere; without the intensity scatter
- * 0.45-0.51 at 0.7 and 0.10-0.15 at 0.9. Setting the scatter to 0.10 fails
- * this test.
+ * floor. MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 10),
+ * the synthesized sets slid with each floor's own intensity scatter
+ * (method/scatter.h (R4): 0.354-0.369 here): 0.81-0.95 at mu g/ZPA
+ * 0.1-0.5, 0.89-0.98 at 0.7, 0.97-1.35 at 0.9 (SE 0.07-0.22), inside the
+ * band or within 1 SE of it; without the intensity scatter 0.45-0.51 at 0.7
+ * and 0.10-0.15 at 0.9. Every floor's sigma 0.10 fails this test.
  * This test, on 16 of those records, asserts: agreement with the full
  * comparison within 3 SE of its own ratio (+ 0.02), the issue's band within
  * 2 SE where the full comparison meets it, broadened (+-15 %) spectra sliding
@@ -76,9 +77,9 @@ static const char *const recs[] = {
  * mu g/ZPA = 0.1 ... 0.9 per floor, and ground (synthesized RG 1.60 /
  * records matched to RG 1.60). This test's subset must agree with it within
  * 3 standard errors of its own ratio (P1 of study/physfloor.h) plus 0.02. */
-static const double ref_floor[3][NMU] = {{0.79, 0.82, 0.83, 0.88, 1.07},
-                                         {0.89, 0.90, 0.84, 0.78, 0.75},
-                                         {0.95, 0.97, 0.90, 0.86, 0.80}};
+static const double ref_floor[3][NMU] = {{0.81, 0.84, 0.87, 0.98, 1.35},
+                                         {0.87, 0.86, 0.86, 0.89, 0.98},
+                                         {0.88, 0.95, 0.91, 0.94, 0.97}};
 static const double ref_ground[NMU] = {0.86, 0.89, 0.81, 0.76, 0.63};
 
 static int read_recs(const char *shared, sl_set *g)
