@@ -352,6 +352,62 @@ static void test_floors(void)
         sl_set_free_motions(&g[r]);
 }
 
+/* The intensity tail on a soft, lightly damped building (issue 41;
+ * docs/validation.md, "The intensity tail"): floor 4 of the 5-storey
+ * building of H modes 1.6 and 1.9 Hz at 2 % (the narrowest floor there,
+ * physical PGA log standard deviation 0.44 on 83 records). Synthesized sets
+ * slid with the floor's sigma (R4) against the physical floor motions of the
+ * test's records. MEASURED in the full comparison (tools/tailfloors.c, 83
+ * records, 48 sets, sigma 0.457): 0.93-1.01 at mu g/ZPA 0.1-0.5, 1.02-1.23
+ * at 0.6-1.0 (SE 0.11-0.25); with the former constant 0.30, 0.67-0.80 at
+ * 0.8-1.0. Asserted: the issue's band within 2 SE at every mu g/ZPA (16
+ * records, 8 sets: SE 0.12-0.61, so a weak check), and the floor's sigma
+ * 0.40-0.50 (the rule's frequency term: the former constant was 0.30). */
+static void test_tail(void)
+{
+    const char *shared = harness_shared_dir();
+    if (!shared)
+        SKIP("../shared not found (set SEISLIDE_SHARED): the tail not checked");
+    sl_set g[NREC], fm[NREC];
+    size_t nrec = (size_t)read_recs(shared, g);
+    CHECK(nrec >= 12, "only %zu records usable", nrec);
+    const sl_building b = {5, {1.6, 1.9, 12.0}, 0.02};
+    sl_error e;
+    double zpa = 0, f[NF], mu[NMU], phys[NREC * NMU], syn[NSYN * NMU], ratio[NMU];
+    for (size_t r = 0; r < nrec; r++) {
+        CHECK(sl_building_floor(&b, 4, &g[r], &fm[r], &e) == SL_OK, "%s", e.msg);
+        zpa += sl_set_pga_h(&fm[r]) / (double)nrec;
+    }
+    for (int j = 0; j < NF; j++)
+        f[j] = 0.1 * pow(500.0, (double)j / (NF - 1));
+    for (int k = 0; k < NMU; k++)
+        mu[k] = (0.1 + 0.2 * k) * zpa / SL_G;
+    slide_all(fm, nrec, mu, phys);
+    char dir[] = "/tmp/seislide-tail-XXXXXX", path[64];
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    snprintf(path, sizeof path, "%s/floor4.ini", dir);
+    CHECK(sl_pf_write_floor(path, "soft floor", fm, nrec, f, NF, 0, &e) == SL_OK, "%s", e.msg);
+    sl_floor *fl = sl_floor_load(path, &e);
+    CHECK(fl, "%s", e.msg);
+    if (fl) {
+        double sigma = sl_scatter_sigma_of_floor(fl);
+        CHECK(sigma > 0.40 && sigma < 0.50, "soft floor: sigma %.3f (83 records: 0.457)", sigma);
+        if (verbose())
+            fprintf(stderr, "  soft 2 %% building, floor 4: sigma %.3f\n", sigma);
+        double rlo[NOTHER], rhi[NOTHER], pz, rig;
+        floor_synth(path, mu, syn, rlo, rhi, &pz, &rig);
+        static const int in_band[NMU] = {1, 1, 1, 1, 1};
+        check_ratio("soft 2 % building, floor 4", syn, NSYN, phys, nrec, NULL, in_band, ratio);
+        sl_floor_free(fl);
+    }
+    remove(path);
+    rmdir(dir);
+    for (size_t r = 0; r < nrec; r++) {
+        sl_set_free_motions(&fm[r]);
+        sl_set_free_motions(&g[r]);
+    }
+}
+
 /* The building model against its closed forms: N = 3 frequency ratios
  * sin(3 pi/14)/sin(pi/14) = 2.802 and sin(5 pi/14)/sin(pi/14) = 4.049;
  * sum_r Gamma_r phi_r(j) = 1 on every floor (B5); a very stiff building
@@ -550,5 +606,6 @@ int main(void)
     RUN(test_building_model);
     RUN(test_ground);
     RUN(test_floors);
+    RUN(test_tail);
     return HARNESS_END("physical_floors");
 }
