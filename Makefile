@@ -118,7 +118,7 @@ physfloors: $(BUILD)/tools/physfloors
 	nice $(BUILD)/tools/physfloors -x
 
 # The intensity tail near the sliding threshold on buildings of other periods and
-# dampings (docs/validation.md, "The intensity tail"; the default buildings: the
+# dampings (docs/synthesis.md 11; the default buildings: the
 # 5 % building, a stiff 3 % and a soft 2 % one; minutes).
 tailfloors: $(BUILD)/tools/tailfloors
 	nice $(BUILD)/tools/tailfloors -s 48

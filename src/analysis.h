@@ -77,7 +77,7 @@
  * "Intensity scatter"). The default, SL_ANALYSIS_SCATTER_FLOOR (any value
  * < 0), derives it from each floor's spectrum (method/scatter.h (R4):
  * sl_scatter_sigma_of_floor; 0.35-0.46 on the buildings of
- * docs/validation.md, "The intensity tail"); a value >= 0 is that sigma for
+ * docs/synthesis.md 11); a value >= 0 is that sigma for
  * every floor (0: the sets as synthesized). */
 #define SL_ANALYSIS_SCATTER_FLOOR (-1.0)
 #define SL_ANALYSIS_SCATTER SL_ANALYSIS_SCATTER_FLOOR

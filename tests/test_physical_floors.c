@@ -353,7 +353,7 @@ static void test_floors(void)
 }
 
 /* The intensity tail on a soft, lightly damped building (issue 41;
- * docs/validation.md, "The intensity tail"): floor 4 of the 5-storey
+ * docs/synthesis.md 11): floor 4 of the 5-storey
  * building of H modes 1.6 and 1.9 Hz at 2 % (the narrowest floor there,
  * physical PGA log standard deviation 0.44 on 83 records). Synthesized sets
  * slid with the floor's sigma (R4) against the physical floor motions of the

@@ -1,8 +1,8 @@
 /*
  * tailfloors.c - the intensity tail near the sliding threshold: synthesized
  * floor sets against the physical floor motions behind their spectra, on
- * buildings of any period and damping (docs/validation.md, "The intensity
- * tail"; method/scatter.h (R4)).
+ * buildings of any period and damping (docs/synthesis.md 11, notes.md 3.9;
+ * method/scatter.h (R4)).
  *
  * Physical floor motions: the records of study/physfloor.h (every usable
  * three-component record, scaled to a larger horizontal PGA of 0.3 g)
