@@ -366,7 +366,6 @@ static void experiments(const tf_opts *o, const sl_floor *flr, const sl_set *fm,
     const size_t n = o->nsyn;
     sl_set *t = xcalloc(n * K, sizeof *t);
     double *mc[2];
-    sl_error e;
     /* 1. the two horizontals' factors correlated as the physical motions'
      * ln PGA (rho) instead of one common factor (rho = 1); the same z1 */
     for (int v = 0; v < 2; v++) {
@@ -406,8 +405,6 @@ static void experiments(const tf_opts *o, const sl_floor *flr, const sl_set *fm,
     describe(syn2, n, &d2);
     describe(syn, n, &d1);
     double *y2 = run_way(syn2, n, mu, sigma), *y1 = run_way(syn, n, mu, sigma);
-    snprintf(lab, sizeof lab, "hold 0.40 (D5-75 %.1f s) / hold 0.55 (%.1f s; physical %.1f s)",
-             d2.d575, d1.d575, 0.0);
     tf_desc dp;
     describe(fm, nrec, &dp);
     snprintf(lab, sizeof lab, "hold 0.40 (D5-75 %.1f s) / hold 0.55 (%.1f s; physical %.1f s)",
@@ -436,7 +433,6 @@ static void experiments(const tf_opts *o, const sl_floor *flr, const sl_set *fm,
         printf(" %.1f / %.1f / %.1f |", 1e3 * grp[0][k] / (double)(ng[0] ? ng[0] : 1),
                1e3 * grp[1][k] / (double)(ng[1] ? ng[1] : 1), 1e3 * grp[2][k] / (double)(ng[2] ? ng[2] : 1));
     printf("\n");
-    (void)e;
     free(y1);
     free(y2);
     free(mc[0]);
