@@ -1,4 +1,4 @@
-# seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate physfloors.
+# seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate physfloors tailfloors.
 CC      ?= cc
 PREFIX  ?= /usr/local
 LIBDIR  ?= $(PREFIX)/lib
@@ -60,8 +60,8 @@ STUDY_TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(shell grep -l '^\#include
 # found by the compiler, so a header added to or moved under seislide.h follows.
 PUBLIC_H  := $(filter src/%.h,$(shell $(CC) -MM -Isrc $(PKG_CFLAGS) src/seislide.h))
 
-.PHONY: all test bench study install clean asan check-tools mutate physfloors bench-plant plausfloors \
-  zpafloors rockfloors source-id FORCE
+.PHONY: all test bench study install clean asan check-tools mutate physfloors tailfloors bench-plant \
+  plausfloors zpafloors rockfloors source-id FORCE
 all: $(PROG) $(SHLIB) $(TEST_BIN)
 
 # The fingerprint (above), for tests and release notes.
@@ -140,9 +140,15 @@ physfloors: $(BUILD)/tools/physfloors
 	nice $(BUILD)/tools/physfloors -x
 
 # Rocking (probability of tipping) on synthesized floor sets against the physical
-# floor motions behind their spectra, three buildings (docs/validation.md; minutes).
+# floor motions behind their spectra, three buildings (docs/rocking.md; minutes).
 rockfloors: $(BUILD)/tools/rockfloors
 	nice $(BUILD)/tools/rockfloors
+
+# The intensity tail near the sliding threshold on buildings of other periods and
+# dampings (docs/synthesis.md 11; the default buildings: the
+# 5 % building, a stiff 3 % and a soft 2 % one; minutes).
+tailfloors: $(BUILD)/tools/tailfloors
+	nice $(BUILD)/tools/tailfloors -s 48
 
 # The worst ratios of physical floor spectra behind the plausibility rules of floor
 # files (docs/formats-floor.md, "Plausibility"; minutes).

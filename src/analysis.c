@@ -330,10 +330,10 @@ static sl_status check_opts(const sl_floor *fl, const sl_analysis_opts *o, sl_er
                                 "batch %zu must be >= 2, min batch %zu >= 1", o->max_sets,
                                 o->first_batch, o->min_batch);
     }
-    if (!(o->scatter >= 0 && o->scatter <= SL_SCATTER_SIGMA_MAX))
+    if (isnan(o->scatter) || o->scatter > SL_SCATTER_SIGMA_MAX) /* < 0: the floor's */
         return sl_error_set(err, SL_EINVAL, path, 0,
-                            "analysis: intensity scatter %g outside [0, %g]", o->scatter,
-                            SL_SCATTER_SIGMA_MAX);
+                            "analysis: intensity scatter %g outside [0, %g] (or < 0: the "
+                            "floor's)", o->scatter, SL_SCATTER_SIGMA_MAX);
     if (o->boot_resamples > 0 && !(o->band_level > 0 && o->band_level < 1))
         return sl_error_set(err, SL_EINVAL, path, 0, "analysis: band level %g outside (0, 1)",
                             o->band_level);
@@ -390,10 +390,13 @@ static sl_status run_alloc(run *r, sl_error *err)
         return sl_error_set(err, SL_ENOMEM, r->fl->path, 0, "out of memory");
     /* with scatter, each set's expected peak over its intensity (R3),
      * from the NLTHA on the scatter's log grid */
-    a->scatter = r->o->scatter;
+    a->scatter = r->o->scatter < 0 ? sl_scatter_sigma_of_floor(r->fl) : r->o->scatter; /* (R4) */
     a->n_nltha_mu = n_mu;
-    if (r->o->scatter > 0) {
-        if (!(r->scat = sl_scatter_alloc(r->o->scatter, r->o->mu, n_mu, err)))
+    if (!(a->scatter >= 0))
+        return sl_error_set(err, SL_EINVAL, r->fl->path, 0,
+                            "analysis: no intensity scatter from the floor's spectra");
+    if (a->scatter > 0) {
+        if (!(r->scat = sl_scatter_alloc(a->scatter, r->o->mu, n_mu, err)))
             return err ? err->code : SL_ENOMEM;
         sl_scatter_grid(r->scat, &a->n_nltha_mu);
     }

@@ -8,9 +8,10 @@
  *  2. NLTHA of every set over the friction grid, both horizontals coupled,
  *     with the vertical (slide.h); friction values whose mu g is at or above
  *     what a set can ever demand are not integrated (exactly zero); with
- *     opts.scatter > 0 (the default) a set's peak at mu is its expected peak
- *     over a log-normal intensity factor of its horizontals (method/scatter.h
- *     (R3)), from one NLTHA on a log friction grid;
+ *     an intensity scatter (opts.scatter; by default derived from the
+ *     floor's spectrum, method/scatter.h (R4)) a set's peak at mu is its
+ *     expected peak over a log-normal intensity factor of its horizontals
+ *     (method/scatter.h (R3)), from one NLTHA on a log friction grid;
  *     steps 1-2 run in batches of sets until the NLTHA design value is
  *     converged at every mu (below), or a fixed number of sets when
  *     opts.n_sets > 0;
@@ -73,10 +74,13 @@
 /* Record-to-record intensity scatter of the floor motions behind a floor
  * spectrum: log standard deviation of the sets' horizontal intensity,
  * averaged exactly over each set (method/scatter.h (R1)-(R3); docs/run.md,
- * "Intensity scatter"). 0.30 is the PGA scatter of physical floor motions
- * (83 real records through a 3-storey building: coefficient of variation
- * 0.24-0.31, sigma_ln = sqrt(ln(1 + CoV^2)) 0.24-0.30; docs/synthesis.md 11). */
-#define SL_ANALYSIS_SCATTER 0.30
+ * "Intensity scatter"). The default, SL_ANALYSIS_SCATTER_FLOOR (any value
+ * < 0), derives it from each floor's spectrum (method/scatter.h (R4):
+ * sl_scatter_sigma_of_floor; 0.35-0.46 on the buildings of
+ * docs/synthesis.md 11); a value >= 0 is that sigma for
+ * every floor (0: the sets as synthesized). */
+#define SL_ANALYSIS_SCATTER_FLOOR (-1.0)
+#define SL_ANALYSIS_SCATTER SL_ANALYSIS_SCATTER_FLOOR
 
 /* Why a floor stopped adding sets. */
 typedef enum sl_analysis_stop {
@@ -108,8 +112,10 @@ typedef struct sl_analysis_opts {
     size_t n_mu;
     unsigned substeps;           /* 2-D sub-steps per sample: 0 = error-controlled by rtol */
     double rtol;                 /* 2-D: relative error of the peaks (SL_SLIDE_DEFAULT_RTOL) */
-    double scatter;              /* intensity scatter sigma_ln of the sets (SL_ANALYSIS_SCATTER;
-                                    0: the sets as synthesized) */
+    double scatter;              /* intensity scatter sigma_ln of the sets: < 0 (the default,
+                                    SL_ANALYSIS_SCATTER_FLOOR): derived from the floor's
+                                    spectrum (sl_scatter_sigma_of_floor); >= 0: that value
+                                    for every floor (0: the sets as synthesized) */
     sl_clearance_policy policy;
     double fs_nltha, fs_asce;
     /* progress: step is "synthesis", "nltha", "asce"; done of total */
@@ -163,7 +169,8 @@ typedef struct sl_analysis {
     uint64_t floor_seed;        /* the seed the motions came from */
     double zpa_h_ms2;           /* larger horizontal ZPA of the floor */
     double av_ms2;              /* vertical ZPA (A_v of the ASCE method) */
-    double scatter;             /* the intensity scatter sigma_ln used (opts.scatter) */
+    double scatter;             /* the intensity scatter sigma_ln used: opts.scatter, or
+                                   the floor's (R4) when opts.scatter < 0 */
     size_t n_nltha_mu;          /* friction values each set was integrated at */
     size_t n_sets;
     sl_synth_set *sets;         /* the synthesized motions and their checks */

@@ -107,9 +107,10 @@ static int pool(const char *path, size_t N, uint64_t seed)
         sets[s] = ss[s].set;
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    /* the run's intensity scatter (method/scatter.h (R3)); SCATTER=0: none */
+    /* the run's intensity scatter (method/scatter.h (R3), the floor's by (R4));
+     * SCATTER=S: that sigma, 0: none */
     const char *sv = getenv("SCATTER");
-    double sigma = sv ? atof(sv) : SL_ANALYSIS_SCATTER;
+    double sigma = sv ? atof(sv) : sl_scatter_sigma_of_floor(fl);
     sl_scatter *sc = sigma > 0 ? sl_scatter_alloc(sigma, mu, K, &err) : NULL;
     /* CROSS=1: the run's crossed blocks (method/cross.h): each block of three
      * sets also analysed in its Latin square, one line per block (the means
@@ -331,7 +332,7 @@ static int vr(const char *path, size_t N, uint64_t seed, size_t M)
     sl_set *cross = calloc(M * M, sizeof *cross);
     double *x = malloc(N * K * sizeof *x), *x1 = malloc(2 * N * K * sizeof *x1);
     double *xc = malloc(M * M * K * sizeof *xc), *y = malloc(N * (6 + NFV) * sizeof *y);
-    sl_scatter *sc = sl_scatter_alloc(SL_ANALYSIS_SCATTER, mu, K, &err);
+    sl_scatter *sc = sl_scatter_alloc(sl_scatter_sigma_of_floor(fl), mu, K, &err);
     if (!plan || !ss || !sets || !one || !cross || !x || !x1 || !xc || !y || !sc)
         return 1;
     sl_synth_make_sets(plan, tgt, sl_analysis_floor_seed(seed, fl), 0, N, ss, NULL, NULL, &err);

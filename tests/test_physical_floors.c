@@ -11,11 +11,12 @@
  * NLTHA engine (sl_slide_batch) slides a block on the physical and on the
  * synthesized sets. The issue asks for the ratio of the mean peak sliding,
  * synthesized / physical, in [0.75, 1.33] at mu g/ZPA = 0.1 ... 0.9 on every
- * floor. MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 10):
- * 0.79-0.97 at mu g/ZPA 0.1-0.5, 0.78-0.88 at 0.7, 0.75-1.07 at 0.9 (SE
- * 0.07-0.17), inside the band everywhere; without the intensity scatter
- * 0.45-0.51 at 0.7 and 0.10-0.15 at 0.9. Setting the scatter to 0.10 fails
- * this test.
+ * floor. MEASURED on 83 records (tools/physfloors.c, docs/synthesis.md 10),
+ * the synthesized sets slid with each floor's own intensity scatter
+ * (method/scatter.h (R4): 0.354-0.369 here): 0.81-0.95 at mu g/ZPA
+ * 0.1-0.5, 0.89-0.98 at 0.7, 0.97-1.35 at 0.9 (SE 0.07-0.22), inside the
+ * band or within 1 SE of it; without the intensity scatter 0.45-0.51 at 0.7
+ * and 0.10-0.15 at 0.9. Every floor's sigma 0.10 fails this test.
  * This test, on 16 of those records, asserts: agreement with the full
  * comparison within 3 SE of its own ratio (+ 0.02), the issue's band within
  * 2 SE where the full comparison meets it, broadened (+-15 %) spectra sliding
@@ -76,9 +77,9 @@ static const char *const recs[] = {
  * mu g/ZPA = 0.1 ... 0.9 per floor, and ground (synthesized RG 1.60 /
  * records matched to RG 1.60). This test's subset must agree with it within
  * 3 standard errors of its own ratio (P1 of study/physfloor.h) plus 0.02. */
-static const double ref_floor[3][NMU] = {{0.79, 0.82, 0.83, 0.88, 1.07},
-                                         {0.89, 0.90, 0.84, 0.78, 0.75},
-                                         {0.95, 0.97, 0.90, 0.86, 0.80}};
+static const double ref_floor[3][NMU] = {{0.81, 0.84, 0.87, 0.98, 1.35},
+                                         {0.87, 0.86, 0.86, 0.89, 0.98},
+                                         {0.88, 0.95, 0.91, 0.94, 0.97}};
 static const double ref_ground[NMU] = {0.86, 0.89, 0.81, 0.76, 0.63};
 
 static int read_recs(const char *shared, sl_set *g)
@@ -130,14 +131,16 @@ static void slide_all(const sl_set *sets, size_t n, const double *mu, double *pk
 }
 
 /* As slide_all, the way `seislide run` slides a floor's synthesized sets:
- * with its default intensity scatter, each set's expected peak over the
- * intensity factor (method/scatter.h (R3)). */
-static void slide_run_way(const sl_set *sets, size_t n, const double *mu, double *pk)
+ * with the floor's intensity scatter sigma (method/scatter.h (R4), the
+ * run's default), each set's expected peak over the intensity factor
+ * (method/scatter.h (R3)). */
+static void slide_run_way(const sl_set *sets, size_t n, const double *mu, double sigma,
+                          double *pk)
 {
     sl_error e;
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    sl_scatter *sc = sl_scatter_alloc(SL_ANALYSIS_SCATTER, mu, NMU, &e);
+    sl_scatter *sc = sl_scatter_alloc(sigma, mu, NMU, &e);
     CHECK(sc && sl_scatter_slide_batch(sc, sets, n, &so, pk, NULL, &e) == SL_OK, "%s", e.msg);
     sl_scatter_free(sc);
 }
@@ -199,7 +202,7 @@ static void floor_synth(const char *path, const double *mu, double *syn, double 
     sl_set sets[NSYN];
     for (int k = 0; k < NSYN; k++)
         sets[k] = out[k].set;
-    slide_run_way(sets, NSYN, mu, syn);
+    slide_run_way(sets, NSYN, mu, sl_scatter_sigma_of_floor(fl), syn);
     *pga_zpa = 0;
     for (int k = 0; k < NSYN; k++)
         *pga_zpa += (sl_motion_pga(sets[k].h1) / fl->comp[SL_FLOOR_H1].zpa_ms2 +
@@ -349,6 +352,62 @@ static void test_floors(void)
         sl_set_free_motions(&g[r]);
 }
 
+/* The intensity tail on a soft, lightly damped building (issue 41;
+ * docs/synthesis.md 11): floor 4 of the 5-storey
+ * building of H modes 1.6 and 1.9 Hz at 2 % (the narrowest floor there,
+ * physical PGA log standard deviation 0.44 on 83 records). Synthesized sets
+ * slid with the floor's sigma (R4) against the physical floor motions of the
+ * test's records. MEASURED in the full comparison (tools/tailfloors.c, 83
+ * records, 48 sets, sigma 0.457): 0.93-1.01 at mu g/ZPA 0.1-0.5, 1.02-1.23
+ * at 0.6-1.0 (SE 0.11-0.25); with the former constant 0.30, 0.67-0.80 at
+ * 0.8-1.0. Asserted: the issue's band within 2 SE at every mu g/ZPA (16
+ * records, 8 sets: SE 0.12-0.61, so a weak check), and the floor's sigma
+ * 0.40-0.50 (the rule's frequency term: the former constant was 0.30). */
+static void test_tail(void)
+{
+    const char *shared = harness_shared_dir();
+    if (!shared)
+        SKIP("../shared not found (set SEISLIDE_SHARED): the tail not checked");
+    sl_set g[NREC], fm[NREC];
+    size_t nrec = (size_t)read_recs(shared, g);
+    CHECK(nrec >= 12, "only %zu records usable", nrec);
+    const sl_building b = {5, {1.6, 1.9, 12.0}, 0.02};
+    sl_error e;
+    double zpa = 0, f[NF], mu[NMU], phys[NREC * NMU], syn[NSYN * NMU], ratio[NMU];
+    for (size_t r = 0; r < nrec; r++) {
+        CHECK(sl_building_floor(&b, 4, &g[r], &fm[r], &e) == SL_OK, "%s", e.msg);
+        zpa += sl_set_pga_h(&fm[r]) / (double)nrec;
+    }
+    for (int j = 0; j < NF; j++)
+        f[j] = 0.1 * pow(500.0, (double)j / (NF - 1));
+    for (int k = 0; k < NMU; k++)
+        mu[k] = (0.1 + 0.2 * k) * zpa / SL_G;
+    slide_all(fm, nrec, mu, phys);
+    char dir[] = "/tmp/seislide-tail-XXXXXX", path[64];
+    CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+    snprintf(path, sizeof path, "%s/floor4.ini", dir);
+    CHECK(sl_pf_write_floor(path, "soft floor", fm, nrec, f, NF, 0, &e) == SL_OK, "%s", e.msg);
+    sl_floor *fl = sl_floor_load(path, &e);
+    CHECK(fl, "%s", e.msg);
+    if (fl) {
+        double sigma = sl_scatter_sigma_of_floor(fl);
+        CHECK(sigma > 0.40 && sigma < 0.50, "soft floor: sigma %.3f (83 records: 0.457)", sigma);
+        if (verbose())
+            fprintf(stderr, "  soft 2 %% building, floor 4: sigma %.3f\n", sigma);
+        double rlo[NOTHER], rhi[NOTHER], pz, rig;
+        floor_synth(path, mu, syn, rlo, rhi, &pz, &rig);
+        static const int in_band[NMU] = {1, 1, 1, 1, 1};
+        check_ratio("soft 2 % building, floor 4", syn, NSYN, phys, nrec, NULL, in_band, ratio);
+        sl_floor_free(fl);
+    }
+    remove(path);
+    rmdir(dir);
+    for (size_t r = 0; r < nrec; r++) {
+        sl_set_free_motions(&fm[r]);
+        sl_set_free_motions(&g[r]);
+    }
+}
+
 /* The building model against its closed forms: N = 3 frequency ratios
  * sin(3 pi/14)/sin(pi/14) = 2.802 and sin(5 pi/14)/sin(pi/14) = 4.049;
  * sum_r Gamma_r phi_r(j) = 1 on every floor (B5); a very stiff building
@@ -445,7 +504,9 @@ static void test_ground(void)
      * seeds 12-14; docs/synthesis.md 12). Weak with 8 sets (scatter 0.05
      * still passes: 0.61 ± 0.15 at 0.9); the floors' band catches 0.10. */
     double synr[NSYN * NMU];
-    slide_run_way(sets, NSYN, mu, synr);
+    const sl_spectrum *h[2] = {tgt[0].spec, tgt[1].spec};
+    const double zpa[2] = {tgt[0].zpa_ms2, tgt[1].zpa_ms2};
+    slide_run_way(sets, NSYN, mu, sl_scatter_sigma_of_fc(sl_scatter_fc_hz(h, zpa)), synr);
     if (verbose())
         fprintf(stderr, "  ground, slid the run's way (intensity scatter) / matched:");
     for (int k = 0; k < NMU; k++) {
@@ -545,5 +606,6 @@ int main(void)
     RUN(test_building_model);
     RUN(test_ground);
     RUN(test_floors);
+    RUN(test_tail);
     return HARNESS_END("physical_floors");
 }

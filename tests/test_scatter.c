@@ -3,7 +3,8 @@
  * independent numerical integral, the exact scaling law (R2) of the block
  * (an invariance of its equation of motion, checked on the engine), (R3)
  * against the NLTHA run at every node and against Monte Carlo with scaled
- * motions, and the wiring into the per-floor analysis. */
+ * motions, the wiring into the per-floor analysis, and the sigma of a floor
+ * (R4)-(R5) against hand values and closed-form centroids. */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
@@ -309,9 +310,12 @@ static void test_analysis_wiring(void)
     sl_analysis *a = sl_analysis_run(fl, &o, &err);
     CHECK(a != NULL, "analysis: %s", err.msg);
     if (a) {
-        CHECK(a->scatter == SL_ANALYSIS_SCATTER && a->n_nltha_mu > 2, "scatter %g, %zu mu",
-              a->scatter, a->n_nltha_mu);
-        sl_scatter *s = sl_scatter_alloc(o.scatter, mu, 2, &err);
+        /* the default: the floor's own sigma (R4), reported as used */
+        CHECK(o.scatter < 0 && a->scatter == sl_scatter_sigma_of_floor(fl) && a->scatter > 0 &&
+                  a->n_nltha_mu > 2,
+              "scatter %g (floor's %g), %zu mu", a->scatter, sl_scatter_sigma_of_floor(fl),
+              a->n_nltha_mu);
+        sl_scatter *s = sl_scatter_alloc(a->scatter, mu, 2, &err);
         sl_slide_opts so;
         sl_slide_opts_default(&so);
         sl_set sets[3] = {a->sets[0].set, a->sets[1].set, a->sets[2].set};
@@ -325,6 +329,138 @@ static void test_analysis_wiring(void)
     o.scatter = 1.5;
     CHECK(sl_analysis_run(fl, &o, &err) == NULL && strstr(err.msg, "scatter"), "bad scatter: %s",
           err.msg);
+    o.scatter = NAN; /* not "derive": a NaN is refused */
+    CHECK(sl_analysis_run(fl, &o, &err) == NULL && strstr(err.msg, "scatter"), "NaN scatter: %s",
+          err.msg);
+    o.scatter = 0.25; /* an override is used as given */
+    o.n_sets = 2;
+    sl_analysis *a2 = sl_analysis_run(fl, &o, &err);
+    CHECK(a2 && a2->scatter == 0.25, "override: %s", a2 ? "scatter differs" : err.msg);
+    sl_analysis_free(a2);
+    sl_floor_free(fl);
+}
+
+/* sigma_g and (R4) at hand values: the table's nodes (0.1 x 10^(j/8) Hz),
+ * linear in ln f between them, constant beyond; sqrt(sigma_g^2 + 0.13^2),
+ * capped at SL_SCATTER_SIGMA_MAX. */
+static void test_rule_values(void)
+{
+    CHECK_CLOSE(sl_scatter_sigma_ground(1.0), 0.682, 1e-12, 0);
+    CHECK_CLOSE(sl_scatter_sigma_ground(0.1), 1.107, 1e-12, 0);
+    CHECK_CLOSE(sl_scatter_sigma_ground(0.1 * pow(10.0, 21.0 / 8)), 0.193, 1e-12, 0);
+    CHECK_CLOSE(sl_scatter_sigma_ground(0.01), 1.107, 1e-12, 0);   /* beyond the ends */
+    CHECK_CLOSE(sl_scatter_sigma_ground(100.0), 0.193, 1e-12, 0);
+    /* halfway in ln f between 1 Hz (0.682) and 10^(1/8) Hz (0.574) */
+    CHECK_CLOSE(sl_scatter_sigma_ground(pow(10.0, 1.0 / 16)), 0.628, 1e-12, 0);
+    /* a quarter of the way from 10^(6/8) x 0.1 Hz (0.311) to the next (0.322) */
+    CHECK_CLOSE(sl_scatter_sigma_ground(0.1 * pow(10.0, 14.25 / 8)), 0.31375, 1e-12, 0);
+    CHECK(isnan(sl_scatter_sigma_ground(0)) && isnan(sl_scatter_sigma_ground(-1)) &&
+              isnan(sl_scatter_sigma_of_fc(NAN)),
+          "f <= 0 or NaN: NaN");
+    CHECK_CLOSE(SL_SCATTER_SIGMA_0, 0.13, 0, 0);
+    CHECK_CLOSE(sl_scatter_sigma_of_fc(1.0), sqrt(0.682 * 0.682 + 0.13 * 0.13), 1e-12, 0);
+    CHECK_CLOSE(sl_scatter_sigma_of_fc(0.1 * pow(10.0, 6.0 / 8) * 10), sqrt(0.311 * 0.311 +
+                                                                             0.13 * 0.13),
+                1e-12, 0);
+    CHECK_CLOSE(sl_scatter_sigma_of_fc(0.1), SL_SCATTER_SIGMA_MAX, 0, 0); /* 1.115 capped */
+}
+
+/* A spectrum at 5 % (owned: sl_spectrum_free) with n points f[], sa[]. */
+static sl_spectrum *spec(size_t n, const double *f, const double *sa)
+{
+    sl_spectrum *s = sl_spectrum_alloc(n, 0.05);
+    for (size_t j = 0; s && j < n; j++)
+        s->f_hz[j] = f[j], s->sa_ms2[j] = sa[j];
+    return s;
+}
+
+/* (R5) against closed forms. x = ln f; the integrals are the trapezoid
+ * rule's on 100 points a decade (error O(h^2), h = ln 10 / 100). */
+static void test_rule_centroid(void)
+{
+    const double z[2] = {2.0, 2.0};
+    /* e = 1 on 1-100 Hz in both: f_c = 10 Hz (the middle in ln f), exactly */
+    const double f2[2] = {1, 100}, flat[2] = {4, 4};
+    sl_spectrum *a = spec(2, f2, flat), *b = spec(2, f2, flat);
+    const sl_spectrum *h[2] = {a, b};
+    CHECK_CLOSE(sl_scatter_fc_hz(h, z), 10.0, 1e-12, 0);
+    sl_spectrum_free(b);
+    /* H2 e = 3 on 10-1000 Hz, H1 e = 1 on 1-100 Hz: the weights 1 : 3 on
+     * equal ln f lengths centred at 10 and 100 Hz: ln f_c = (ln 10 + 3 ln 100) / 4 */
+    const double f3[2] = {10, 1000}, big[2] = {8, 8};
+    b = spec(2, f3, big);
+    h[1] = b;
+    CHECK_CLOSE(sl_scatter_fc_hz(h, z), pow(10.0, 1.75), 1e-12, 0);
+    sl_spectrum_free(b);
+    sl_spectrum_free(a);
+    /* a ramp in log-log: SA / ZPA = f^p on 1-10 Hz, p = log10 3 (3 at 10 Hz):
+     * e = exp(p x) - 1, x in [0, L = ln 10];
+     *   int e dx   = (exp(pL) - 1) / p - L
+     *   int x e dx = exp(pL) (L / p - 1 / p^2) + 1 / p^2 - L^2 / 2 */
+    {
+        const double fr[2] = {1, 10}, sr[2] = {2, 6}, L = log(10.0), p = log10(3.0);
+        a = spec(2, fr, sr);
+        const sl_spectrum *hr[2] = {a, a};
+        double i0 = (exp(p * L) - 1) / p - L;
+        double i1 = exp(p * L) * (L / p - 1 / (p * p)) + 1 / (p * p) - L * L / 2;
+        CHECK_CLOSE(sl_scatter_fc_hz(hr, z), exp(i1 / i0), 0, 2e-4);
+        sl_spectrum_free(a);
+    }
+    /* above, then below the ZPA: SA / ZPA = 2 at 10 Hz falling as f^-q,
+     * q = log10 4, to 0.5 at 100 Hz; e = 2 exp(-q x) - 1 > 0 only up to
+     * x0 = ln 2 / q (31.6 Hz), x = ln(f / 10):
+     *   int_0^x0 e dx   = 2 (1 - exp(-q x0)) / q - x0 = 1 / q - x0
+     *   int_0^x0 x e dx = 2 (1 - exp(-q x0) (1 + q x0)) / q^2 - x0^2 / 2 */
+    {
+        const double fd[2] = {10, 100}, sd[2] = {4, 1}, q = log10(4.0);
+        const double x0 = log(2.0) / q;
+        a = spec(2, fd, sd);
+        const sl_spectrum *hd[2] = {a, a};
+        double i0 = 1 / q - x0;
+        double i1 = 2 * (1 - exp(-q * x0) * (1 + q * x0)) / (q * q) - x0 * x0 / 2;
+        CHECK_CLOSE(sl_scatter_fc_hz(hd, z), 10 * exp(i1 / i0), 0, 2e-3);
+        sl_spectrum_free(a);
+    }
+    /* nowhere above the ZPA: the frequency of the highest SA (H2's) */
+    {
+        const double fn[3] = {1, 5, 50}, s1[3] = {1, 1.5, 1}, s2[3] = {1, 1, 1.8};
+        a = spec(3, fn, s1);
+        b = spec(3, fn, s2);
+        const sl_spectrum *hn[2] = {a, b};
+        CHECK_CLOSE(sl_scatter_fc_hz(hn, z), 50.0, 0, 0);
+        const double zbad[2] = {2.0, 0.0};
+        const sl_spectrum *hm[2] = {a, NULL};
+        CHECK(isnan(sl_scatter_fc_hz(hn, zbad)) && isnan(sl_scatter_fc_hz(hm, z)),
+              "a ZPA of 0 or a missing horizontal: NaN");
+        sl_spectrum_free(a);
+        sl_spectrum_free(b);
+    }
+    CHECK(isnan(sl_scatter_sigma_of_floor(NULL)), "no floor: NaN");
+}
+
+/* A floor file's sigma is (R4) at its (R5) centroid, from the spectra the
+ * synthesis matches (5 %), not the others of the file. */
+static void test_rule_floor(void)
+{
+    sl_error err;
+    sl_floor *fl = sl_floor_load("floors/04-roof36.ini", &err);
+    CHECK(fl != NULL, "floor: %s", err.msg);
+    if (!fl)
+        return;
+    const sl_spectrum *h[2] = {sl_floor_spectrum(fl, SL_FLOOR_H1, 0.05),
+                               sl_floor_spectrum(fl, SL_FLOOR_H2, 0.05)};
+    const double z[2] = {fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2};
+    double fc = sl_scatter_floor_fc_hz(fl), s = sl_scatter_sigma_of_floor(fl);
+    CHECK(h[0] && h[1], "the roof has 5 %% spectra");
+    CHECK_CLOSE(fc, sl_scatter_fc_hz(h, z), 0, 0);
+    CHECK_CLOSE(s, sl_scatter_sigma_of_fc(fc), 0, 0);
+    CHECK(s > SL_SCATTER_SIGMA_0 && s <= SL_SCATTER_SIGMA_MAX, "roof sigma %g", s);
+    const sl_spectrum *h2[2] = {sl_floor_spectrum(fl, SL_FLOOR_H1, 0.02),
+                                sl_floor_spectrum(fl, SL_FLOOR_H2, 0.02)};
+    CHECK(h2[0] && fabs(sl_scatter_fc_hz(h2, z) - fc) > 1e-6 * fc,
+          "the 2 %% spectra would give another centroid (the test would not see the damping)");
+    if (getenv("SEISLIDE_TEST_VERBOSE"))
+        fprintf(stderr, "  roof: f_c %.3f Hz, sigma %.4f\n", fc, s);
     sl_floor_free(fl);
 }
 
@@ -350,5 +486,8 @@ int main(void)
     RUN(test_quadrature);
     RUN(test_on_a_set);
     RUN(test_analysis_wiring);
+    RUN(test_rule_values);
+    RUN(test_rule_centroid);
+    RUN(test_rule_floor);
     return HARNESS_END("scatter");
 }

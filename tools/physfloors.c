@@ -10,7 +10,10 @@
  *            pga_sigma), -g (ground check only), -G (no ground),
  *            -F FMAX (floor spectra end at FMAX Hz, 50), -R SIGMA (record-to-
  *            record intensity scatter of the synthesized floor sets as the run
- *            applies it, method/scatter.h (R3); default the run's, 0 = none;
+ *            applies it, method/scatter.h (R3); default the run's: each
+ *            floor's own sigma, (R4); 0 = none;
+ *            -B N:f1_h1:f1_h2:f1_v:damping (the building, study/building.h;
+ *            default 3:3.0:4.2:14:0.05, the building of docs/synthesis.md 10);
  *            the ground comparison has none: both sides are matched sets);
  *            -x also moves H2 peaks (coincident, records' lags) and describes
  *            the records as recorded with each H scaled to 0.3 g and prints how
@@ -70,6 +73,7 @@ typedef struct pf_opts {
     int pair_match;        /* -P or -Q: each record's pair matched with one correction */
     int pair_max;          /* -Q: the larger of the two spectra instead of their geometric mean */
     double f_end_hz;       /* -F: the floor spectra end here */
+    sl_building building;  /* -B N:f1_h1:f1_h2:f1_v:damping (study/building.h) */
     /* -R: intensity scatter of the synthesized floor sets, as `seislide run`
      * applies it (method/scatter.h (R3); default the run's) */
     double scatter;
@@ -105,15 +109,20 @@ static double *slide(const sl_set *sets, size_t n, const double *mu)
 }
 
 /* As slide(), with the run's intensity scatter: each set's expected peak
- * over its intensity factor (method/scatter.h (R3)). */
-static double *slide_floor(const pf_opts *o, const sl_set *sets, size_t n, const double *mu)
+ * over its intensity factor (method/scatter.h (R3)); sigma -R, or by
+ * default the floor's, sigma_floor (R4). */
+static double *slide_floor(const pf_opts *o, const sl_set *sets, size_t n, const double *mu,
+                           double sigma_floor)
 {
-    if (!(o->scatter > 0))
+    const double sigma = o->scatter < 0 ? sigma_floor : o->scatter;
+    printf("  intensity scatter of the synthesized sets: %.3f%s\n", sigma,
+           o->scatter < 0 ? " (the floor's, method/scatter.h (R4))" : " (-R)");
+    if (!(sigma > 0))
         return slide(sets, n, mu);
     sl_error e;
     sl_slide_opts so;
     sl_slide_opts_default(&so);
-    sl_scatter *sc = sl_scatter_alloc(o->scatter, mu, NMU, &e);
+    sl_scatter *sc = sl_scatter_alloc(sigma, mu, NMU, &e);
     double *pk = malloc(n * NMU * sizeof *pk);
     if (!sc || !pk || sl_scatter_slide_batch(sc, sets, n, &so, pk, NULL, &e))
         die(&e);
@@ -624,7 +633,7 @@ static void usage(void)
 {
     fprintf(stderr, "usage: physfloors [-r dir] [-n max] [-s nsyn] [-S seed] [-x] "
                     "[-a sigma] [-g|-G] [-0] [-P|-Q] [-F f_end] [-R scatter] [-c cycles] "
-                    "[-H hold_frac] [-Y shape_sigma]\n");
+                    "[-H hold_frac] [-Y shape_sigma] [-B N:f1_h1:f1_h2:f1_v:damping]\n");
 }
 
 /* The options into *o (defaults first); 0, or 1 with a message. */
@@ -634,10 +643,12 @@ static int parse_options(int argc, char **argv, pf_opts *o)
     o->nsyn = 24;
     o->seed = 12;
     o->f_end_hz = 50.0;
-    o->scatter = SL_ANALYSIS_SCATTER;
+    o->scatter = SL_ANALYSIS_SCATTER_FLOOR;
+    o->building = (sl_building){3, {3.0, 4.2, 14.0}, 0.05};
     sl_synth_params_default(&o->synth);
     int opt;
-    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0PQF:R:H:c:Y:")) != -1) {
+    sl_error e;
+    while ((opt = getopt(argc, argv, "r:n:s:S:xa:gG0PQF:R:H:c:Y:B:")) != -1) {
         switch (opt) {
         case 'r': o->records = optarg; break;
         case 'n': o->max_records = (size_t)atol(optarg); break;
@@ -655,6 +666,10 @@ static int parse_options(int argc, char **argv, pf_opts *o)
         case 'G': o->no_ground = 1; break;
         case 'F': o->f_end_hz = atof(optarg); break;
         case 'R': o->scatter = atof(optarg); break;
+        case 'B':
+            if (sl_building_parse(optarg, &o->building, &e))
+                die(&e);
+            break;
         default:
             usage();
             return 1;
@@ -720,8 +735,10 @@ static void ground(const pf_opts *o, const sl_set *g, size_t nrec, sl_set *syn)
     describe("ground, synthesized RG 1.60", syn, nsyn);
     header("ground RG 1.60 0.3 g: synthesized / matched (μg/PGA)");
     row("ratio ± SE", sy, nsyn, real, nm);
-    if (o->scatter > 0) { /* what `seislide run` reports for a ground floor: with its scatter */
-        double *syr = slide_floor(o, syn, nsyn, mu);
+    if (o->scatter != 0) { /* what `seislide run` reports for a ground floor: with its scatter */
+        const sl_spectrum *h[2] = {tgt[0].spec, tgt[1].spec};
+        const double zh[2] = {tgt[0].zpa_ms2, tgt[1].zpa_ms2};
+        double *syr = slide_floor(o, syn, nsyn, mu, sl_scatter_sigma_of_fc(sl_scatter_fc_hz(h, zh)));
         header("ground: synthesized slid the run's way (intensity scatter) / matched");
         row("ratio ± SE", syr, nsyn, real, nm);
         free(syr);
@@ -789,14 +806,14 @@ static int floors(const pf_opts *o, const sl_set *g, size_t nrec, sl_set *syn)
     const size_t nf = (size_t)lround(50.0 * log10(f_end / 0.1)) + 1;
     for (size_t j = 0; j < nf; j++)
         f[j] = 0.1 * pow(f_end / 0.1, (double)j / (double)(nf - 1));
-    const sl_building b = {3, {3.0, 4.2, 14.0}, 0.05};
+    const sl_building b = o->building;
     char dir[] = "/tmp/seislide-pf-XXXXXX";
     if (!mkdtemp(dir)) {
         fprintf(stderr, "physfloors: cannot make a temporary directory\n");
         return 1;
     }
     sl_set *fm = calloc(nrec, sizeof *fm);
-    for (size_t fl = o->floor0 ? 0 : 1; fl <= 3; fl++) {
+    for (size_t fl = o->floor0 ? 0 : 1; fl <= b.storeys; fl++) {
         for (size_t r = 0; r < nrec; r++)
             if (fl == 0) /* the ground: the records themselves, as recorded */
                 fm[r] = (sl_set){scaled(g[r].h1, 1), scaled(g[r].h2, 1), scaled(g[r].v, 1)};
@@ -808,7 +825,8 @@ static int floors(const pf_opts *o, const sl_set *g, size_t nrec, sl_set *syn)
         for (int k = 0; k < NMU; k++)
             mu[k] = (0.1 + 0.2 * k) * zpa / SL_G;
         double *phys = slide(fm, nrec, mu);
-        printf("\nfloor %zu: ZPA (mean larger H PGA) %.3f g\n", fl, zpa / SL_G);
+        printf("\nfloor %zu of the building %zu:%g:%g:%g:%g: ZPA (mean larger H PGA) %.3f g\n", fl,
+               b.storeys, b.f1_hz[0], b.f1_hz[1], b.f1_hz[2], b.damping, zpa / SL_G);
         describe("physical", fm, nrec);
         for (int broaden = 0; broaden < 2; broaden++) {
             char path[256], label[64];
@@ -820,7 +838,7 @@ static int floors(const pf_opts *o, const sl_set *g, size_t nrec, sl_set *syn)
             if (!flr || sl_synth_targets_floor(flr, 0, tgt, &e))
                 die(&e);
             sl_synth_set *out = synth(o, tgt, o->shape, syn);
-            double *sy = slide_floor(o, syn, nsyn, mu);
+            double *sy = slide_floor(o, syn, nsyn, mu, sl_scatter_sigma_of_floor(flr));
             describe(broaden ? "synthesized, broadened" : "synthesized", syn, nsyn);
             header(broaden ? "synthesized (broadened ±15 %) / physical"
                            : "synthesized / physical");
@@ -875,7 +893,7 @@ int main(int argc, char **argv)
     }
     printf("records: %zu used of %zu directories in %s (rule: three components, larger H PGA "
            ">= %.2f g, duration >= %.0f s, dt <= %.2f s); scaled to %.1f g; %zu synthesized "
-           "sets per case, seed %llu, pga_sigma %.2f, wavelet cycles %.1f, envelope hold %.2f, floor spectra to %g Hz, scatter %.2f, "
+           "sets per case, seed %llu, pga_sigma %.2f, wavelet cycles %.1f, envelope hold %.2f, floor spectra to %g Hz, scatter %.2f (< 0: each floor's), "
            "floor-spectrum shape scatter %.2f%s\n",
            nrec, nd, rdir, rule.min_pga_g, rule.min_duration_s, rule.max_dt_s, PGA_G, o.nsyn,
            (unsigned long long)o.seed, o.synth.pga_sigma, o.synth.wavelet_cycles,

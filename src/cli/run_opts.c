@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "core/standards.h"
@@ -51,9 +52,10 @@ static const cli_opt opts[] = {
     {"max-sets", O_MAX_SETS, "N", "stop there when not converged; the floor is flagged (default %g)",
      {SL_ANALYSIS_MAX_SETS}, .kind = CLI_COUNT1, A(max_sets)},
     {"scatter", O_SCATTER, "S", "record-to-record intensity scatter of the floor motions behind a\n"
-     "spectrum, log standard deviation (default %g, at most %g; 0: the sets as\n"
+     "spectrum, log standard deviation: 'floor' (default floor: each floor's\n"
+     "from its spectrum), or S from 0 to %g for every floor (0: the sets as\n"
      "synthesized, each SRP 3.7.1-compatible; docs/run.md, Intensity scatter)",
-     {SL_ANALYSIS_SCATTER, SL_SCATTER_SIGMA_MAX}, .kind = CLI_NONNEG, A(ao.scatter)},
+     {SL_SCATTER_SIGMA_MAX}, .kind = CLI_CALL},
     {"seed", O_SEED, "S", "random seed (default 1); a floor's seed also depends on its\n"
      "spectra's numbers (or its 'seed ='), never on its name or the other floors",
      .kind = CLI_CALL},
@@ -126,6 +128,17 @@ static int take(void *dst, int key, const char *v)
         a->shard_n = (unsigned)n;
         return CLI_EXIT_OK;
     }
+    if (key == O_SCATTER) { /* 'floor': (R4) per floor; else a number in [0, max] */
+        double x = 0;
+        if (strcmp(v, "floor") == 0)
+            a->ao.scatter = SL_ANALYSIS_SCATTER_FLOOR;
+        else if (cli_parse_double(v, &x) || !(x >= 0 && x <= SL_SCATTER_SIGMA_MAX))
+            return cli_usage("run", "--scatter %s must be 'floor' or from 0 to %g", v,
+                             SL_SCATTER_SIGMA_MAX);
+        else
+            a->ao.scatter = x;
+        return CLI_EXIT_OK;
+    }
     int p = key == O_POLICY ? sl_clearance_policy_parse(v) : 0;
     int bad = key == O_SEED ? cli_parse_ulong(v, &ul) : key == O_POLICY ? p < 0
               : cli_parse_created(v, &a->created);
@@ -170,9 +183,6 @@ static int check(void *dst)
                          "merge's results: seislide components)");
     if (a->cache && a->no_cache)
         return cli_usage(r, "--cache and --no-cache exclude each other");
-    if (!(a->ao.scatter <= SL_SCATTER_SIGMA_MAX))
-        return cli_usage(r, "--scatter %g must be from 0 to %g", a->ao.scatter,
-                         SL_SCATTER_SIGMA_MAX);
     if (!(a->ao.rtol >= SL_SLIDE_RTOL_MIN && a->ao.rtol <= SL_SLIDE_RTOL_MAX))
         return cli_usage(r, "--accuracy %g must be from %g to %g", a->ao.rtol,
                          SL_SLIDE_RTOL_MIN, SL_SLIDE_RTOL_MAX);

@@ -74,14 +74,16 @@ void run_report_floor(size_t i, size_t n, const char *name, const sl_analysis *q
     cli_msg("run: floor %zu/%zu '%s': ZPA %.3f g; %s; ASCE below NLTHA for mu in %s%s%s", i, n,
             name, q->zpa_h_ms2 / SL_G, sk, sl_report_ranges_text(q->design, r, sizeof r),
             q->note[0] ? "; note: " : "", q->note);
+    char sc[64]; /* the intensity scatter used (the floor's own by default) */
+    snprintf(sc, sizeof sc, "; intensity scatter %.3f", q->scatter);
     if (q->stop == SL_ANALYSIS_STOP_FIXED)
-        cli_msg("run: floor '%s': %zu motion sets (fixed by --sets)", name, q->n_sets);
+        cli_msg("run: floor '%s': %zu motion sets (fixed by --sets)%s", name, q->n_sets, sc);
     else
         cli_msg("run: floor '%s': %zu motion sets in %zu batches: %s (worst standard error "
-                "%.1f %% of the design value)", name, q->n_sets, q->n_batches,
+                "%.1f %% of the design value)%s", name, q->n_sets, q->n_batches,
                 q->stop == SL_ANALYSIS_STOP_CONVERGED ? "converged"
                                                       : "NOT converged, --max-sets reached",
-                100 * q->worst_rel_se);
+                100 * q->worst_rel_se, sc);
     report_dampings(name, q);
     /* thread time (analysis.h): a floor's synthesis and NLTHA overlap */
     cli_msg("run: floor '%s': thread time: synthesis %.2f s (of which the other dampings' "

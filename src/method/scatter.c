@@ -16,6 +16,91 @@
 
 #define SCATTER_STREAM 0x7363617474657221ULL /* "scatter!" */
 
+/* sigma_g of (R4): SA(f, 5 %) of the horizontal components of the 83
+ * records (study/physfloor.h rule), each record scaled to a larger
+ * horizontal PGA of 0.3 g; f = 0.1 x 10^(j/8) Hz. `tailfloors -g`. */
+static const double sigma_g_5[] = {1.107, 1.088, 1.023, 0.921, 0.863, 0.829, 0.775, 0.701,
+                                   0.682, 0.574, 0.529, 0.434, 0.396, 0.331, 0.311, 0.322,
+                                   0.325, 0.323, 0.280, 0.238, 0.217, 0.193};
+#define SIGMA_G_N (sizeof sigma_g_5 / sizeof sigma_g_5[0])
+#define SIGMA_G_F0_HZ 0.1
+#define SIGMA_G_PER_DECADE 8.0
+
+double sl_scatter_sigma_ground(double f_hz)
+{
+    if (!(f_hz > 0))
+        return NAN;
+    double x = SIGMA_G_PER_DECADE * log10(f_hz / SIGMA_G_F0_HZ); /* table index */
+    if (x <= 0)
+        return sigma_g_5[0];
+    if (x >= (double)(SIGMA_G_N - 1))
+        return sigma_g_5[SIGMA_G_N - 1];
+    size_t j = (size_t)x;
+    double t = x - (double)j;
+    return (1 - t) * sigma_g_5[j] + t * sigma_g_5[j + 1]; /* linear in ln f */
+}
+
+double sl_scatter_sigma_of_fc(double f_hz)
+{
+    double g = sl_scatter_sigma_ground(f_hz);
+    return isnan(g) ? NAN : fmin(hypot(g, SL_SCATTER_SIGMA_0), SL_SCATTER_SIGMA_MAX); /* (R4) */
+}
+
+/* The spectrum of floor component c the synthesis matches, or NULL. */
+static const sl_spectrum *matched(const sl_floor *fl, sl_floor_comp c)
+{
+    const sl_floor_component *k = &fl->comp[c];
+    if (!k->spec || k->nspec == 0)
+        return NULL;
+    double z = sl_synth_floor_damping(fl, c);
+    for (size_t j = 0; j < k->nspec; j++)
+        if (fabs(k->spec[j].damping - z) <= SL_FLOOR_DAMPING_TOL)
+            return &k->spec[j];
+    return NULL;
+}
+
+double sl_scatter_fc_hz(const sl_spectrum *const h[2], const double zpa_ms2[2])
+{
+    double w = 0, wl = 0, best = -1, f_best = NAN; /* (R5) sums; the highest SA */
+    for (int c = 0; c < 2; c++) {
+        const sl_spectrum *s = h[c];
+        const double zpa = zpa_ms2[c];
+        if (!s || s->n < 1 || !(zpa > 0))
+            return NAN;
+        for (size_t j = 0; j < s->n; j++)
+            if (s->sa_ms2[j] > best)
+                best = s->sa_ms2[j], f_best = s->f_hz[j];
+        if (s->n < 2)
+            continue;
+        const double l0 = log(s->f_hz[0]), l1 = log(s->f_hz[s->n - 1]);
+        const size_t m = (size_t)ceil((l1 - l0) / log(10.0) * SL_SCATTER_FC_PER_DECADE) + 1;
+        const double h_ln = (l1 - l0) / (double)(m - 1);
+        for (size_t q = 0; q < m; q++) { /* trapezoid rule in ln f */
+            const int end = q == 0 || q + 1 == m;
+            double lf = q + 1 == m ? l1 : l0 + h_ln * (double)q;
+            double f = q == 0 ? s->f_hz[0] : q + 1 == m ? s->f_hz[s->n - 1] : exp(lf);
+            double e = fmax(sl_spectrum_interp(s, f) / zpa - 1, 0) * (end ? 0.5 : 1.0);
+            w += e;
+            wl += e * lf;
+        }
+    }
+    return w > 0 ? exp(wl / w) : f_best;
+}
+
+double sl_scatter_floor_fc_hz(const sl_floor *fl)
+{
+    if (!fl)
+        return NAN;
+    const sl_spectrum *h[2] = {matched(fl, SL_FLOOR_H1), matched(fl, SL_FLOOR_H2)};
+    const double zpa[2] = {fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2};
+    return sl_scatter_fc_hz(h, zpa);
+}
+
+double sl_scatter_sigma_of_floor(const sl_floor *fl)
+{
+    return sl_scatter_sigma_of_fc(sl_scatter_floor_fc_hz(fl));
+}
+
 sl_status sl_scatter_factor(uint64_t seed, size_t set, double sigma_ln, double *eps,
                             sl_error *err)
 {

@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include "core/status.h"
+#include "io/floor.h"
 #include "io/motion.h"
 #include "slide/model.h"
 
@@ -43,12 +44,65 @@
  * scaled so that sum_j w_j eps_j = 1 (E[eps] = 1 exactly, whatever the
  * truncation). The sets' Y are independent and identically distributed, so the
  * statistics over sets (stats.h) hold as they are, and the scatter adds no
- * sampling noise of its own. */
+ * sampling noise of its own.
+ *
+ * sigma of a floor (docs/run.md, "Intensity scatter"; docs/synthesis.md 11).
+ * The floor motions behind a spectrum scatter in
+ * intensity because the ground motions behind them do, at the frequencies
+ * the building amplifies: records scaled to one PGA differ little in their
+ * high-frequency spectra and much in their low-frequency ones. So sigma is
+ * read from the floor spectrum as
+ *
+ *     sigma = min(sqrt(sigma_g(f_c)^2 + sigma_0^2), SL_SCATTER_SIGMA_MAX)   (R4)
+ *
+ * f_c: the centroid in ln f of the floor's amplification over its ZPA,
+ *
+ *     ln f_c = sum_H int e_H(f) ln f dln f / sum_H int e_H(f) dln f,
+ *     e_H(f) = max(SA_H(f) / ZPA_H - 1, 0)                               (R5)
+ *
+ * over both horizontals H, SA_H at the damping the synthesis matches
+ * (sl_synth_floor_damping: 5 % when given), by the trapezoid rule on
+ * SL_SCATTER_FC_PER_DECADE points a decade over the table's range (log-log
+ * interpolation). Where no value exceeds the ZPA, f_c is the frequency of
+ * the highest SA of either horizontal.
+ * sigma_g(f): the log standard deviation of SA(f, 5 %) over the horizontal
+ * components of the 83 three-component records of the record collection,
+ * each record scaled to one larger horizontal PGA (`tailfloors -g`: 1.11 at
+ * 0.1 Hz, 0.68 at 1 Hz, 0.43 at 2.4 Hz, 0.31 at 5.6 Hz, 0.19 at 42 Hz),
+ * linear in ln f between its points, constant beyond its ends.
+ * sigma_0 = SL_SCATTER_SIGMA_0: what sliding near the threshold needs beyond
+ * that (the physical motions at one PGA still differ in how they slide
+ * there), fitted to the mean sliding of physical floor motions at mu g/ZPA
+ * 0.5-1.0 on 8 buildings and checked on 18 others (docs/synthesis.md 11:
+ * 17 of those 18 within 0.85-1.2 in geometric mean). */
 
 #define SL_SCATTER_ZMAX 5.0
 #define SL_SCATTER_DZ 0.1
 #define SL_SCATTER_PER_DECADE 32
 #define SL_SCATTER_SIGMA_MAX 1.0 /* log standard deviation, largest accepted */
+#define SL_SCATTER_SIGMA_0 0.13   /* (R4): beyond the ground spectra's scatter */
+#define SL_SCATTER_FC_PER_DECADE 100 /* (R5): integration points a decade */
+
+/* sigma of (R4) for a floor: > 0 and at most SL_SCATTER_SIGMA_MAX; NAN when
+ * the floor has no horizontal spectrum (not a floor sl_floor_load returns).
+ * The one rule of every caller that needs a floor's intensity scatter
+ * (the run, the probability of tipping). */
+double sl_scatter_sigma_of_floor(const sl_floor *fl);
+
+/* f_c of (R5), Hz, of a floor; NAN as above. */
+double sl_scatter_floor_fc_hz(const sl_floor *fl);
+
+/* f_c of (R5), Hz, of two horizontal spectra h[0], h[1] (each at the
+ * damping the motions are matched at) with their ZPAs zpa_ms2[] (e.g. the
+ * targets of synth.h: spec and zpa); NAN when one is missing, empty or its
+ * ZPA not > 0. */
+double sl_scatter_fc_hz(const sl_spectrum *const h[2], const double zpa_ms2[2]);
+
+/* sigma of (R4) at a centroid frequency f_hz (> 0; NAN otherwise). */
+double sl_scatter_sigma_of_fc(double f_hz);
+
+/* sigma_g(f_hz) of (R4), the records' table (NAN for f_hz <= 0). */
+double sl_scatter_sigma_ground(double f_hz);
 
 /* eps of (R1) for set `set` into *eps, z = Phi^-1(u), u from GSL's mt19937
  * seeded with sl_synth_stream_seed(seed ^ "scatter!", set, H1, 0): a random

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "core/units.h"
+#include "method/scatter.h"
 #include "plant/cache.h"
 #include "plant/intensity.h"
 #include "report/plant_book.h"
@@ -230,7 +231,8 @@ sl_status sl_plant_check_intensity(sl_plant *p, sl_error *err)
 static double floor_cost(const sl_floor *fl, const sl_analysis_opts *o)
 {
     double zpa = fmax(fl->comp[SL_FLOOR_H1].zpa_ms2, fl->comp[SL_FLOOR_H2].zpa_ms2);
-    double reach = zpa * exp(2 * o->scatter);
+    double sigma = o->scatter < 0 ? sl_scatter_sigma_of_floor(fl) : o->scatter; /* the run's */
+    double reach = zpa * exp(2 * (sigma > 0 ? sigma : 0));
     size_t m = 0;
     for (size_t k = 0; k < o->n_mu; k++)
         m += o->mu[k] * SL_G < reach;

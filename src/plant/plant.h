@@ -17,8 +17,8 @@
  * number of NLTHA integrations it needs: S x (1 + M), with S the motion sets
  * (--sets, else SL_PLANT_COST_SETS, a typical converged count) and M the
  * friction values of the grid at which some motion can slide, mu g <
- * ZPA_h exp(2 sigma) (ZPA_h the larger horizontal ZPA, sigma the intensity
- * scatter): below that every set integrates, above it none does. Floors are
+ * ZPA_h exp(2 sigma) (ZPA_h the larger horizontal ZPA, sigma the floor's
+ * intensity scatter, analysis.h opts.scatter): below that every set integrates, above it none does. Floors are
  * dealt to shards by the greedy longest-processing-time rule: in order of
  * decreasing cost (ties: plant order), each to the shard with the least
  * cost so far (ties: the lower shard number). The share therefore depends

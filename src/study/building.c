@@ -29,6 +29,39 @@ void sl_building_modes(const sl_building *b, int d, size_t floor, double *freq, 
     }
 }
 
+sl_status sl_building_parse(const char *spec, sl_building *b, sl_error *err)
+{
+    static const char *const what[5] = {"storeys", "f1 of H1", "f1 of H2", "f1 of V",
+                                        "damping"};
+    double v[5];
+    const char *p = spec ? spec : "";
+    for (int i = 0; i < 5; i++) {
+        char *end;
+        v[i] = strtod(p, &end);
+        if (end == p || !isfinite(v[i]) || (*end != (i < 4 ? ':' : '\0')))
+            return sl_error_set(err, SL_EINVAL, NULL, 0,
+                                "building \"%s\": the %s (field %d of N:f1_h1:f1_h2:f1_v:damping) "
+                                "is missing or not a number",
+                                spec ? spec : "", what[i], i + 1);
+        p = end + 1;
+    }
+    if (!(v[0] >= 1 && v[0] <= SL_BUILDING_MAX_STOREYS && v[0] == floor(v[0])))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "building \"%s\": storeys %g not a whole "
+                            "number in 1..%d", spec, v[0], SL_BUILDING_MAX_STOREYS);
+    for (int i = 1; i < 4; i++)
+        if (!(v[i] > 0))
+            return sl_error_set(err, SL_EINVAL, NULL, 0, "building \"%s\": %s %g Hz must be > 0",
+                                spec, what[i], v[i]);
+    if (!(v[4] > 0 && v[4] < 1))
+        return sl_error_set(err, SL_EINVAL, NULL, 0, "building \"%s\": damping %g outside (0, 1)",
+                            spec, v[4]);
+    b->storeys = (size_t)v[0];
+    for (int d = 0; d < 3; d++)
+        b->f1_hz[d] = v[d + 1];
+    b->damping = v[4];
+    return SL_OK;
+}
+
 /* Floor acceleration of one component by (B4)-(B5). */
 static sl_status floor_component(const sl_building *b, int d, size_t floor, const sl_motion *g,
                                  sl_motion **out, sl_error *err)

@@ -41,6 +41,13 @@ typedef struct sl_building {
     double damping;          /* modal damping ratio (0.05) */
 } sl_building;
 
+/* A building from "N:f1_h1:f1_h2:f1_v:damping" (storeys, the fundamental
+ * frequency of each direction in Hz, the modal damping ratio), e.g.
+ * "3:3.0:4.2:14:0.05" (the building of docs/synthesis.md 10). Returns
+ * SL_OK, or SL_EINVAL naming the field (b unchanged): a field missing,
+ * not a number, or outside what sl_building_floor accepts. */
+sl_status sl_building_parse(const char *spec, sl_building *b, sl_error *err);
+
 /* Modal frequencies (Hz) and participation x shape at floor j (1..N) of
  * direction d (0, 1, 2): freq[r], gp[r] = Gamma_r phi_r(j), r < N. */
 void sl_building_modes(const sl_building *b, int d, size_t floor, double *freq, double *gp);

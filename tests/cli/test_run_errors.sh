@@ -54,7 +54,9 @@ usage max-sets-1 "--max-sets 1 must be from 2 to 10000" run $G -o "$D/o" --max-s
 usage rel-se-1 "--rel-se 1 must be below 1" run $G -o "$D/o" --rel-se 1
 usage se-both-0 "--rel-se and --abs-se must not both be 0" run $G -o "$D/o" --rel-se 0 --abs-se 0
 usage abs-se-negative "--abs-se '-1' must be a number >= 0" run $G -o "$D/o" --abs-se -1
-usage scatter-2 "--scatter 2 must be from 0 to 1" run $G -o "$D/o" --scatter 2
+usage scatter-2 "--scatter 2 must be 'floor' or from 0 to 1" run $G -o "$D/o" --scatter 2
+usage scatter-negative "--scatter -0.3 must be 'floor' or from 0 to 1" run $G -o "$D/o" --scatter -0.3
+usage scatter-word "--scatter auto must be 'floor' or from 0 to 1" run $G -o "$D/o" --scatter auto
 usage substeps-huge "--substeps 2000000 must be from 1 to 1000000" run $G -o "$D/o" --substeps 2000000
 usage substeps-accuracy "--substeps replaces the error control that --accuracy sets" run $G -o "$D/o" --substeps 4 --accuracy 0.01
 usage seed-blank "bad value ' 1' for --seed" run $G -o "$D/o" --seed " 1"
