@@ -8,6 +8,8 @@
 #include "bench_report.h"
 #include "study/bench_engine.h"
 #include "rock/rock.h"
+#include "rock/rock_floor.h"
+#include "rock/rock_lookup.h"
 #include "signal/spectrum.h"
 
 /* Output to stdout and to the report at once. */
@@ -209,6 +211,28 @@ void bench_report_rock(FILE *f, const sl_bench_rock *r)
             1e9 * c->s_per_run / (double)r->n, c->steps, c->impacts, c->peak_over_alpha,
             c->err_rel, sens);
     }
+}
+
+void bench_report_rockf(FILE *f, const sl_bench_rockf *r)
+{
+    out(f, "\n## 9. Rocking on a floor: cost per item and of the lookup\n\n");
+    out(f, "%s, %d threads; making a set again (a floor read from the cache) %.0f ms a set.\n"
+        "Each item over every set (no stopping rule), the default rocking options: %d\n"
+        "intensity points x %d orientations x 2 levels a set, a realisation that cannot\n"
+        "uplift not integrated (docs/rocking.md). Error: the standard error of p_tip over\n"
+        "the sets.\n\n", r->source, r->threads, 1e3 * r->synth_s_per_set,
+        (int)((SL_ROCKF_ZMAX - SL_ROCKF_ZMIN) / SL_ROCKF_DZ + 1.5),
+        (int)(180.0 / SL_ROCKF_ORIENT_STEP_DEG + 0.5));
+    out(f, "| item | b/h | h, m | ms per set | block runs per set | p_tip 1.0 x (SE) | p_tip 1.5 x (SE) |\n");
+    out(f, "|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < SL_BENCH_ROCKF_NITEM; k++) {
+        const sl_bench_rockf_item *x = &r->item[k];
+        out(f, "| %s | %.3f | %.2f | %.1f | %.0f | %.3f (%.3f) | %.3f (%.3f) |\n", x->name, x->bh,
+            x->h_m, 1e3 * x->s_per_set, (double)x->runs / SL_BENCH_ROCKF_SETS, x->p_tip[0],
+            x->p_tip_se[0], x->p_tip[1], x->p_tip_se[1]);
+    }
+    out(f, "| the lookup (%d blocks) | | | %.1f | %.0f | | |\n", SL_ROCKL_N,
+        1e3 * r->lookup_s_per_set, (double)r->lookup_runs / SL_BENCH_ROCKF_SETS);
 }
 
 /* The engine's work-precision data and its ratio to the arithmetic floor

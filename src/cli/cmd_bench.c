@@ -12,6 +12,7 @@
 #include "study/bench.h"
 #include "study/bench_engine.h"
 #include "study/bench_rock.h"
+#include "study/bench_rockf.h"
 
 static const char bench_help[] =
     "usage: seislide bench [--shared DIR] [--repeat N] [--out FILE] [--quick]\n"
@@ -75,6 +76,14 @@ int cmd_bench(int argc, char **argv)
         return CLI_EXIT_ERROR;
     }
     bench_report_rock(sl_atomic_file(af), &br);
+    progress(NULL, "rocking on a floor: cost per item and of the lookup");
+    sl_bench_rockf bf;
+    if (sl_bench_rockf_run(&bf, &err)) {
+        sl_atomic_abort(af);
+        cli_print_error(&err);
+        return CLI_EXIT_ERROR;
+    }
+    bench_report_rockf(sl_atomic_file(af), &bf);
     progress(NULL, "engine: work-precision on every record set, ratio to the floor");
     sl_bench_wp *w = sl_bench_wp_run(a.shared, a.repeat, &err);
     if (!w) {
