@@ -15,7 +15,10 @@
  * names compared without case: tag, building, floor, mu, base_m,
  * cg_height_m, clearance_mm, in any order; any other column is kept as it
  * is, in its place. building may be empty when the results hold one
- * building; floor is a floor id or the floor's name (without case). mu,
+ * building; floor is a floor id or the floor's name (without case): the one
+ * floor of its building whose id or name it is (results whose floors share
+ * a reference are refused by sl_comp_results_load, so the workbook's MATCH
+ * on ids, then names, finds the same floor). mu,
  * base_m (least base dimension) and cg_height_m (centre of mass above the
  * floor) must be > 0, clearance_mm (the available gap) >= 0; tags unique
  * (without case). Blank lines and rows of empty fields are skipped.
