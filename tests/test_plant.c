@@ -395,7 +395,8 @@ static void test_plant_lookup_libreoffice(void)
             "# floor_file_crc32: deadbeef Aux/el12 (p/Aux/el12.ini, 1002 bytes)\r\n",
             "# floor_file_crc32: 0000beef " RB "/ground (p/" RB "/ground.ini, 1003 bytes)\r\n",
             "# floor_file_crc32: 00000000 " RB "/Niveau_-3 (-, 0 bytes)\r\n", "# project: -\r\n",
-            "# document: -\r\n", "# revision: -\r\n", "# units: ", "building,floor,"};
+            "# document: -\r\n", "# revision: -\r\n", "# units: ", "# warnings: ",
+            "building,floor,"};
         char path[300], line[2000];
         snprintf(path, sizeof path, "%s/plant.csv", dir);
         FILE *pf = fopen(path, "rb");
