@@ -396,6 +396,7 @@ static void test_plant_lookup_libreoffice(void)
             "# floor_file_crc32: 0000beef " RB "/ground (p/" RB "/ground.ini, 1003 bytes)\r\n",
             "# floor_file_crc32: 00000000 " RB "/Niveau_-3 (-, 0 bytes)\r\n", "# project: -\r\n",
             "# document: -\r\n", "# revision: -\r\n", "# units: ", "# asce_design_mm_mu_X: ",
+            "# warnings: ",
             "building,floor,"};
         char path[300], line[2000];
         snprintf(path, sizeof path, "%s/plant.csv", dir);

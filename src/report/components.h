@@ -15,7 +15,10 @@
  * names compared without case: tag, building, floor, mu, base_m,
  * cg_height_m, clearance_mm, in any order; any other column is kept as it
  * is, in its place. building may be empty when the results hold one
- * building; floor is a floor id or the floor's name. Names (column names,
+ * building; floor is a floor id or the floor's name: the one floor of its
+ * building whose id or name it is (results whose floors share a reference
+ * are refused by sl_comp_results_load, so the workbook's MATCH on ids, then
+ * names, finds the same floor). Names (column names,
  * buildings, floors, tags) are compared by one rule, sl_comp_same_name():
  * blanks at either end dropped, runs inside read as one, without case for
  * every script a plant writes names in (io/casefold.h), as the workbook's

@@ -77,6 +77,10 @@ t_expect_err accepted-stderr "run: warning: .*b1/01-ground.ini: accepted by --ac
 w=$(grep '^01-ground,' "$D/acc/floors.csv")
 case $w in *',"accepted by --accept-floor: horizontal ZPA 2.94 g'*"its values are likely in m/s2, not g"*) t_pass ;;
   *) t_fail "floors.csv: the accepted floor's warning: '$w'" ;; esac
+# an accepted floor is no reference for the others: beside it, 02-el12 (0.133 x its ZPA)
+# stands alone, nothing to compare with
+mkdir -p "$D/b6"; cp floors/02-el12.ini "$D/b6/"; scale floors/01-ground.ini 9.80665 > "$D/b6/01-ground.ini"
+t_run run "$D/b6" -o "$D/acc6" $FAST --accept-floor 01-ground; t_expect_rc accepted-alone 0
 # an unusual ZPA for its units (one floor, nothing to compare with): the same column
 sed 's/^units = g/units = m\/s2/' floors/01-ground.ini > "$D/low.ini"
 t_run run "$D/low.ini" -o "$D/low" $FAST; t_expect_rc unusual 0
