@@ -588,8 +588,10 @@ static int read_row(const sl_comp_results *r, sl_comp_table *t, sl_csvrec *w, sl
                         "tag '%s' again: first on line %ld", as_written(tag).s, first);
     else if (first < 0)
         sl_error_set(&e, SL_ENOMEM, path, 0, "out of memory");
-    if (!*tag || first)
-        (first < 0 ? fatal : note)(k, &e);
+    if (first < 0)
+        fatal(k, &e);
+    else if (!*tag || first)
+        note(k, &e);
     size_t bi = 0;
     if (!k->stop && find_building(r, path, w, col[SL_COMP_BUILDING], &bi, &e))
         note(k, &e);

@@ -506,7 +506,7 @@ static void components_sheet(book *b, const sl_report *rep)
     /* title, note, header */
     worksheet_write_string(ws, CS_TITLE, 0, "Components: required against available clearance",
                            b->F.title);
-    char note[2000];
+    char note[2000], shown_dir[1100];
     snprintf(note, sizeof note,
              "Required clearance: the floor's table (run in %s, created %s) at the component's "
              "mu, linear interpolation on the grid %s-%s (clearance policy %s; the ASCE/SEI "
@@ -523,7 +523,8 @@ static void components_sheet(book *b, const sl_report *rep)
              "A row typed in below with mu >= b/h reads rocking: its rocking is computed by "
              "seislide components. More components: type them in the yellow cells below the "
              "last one (%d rows are ready, printed with the sheet); building may be left "
-             "empty %s.", r->dir, r->created, b->g0, b->g1, r->policy, SL_COMP_MARGIN_SE,
+             "empty %s.", sl_rpt_shown_path(r->dir, shown_dir, sizeof shown_dir), r->created,
+             b->g0, b->g1, r->policy, SL_COMP_MARGIN_SE,
              100 * SL_ROCKF_P_TARGET_1, 100 * SL_ROCKF_P_TARGET_2, SL_ROCKF_SE_DECIDE,
              SL_COMP_SPARE_ROWS,
              r->is_plant ? (r->n_buildings == 1 ? "(one building)" : "only in a one-building "
@@ -595,7 +596,10 @@ static void summary_sheet(book *b, const sl_report *rep)
     int plant = r->is_plant;
     lxw_col_t c0 = plant ? 1 : 0; /* the floor id column */
     /* a landscape page at about 100 % for one building (98 units) */
-    const double w_b = 14, w_id = 12, w_name = 24, w_all = 11, w_n = 8.5;
+    double w_b = 14; /* the building column: as wide as its longest name, up to 24 */
+    for (size_t i = 0; plant && i < r->n_floors; i++)
+        w_b = fmax(w_b, fmin(24, 0.95 * (double)strlen(r->floors[i].building) + 2));
+    const double w_id = 12, w_name = 24, w_all = 11, w_n = 8.5;
     if (plant)
         worksheet_set_column(ws, 0, 0, w_b, NULL);
     worksheet_set_column(ws, c0, c0, w_id, NULL);
@@ -606,11 +610,13 @@ static void summary_sheet(book *b, const sl_report *rep)
     double width = (plant ? w_b : 0) + w_id + w_name + w_all + w_n * N_LABELS;
     sl_rpt_title_block(ws, &b->F, rep, "Components: counts per verdict and per floor", 0,
                        last, width);
-    char src[1600];
+    char src[3000], p1[1100], p2[1100]; /* the paths as a page shows them (components.csv:
+                                           * whole) */
     snprintf(src, sizeof src, "Components file %s (%zu components, CRC-32 %08lx); required "
              "clearances from %s (seislide run, %s, created %s). Counts follow the Components "
-             "sheet, rows typed in later included.", t->path, t->n, t->crc32 & 0xffffffffUL,
-             r->dir, r->is_plant ? "a plant" : "one building", r->created);
+             "sheet, rows typed in later included.", sl_rpt_shown_path(t->path, p1, sizeof p1),
+             t->n, t->crc32 & 0xffffffffUL, sl_rpt_shown_path(r->dir, p2, sizeof p2),
+             r->is_plant ? "a plant" : "one building", r->created);
     lxw_row_t row = SL_RPT_TB_ROWS + 1;
     worksheet_merge_range(ws, row, 0, row, last, src, b->F.wrap);
     worksheet_set_row(ws, row, sl_rpt_text_height(src, width, 0), NULL);
@@ -652,8 +658,10 @@ static void summary_sheet(book *b, const sl_report *rep)
             worksheet_write_string(ws, row, 0, fl->building, b->F.wrap);
         worksheet_write_string(ws, row, c0, fl->id, b->F.wrap);
         worksheet_write_string(ws, row, c0 + 1, fl->name, b->F.wrap);
-        worksheet_set_row(ws, row, fmax(sl_rpt_text_height(fl->name, w_name, 0),
-                                        sl_rpt_text_height(fl->id, w_id, 0)), NULL);
+        worksheet_set_row(ws, row, fmax(fmax(sl_rpt_text_height(fl->name, w_name, 0),
+                                             sl_rpt_text_height(fl->id, w_id, 0)),
+                                        plant ? sl_rpt_text_height(fl->building, w_b, 0) : 0),
+                          NULL);
         /* the floor's cells as criteria */
         ref(a, c0, row);
         if (plant) {

@@ -69,6 +69,11 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     F->note = workbook_add_format(wb);
     format_set_text_wrap(F->note);
     format_set_align(F->note, LXW_ALIGN_VERTICAL_TOP);
+    F->title_wrap = workbook_add_format(wb);
+    format_set_bold(F->title_wrap);
+    format_set_font_size(F->title_wrap, 14);
+    format_set_text_wrap(F->title_wrap);
+    format_set_align(F->title_wrap, LXW_ALIGN_VERTICAL_TOP);
     F->result = workbook_add_format(wb);
     format_set_bold(F->result);
     format_set_font_size(F->result, 14);
@@ -98,6 +103,10 @@ void sl_rpt_formats(lxw_workbook *wb, sl_rpt_fmts *F)
     format_set_align(F->header_ind, LXW_ALIGN_VERTICAL_TOP);
     format_set_bottom(F->header_ind, LXW_BORDER_THIN);
     format_set_indent(F->header_ind, 1);
+    F->text_right = workbook_add_format(wb);
+    format_set_text_wrap(F->text_right);
+    format_set_align(F->text_right, LXW_ALIGN_VERTICAL_TOP);
+    format_set_align(F->text_right, LXW_ALIGN_RIGHT);
     F->indent = workbook_add_format(wb); /* text after a number: kept off it */
     format_set_text_wrap(F->indent);
     format_set_align(F->indent, LXW_ALIGN_VERTICAL_TOP);
@@ -280,11 +289,17 @@ void sl_rpt_title_block(lxw_worksheet *ws, const sl_rpt_fmts *F, const sl_report
                         const char *title, lxw_col_t c, lxw_col_t c_last, double width)
 {
     char full[1200];
-    if (r->building && *r->building) /* a plant's building names its workbook */
-        snprintf(full, sizeof full, "%s: building %s", title, r->building);
-    else
-        snprintf(full, sizeof full, "%s", title);
-    worksheet_write_string(ws, 0, c, full, F->title);
+    if (r->building && *r->building) { /* a plant's building names its workbook: a second
+                                        * line of the title (14 points), wrapped over the
+                                        * printed columns when it is long */
+        snprintf(full, sizeof full, "%s\nBuilding %s", title, r->building);
+        worksheet_merge_range(ws, 0, c, 0, c_last, full, F->title_wrap);
+        snprintf(full, sizeof full, "Building %s", r->building);
+        worksheet_set_row(ws, 0, (LINE_PT + sl_rpt_text_height(full, width * 11.0 / 14.0, 1)) *
+                          14.0 / 11.0, NULL);
+    } else {
+        worksheet_write_string(ws, 0, c, title, F->title);
+    }
     const char *const label[] = {"Project", "Document no.", "Revision", "Prepared by",
                                  "Checked by", "Date", "Units"};
     const char *const value[] = {r->project.project, r->project.document, r->project.revision,

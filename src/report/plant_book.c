@@ -370,13 +370,15 @@ static void plant_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_b
                                                "Elevation, m", "Horizontal ZPA, g",
                                                "Motion sets", "Convergence"};
     double need = 0;
-    for (lxw_col_t c = 0; c < PL_CLEAR; c++) {
-        worksheet_merge_range(ws, PL_HEAD, c, PL_SUBHEAD, c, head[c], F->header);
+    for (lxw_col_t c = 0; c < PL_CLEAR; c++) { /* headings over numbers at their right */
+        worksheet_merge_range(ws, PL_HEAD, c, PL_SUBHEAD, c, head[c],
+                              c >= 3 && c <= 5 ? F->header_num : c == 6 ? F->header_ind
+                              : F->header);
         need = fmax(need, sl_rpt_text_height(head[c], width[c], 1));
     }
-    worksheet_merge_range(ws, PL_HEAD, PL_GOV, PL_SUBHEAD, PL_GOV, "Governing", F->header);
+    worksheet_merge_range(ws, PL_HEAD, PL_GOV, PL_SUBHEAD, PL_GOV, "Governing", F->header_ind);
     worksheet_merge_range(ws, PL_HEAD, PL_CHECKS, PL_SUBHEAD, PL_CHECKS, "Motion checks",
-                          F->header);
+                          F->header_ind);
     worksheet_merge_range(ws, PL_HEAD, PL_CLEAR, PL_HEAD, PL_GOV - 1,
                           "Required clearance, mm, at mu =", F->header);
     for (int k = 0; k < SL_PLANT_BOOK_NMU; k++) {

@@ -56,8 +56,9 @@ void sl_rpt_inputs_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     }
     row++;
     static const char *const head[] = {"floor", "file", "id", "units", "bytes", "CRC-32"};
-    for (lxw_col_t c = 0; c < 6; c++)
-        worksheet_write_string(ws, row, c, head[c], F->header);
+    for (lxw_col_t c = 0; c < 6; c++) /* bytes at its numbers' right, CRC-32 kept off it */
+        worksheet_write_string(ws, row, c, head[c], c == 4 ? F->header_num : c == 5
+                               ? F->header_ind : F->header);
     row++;
     for (size_t i = 0; i < r->n_floors; i++) {
         const sl_report_floor *fl = &r->floors[i];

@@ -74,7 +74,7 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
     sl_rpt_sets_text(r, "%s: %zu sets", sets, sizeof sets);
     snprintf(add(&s, 0), NOTE_MAX, "Motions: spectrum-compatible three-component sets, "
              "synthesized from each floor's response spectra and checked as in US NRC SRP 3.7.1 "
-             "(sheet Motion quality; 'longest run below target' = the most consecutive frequency "
+             "(sheet Motion quality; 'run below target' = the most consecutive frequency "
              "points below the target spectrum, limit 9). Sets per floor (sheet Inputs: why each "
              "floor stopped adding sets): %s.", sets);
     char scat[900] = "";

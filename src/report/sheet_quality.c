@@ -53,10 +53,12 @@ void sl_rpt_quality_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
     lxw_row_t head = ++row;
     /* each check's limit under its heading (synth.h: the SRP 3.7.1 defaults) */
     char h5[64], h6[64], h7[96], h8[96];
-    snprintf(h5, sizeof h5, "lowest S/T (>= %g)", 1 - SL_SYNTH_TOL_BELOW);
-    snprintf(h6, sizeof h6, "highest S/T (<= %g)", 1 + SL_SYNTH_TOL_ABOVE);
-    snprintf(h7, sizeof h7, "run below target (<= %d points)", SL_SYNTH_MAX_RUN_BELOW);
-    snprintf(h8, sizeof h8, "largest correlation (<= %g)", SL_SYNTH_MAX_CORR);
+    /* no brackets to break; "limit 0.9" kept on one line (a no-break space) */
+    snprintf(h5, sizeof h5, "lowest S/T, limit\xC2\xA0%g", 1 - SL_SYNTH_TOL_BELOW);
+    snprintf(h6, sizeof h6, "highest S/T, limit\xC2\xA0%g", 1 + SL_SYNTH_TOL_ABOVE);
+    snprintf(h7, sizeof h7, "run below target, points, limit\xC2\xA0%d",
+             SL_SYNTH_MAX_RUN_BELOW);
+    snprintf(h8, sizeof h8, "largest correlation, limit\xC2\xA0%g", SL_SYNTH_MAX_CORR);
     const char *const hd[Q_COLS] = {"floor id", "set", "PGA H1, g", "PGA H2, g", "PGA V, g", h5,
                                     h6, h7, h8, "verdict"};
     double hh = 0;

@@ -189,11 +189,12 @@ void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
     for (size_t i = 0; i < nf; i++) {
         const sl_report_floor *fl = &r->floors[i];
         lxw_col_t c = (lxw_col_t)(i + 1);
-        worksheet_write_string(ws, b, c, fl->id, F->wrap);
+        /* under the table's columns: at their right and at the top, as the numbers */
+        worksheet_write_string(ws, b, c, fl->id, F->text_right);
         h_id = fmax(h_id, sl_rpt_text_height(fl->id, W_FLOOR, 0));
         worksheet_write_number(ws, b + 1, c, fl->zpa_h_ms2 / SL_G, F->ratio);
-        worksheet_write_number(ws, b + 2, c, (double)fl->design->n_sets, NULL);
-        worksheet_write_string(ws, b + 3, c, sl_rpt_or_dash(fl->sets_stop), NULL);
+        worksheet_write_number(ws, b + 2, c, (double)fl->design->n_sets, F->mm0);
+        worksheet_write_string(ws, b + 3, c, sl_rpt_or_dash(fl->sets_stop), F->text_right);
     }
     worksheet_set_row(ws, b, fmax(h_id, sl_rpt_text_height(lab[0], W_LABEL, 1)), NULL);
 

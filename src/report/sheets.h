@@ -33,6 +33,8 @@ typedef struct sl_rpt_fmts {
     lxw_format *mm0bold;     /* a clearance shown to the whole mm, bold */
     lxw_format *dxf_mm0;     /* a conditional format: the number to the whole mm */
     lxw_format *header_ind;  /* a text heading after a number's heading: kept off it */
+    lxw_format *text_right;  /* a text in a column of numbers: at their right, at the top */
+    lxw_format *title_wrap;  /* a title merged over the printed columns, wrapped */
 } sl_rpt_fmts;
 
 /* Layout (0-based rows). */
