@@ -79,6 +79,10 @@ static sl_status claim(const char *dir, sl_error *err)
     if (sl_mkdir_parents(real_dir, bad, sizeof bad) != 0)
         return sl_error_set(err, SL_EIO, bad[0] ? bad : dir, 0, "cannot create the output "
                             "folder's parent: %s", strerror(errno));
+    /* checked before the lock too: a write-protected folder (or one on a read-only
+     * mount) is named as such, not by the lock that could not be made in it */
+    if ((s = sl_outdir_check(real_dir, err)))
+        return s;
     if (!(lock = sl_outlock_take(real_dir, err)))
         return err ? err->code : SL_EIO;
     snprintf(lock_file, sizeof lock_file, "%s", sl_outlock_path(lock));

@@ -723,7 +723,8 @@ static sl_status commit_in_place(sl_atomic_dir *d, sl_error *err)
             continue; /* deeper: goes with its top folder */
         snprintf(top, sizeof top, "%.*s", (int)k, p);
         sl_fstat st;
-        if (has_name(names, nnames, top) || sl_outdir_own_name(top) ||
+        if (has_name(names, nnames, top) || !strcmp(top, SL_MANIFEST_NAME) ||
+            !strncmp(top, SL_OUTDIR_OWN_PREFIX, strlen(SL_OUTDIR_OWN_PREFIX)) ||
             sl_fs->stat(dirfd, top, &st) != 0)
             continue;
         char *own = strdup(top);

@@ -244,10 +244,14 @@ static sl_status conflict(carry *c, const char *rel)
 static sl_status failed(carry *c, const char *rel, const char *what, int e)
 {
     char p[PATH_CAP];
-    if (join(p, sizeof p, c->from, rel))
-        snprintf(p, sizeof p, "%s", c->from);
+    if (join(p, sizeof p, c->from, rel)) /* longer than a path may be: its start */
+        snprintf(p, sizeof p, "%s/%.300s...", c->from, rel);
     return sl_error_set(c->err, e == ENOMEM ? SL_ENOMEM : SL_EIO, p, 0, "%s: %s; the output "
-                        "folder is unchanged", what, strerror(e));
+                        "folder is unchanged%s", what, strerror(e),
+                        e == ENAMETOOLONG || e == EMFILE || e == ENFILE
+                            ? " (a folder nested deeper than the system takes: move it out of "
+                              "the output folder)"
+                            : "");
 }
 
 static int push_dir(carry *c, const char *rel)
