@@ -119,7 +119,7 @@ if command -v strace >/dev/null 2>&1 && strace -qq -o /dev/null true 2>/dev/null
   # held; unlink 4: every entry in place, the last lock held (the rerun computes nothing)
   for p in fsync:1:0 rename:1:1 fsync:2:2 unlink:4:1 fsync:5:1 rename:3:0 \
            $(awk -v s="$SEED" -v r="$R" 'BEGIN { srand(s + 1); for (i = 0; i < 3; i++) printf "rename:%d:%d ", 5 + int(rand() * (r - 5)), i % 2 }') \
-           rename:$((R - 1)):1 rename:$R:2 renameat2:1:2 unlinkat:1:1; do
+           rename:$((R - 1)):1 rename:$R:1 renameat2:1:2 unlinkat:1:1; do
     j=$((j + 1)); call=${p%%:*}; k=${p##*:}; n=${p#*:}; n=${n%:*}
     setup $k $j
     { strace -f -qq -o /dev/null -e trace="$call" -e inject="$call":signal=SIGKILL:when="$n" \
