@@ -34,8 +34,9 @@ enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_
        O_CREATED, O_FORCE, O_PROJECT, O_DOCUMENT, O_REVISION, O_PREPARED, O_CHECKED, O_DATE,
        O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT, O_SHARD, O_CACHE, O_NO_CACHE, O_COMPONENTS };
 static const cli_opt opts[] = {
-    {"output", 'o', "DIR", "output folder (default output/), swapped in whole: new (parents\n"
-     "made), empty or one seislide wrote; files it did not write stay", .kind = CLI_STRING,
+    {"output", 'o', "DIR", "output folder (default output/), swapped in whole (in place on a\n"
+     "mount point): new (parents made), empty or one seislide wrote;\n"
+     "files it did not write stay", .kind = CLI_STRING,
      A(out)},
     {"quiet", 'q', NULL, "no progress on stderr (warnings on the result and errors are\n"
      "still printed)",

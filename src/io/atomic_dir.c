@@ -622,8 +622,14 @@ static int undo(int tmpfd, int dirfd, const step *s)
     return -1;
 }
 
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
 /* The names at the top of the fresh folder to move in (all but its
- * manifest and seislide's temporaries): *n of them into *out (malloc'd).
+ * manifest and seislide's temporaries), in byte order: *n of them into *out
+ * (malloc'd).
  * 0, or -1 (errno). */
 static int fresh_names(int tmpfd, char ***out, size_t *n)
 {
@@ -669,6 +675,8 @@ static int fresh_names(int tmpfd, char ***out, size_t *n)
         errno = ENOMEM;
         return -1;
     }
+    if (*n)
+        qsort(v, *n, sizeof *v, by_name);
     *out = v;
     return 0;
 }
