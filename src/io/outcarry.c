@@ -299,7 +299,7 @@ static sl_status carry_entry(carry *c, sl_walk *w, const sl_walk_entry *e)
         memcpy(rs + k, "/", 2);
         int listed = sl_manifest_has(c->old, rs);
         free(rs);
-        if (e->mount) {
+        if (e->mount) { /* a mount cannot move with the folder */
             char p[PATH_CAP];
             if (join(p, sizeof p, c->from, rel))
                 snprintf(p, sizeof p, "%s", c->from);

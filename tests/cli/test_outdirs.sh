@@ -117,7 +117,7 @@ if command -v strace >/dev/null 2>&1 && strace -qq -o /dev/null true 2>/dev/null
     [ "$(fp "$D")" = "$before" ] && t_pass || t_fail "swap refused ($e): something changed, the cache $(ls "$D/busy/.seislide-cache" 2>&1 | head -c 100)"
   done
   # ---- 7. a file saved between the carry and the swap (the swap held 1.5 s) ---------------
-  "$B" run "$G" --sets 2 --mu 0.1,0.3 --created 1700086400 -q -o busy 2>/dev/null
+  "$B" run "$G" --sets 2 --mu 0.1,0.3 --created 1700086400 -q -o "$D/busy" 2>/dev/null
   strace -f -qq -o /dev/null -e trace=renameat2 -e inject=renameat2:delay_enter=1500000:when=1 \
     "$B" run "$G" $FAST -o "$D/busy" 2>"$T_TMP/save.err" & pid=$!
   i=0; while [ $i -lt 600 ] && [ -z "$(ls "$D"/.busy.tmp-*/notes.txt 2>/dev/null)" ]; do sleep 0.02; i=$((i + 1)); done
