@@ -70,7 +70,8 @@ void sl_atomic_abort(sl_atomic *a);
 /* Check an output folder (resolved: sl_outdir_resolve) before any work
  * (outguard.h): absent (its parent must be a writable folder), a folder
  * seislide wrote (it holds a readable manifest), or a folder holding nothing
- * but ".keep", ".gitkeep" and seislide's own names (the cache). It must be
+ * but ".keep", ".gitkeep" and seislide's own names (the cache; and
+ * "lost+found" at the root of a mounted volume). It must be
  * writable (a folder without write permission, mode 0555 even for root, is
  * refused), and no other file system may be mounted inside it (a mount
  * cannot move with a swap, and removing the old folder would empty it).

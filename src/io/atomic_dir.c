@@ -121,9 +121,13 @@ sl_status sl_outdir_check(const char *dir, sl_error *err)
     if (!d)
         return sl_error_set(err, SL_EIO, dir, 0, "output folder: %s", strerror(errno));
     struct dirent *e;
+    int mount = -1; /* whether dir is a mount point, found when needed */
     while (s == SL_OK && (e = readdir(d)) != NULL) {
         if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") || is_placeholder(e->d_name) ||
             sl_outdir_own_name(e->d_name))
+            continue;
+        /* the file system's own folder at the root of a volume mounted there (ext4) */
+        if (!strcmp(e->d_name, "lost+found") && (mount < 0 ? (mount = sl_path_is_mount(dir)) : mount))
             continue;
         s = sl_error_set(err, SL_EINVAL, dir, 0,
                          "the output folder holds '%s' and seislide did not make it (it has no "

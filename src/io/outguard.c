@@ -181,19 +181,6 @@ sl_status sl_outdir_resolve(const char *dir, char *buf, size_t n, sl_error *err)
 
 /* ---- file systems mounted in or on a folder ------------------------------ */
 
-int sl_path_is_mount(const char *real)
-{
-    sl_fstat a, b;
-    char parent[PATH_CAP];
-    if (sl_fs->stat(AT_FDCWD, real, &a) != 0 || !S_ISDIR(a.mode))
-        return 0;
-    if (a.mount_root)
-        return 1;
-    if (join(parent, sizeof parent, real, "..") != 0 || sl_fs->stat(AT_FDCWD, parent, &b) != 0)
-        return 0;
-    return a.dev != b.dev;
-}
-
 /* A mount point of /proc/self/mountinfo (its 5th field) unescaped in place:
  * "\040" is a space, "\011" a tab, "\012" a newline, "\134" a backslash. */
 static void unescape(char *s)
@@ -211,7 +198,9 @@ static void unescape(char *s)
     *w = '\0';
 }
 
-int sl_path_mount_inside(const char *real, char *first, size_t n)
+/* The first mount point of /proc/self/mountinfo that is `real` itself
+ * (exact) or lies inside it (!exact), into first: 1 found, else 0. */
+static int mountinfo_find(const char *real, int exact, char *first, size_t n)
 {
     FILE *f = fopen("/proc/self/mountinfo", "re");
     if (!f)
@@ -226,7 +215,7 @@ int sl_path_mount_inside(const char *real, char *first, size_t n)
         if (!field)
             continue;
         unescape(field);
-        if (inside(field, real)) {
+        if (exact ? !strcmp(field, real) : inside(field, real)) {
             found = 1;
             if (first && n)
                 snprintf(first, n, "%s", field);
@@ -235,6 +224,24 @@ int sl_path_mount_inside(const char *real, char *first, size_t n)
     free(line);
     fclose(f);
     return found;
+}
+
+int sl_path_mount_inside(const char *real, char *first, size_t n)
+{
+    return mountinfo_find(real, 0, first, n);
+}
+
+int sl_path_is_mount(const char *real)
+{
+    sl_fstat a, b;
+    char parent[PATH_CAP];
+    if (sl_fs->stat(AT_FDCWD, real, &a) != 0 || !S_ISDIR(a.mode))
+        return 0;
+    if (a.mount_root || mountinfo_find(real, 1, NULL, 0))
+        return 1;
+    if (join(parent, sizeof parent, real, "..") != 0 || sl_fs->stat(AT_FDCWD, parent, &b) != 0)
+        return 0;
+    return a.dev != b.dev;
 }
 
 int sl_outdir_own_name(const char *name)

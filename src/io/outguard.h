@@ -91,8 +91,8 @@ sl_overlap sl_path_overlap(const char *out, const char *input);
 int sl_mkdir_parents(const char *dir, char *bad, size_t nbad);
 
 /* 1 when another file system is mounted on the resolved folder `real`
- * itself (statx's mount root, or another device than its parent's), else 0
- * (also when it does not exist). */
+ * itself (statx's mount root, a mount point of /proc/self/mountinfo, or
+ * another device than its parent's), else 0 (also when it does not exist). */
 int sl_path_is_mount(const char *real);
 
 /* The first mount point strictly inside the resolved folder `real`, from

@@ -122,24 +122,30 @@ static void set_where(sl_walk *w, const char *rel)
 sl_walk *sl_walk_open(int rootfd)
 {
     sl_walk *w = calloc(1, sizeof *w);
-    if (!w)
-        return NULL;
-    w->rootfd = rootfd;
-    sl_fstat st;
-    int fd = -1;
     char *rel = strdup("");
-    if (!rel || sl_fs->stat(rootfd, NULL, &st) != 0 ||
-        (fd = sl_fs->open(rootfd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC, 0)) < 0 ||
-        push(w, rel, &st, fd, 1) != 0) {
-        int e = errno;
-        if (!w->depth)
-            free(fd < 0 ? rel : NULL); /* push frees rel (and fd) on its failure */
+    sl_fstat st;
+    int fd = -1, e = ENOMEM;
+    if (!w || !rel)
+        goto fail;
+    w->rootfd = rootfd;
+    if (sl_fs->stat(rootfd, NULL, &st) != 0 ||
+        (fd = sl_fs->open(rootfd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC, 0)) < 0) {
+        e = errno;
+        goto fail;
+    }
+    if (push(w, rel, &st, fd, 1) != 0) { /* push frees rel and fd on its failure */
+        e = errno;
         sl_walk_close(w);
         errno = e;
         return NULL;
     }
     w->root_dev = st.dev;
     return w;
+fail:
+    free(rel);
+    sl_walk_close(w);
+    errno = e;
+    return NULL;
 }
 
 /* "a" + "/" + "b", malloc'd ("b" when a is ""). */

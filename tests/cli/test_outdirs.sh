@@ -3,7 +3,8 @@
 # "Output folders of every kind"): `-o DIR/.` and `-o .` from inside the folder; a user's
 # folder nested 100 deep inside it, and one deeper than a path may be; a file system
 # mounted inside it (refused before any work, the mount kept), and the folder itself a
-# mount point (written in place; also in a read-only parent); the swap refused (EBUSY,
+# mount point (written in place; also in a read-only parent, and a volume's root holding
+# lost+found); the swap refused (EBUSY,
 # EXDEV: everything back, the cache included); `-o` a symbolic link (followed, by every
 # command; a dangling one refused); a user's save between the carry and the swap; a
 # write-protected folder. After each: the whole tree's checksums (every path, type,
@@ -224,6 +225,11 @@ for n in 1 3; do
     [ "$(fp_of "$M/out")" = "$before" ] && ok || bad "in place, exchange $n refused: changed: $(cat "$D/m.err")"
   fi
 done
+# a volume's root (lost+found, the file system's own): accepted and kept
+mkdir "$M/vol" && mount -t tmpfs tmpfs "$M/vol" && mkdir "$M/vol/lost+found" && chmod 700 "$M/vol/lost+found"
+"$B" run "$G" $FAST -o "$M/vol" 2>"$D/m.err"; rc_is $? 0 "a volume with lost+found"
+"$B" run "$G" $FAST -o "$M/vol" 2>"$D/m.err"; rc_is $? 0 "a volume with lost+found, rerun"
+[ -d "$M/vol/lost+found" ] && [ -f "$M/vol/floors.csv" ] && ok || bad "lost+found: $(ls -A "$M/vol" | tr '\n' ' ')"
 # a mount point in a read-only parent: the lock inside, written in place
 mkdir "$M/ro" && mount -t tmpfs tmpfs "$M/ro" && mkdir "$M/ro/out" && mount -t tmpfs tmpfs "$M/ro/out"
 mount -o remount,ro "$M/ro"
