@@ -38,6 +38,8 @@ static int fs_failed;         /* the fault was injected */
 static void (*fs_hook)(int op, long n, const char *path);
 /* Paths reported as mount roots by stat (a mount, without mounting). */
 static const char *fs_mount_path;
+/* A file system without renameat2's flags (NFS, CIFS): EINVAL for any. */
+static int fs_no_rename_flags;
 
 static int fs_tick(int op, const char *path)
 {
@@ -101,7 +103,13 @@ static int fw_unlink(int d, const char *p, int f)
 }
 static int fw_rename(int fd, const char *f, int td, const char *t, unsigned fl)
 {
-    return fs_tick(FS_RENAME, f) ? -1 : FS_SYS->rename(fd, f, td, t, fl);
+    if (fs_tick(FS_RENAME, f))
+        return -1;
+    if (fl && fs_no_rename_flags) {
+        errno = EINVAL;
+        return -1;
+    }
+    return FS_SYS->rename(fd, f, td, t, fl);
 }
 static int fw_link(int fd, const char *f, int td, const char *t)
 {
@@ -139,6 +147,7 @@ static void fs_reset(void)
     fs_failed = 0;
     fs_hook = NULL;
     fs_mount_path = NULL;
+    fs_no_rename_flags = 0;
     sl_fsops_install(&fs_faulty);
 }
 

@@ -131,6 +131,7 @@ static int leftovers(void)
 }
 
 static char *OLD_SNAP, *NEW_SNAP;
+static int sweep_no_flags; /* the sweep on a file system without renameat2's flags */
 static long CLEAN[FS_NOPS];
 
 /* A fault-free run: its snapshot (the new state) and its calls counted. */
@@ -141,6 +142,7 @@ static void reference(sl_atomic_how how)
     free(OLD_SNAP);
     OLD_SNAP = fs_snapshot(OUT);
     fs_reset();
+    fs_no_rename_flags = sweep_no_flags;
     sl_status s = run_once(how, msg, sizeof msg);
     memcpy(CLEAN, fs_count, sizeof CLEAN);
     sl_fsops_install(NULL);
@@ -199,7 +201,8 @@ static void drop_kept(char *snap)
 }
 
 /* Every call of a commit failed in turn with each errno: the old state or
- * the new one, every user's byte in place, nothing left. */
+ * the new one, every user's byte in place, nothing left. no_flags: on a file
+ * system without renameat2's flags (the two- and three-rename fallbacks). */
 static void sweep(sl_atomic_how how, const char *name)
 {
     reference(how);
@@ -211,6 +214,7 @@ static void sweep(sl_atomic_how how, const char *name)
             for (size_t k = 0; k < NERRS; k++) {
                 build_old();
                 fs_reset();
+                fs_no_rename_flags = sweep_no_flags;
                 fs_fail(op, n, ERRS[k]);
                 sl_status s = run_once(how, msg, sizeof msg);
                 sl_fsops_install(NULL);
@@ -248,6 +252,13 @@ static void sweep(sl_atomic_how how, const char *name)
 
 static void test_faults_swap(void) { sweep(SL_ATOMIC_SWAP, "swap"); }
 static void test_faults_in_place(void) { sweep(SL_ATOMIC_IN_PLACE, "in place"); }
+static void test_faults_without_rename_flags(void)
+{
+    sweep_no_flags = 1;
+    sweep(SL_ATOMIC_SWAP, "swap, two renames");
+    sweep(SL_ATOMIC_IN_PLACE, "in place, three renames an entry");
+    sweep_no_flags = 0;
+}
 
 /* Item 5 of issue 39: the swap refused (EBUSY): the cache back, the folder as it was. */
 static void test_swap_refused_keeps_cache(void)
@@ -588,6 +599,7 @@ int main(void)
     snprintf(OUT, sizeof OUT, "%s/out", ROOT);
     RUN(test_faults_swap);
     RUN(test_faults_in_place);
+    RUN(test_faults_without_rename_flags);
     RUN(test_swap_refused_keeps_cache);
     RUN(test_saved_while_finishing);
     RUN(test_saved_without_hard_links);

@@ -565,19 +565,22 @@ static sl_status commit_swap(sl_atomic_dir *d, sl_error *err)
      * killed in between leaves no DIR: the next one puts a folder back,
      * sl_atomic_dir_recover) */
     char *old = sl_atomic_hidden_name(d->path);
-    int e = 0;
+    int e = 0, back = 0;
     if (!old)
         e = ENOMEM;
     else if (rename_new(AT_FDCWD, d->path, AT_FDCWD, old) != 0)
         e = errno;
     else if (sl_fs->rename(AT_FDCWD, d->tmp, AT_FDCWD, d->path, 0) != 0) {
         e = errno;
-        sl_fs->rename(AT_FDCWD, old, AT_FDCWD, d->path, 0);
+        back = sl_fs->rename(AT_FDCWD, old, AT_FDCWD, d->path, 0);
     }
     if (e) {
+        sl_status s = sl_error_set(err, SL_EIO, d->path, 0, "cannot replace: %s; the output "
+                                   "folder is unchanged", strerror(e));
+        if (back) /* no DIR now: the next run puts it back (sl_atomic_dir_recover) */
+            add_to(err, " but was left aside as %s: the next run into it puts it back", old);
         free(old);
-        return fail_back(d, sl_error_set(err, SL_EIO, d->path, 0, "cannot replace: %s; the "
-                                         "output folder is unchanged", strerror(e)), err);
+        return fail_back(d, s, err);
     }
     sl_status s = finish_old(d, old, err);
     free(old);
@@ -593,24 +596,36 @@ typedef struct step {
     step_kind kind;
 } step;
 
-/* Exchange tmpfd/name and dirfd/name (three renames through an aside name
- * where the file system has no RENAME_EXCHANGE). */
+/* Exchange tmpfd/name and dirfd/name: 0, or -1 (errno) with both as they
+ * were, or -2 when they could not be put back (a failure in the middle of
+ * the fallback). Where the file system has no RENAME_EXCHANGE: three
+ * renames through an aside name of its own in the fresh folder, each undone
+ * on a failure of the next. */
 static int exchange(int tmpfd, int dirfd, const char *name)
 {
-    static const char aside[] = SL_OUTDIR_TMP_INSIDE "aside";
     if (sl_fs->rename(tmpfd, name, dirfd, name, RENAME_EXCHANGE) == 0)
         return 0;
     if (errno != EINVAL && errno != ENOSYS)
         return -1;
-    if (sl_fs->rename(dirfd, name, tmpfd, aside, 0) != 0)
+    char aside[NAME_MAX + 1];
+    snprintf(aside, sizeof aside, SL_OUTDIR_TMP_INSIDE "aside-%s", name);
+    if (rename_new(dirfd, name, tmpfd, aside) != 0) /* the old entry aside */
         return -1;
-    if (sl_fs->rename(tmpfd, name, dirfd, name, 0) != 0) {
-        int e = errno;
-        sl_fs->rename(tmpfd, aside, dirfd, name, 0);
+    int e;
+    if (sl_fs->rename(tmpfd, name, dirfd, name, 0) != 0) { /* the new one in */
+        e = errno;
+        int back = sl_fs->rename(tmpfd, aside, dirfd, name, 0);
         errno = e;
-        return -1;
+        return back ? -2 : -1;
     }
-    return sl_fs->rename(tmpfd, aside, tmpfd, name, 0);
+    if (sl_fs->rename(tmpfd, aside, tmpfd, name, 0) != 0) { /* the old one where the new was */
+        e = errno;
+        int back = sl_fs->rename(dirfd, name, tmpfd, name, 0) != 0 ||
+                   sl_fs->rename(tmpfd, aside, dirfd, name, 0) != 0;
+        errno = e;
+        return back ? -2 : -1;
+    }
+    return 0;
 }
 
 static int undo(int tmpfd, int dirfd, const step *s)
@@ -716,15 +731,19 @@ static sl_status commit_in_place(sl_atomic_dir *d, sl_error *err)
     size_t nold = sl_manifest_count(d->old);
     if (!s && !(steps = calloc(nnames + nold + 1, sizeof *steps)))
         s = sl_error_set(err, SL_ENOMEM, d->path, 0, "out of memory");
+    size_t broken = 0; /* entries left half exchanged */
     for (size_t i = 0; !s && i < nnames; i++) {
         sl_fstat st;
         int there = sl_fs->stat(dirfd, names[i], &st) == 0;
         step_kind k = there ? STEP_EXCHANGED : STEP_MOVED_IN;
-        if (there ? exchange(tmpfd, dirfd, names[i]) : rename_new(tmpfd, names[i], dirfd, names[i]))
+        int r = there ? exchange(tmpfd, dirfd, names[i]) : rename_new(tmpfd, names[i], dirfd, names[i]);
+        if (r) {
+            broken += r == -2;
             s = sl_error_set(err, SL_EIO, d->path, 0, "cannot replace '%s': %s; the output folder "
                              "is unchanged", names[i], strerror(errno));
-        else
+        } else {
             steps[nsteps++] = (step){names[i], k};
+        }
     }
     /* the old outputs at the top that this run does not write */
     for (size_t i = 0; !s && i < nold; i++) {
@@ -751,7 +770,7 @@ static sl_status commit_in_place(sl_atomic_dir *d, sl_error *err)
     if (!s)
         s = sl_manifest_save(d->path, d->mine, d->version, err);
     if (s && both) { /* everything back as it was */
-        size_t undone = 0;
+        size_t undone = broken;
         while (nsteps)
             undone += undo(tmpfd, dirfd, &steps[--nsteps]) != 0;
         if (sl_manifest_restore(d->path, d->old, d->version, NULL) != SL_OK || undone)
