@@ -16,6 +16,8 @@ t_suite cli_outdirs
 D=$T_TMP/w; mkdir "$D"
 B=$(cd "$(dirname "$SEISLIDE_BIN")" && pwd)/$(basename "$SEISLIDE_BIN")
 OMP_NUM_THREADS=1; export OMP_NUM_THREADS
+# LeakSanitizer cannot run under ptrace: the traced runs of `make asan` skip it
+NOLEAK="env ASAN_OPTIONS=detect_leaks=0"
 FAST="--sets 2 --mu 0.1,0.3 --created 1700000000 -q"
 cp floors/01-ground.ini "$D/g.ini"
 G=$D/g.ini
@@ -112,14 +114,14 @@ if command -v strace >/dev/null 2>&1 && strace -qq -o /dev/null true 2>/dev/null
   echo "mine" >"$D/busy/notes.txt"
   for e in EBUSY EXDEV EACCES ENOSPC; do
     before=$(fp "$D")
-    t_cmd_in "$D" "swap-$e" 1 strace -f -qq -o /dev/null -e trace=renameat2 \
+    t_cmd_in "$D" "swap-$e" 1 $NOLEAK strace -f -qq -o /dev/null -e trace=renameat2 \
       -e inject=renameat2:error=$e:when=1 "$B" run "$G" --sets 2 --mu 0.1,0.3 --created 1700086400 -q -o busy
     t_expect_err "swap-$e-msg" "cannot replace: .*; the output folder is unchanged"
     [ "$(fp "$D")" = "$before" ] && t_pass || t_fail "swap refused ($e): something changed, the cache $(ls "$D/busy/.seislide-cache" 2>&1 | head -c 100)"
   done
   # ---- 7. a file saved between the carry and the swap (the swap held 1.5 s) ---------------
   "$B" run "$G" --sets 2 --mu 0.1,0.3 --created 1700086400 -q -o "$D/busy" 2>/dev/null
-  strace -f -qq -o /dev/null -e trace=renameat2 -e inject=renameat2:delay_enter=1500000:when=1 \
+  $NOLEAK strace -f -qq -o /dev/null -e trace=renameat2 -e inject=renameat2:delay_enter=1500000:when=1 \
     "$B" run "$G" $FAST -o "$D/busy" 2>"$T_TMP/save.err" & pid=$!
   i=0; while [ $i -lt 600 ] && [ -z "$(ls "$D"/.busy.tmp-*/notes.txt 2>/dev/null)" ]; do sleep 0.02; i=$((i + 1)); done
   printf 'edited' >"$D/busy/notes.txt.swp" && mv "$D/busy/notes.txt.swp" "$D/busy/notes.txt"
@@ -220,7 +222,7 @@ echo "my notes" >"$M/out/notes.txt"
 for n in 1 3; do
   if command -v strace >/dev/null 2>&1; then
     before=$(fp_of "$M/out")
-    strace -f -qq -o /dev/null -e trace=renameat2 -e inject=renameat2:error=EBUSY:when=$n \
+    env ASAN_OPTIONS=detect_leaks=0 strace -f -qq -o /dev/null -e trace=renameat2 -e inject=renameat2:error=EBUSY:when=$n \
       "$B" run "$G" --sets 2 --mu 0.1,0.3 --created 1700086400 -q -o "$M/out" 2>"$D/m.err"; rc_is $? 1 "in place, exchange $n refused"
     [ "$(fp_of "$M/out")" = "$before" ] && ok || bad "in place, exchange $n refused: changed: $(cat "$D/m.err")"
   fi
