@@ -111,7 +111,7 @@ $(PROG): $(CLI_OBJ) $(STUDY_LIB) $(LIB)
 	$(CC) $(ALL_LDFLAGS) -o $@ $(CLI_OBJ) $(STUDY_LIB) $(LIB) $(LIBS_ALL)
 
 $(STUDY_TESTS): TEST_LIBS := $(STUDY_LIB)
-$(BUILD)/tests/%: tests/%.c $(STUDY_LIB) $(LIB) tests/harness.h tests/oracle.h tests/tsv.h
+$(BUILD)/tests/%: tests/%.c $(STUDY_LIB) $(LIB) tests/harness.h tests/oracle.h tests/tsv.h tests/fsfault.h
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TEST_LIBS) $(LIB) $(LIBS_ALL)
 

@@ -55,7 +55,7 @@ trap 'exit 130' INT TERM
 # Longest first (measured; a suite not named here runs after them), so that
 # the last suite to start is a short one.
 slow="tests/cli/test_faults.sh tests/cli/test_floor_csv.sh tests/cli/test_converge.sh
-  tests/cli/test_outputs.sh $SEISLIDE_TESTBIN/test_analysis tests/cli/test_plant.sh
+  tests/cli/test_outputs.sh tests/cli/test_outdirs.sh $SEISLIDE_TESTBIN/test_analysis tests/cli/test_plant.sh
   tests/cli/test_components.sh $SEISLIDE_TESTBIN/test_physical_floors tests/cli/test_workbook.sh
   tests/cli/test_run_errors.sh tests/cli/test_run.sh $SEISLIDE_TESTBIN/test_synth
   tests/cli/test_deliver.sh $SEISLIDE_TESTBIN/test_lookup tests/cli/test_synth.sh

@@ -85,10 +85,10 @@ int cmd_run(int argc, char **argv)
         cli_msg("run: warning: %lu motion sets per floor; ASCE/SEI 43-05 asks for at least %d",
                 a.sets, SL_NLTHA_MIN_SETS);
     runner r = {.p = &plant, .ao = ao, .n_mu = a.mu.n, .read_cache = !a.dop.write_motions};
-    if (!a.no_cache) {
-        snprintf(cache_dir, sizeof cache_dir, "%s/%s", a.out, SL_CACHE_DIR_NAME);
+    if (!a.no_cache) { /* in the output folder as resolved (one path for every step) */
+        snprintf(cache_dir, sizeof cache_dir, "%s/%s", cli_outdir_path(), SL_CACHE_DIR_NAME);
         r.cache = a.cache ? a.cache : cache_dir;
-        r.out = a.cache ? NULL : a.out;
+        r.out = a.cache ? NULL : cli_outdir_path();
     }
     if (a.cache && run_cache_ready(&r, &err)) /* a cache given that cannot be used: before any work */
         goto fail;
@@ -111,7 +111,8 @@ int cmd_run(int argc, char **argv)
     if (st)
         goto fail;
     if (!a.quiet && r.cache)
-        cli_msg("run: reused %zu of %zu floors (cache %s)", r.pp.reused, n_mine, r.cache);
+        cli_msg("run: reused %zu of %zu floors (cache %s%s)", r.pp.reused, n_mine,
+                a.cache ? a.cache : a.out, a.cache ? "" : "/" SL_CACHE_DIR_NAME);
     /* motions that failed their checks stop the run before anything is written
      * (run_report_checks prints which, how often and where), unless accepted */
     for (size_t i = 0, k = 0; i < plant.n; i++)

@@ -27,7 +27,9 @@ int cli_outdir_apart(const char *cmd, const char *what, const char *dir,
 /* cli_outdir_apart for a floor file the operands reached (perhaps through a
  * symbolic link) and, with folder_too (a plant's floor), its building folder. */
 int cli_outdir_apart_floor(const char *cmd, const char *dir, const char *path, int folder_too);
-/* Make dir's missing parents (mkdir -p), take its lock (another run
+/* Resolve dir (outguard.h: sl_outdir_resolve; a link followed, "." and ".."
+ * resolved: the one path every step uses, cli_outdir_path), make its
+ * missing parents (mkdir -p), take its lock (another run
  * writing there: SL_EINVAL naming it; held until cli_outdir_finish), put
  * back a folder a killed swap left aside, take `salvage` (NULL: nothing;
  * the cache a run moves into its fresh folder just before the swap) back
@@ -42,9 +44,12 @@ void cli_outdir_writing(void);
  * on failure *d stays), swap the fresh folder in and set *d to NULL (SL_OK,
  * or the swap's error); after a noted signal do nothing and return SL_EIO. */
 sl_status cli_outdir_commit(sl_atomic_dir **d, sl_error *err);
-/* A path inside the fresh folder renamed to the same path in the final
- * folder (what the user will look for), in place; others unchanged. */
+/* A path inside the fresh folder, or inside the resolved output folder,
+ * renamed to the same path in the output folder as the user named it (what
+ * the user will look for), in place; others unchanged. */
 void cli_outdir_final_name(char *path, size_t n);
+/* The output folder resolved by cli_outdir_open ("" before). */
+const char *cli_outdir_path(void);
 /* Nonzero when a signal was noted. */
 int cli_outdir_interrupted(void);
 /* Print err (cli_print_error) unless a signal was noted: then the error is

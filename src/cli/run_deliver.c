@@ -2,8 +2,8 @@
  * whole or not at all (run_deliver.h). */
 #include "run_deliver.h"
 
-#include <errno.h>
 #include <stdio.h>
+#include <errno.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
@@ -61,20 +61,12 @@ sl_status run_deliver(const run_args *a, const sl_plant *plant, const char *defa
         (st = components_write(fresh, a->out, a->components, fresh, cmdline, dop.created, plant,
                                default_cache ? default_cache : a->cache, a->quiet, err)))
         return st;
-    /* the default cache travels with the outputs across the swap */
-    char moved[4400] = "";
-    struct stat sb;
-    if (default_cache && stat(default_cache, &sb) == 0) {
-        snprintf(moved, sizeof moved, "%s/%s", fresh, SL_CACHE_DIR_NAME);
-        if (rename(default_cache, moved) != 0)
-            return sl_error_set(err, SL_EIO, default_cache, 0, "cannot carry the cache over: %s",
-                                strerror(errno));
-    }
-    if ((st = cli_outdir_commit(out, err))) {
-        if (moved[0] && *out) /* not swapped (interrupted): the cache goes back */
-            rename(moved, default_cache);
+    /* the default cache travels with the outputs across the swap; any failure of
+     * the commit (or a signal) puts it back (atomic.h: sl_atomic_dir_take) */
+    if (default_cache && (st = sl_atomic_dir_take(*out, SL_CACHE_DIR_NAME, err)))
         return st;
-    }
+    if ((st = cli_outdir_commit(out, err)))
+        return st;
     if (!a->quiet)
         cli_msg("run: wrote %s/%s", a->out, a->shard_n ? SL_SHARD_MANIFEST " and the shard's results"
                 : plant->is_plant ? "<building>/ for each building, " SL_PLANT_BOOK_CSV " and "

@@ -12,8 +12,8 @@
 
 /* Deliver plant (its floors of this run computed) into *out, the fresh
  * folder of a->out; default_cache (NULL: none) is the cache folder
- * a->out/.seislide-cache, moved into the fresh folder before the swap (and
- * back when the swap does not happen). argc, argv: the recorded command
+ * DIR/.seislide-cache, moved into the fresh folder before the swap (and
+ * back by any failure of the commit, or a signal: sl_atomic_dir_take). argc, argv: the recorded command
  * line. SL_OK (*out NULL: swapped in; "run: wrote ..." said unless -q), or
  * the first error (nothing swapped in). */
 sl_status run_deliver(const run_args *a, const sl_plant *plant, const char *default_cache,

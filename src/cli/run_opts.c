@@ -36,8 +36,9 @@ enum { O_SETS = CLI_OPT_ID, O_SEED, O_MU_RANGE, O_MU, O_POLICY, O_ACC, O_SUB, O_
        O_REL_SE, O_ABS_SE, O_MAX_SETS, O_SCATTER, O_ACCEPT, O_SHARD, O_CACHE, O_NO_CACHE, O_COMPONENTS,
        O_ACCEPT_FLOOR, O_ROCKING_LOOKUP };
 static const cli_opt opts[] = {
-    {"output", 'o', "DIR", "output folder (default output/), swapped in whole: new (parents\n"
-     "made), empty or one seislide wrote; files it did not write stay", .kind = CLI_STRING,
+    {"output", 'o', "DIR", "output folder (default output/), swapped in whole (in place on a\n"
+     "mount point): new (parents made), empty or one seislide wrote;\n"
+     "files it did not write stay", .kind = CLI_STRING,
      A(out)},
     {"quiet", 'q', NULL, "no progress on stderr (warnings on the result and errors are\n"
      "still printed)",

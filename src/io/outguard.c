@@ -1,6 +1,9 @@
-/* outguard.c - manifest, paths compared, parents made, the lock; see outguard.h. */
-#define _GNU_SOURCE /* flock */
+/* outguard.c - paths resolved and compared, parents made, mounts found, the
+ * lock; see outguard.h. (The manifest: manifest.c; carrying and removing:
+ * outcarry.c.) */
+#define _GNU_SOURCE /* flock, O_CLOEXEC */
 #include "io/outguard.h"
+#include "io/fsops.h"
 #include "io/owner.h"
 
 #include <dirent.h>
@@ -157,6 +160,96 @@ int sl_mkdir_parents(const char *dir, char *bad, size_t nbad)
     return 0;
 }
 
+
+sl_status sl_outdir_resolve(const char *dir, char *buf, size_t n, sl_error *err)
+{
+    struct stat st;
+    if (!dir || !*dir)
+        return sl_error_set(err, SL_EINVAL, dir, 0, "no output folder given");
+    if (lstat(dir, &st) == 0 && S_ISLNK(st.st_mode) && stat(dir, &st) != 0 && errno == ENOENT) {
+        char target[PATH_CAP];
+        ssize_t k = readlink(dir, target, sizeof target - 1);
+        target[k > 0 ? k : 0] = '\0';
+        return sl_error_set(err, SL_EINVAL, dir, 0, "the output folder is a symbolic link to "
+                            "'%s', which does not exist: make that folder, or give a folder "
+                            "that is not a dangling link (nothing was written)", target);
+    }
+    if (sl_path_resolve(dir, buf, n) != 0)
+        return sl_error_set(err, SL_EIO, dir, 0, "output folder: %s", strerror(errno));
+    return SL_OK;
+}
+
+/* ---- file systems mounted in or on a folder ------------------------------ */
+
+/* A mount point of /proc/self/mountinfo (its 5th field) unescaped in place:
+ * "\040" is a space, "\011" a tab, "\012" a newline, "\134" a backslash. */
+static void unescape(char *s)
+{
+    char *w = s;
+    for (char *r = s; *r; r++) {
+        if (r[0] == '\\' && r[1] >= '0' && r[1] <= '3' && r[2] >= '0' && r[2] <= '7' &&
+            r[3] >= '0' && r[3] <= '7') {
+            *w++ = (char)((r[1] - '0') * 64 + (r[2] - '0') * 8 + (r[3] - '0'));
+            r += 3;
+        } else {
+            *w++ = *r;
+        }
+    }
+    *w = '\0';
+}
+
+/* The first mount point of /proc/self/mountinfo that is `real` itself
+ * (exact) or lies inside it (!exact), into first: 1 found, else 0. */
+static int mountinfo_find(const char *real, int exact, char *first, size_t n)
+{
+    FILE *f = fopen("/proc/self/mountinfo", "re");
+    if (!f)
+        return 0;
+    char *line = NULL;
+    size_t cap = 0;
+    int found = 0;
+    while (!found && getline(&line, &cap, f) > 0) {
+        char *save = NULL, *field = strtok_r(line, " ", &save);
+        for (int i = 1; field && i < 5; i++)
+            field = strtok_r(NULL, " ", &save);
+        if (!field)
+            continue;
+        unescape(field);
+        if (exact ? !strcmp(field, real) : inside(field, real)) {
+            found = 1;
+            if (first && n)
+                snprintf(first, n, "%s", field);
+        }
+    }
+    free(line);
+    fclose(f);
+    return found;
+}
+
+int sl_path_mount_inside(const char *real, char *first, size_t n)
+{
+    return mountinfo_find(real, 0, first, n);
+}
+
+int sl_path_is_mount(const char *real)
+{
+    sl_fstat a, b;
+    char parent[PATH_CAP];
+    if (sl_fs->stat(AT_FDCWD, real, &a) != 0 || !S_ISDIR(a.mode))
+        return 0;
+    if (a.mount_root || mountinfo_find(real, 1, NULL, 0))
+        return 1;
+    if (join(parent, sizeof parent, real, "..") != 0 || sl_fs->stat(AT_FDCWD, parent, &b) != 0)
+        return 0;
+    return a.dev != b.dev;
+}
+
+int sl_outdir_own_name(const char *name)
+{
+    return !strcmp(name, SL_MANIFEST_NAME) || !strcmp(name, SL_MANIFEST_CACHE) ||
+           !strncmp(name, SL_OUTDIR_OWN_PREFIX, strlen(SL_OUTDIR_OWN_PREFIX));
+}
+
 /* ---- the lock ----------------------------------------------------------- */
 
 struct sl_outlock {
@@ -164,7 +257,8 @@ struct sl_outlock {
     char path[PATH_CAP];
 };
 
-/* ".BASE.lock" beside the resolved folder dir, into path. */
+/* ".BASE.lock" beside the resolved folder dir, into path; inside it
+ * (SL_OUTDIR_LOCK_INSIDE) when the parent cannot be written and dir exists. */
 static int lock_path(const char *dir, char *path, size_t n)
 {
     char r[PATH_CAP];
@@ -172,7 +266,14 @@ static int lock_path(const char *dir, char *path, size_t n)
         return -1;
     char *slash = strrchr(r, '/');
     const char *base = slash[1] ? slash + 1 : "seislide";
-    int w = snprintf(path, n, "%.*s/.%s.lock", (int)(slash - r), r, base);
+    char parent[PATH_CAP];
+    snprintf(parent, sizeof parent, "%.*s", slash == r ? 1 : (int)(slash - r), r);
+    struct stat st;
+    int w;
+    if (access(parent, W_OK | X_OK) != 0 && stat(r, &st) == 0 && S_ISDIR(st.st_mode))
+        w = snprintf(path, n, "%s/" SL_OUTDIR_LOCK_INSIDE, r);
+    else
+        w = snprintf(path, n, "%.*s/.%s.lock", (int)(slash - r), r, base);
     return w < 0 || (size_t)w >= n ? -1 : 0;
 }
 
@@ -190,26 +291,26 @@ sl_outlock *sl_outlock_take(const char *dir, sl_error *err)
         return NULL;
     }
     for (int tries = 0; tries < LOCK_TRIES; tries++) {
-        int fd = open(l->path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+        int fd = sl_fs->open(AT_FDCWD, l->path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
         if (fd < 0) {
             sl_error_set(err, SL_EIO, l->path, 0, "cannot create the output folder's lock: %s",
                          strerror(errno));
             break;
         }
-        if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        if (sl_fs->flock(fd, LOCK_EX | LOCK_NB) != 0) {
             int e = errno;
             if (e == EWOULDBLOCK) {
                 char who[LOCK_HOLDER + 1];
                 ssize_t k = pread(fd, who, LOCK_HOLDER, 0);
                 who[k > 0 ? k : 0] = '\0';
                 who[strcspn(who, "\r\n")] = '\0';
-                close(fd);
+                sl_fs->close(fd);
                 sl_error_set(err, SL_EINVAL, dir, 0, "another run is writing this output folder: "
                              "process %s (lock %s); wait for it to end, or give another folder",
                              who[0] ? who : "(not yet named)", l->path);
                 break;
             }
-            close(fd);
+            sl_fs->close(fd);
             if (e == ENOLCK || e == EOPNOTSUPP || e == ENOTSUP || e == ENOSYS || e == EINVAL) {
                 l->path[0] = '\0'; /* no locks here: a lock that holds nothing */
                 return l;
@@ -218,19 +319,19 @@ sl_outlock *sl_outlock_take(const char *dir, sl_error *err)
             break;
         }
         /* the file may have been removed (and made anew) by the run that held it */
-        struct stat a, b;
-        if (fstat(fd, &a) != 0 || stat(l->path, &b) != 0 || a.st_ino != b.st_ino ||
-            a.st_dev != b.st_dev) {
-            close(fd);
+        sl_fstat a, b;
+        if (sl_fs->stat(fd, NULL, &a) != 0 || sl_fs->stat(AT_FDCWD, l->path, &b) != 0 ||
+            a.ino != b.ino || a.dev != b.dev) {
+            sl_fs->close(fd);
             continue;
         }
         char host[80], text[LOCK_HOLDER];
         sl_owner_host(host, sizeof host);
         int w = snprintf(text, sizeof text, "%ld@%s\n", (long)getpid(), host);
-        if (ftruncate(fd, 0) != 0 || pwrite(fd, text, (size_t)w, 0) != (ssize_t)w) {
+        if (sl_fs->ftruncate(fd, 0) != 0 || sl_fs->write(fd, text, (size_t)w) != (ssize_t)w) {
             sl_error_set(err, SL_EIO, l->path, 0, "cannot write the lock: %s", strerror(errno));
-            unlink(l->path);
-            close(fd);
+            sl_fs->unlink(AT_FDCWD, l->path, 0);
+            sl_fs->close(fd);
             break;
         }
         l->fd = fd;
@@ -249,355 +350,9 @@ void sl_outlock_release(sl_outlock *l)
     if (!l)
         return;
     if (l->fd >= 0) { /* removed while held: a run that opened it meanwhile retries */
-        unlink(l->path);
-        close(l->fd);
+        sl_fs->unlink(AT_FDCWD, l->path, 0);
+        sl_fs->close(l->fd);
     }
     free(l);
 }
 
-/* ---- the manifest ------------------------------------------------------- */
-
-struct sl_manifest {
-    size_t n, cap;
-    char **path; /* sorted by strcmp */
-};
-
-static int by_bytes(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-static int manifest_add(sl_manifest *m, const char *s, size_t k)
-{
-    if (m->n == m->cap) {
-        size_t cap = m->cap ? 2 * m->cap : 64;
-        char **p = realloc(m->path, cap * sizeof *p);
-        if (!p)
-            return -1;
-        m->path = p;
-        m->cap = cap;
-    }
-    if (!(m->path[m->n] = strndup(s, k)))
-        return -1;
-    m->n++;
-    return 0;
-}
-
-void sl_manifest_free(sl_manifest *m)
-{
-    if (!m)
-        return;
-    for (size_t i = 0; i < m->n; i++)
-        free(m->path[i]);
-    free(m->path);
-    free(m);
-}
-
-int sl_manifest_has(const sl_manifest *m, const char *rel)
-{
-    return m && m->n && bsearch(&rel, m->path, m->n, sizeof *m->path, by_bytes) != NULL;
-}
-
-/* A path the manifest may hold (outguard.h): relative, no empty, "." or
- * ".." component but for one trailing '/'. */
-static int good_rel(const char *s, size_t k)
-{
-    if (!k || s[0] == '/')
-        return 0;
-    if (s[k - 1] == '/')
-        k--;
-    for (size_t i = 0; i <= k;) {
-        size_t j = i;
-        while (j < k && s[j] != '/')
-            j++;
-        if (j == i || (j - i == 1 && s[i] == '.') || (j - i == 2 && s[i] == '.' && s[i + 1] == '.'))
-            return 0;
-        for (size_t q = i; q < j; q++)
-            if ((unsigned char)s[q] < 0x20)
-                return 0;
-        i = j + 1;
-    }
-    return 1;
-}
-
-sl_status sl_manifest_read(const char *dir, sl_manifest **out, sl_error *err)
-{
-    char path[PATH_CAP];
-    struct stat st;
-    *out = NULL;
-    if (join(path, sizeof path, dir, SL_MANIFEST_NAME))
-        return sl_error_set(err, SL_EIO, dir, 0, "path too long");
-    if (lstat(path, &st) != 0)
-        return errno == ENOENT ? SL_OK : sl_error_set(err, SL_EIO, path, 0, "%s", strerror(errno));
-    if (!S_ISREG(st.st_mode) || st.st_size > SL_MANIFEST_MAX_BYTES)
-        return sl_error_set(err, SL_EPARSE, path, 0, "not a manifest seislide wrote (%s)",
-                            S_ISREG(st.st_mode) ? "too large" : "not a regular file");
-    FILE *f = fopen(path, "rb");
-    sl_manifest *m = calloc(1, sizeof *m);
-    char *text = malloc((size_t)st.st_size + 1);
-    size_t len = f && text ? fread(text, 1, (size_t)st.st_size, f) : 0;
-    sl_status s = SL_OK;
-    if (!f || !m || !text)
-        s = sl_error_set(err, f ? SL_ENOMEM : SL_EIO, path, 0, "%s",
-                         f ? "out of memory" : strerror(errno));
-    else if (ferror(f) || len != (size_t)st.st_size)
-        s = sl_error_set(err, SL_EIO, path, 0, "cannot read");
-    if (f)
-        fclose(f);
-    long line = 0;
-    for (size_t i = 0; !s && i < len; line++) {
-        size_t k = 0;
-        while (i + k < len && text[i + k] != '\n')
-            k++;
-        const char *l = text + i;
-        i += k + 1;
-        if (line == 0) {
-            if (k != strlen(SL_MANIFEST_HEAD) || memcmp(l, SL_MANIFEST_HEAD, k) != 0)
-                s = sl_error_set(err, SL_EPARSE, path, 1, "not a manifest seislide wrote (the "
-                                 "first line is not '" SL_MANIFEST_HEAD "')");
-        } else if (k && l[0] != '#') {
-            if (!good_rel(l, k))
-                s = sl_error_set(err, SL_EPARSE, path, line + 1, "'%.*s' is not a path inside "
-                                 "the folder", (int)(k > 200 ? 200 : k), l);
-            else if (manifest_add(m, l, k))
-                s = sl_error_set(err, SL_ENOMEM, path, 0, "out of memory");
-        }
-    }
-    if (!s && line == 0)
-        s = sl_error_set(err, SL_EPARSE, path, 1, "empty: not a manifest seislide wrote");
-    free(text);
-    if (s) {
-        sl_manifest_free(m);
-        return s;
-    }
-    qsort(m->path, m->n, sizeof *m->path, by_bytes);
-    *out = m;
-    return SL_OK;
-}
-
-/* Every entry under from/rel into m (folders with a trailing '/'). */
-static int list_tree(sl_manifest *m, const char *from, const char *rel)
-{
-    char dir[PATH_CAP], r[PATH_CAP], full[PATH_CAP];
-    if (join(dir, sizeof dir, from, rel))
-        return -1;
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    int bad = 0;
-    for (struct dirent *e; !bad && (e = readdir(d)) != NULL;) {
-        const char *name = e->d_name;
-        struct stat st;
-        if (!strcmp(name, ".") || !strcmp(name, ".."))
-            continue;
-        if (!*rel && !strcmp(name, SL_MANIFEST_NAME))
-            continue;
-        if (join(r, sizeof r, rel, name) || join(full, sizeof full, dir, name) ||
-            lstat(full, &st) != 0) {
-            bad = 1;
-            break;
-        }
-        if (S_ISDIR(st.st_mode)) {
-            size_t k = strlen(r);
-            if (k + 2 > sizeof r)
-                bad = 1;
-            else {
-                r[k] = '/';
-                r[k + 1] = '\0';
-                bad = manifest_add(m, r, k + 1);
-                r[k] = '\0';
-            }
-            if (!bad && (*rel || strcmp(name, SL_MANIFEST_CACHE) != 0))
-                bad = list_tree(m, from, r); /* the cache: one line */
-        } else {
-            bad = manifest_add(m, r, strlen(r));
-        }
-    }
-    closedir(d);
-    return bad ? -1 : 0;
-}
-
-sl_status sl_manifest_write(const char *fresh, const char *version, sl_error *err)
-{
-    char path[PATH_CAP];
-    sl_manifest m = {0, 0, NULL};
-    if (join(path, sizeof path, fresh, SL_MANIFEST_NAME))
-        return sl_error_set(err, SL_EIO, fresh, 0, "path too long");
-    int e = list_tree(&m, fresh, "") ? (errno ? errno : ENOMEM) : 0;
-    FILE *f = e ? NULL : fopen(path, "wb");
-    if (f) {
-        qsort(m.path, m.n, sizeof *m.path, by_bytes);
-        fprintf(f, "%s\n# written by %s: every file and folder below is an output of seislide; "
-                "a run into this folder replaces them and keeps every other file\n",
-                SL_MANIFEST_HEAD, version ? version : "seislide");
-        for (size_t i = 0; i < m.n; i++)
-            fprintf(f, "%s\n", m.path[i]);
-        e = ferror(f) ? (errno ? errno : EIO) : 0;
-        if (fclose(f) != 0 && !e)
-            e = errno ? errno : EIO;
-    } else if (!e) {
-        e = errno;
-    }
-    for (size_t i = 0; i < m.n; i++)
-        free(m.path[i]);
-    free(m.path);
-    return e ? sl_error_set(err, SL_EIO, path, 0, "cannot write: %s", strerror(e)) : SL_OK;
-}
-
-/* ---- carrying the user's entries ---------------------------------------- */
-
-typedef struct carry {
-    const char *from, *to;
-    const sl_manifest *old;
-    int move;
-    sl_error *err;
-} carry;
-
-static sl_status conflict(carry *c, const char *rel)
-{
-    char p[PATH_CAP];
-    join(p, sizeof p, c->from, rel);
-    return sl_error_set(c->err, SL_EINVAL, p, 0, "seislide did not write this (the folder's "
-                        SL_MANIFEST_NAME " does not name it) and this run writes an entry of "
-                        "that name: move it out of the folder and run again; the folder is "
-                        "unchanged");
-}
-
-/* The folders of to/rel's path that are missing, made (a file of that name:
- * a conflict). */
-static sl_status make_parents(carry *c, const char *rel)
-{
-    char p[PATH_CAP], r[PATH_CAP];
-    snprintf(r, sizeof r, "%s", rel);
-    for (char *s = strchr(r, '/'); s; s = strchr(s + 1, '/')) {
-        *s = '\0';
-        struct stat st;
-        if (join(p, sizeof p, c->to, r))
-            return sl_error_set(c->err, SL_EIO, c->to, 0, "path too long");
-        if (lstat(p, &st) != 0) {
-            if (mkdir(p, 0777) != 0)
-                return sl_error_set(c->err, SL_EIO, p, 0, "cannot create: %s", strerror(errno));
-        } else if (!S_ISDIR(st.st_mode)) {
-            return conflict(c, rel);
-        }
-        *s = '/';
-    }
-    return SL_OK;
-}
-
-/* A copy of regular file `from` (st) as `to`. */
-static int copy_file(const char *from, const char *to, const struct stat *st)
-{
-    int in = open(from, O_RDONLY | O_CLOEXEC), out = -1, bad = in < 0;
-    if (!bad)
-        bad = (out = open(to, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600)) < 0;
-    char buf[65536];
-    for (ssize_t k; !bad && (k = read(in, buf, sizeof buf)) != 0;)
-        bad = k < 0 || write(out, buf, (size_t)k) != k;
-    bad |= out >= 0 && fchmod(out, st->st_mode & 07777) != 0;
-    int e = errno;
-    if (in >= 0)
-        close(in);
-    if (out >= 0 && close(out) != 0)
-        bad = 1;
-    if (bad && out >= 0)
-        unlink(to);
-    errno = e;
-    return bad ? -1 : 0;
-}
-
-/* The same file at `to` as at `from`: a hard link, else (a file system that
- * refuses one) a new symbolic link or a copy. */
-static int keep_entry(const char *from, const char *to, const struct stat *st)
-{
-    if (linkat(AT_FDCWD, from, AT_FDCWD, to, 0) == 0)
-        return 0;
-    if (errno != EXDEV && errno != EPERM && errno != EMLINK && errno != EOPNOTSUPP)
-        return -1;
-    if (S_ISLNK(st->st_mode)) {
-        char target[PATH_CAP];
-        ssize_t k = readlink(from, target, sizeof target - 1);
-        if (k < 0)
-            return -1;
-        target[k] = '\0';
-        return symlink(target, to);
-    }
-    return S_ISREG(st->st_mode) ? copy_file(from, to, st) : -1;
-}
-
-static sl_status carry_tree(carry *c, const char *rel)
-{
-    char dir[PATH_CAP], r[PATH_CAP], fp[PATH_CAP], tp[PATH_CAP], rs[PATH_CAP];
-    if (join(dir, sizeof dir, c->from, rel))
-        return sl_error_set(c->err, SL_EIO, c->from, 0, "path too long");
-    DIR *d = opendir(dir);
-    if (!d)
-        return sl_error_set(c->err, SL_EIO, dir, 0, "cannot read: %s", strerror(errno));
-    sl_status s = SL_OK;
-    for (struct dirent *e; !s && (e = readdir(d)) != NULL;) {
-        const char *name = e->d_name;
-        struct stat st, tt;
-        if (!strcmp(name, ".") || !strcmp(name, ".."))
-            continue;
-        if (!*rel && (!strcmp(name, SL_MANIFEST_NAME) || !strcmp(name, SL_MANIFEST_CACHE)))
-            continue;
-        if (join(r, sizeof r, rel, name) || join(fp, sizeof fp, c->from, r) ||
-            join(tp, sizeof tp, c->to, r) || snprintf(rs, sizeof rs, "%s/", r) >= (int)sizeof rs) {
-            s = sl_error_set(c->err, SL_EIO, dir, 0, "path too long");
-            break;
-        }
-        if (lstat(fp, &st) != 0)
-            continue; /* gone meanwhile */
-        int there = lstat(tp, &tt) == 0;
-        if (S_ISDIR(st.st_mode)) {
-            int listed = sl_manifest_has(c->old, rs);
-            if (there && !S_ISDIR(tt.st_mode) && !listed) {
-                if (!c->move)
-                    s = conflict(c, r);
-                continue;
-            }
-            if (!listed && !there) {
-                if (c->move) { /* the whole folder, added after the carry */
-                    if ((s = make_parents(c, r)) == SL_OK && rename(fp, tp) != 0)
-                        s = sl_error_set(c->err, SL_EIO, fp, 0, "cannot keep: %s",
-                                         strerror(errno));
-                    continue;
-                }
-                if ((s = make_parents(c, r)) != SL_OK)
-                    continue;
-                if (mkdir(tp, 0700) != 0) {
-                    s = sl_error_set(c->err, SL_EIO, tp, 0, "cannot create: %s", strerror(errno));
-                    continue;
-                }
-                s = carry_tree(c, r);
-                if (!s && chmod(tp, st.st_mode & 07777) != 0)
-                    s = sl_error_set(c->err, SL_EIO, tp, 0, "cannot set its mode: %s",
-                                     strerror(errno));
-                continue;
-            }
-            s = carry_tree(c, r);
-            continue;
-        }
-        if (sl_manifest_has(c->old, r))
-            continue; /* seislide's: replaced, or gone with the old outputs */
-        if (there) {
-            if (!c->move)
-                s = conflict(c, r);
-            continue;
-        }
-        if ((s = make_parents(c, r)) != SL_OK)
-            continue;
-        if (c->move ? rename(fp, tp) != 0 : keep_entry(fp, tp, &st) != 0)
-            s = sl_error_set(c->err, SL_EIO, fp, 0, "cannot keep it in the new outputs: %s",
-                             strerror(errno));
-    }
-    closedir(d);
-    return s;
-}
-
-sl_status sl_manifest_carry(const char *from, const char *to, const sl_manifest *old, int move,
-                            sl_error *err)
-{
-    carry c = {from, to, old, move, err};
-    return carry_tree(&c, "");
-}

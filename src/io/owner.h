@@ -22,4 +22,10 @@ void sl_owner_host(char *buf, size_t n);
  * 0 when it lives or belongs to another user. */
 int sl_owner_pid_gone(long pid);
 
+/* A temporary name "PREFIX" "PID@HOST-XXXXXX" (XXXXXX six random letters
+ * and digits, another each call) into buf (size n): the owner in the name,
+ * so that a later run can tell what a killed process left from a live run's
+ * (atomic.c's fresh folders, outguard's temporary manifests). */
+void sl_owner_tmp_name(char *buf, size_t n, const char *prefix);
+
 #endif

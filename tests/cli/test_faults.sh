@@ -109,7 +109,8 @@ done
 # chosen moments: SIGKILL on entering the Nth call of a system call (strace),
 # so that a kill falls inside a cache write and inside the swap
 if command -v strace >/dev/null 2>&1 && strace -qq -o /dev/null true 2>/dev/null; then
-  # the renames of a run: 4 entries, the output files, the cache into the fresh folder
+  # the renames of a run: 4 entries, the output files, the cache into the fresh folder, the
+  # fresh folder's manifest
   setup 1 0
   strace -f -qq -o "$D/trace" -e trace=rename "$B" run "$D/plant" -o "$D/out" $OPTS 2>/dev/null
   R=$(grep -c 'rename(' "$D/trace")
@@ -118,7 +119,7 @@ if command -v strace >/dev/null 2>&1 && strace -qq -o /dev/null true 2>/dev/null
   # held; unlink 4: every entry in place, the last lock held (the rerun computes nothing)
   for p in fsync:1:0 rename:1:1 fsync:2:2 unlink:4:1 fsync:5:1 rename:3:0 \
            $(awk -v s="$SEED" -v r="$R" 'BEGIN { srand(s + 1); for (i = 0; i < 3; i++) printf "rename:%d:%d ", 5 + int(rand() * (r - 5)), i % 2 }') \
-           rename:$R:1 renameat2:1:2 rmdir:1:1; do
+           rename:$((R - 1)):1 rename:$R:1 renameat2:1:2 unlinkat:1:1; do
     j=$((j + 1)); call=${p%%:*}; k=${p##*:}; n=${p#*:}; n=${n%:*}
     setup $k $j
     { strace -f -qq -o /dev/null -e trace="$call" -e inject="$call":signal=SIGKILL:when="$n" \
