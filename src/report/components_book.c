@@ -18,7 +18,7 @@
 enum { CS_TITLE, CS_NOTE, CS_HEAD, CS_FIRST };
 /* Helper columns after the visible ones (hidden, not printed). */
 enum { H_CHK, H_ROW, H_K, H_MU0, H_MU1, H_C0, H_C1, H_S0, H_S1, H_A0, H_A1, H_BLD, H_FID,
-       H_OKX, H_OKY, H_MGX, H_MGY, H_SHX, H_SHY, H_SV, H_RV0, H_RPRE, H_RKX, H_RKY, H_N };
+       H_OKX, H_OKY, H_MGX, H_MGY, H_SHX, H_SHY, H_SV, H_RV0, H_RPRE, H_RKX, H_RKY, H_RKE, H_N };
 /* Result columns after the inputs. */
 enum { R_BH, R_REQ, R_SE, R_ASCE, R_MARGIN, R_VERDICT, R_REASON, R_MODE, R_PTIP, R_PTIP15,
        R_EXC, R_N };
@@ -220,7 +220,7 @@ static void floors_sheet(book *b)
     worksheet_write_number(ws, d + 1, 0, 0, NULL);
     worksheet_write_number(ws, d + 1, 1, 0, NULL);
     snprintf(f, sizeof f, "=1.05*MAX(%s,%s,%s)", range(b, rq, sizeof rq, col_res(b, R_REQ)),
-             range(b, cl, sizeof cl, SL_COMP_CLEARANCE), range(b, ex, sizeof ex, col_res(b, R_EXC)));
+             range(b, cl, sizeof cl, SL_COMP_CLEARANCE), range(b, ex, sizeof ex, col_h(b, H_RKE)));
     fcell(ws, d + 2, 0, f, b->diag_mm, NULL, NULL);
     snprintf(f, sizeof f, "=A%u", (unsigned)d + 3);
     fcell(ws, d + 2, 1, f, b->diag_mm, NULL, NULL);
@@ -462,9 +462,14 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
               ron ? NULL : "#N/A", NULL);
         snprintf(f, sizeof f, "=IF(%s=\"overturns\",NA(),%s)", h[H_RV0], G);
         fcell(ws, row, col_h(b, H_RKY), f, ron ? w->clearance_mm : 0, ron ? NULL : "#N/A", NULL);
+        /* the excursion drawn, as a number or text for the diagonal's MAX */
+        snprintf(f, sizeof f, "=IF(%s=\"overturns\",\"\",%s)", h[H_RV0], v[R_EXC]);
+        fcell(ws, row, col_h(b, H_RKE), f, ron ? 1000 * w->rock.excursion_m : 0, ron ? NULL : "",
+              NULL);
     } else {
         fcell(ws, row, col_h(b, H_RKX), "=NA()", 0, "#N/A", NULL);
         fcell(ws, row, col_h(b, H_RKY), "=NA()", 0, "#N/A", NULL);
+        worksheet_write_string(ws, row, col_h(b, H_RKE), "", NULL);
     }
 }
 
@@ -552,7 +557,8 @@ static void components_sheet(book *b, const sl_report *rep)
                                         "se0", "se1", "asce0", "asce1", "building", "floor id",
                                         "ok x", "ok y", "marginal x", "marginal y", "short x",
                                         "short y", "sliding verdict", "rocking verdict",
-                                        "rocking reason", "rocking x", "rocking y"};
+                                        "rocking reason", "rocking x", "rocking y",
+                                        "rocking excursion"};
     for (int k = 0; k < H_N; k++)
         worksheet_write_string(ws, CS_HEAD, col_h(b, k), hh[k], b->F.header);
     worksheet_set_row(ws, CS_HEAD, 2 * 15.0 + 1, NULL);
@@ -617,6 +623,19 @@ static void summary_sheet(book *b, const sl_report *rep)
              "sheet, rows typed in later included.", sl_rpt_shown_path(t->path, p1, sizeof p1),
              t->n, t->crc32 & 0xffffffffUL, sl_rpt_shown_path(r->dir, p2, sizeof p2),
              r->is_plant ? "a plant" : "one building", r->created);
+    size_t n_rock = 0;
+    for (size_t i = 0; i < t->n; i++)
+        n_rock += t->rows[i].has_rock;
+    if (n_rock) { /* what the rocking check leaves out */
+        size_t k = strlen(src);
+        snprintf(src + k, sizeof src - k, " %zu component(s) checked for rocking: NLTHA of a "
+                 "rigid rectangular block of uniform mass rocking about a base edge on a rigid "
+                 "floor (Housner 1963) over the floor's own motion sets, each scaled by a "
+                 "log-normal intensity factor of log standard deviation %.2f; left out: sliding "
+                 "and rocking together (slide-rock), a centre of mass off the middle of the base "
+                 "or a non-uniform mass, a flexible base or floor, rocking on a corner in 3-D, "
+                 "the block leaving the floor (docs/rocking.md).", n_rock, SL_ROCKF_SCATTER);
+    }
     lxw_row_t row = SL_RPT_TB_ROWS + 1;
     worksheet_merge_range(ws, row, 0, row, last, src, b->F.wrap);
     worksheet_set_row(ws, row, sl_rpt_text_height(src, width, 0), NULL);
@@ -803,7 +822,7 @@ sl_status sl_comp_write_xlsx(const sl_comp_results *r, const sl_comp_table *t, c
         double m = w->clearance_mm;
         if (isfinite(w->required_mm))
             m = fmax(m, w->required_mm);
-        if (w->has_rock)
+        if (w->has_rock && w->rock_verdict != SL_COMP_OVERTURNS) /* as drawn (H_RKE) */
             m = fmax(m, 1000 * w->rock.excursion_m);
         b.diag_mm = fmax(b.diag_mm, 1.05 * m);
     }

@@ -6,6 +6,7 @@
 #include "io/floor.h"
 #include "method/asce.h"
 #include "report/sheets.h"
+#include "rock/rock_floor.h"
 
 #define W_TEXT 64.0   /* the one column: a portrait A4 page at 100 % */
 #define MAX_NOTES 40
@@ -68,6 +69,19 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
              "slide in both horizontal directions at once; the floor moves in three components "
              "(two horizontals and the vertical, which changes the normal force). Sliding only: "
              "rocking, overturning, uplift and impact are not modelled.");
+    if (sl_rpt_has_rocking(r))
+        snprintf(add(&s, 0), NOTE_MAX, "Rocking (the Rocking sheet, run --rocking-lookup): a "
+                 "rigid rectangular block of uniform mass rocking about a base edge on a rigid "
+                 "floor (Housner 1963), with the vertical; impacts with Housner's restitution; "
+                 "tipped when its rotation reaches alpha = atan(b/h). The probability is over "
+                 "the floor's own motion sets, each scaled by a log-normal intensity factor of "
+                 "log standard deviation %.2f, the rocking axis the worst of every %g degrees. "
+                 "Left out: sliding and rocking together (slide-rock; an item rocks when mu >= "
+                 "b/h), a centre of mass off the middle of the base or a non-uniform mass, a "
+                 "flexible base or floor, rocking on a corner in 3-D, the block leaving the "
+                 "floor; the targets (1 %% at the floor motion, 10 %% at 1.5 x it) are ASCE/SEI "
+                 "43-05 section 1.3's (docs/rocking.md).", SL_ROCKF_SCATTER,
+                 SL_ROCKF_ORIENT_STEP_DEG);
     snprintf(add(&s, 0), NOTE_MAX, "Friction: Coulomb, isotropic in the floor plane, the static "
              "coefficient equal to the kinetic one (mu). The block sticks while the friction "
              "force can hold it; mu g at or above every motion's demand means no sliding.");
