@@ -500,9 +500,11 @@ static void test_ground(void)
     /* What `seislide run` reports for a ground floor carries the intensity
      * scatter: never below the band (within 2 SE) at any mu, i.e. the
      * designer's NLTHA mean is not unconservative against the study's
-     * reference (full comparison 0.87-0.90 at 0.1 ... 1.80-1.93 at 0.9,
-     * seeds 12-14; docs/synthesis.md 12). Weak with 8 sets (scatter 0.05
-     * still passes: 0.61 ± 0.15 at 0.9); the floors' band catches 0.10. */
+     * reference (full comparison with RG 1.60's own sigma 0.354, seed 12:
+     * 0.87, 0.98, 1.05, 1.33, 2.26; with the former 0.30, 0.87-0.90 at 0.1
+     * ... 1.80-1.93 at 0.9, seeds 12-14; docs/synthesis.md 11-12). Weak with
+     * 8 sets (scatter 0.05 still passes: 0.61 ± 0.15 at 0.9); the floors'
+     * band catches 0.10. */
     double synr[NSYN * NMU];
     const sl_spectrum *h[2] = {tgt[0].spec, tgt[1].spec};
     const double zpa[2] = {tgt[0].zpa_ms2, tgt[1].zpa_ms2};
