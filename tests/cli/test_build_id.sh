@@ -15,7 +15,7 @@ B=build
 for v in $SEISLIDE_MAKEVARS; do case $v in BUILD=*) B=${v#BUILD=} ;; esac; done
 FAST="--sets 2 --mu 0.2,0.4 --created 1700000000"
 
-id0=$(make -s -C "$ROOT" source-id $SEISLIDE_MAKEVARS 2>/dev/null)
+id0=$(make -s --no-print-directory -C "$ROOT" source-id $SEISLIDE_MAKEVARS 2>/dev/null)
 echo "$id0" | grep -Eqx '[0-9a-f]{64}' && t_pass || t_fail "make source-id: '$id0'"
 short0=$(echo "$id0" | cut -c1-12)
 V=$(sed -n 's/^#define SEISLIDE_VERSION_[A-Z]* \([0-9][0-9]*\)$/\1/p' "$ROOT/src/core/version.h" | paste -sd.)
@@ -27,14 +27,14 @@ T=$D/tree
 mkdir -p "$T/tests/fuzz" "$T/$B"
 cp -p "$ROOT/Makefile" "$T/" && cp -pR "$ROOT/src" "$T/" && cp -p "$ROOT/tests/fuzz/fuzz.mk" "$T/tests/fuzz/" &&
   cp -pR "$ROOT/$B/src" "$T/$B/" && cp -p "$ROOT/$B"/*.a "$ROOT/$B/source_id.h" "$T/$B/" && t_pass || t_fail "scratch copy"
-[ "$(make -s -C "$T" source-id)" = "$id0" ] && t_pass || t_fail "a copy of the tree has another fingerprint"
+[ "$(make -s --no-print-directory -C "$T" source-id)" = "$id0" ] && t_pass || t_fail "a copy of the tree has another fingerprint"
 # one result-changing constant: the NLTHA design value 1.25 x larger (method/design.c)
 sed -i 's/double dn = in->fs_nltha \* r->nltha_mean_m;/double dn = 1.25 * in->fs_nltha * r->nltha_mean_m;/' "$T/src/method/design.c"
 grep -q 'dn = 1.25 \* in->fs_nltha' "$T/src/method/design.c" && t_pass || t_fail "the constant was not changed (design.c moved on?)"
-id1=$(make -s -C "$T" source-id)
+id1=$(make -s --no-print-directory -C "$T" source-id)
 [ -n "$id1" ] && [ "$id1" != "$id0" ] && t_pass || t_fail "one changed constant kept the fingerprint $id0"
 # shellcheck disable=SC2086
-make -s -C "$T" $SEISLIDE_MAKEVARS LDFLAGS="$SEISLIDE_LDFLAGS" PROG=seislide-b seislide-b >"$D/make.out" 2>&1
+make -s --no-print-directory -C "$T" $SEISLIDE_MAKEVARS LDFLAGS="$SEISLIDE_LDFLAGS" PROG=seislide-b seislide-b >"$D/make.out" 2>&1
 [ $? -eq 0 ] && [ -x "$T/seislide-b" ] && t_pass || t_fail "second build: $(head -c 600 "$D/make.out")"
 short1=$(echo "$id1" | cut -c1-12)
 [ "$("$T/seislide-b" --version)" = "seislide $V (source $short1)" ] && t_pass ||
@@ -67,5 +67,5 @@ fi
 
 # the constant put back: the first fingerprint again
 sed -i 's/double dn = 1.25 \* in->fs_nltha/double dn = in->fs_nltha/' "$T/src/method/design.c"
-[ "$(make -s -C "$T" source-id)" = "$id0" ] && t_pass || t_fail "the restored tree has another fingerprint"
+[ "$(make -s --no-print-directory -C "$T" source-id)" = "$id0" ] && t_pass || t_fail "the restored tree has another fingerprint"
 t_end
