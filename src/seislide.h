@@ -23,9 +23,10 @@
  *   floor response spectra (io/floor.h) and ground motions (io/motion.h,
  *   io/setdir.h) -> response spectra and RG 1.60 (signal/) -> synthesized
  *   spectrum-compatible sets (synth/synth.h) -> NLTHA of the sliding block
- *   (slide/slide.h), rocking of slender blocks (rock/rock.h) and the ASCE method (method/asce_input.h, asce.h) ->
- *   design sliding spectra and clearance (method/design.h) -> the per-floor
- *   job (analysis.h) -> the workbook and CSV tables (report/report.h).
+ *   (slide/slide.h), of the rocking one (rock/rock.h) and the ASCE method
+ *   (method/asce_input.h, asce.h) -> design sliding spectra and clearance
+ *   (method/design.h) -> the per-floor job (analysis.h) -> the workbook and
+ *   CSV tables (report/report.h).
  *
  * Conventions (every header): SI units inside (m, s, m/s^2), named units at
  * the boundary; one status enum with file:line messages (core/status.h);

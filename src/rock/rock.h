@@ -31,12 +31,16 @@
  *     r = 1 - (3/2) sin^2(alpha).                                      (K4)
  *
  * A cascade of impacts that would bring the block to rest in finite time
- * is ended at rest (the rule and its threshold: rock.c, docs/model.md);
- * uplift is then checked again by (K3).
+ * is ended at rest: after an impact, when the net acceleration at theta = 0
+ * pushes the block back (a_r > 0) and its rebound theta'^2 / (2 a_r) is
+ * below rest_fraction alpha (SL_ROCK_REST_FRACTION); r = 0 rests at once.
+ * Uplift is then checked again by (K3) (rock.c, docs/model.md).
  *
  * Tipping and overturning: the block has tipped when |theta| reaches alpha
- * (past its balance point under gravity alone) and has overturned when
- * |theta| reaches pi/2 (lying on its side); the run stops there.
+ * (past its balance point under gravity alone; the run goes on) and has
+ * overturned when |theta| reaches pi/2 (lying on its side); the run stops
+ * there. Every event instant is located on the integrator's own step to
+ * round-off (rock.c).
  *
  * Excursion: rocking about a corner carries the top corner on that side
  * 2 h sin|theta| beyond the footprint (the clearance a rocking item needs);
@@ -125,7 +129,8 @@ typedef struct sl_rock_result {
 } sl_rock_result;
 
 /* Housner's restitution (K4) of a block with half base b_m and centre of
- * mass at h_m. */
+ * mass at h_m: 1 - (3/2) b^2/(b^2 + h^2), and 0 where that is negative (a
+ * block wider than about 1.4 times its height does not rebound). */
 SL_API double sl_rock_housner_r(double b_m, double h_m);
 
 /* Run the block on a_h (n samples at dt_s, m/s^2) and a_v (n samples, or
