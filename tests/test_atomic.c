@@ -288,6 +288,56 @@ static void test_swap_refused_keeps_cache(void)
     free(before);
 }
 
+/* A user's folder where the run writes one (merged: the user's files kept),
+ * and a user's file where the run writes one (refused before the swap,
+ * nothing changed), both ways. */
+static void test_user_entry_where_run_writes(void)
+{
+    static const sl_atomic_how how[2] = {SL_ATOMIC_SWAP, SL_ATOMIC_IN_PLACE};
+    char msg[2048], p[600];
+    for (int i = 0; i < 2; i++) {
+        const char *name = i ? "in place" : "swap";
+        build_old();
+        put(OUT, "bldC/notes.txt", "the user's bldC");
+        fs_reset();
+        sl_status s = run_once(how[i], msg, sizeof msg);
+        sl_fsops_install(NULL);
+        snprintf(p, sizeof p, "%s/bldC/notes.txt", OUT);
+        CHECK(s == SL_OK && !strcmp(fs_get(p), "the user's bldC"), "%s: a user's folder where the "
+              "run writes one: %s, '%s'", name, msg, fs_get(p));
+        snprintf(p, sizeof p, "%s/bldC/summary.csv", OUT);
+        CHECK(!strcmp(fs_get(p), "new C"), "%s: the run's file: '%s'", name, fs_get(p));
+        CHECK(!leftovers(), "%s: %d left", name, leftovers());
+        build_old();
+        put(OUT, "bldC/summary.csv", "the user's summary");
+        put(OUT, "plant.txt", "x");
+        char *before = fs_snapshot(OUT);
+        fs_reset();
+        s = run_once(how[i], msg, sizeof msg);
+        sl_fsops_install(NULL);
+        char *after = fs_snapshot(OUT);
+        CHECK(s == SL_EINVAL && strstr(msg, "seislide did not write this"), "%s: %s", name, msg);
+        CHECK(!strcmp(before, after) && !leftovers(), "%s: a user's file where the run writes one: "
+              "the folder changed", name);
+        free(before);
+        free(after);
+        /* at the top: the same */
+        build_old();
+        snprintf(p, sizeof p, "%s/" SL_MANIFEST_NAME, OUT); /* plant.csv no longer the run's */
+        fs_put(p, SL_MANIFEST_HEAD "\n.seislide-cache/\nbldA/\nbldA/summary.csv\n");
+        before = fs_snapshot(OUT);
+        fs_reset();
+        s = run_once(how[i], msg, sizeof msg);
+        sl_fsops_install(NULL);
+        after = fs_snapshot(OUT);
+        CHECK(s == SL_EINVAL && strstr(msg, "seislide did not write this"), "%s, top: %s", name, msg);
+        CHECK(!strcmp(before, after) && !leftovers(), "%s: a user's plant.csv: the folder changed",
+              name);
+        free(before);
+        free(after);
+    }
+}
+
 /* Item 7: saved while the run finishes. */
 static void save_edits(void)
 {
@@ -601,6 +651,7 @@ int main(void)
     RUN(test_faults_in_place);
     RUN(test_faults_without_rename_flags);
     RUN(test_swap_refused_keeps_cache);
+    RUN(test_user_entry_where_run_writes);
     RUN(test_saved_while_finishing);
     RUN(test_saved_without_hard_links);
     RUN(test_mount_points);

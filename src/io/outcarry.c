@@ -308,7 +308,7 @@ static sl_status carry_entry(carry *c, sl_walk *w, const sl_walk_entry *e)
                                 "cannot move a mount with it; unmount it or mount it outside "
                                 "the output folder and run again; the folder is unchanged");
         }
-        if (e->depth == 1 && c->top_stays && !listed) {
+        if (e->depth == 1 && c->top_stays && !listed && !there) {
             sl_walk_prune(w); /* written in place: the user's entry stays where it is */
             return SL_OK;
         }
@@ -326,10 +326,10 @@ static sl_status carry_entry(carry *c, sl_walk *w, const sl_walk_entry *e)
     }
     if (sl_manifest_has(c->old, rel))
         return SL_OK; /* seislide's: replaced, or gone with the old outputs */
+    if (there) /* in place too: the run's entry of that name would take its place */
+        return conflict(c, rel);
     if (e->depth == 1 && c->top_stays)
         return SL_OK;
-    if (there)
-        return conflict(c, rel);
     if (make_parents(c->tofd, rel) != 0)
         return errno == ENOTDIR ? conflict(c, rel) : failed(c, rel, "cannot carry", errno);
     if (keep_entry(c->fromfd, c->tofd, rel, &e->st) != 0)

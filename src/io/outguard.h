@@ -172,7 +172,8 @@ void sl_carried_free(sl_carried *c);
  * one), a folder made with its mode and filled so. Never the manifest, the
  * cache or SL_OUTDIR_OWN_PREFIX names at the top. With top_stays (a folder
  * written in place) the user's entries at from's top are not carried (they
- * stay where they are): only those inside folders seislide wrote. *made
+ * stay where they are) unless `to` has an entry of that name: only those
+ * inside folders seislide wrote, or where the run writes. *made
  * (when not NULL) gets what was carried (sl_carried_free). Any error stops
  * the carry: SL_EINVAL when a user's entry has the path of one the run wrote
  * or is a mount point (err names it), SL_EIO naming the path and the
