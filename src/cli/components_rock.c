@@ -8,31 +8,13 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include <zlib.h>
-
 #include "cli.h"
 #include "components_out.h"
 #include "core/clock.h"
 #include "io/floor.h"
+#include "report/deliver.h"
 #include "rock/rock_cache.h"
 #include "rock/rock_floor.h"
-
-/* CRC-32 of a file's bytes. */
-static sl_status file_crc(const char *path, unsigned long *crc, sl_error *err)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return sl_error_set(err, SL_EIO, path, 0, "cannot read: %s", strerror(errno));
-    uLong c = crc32(0L, Z_NULL, 0);
-    unsigned char buf[65536];
-    size_t k;
-    while ((k = fread(buf, 1, sizeof buf, f)) > 0)
-        c = crc32(c, buf, (uInt)k);
-    int bad = ferror(f);
-    fclose(f);
-    *crc = c;
-    return bad ? sl_error_set(err, SL_EIO, path, 0, "cannot read") : SL_OK;
-}
 
 /* The floor of results floor fi: the run's own (plant given: its floor, its
  * sets when they still hold their motions), else its file read again, which
@@ -60,8 +42,9 @@ static sl_status floor_of(const sl_comp_results *r, size_t fi, const sl_plant *p
                             "count (floors.csv n_sets): rerun seislide run", cf->id);
     *n_sets = (size_t)cf->n_sets;
     unsigned long crc;
+    long size;
     sl_error e;
-    if (!cf->file || !*cf->file || file_crc(cf->file, &crc, &e))
+    if (!cf->file || !*cf->file || sl_deliver_file_crc(cf->file, &crc, &size, &e))
         return sl_error_set(err, SL_EIO, cf->file, 0, "floor '%s': the rocking check makes the "
                             "floor's motion sets again from the floor file the run read, and "
                             "it cannot be read here (%s): run seislide components from the "

@@ -13,8 +13,7 @@
 #include "method/scatter.h"
 #include "synth/synth.h"
 
-/* CRC-32 and size of a file (recorded so the inputs can be recognised). */
-static sl_status file_crc(const char *path, unsigned long *crc, long *size, sl_error *err)
+sl_status sl_deliver_file_crc(const char *path, unsigned long *crc, long *size, sl_error *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
@@ -64,7 +63,7 @@ sl_status sl_deliver_meta_of(const sl_floor *fl, sl_deliver_meta *m, sl_error *e
 {
     *m = (sl_deliver_meta){.name = fl->name, .path = fl->path, .description = fl->description,
                            .units = sl_unit_name(fl->units), .elevation_m = fl->elevation_m};
-    return file_crc(fl->path, &m->crc32, &m->size_bytes, err);
+    return sl_deliver_file_crc(fl->path, &m->crc32, &m->size_bytes, err);
 }
 
 sl_status sl_deliver_write(const char *dir, size_t n, const sl_floor *const *floors,

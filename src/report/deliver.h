@@ -67,6 +67,10 @@ typedef struct sl_deliver_meta {
     int accepted;             /* accepted in writing (--accept-floor) */
 } sl_deliver_meta;
 
+/* CRC-32 (zlib) and size of the bytes of file `path` (recorded so that an
+ * input can be recognised later). SL_EIO naming the file. */
+sl_status sl_deliver_file_crc(const char *path, unsigned long *crc, long *size, sl_error *err);
+
 /* The meta of floor fl (its strings borrowed from fl); reads the file for
  * its CRC-32 and size. */
 sl_status sl_deliver_meta_of(const sl_floor *fl, sl_deliver_meta *m, sl_error *err);
