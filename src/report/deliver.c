@@ -157,7 +157,7 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
     if (st)
         goto done;
     const sl_design *d0 = an[0]->design;
-    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160], s_scat[400],
+    char s_sets[1024], s_seed[32], s_mu[96], s_sub[64], s_fs[160], s_synth[160], s_scat[1400],
         s_acc[1024] = "none";
     /* the floors accepted in writing out of line with their building */
     size_t used = 0;
@@ -187,12 +187,22 @@ sl_status sl_deliver_write_meta(const char *dir, size_t n, const sl_deliver_meta
              d0->fs_nltha, d0->fs_asce, d0->cap_factor);
     snprintf(s_synth, sizeof s_synth, "%g s at %g s, matched at %g %% damping (SRP 3.7.1 checks)",
              SL_SYNTH_DURATION_S, SL_SYNTH_DT_S, 100 * SL_SYNTH_DAMPING);
-    if (an[0]->scatter > 0)
-        snprintf(s_scat, sizeof s_scat, "log standard deviation %g of the horizontal intensity, "
-                 "mean 1, averaged exactly over each set: each set's NLTHA runs at %zu "
-                 "log-spaced friction values (%d a decade, every mu / intensity of the average), "
-                 "from which its peak on the %zu values of the friction grid is computed",
-                 an[0]->scatter, an[0]->n_nltha_mu, SL_SCATTER_PER_DECADE, d0->n);
+    /* every floor's own sigma (each floor's by default, docs/run.md (R4)) */
+    char s_sig[900] = "";
+    used = 0;
+    int any = 0;
+    for (size_t i = 0; i < n && used < sizeof s_sig; i++) {
+        int w = snprintf(s_sig + used, sizeof s_sig - used, "%s%s %.3g (%zu values)",
+                         i ? "; " : "", ids[i], an[i]->scatter, an[i]->n_nltha_mu);
+        used += w > 0 ? (size_t)w : 0;
+        any |= an[i]->scatter > 0;
+    }
+    if (any)
+        snprintf(s_scat, sizeof s_scat, "log standard deviation of the horizontal intensity, "
+                 "mean 1, averaged exactly over each set: each set's NLTHA runs at log-spaced "
+                 "friction values (%d a decade, every mu / intensity of the average), from "
+                 "which its peak on the %zu values of the friction grid is computed; per floor: "
+                 "%s", SL_SCATTER_PER_DECADE, d0->n, s_sig);
     else
         snprintf(s_scat, sizeof s_scat, "none: the sets as synthesized");
     const sl_report_setting settings[] = {

@@ -91,21 +91,26 @@ void sl_rpt_notes_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report 
              "(sheet Motion quality; 'run below target' = the most consecutive frequency "
              "points below the target spectrum, limit 9). Sets per floor (sheet Inputs: why each "
              "floor stopped adding sets): %s.", sets);
-    char scat[900] = "";
-    double sc = r->floors[0].scatter;
-    int same = 1;
-    for (size_t i = 1; i < r->n_floors; i++)
-        same &= r->floors[i].scatter == sc;
-    if (sc > 0 && same)
+    char scat[1600] = "", sig[600] = "";
+    size_t used = 0;
+    int any = 0;
+    for (size_t i = 0; i < r->n_floors && used < sizeof sig; i++) {
+        int w = snprintf(sig + used, sizeof sig - used, "%s%s %.3g", i ? ", " : "",
+                         r->floors[i].id, r->floors[i].scatter);
+        used += w > 0 ? (size_t)w : 0;
+        any |= r->floors[i].scatter > 0;
+    }
+    if (any)
         snprintf(scat, sizeof scat, " Each set's peak is its mean over a record-to-record "
                  "intensity factor of its horizontals (log-normal, mean 1, log standard deviation "
-                 "%g): the floor motions behind a spectrum differ in intensity, and sliding near mu "
+                 "per floor %s: each floor's own from its spectrum unless --scatter gives one "
+                 "value): the floor motions behind a spectrum differ in intensity, and sliding near mu "
                  "g = ZPA grows faster than the intensity (docs/run.md, Intensity scatter). This "
                  "goes beyond A.1's mean of spectrum-compatible analyses: --scatter 0 gives that "
                  "procedure. The motions written with --motions carry no factor. Above the ZPA the "
                  "NLTHA value comes from the strongest intensities alone, while the ASCE estimate "
                  "is 0 once mu_e g reaches the ZPA (below): from there on ASCE is listed below "
-                 "NLTHA.", sc);
+                 "NLTHA.", sig);
     snprintf(add(&s, 0), NOTE_MAX, "NLTHA design value = %g x the mean over the floor's sets of "
              "the peak vector sliding displacement (ASCE/SEI 43-05 A.1 asks for 3.0 x the mean of "
              "at least 5 analyses).%s", d->fs_nltha, scat);
