@@ -47,6 +47,9 @@ sl_status sl_rockc_key_make(const sl_floor *fl, uint64_t run_seed, size_t n_sets
     sl_pbuf_u64(&w, o->min_sets);
     sl_pbuf_f64(&w, o->engine.rtol);
     sl_pbuf_u64(&w, o->engine.substeps);
+    sl_pbuf_f64(&w, o->engine.rest_fraction);
+    sl_pbuf_f64(&w, o->engine.theta0_rad);
+    sl_pbuf_f64(&w, o->engine.omega0_rad_s);
     sl_pbuf_u64(&w, n);
     for (size_t i = 0; i < n; i++) {
         sl_pbuf_f64(&w, items[i].block.b_m);

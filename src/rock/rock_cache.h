@@ -7,7 +7,8 @@
  * build identity (sl_build_id: version and source fingerprint), the floor's
  * identity under the run's seed (plant/identity.h: the floor's numbers and
  * seed; the motions depend on nothing else), the floor's set count, every
- * option of sl_rockf_opts that changes a result, and per item its block
+ * option of sl_rockf_opts that changes a result (its engine's too), and per
+ * item its block
  * (b, h, r) and orientation. The key hash (64-bit FNV-1a, 16 hex digits)
  * names the file "<hash>.slrock".
  *
