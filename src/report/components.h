@@ -46,11 +46,12 @@
  *   margin_mm              clearance_mm - required_clearance_mm
  *   b_over_h               base_m / (2 cg_height_m): half the base over the
  *                          height of the centre of mass
- *   verdict, in this order:
+ *   verdict of the sliding check, in this order:
  *     rocking  mu >= b/h: a rigid block on a rigid floor rocks before it
  *              slides (Shenton 1996, "Criteria for initiation of slide,
  *              rock, and slide-rock rigid-body modes"); the sliding table
- *              does not apply: check rocking (ASCE/SEI 43-05)
+ *              does not apply: the rocking check decides (mode below,
+ *              sl_comp_set_rocking; docs/rocking.md)
  *     outside  mu off the computed grid [mu_first, mu_last]
  *     short    margin < 0 (a result, not an error)
  *     marginal 0 <= margin < SL_COMP_MARGIN_SE x the required clearance's
@@ -274,9 +275,10 @@ typedef struct sl_comp_at {
 } sl_comp_at;
 int sl_comp_floor_at(const sl_comp_results *r, size_t fi, double mu, sl_comp_at *a);
 
-/* The verdict's reason in words into buf ("mu 0.45 >= b/h 0.36: rocks
- * before it slides, check rocking (ASCE 43-05)"); the workbook's formula
- * writes the same text. */
+/* The verdict's reason in words into buf ("required 59.3 mm (SE 6.4) >
+ * available 50.0 mm: 9.3 mm short"; a rocking row: sl_comp_rock_prefix and
+ * the excursion; a row checked both ways: "slides: ...; rocks: ..."); the
+ * workbook's formula writes the same text. */
 char *sl_comp_reason(const sl_comp_results *r, const sl_comp_row *w, char *buf, size_t n);
 /* The part of a rocking row's reason that its clearance does not change
  * ("P(tip) 0.4 % (SE 0.2) at 1.0 x, ... (targets 1 %, 10 %)", then ": above
