@@ -11,7 +11,7 @@
 
 /* What the record says about the run, besides the problems. */
 typedef struct verify_info {
-    char version[64], compiler[160], flags[512], vector[96], host[512], date[64];
+    char version[64], compiler[160], flags[512], vector[96], host[640], date[64];
     char checked_by[256], command[1024];
     char docs[1200];          /* where verification.md is (the installed copy) */
     time_t created;           /* the date, as the CSV trace lines give it */

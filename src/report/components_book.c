@@ -234,7 +234,7 @@ static void comp_row(book *b, lxw_worksheet *ws, lxw_row_t row, const sl_comp_ro
 {
     const sl_comp_results *r = b->r;
     const sl_comp_table *t = b->t;
-    char f[4000], A[16], B[16], C[16], D[16], E[16], G[16], Fc[16], h[H_N][16], v[R_N][16],
+    char f[4200], A[16], B[16], C[16], D[16], E[16], G[16], Fc[16], h[H_N][16], v[R_N][16],
         ip[400], reason[600];
     ref(A, SL_COMP_TAG, row);
     ref(B, SL_COMP_BUILDING, row);

@@ -247,7 +247,7 @@ static void hf_escape(const char *s, size_t max, char *buf, size_t n)
 void sl_rpt_page_setup(lxw_worksheet *ws, const sl_report *r, int landscape,
                        const char *failed_ids)
 {
-    char proj[4 * HF_PROJECT_MAX + 8], doc[140], rev[120], ids[180], h[4 * HF_MAX], ver[260],
+    char proj[4 * HF_PROJECT_MAX + 8], doc[140], rev[120], ids[180], h[4 * HF_MAX + 260], ver[260],
         bld[4 * HF_PROJECT_MAX + 32] = "";
     const sl_report_project *p = &r->project;
     hf_escape(p->project && *p->project ? p->project : "not given",
