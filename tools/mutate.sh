@@ -244,11 +244,16 @@ done
 
 echo 1 >"$P/next"
 : >"$P/results"
+# every copy made before any worker builds in w1 (a copy taken while make
+# writes there would miss the files it renames)
+k=2
+while [ $k -le "$SEISLIDE_MUTATE_JOBS" ]; do
+  [ -d "$P/w$k" ] || cp -a "$W1" "$P/w$k" || exit 2
+  k=$((k + 1))
+done
 k=1
 while [ $k -le "$SEISLIDE_MUTATE_JOBS" ]; do
-  W=$P/w$k
-  [ -d "$W" ] || cp -a "$W1" "$W" || exit 2
-  sh "$SELF" --worker "$W" "$P" &
+  sh "$SELF" --worker "$P/w$k" "$P" &
   k=$((k + 1))
 done
 wait
