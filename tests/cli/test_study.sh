@@ -44,4 +44,13 @@ peak=$(awk '!/^#/ { v = $2 < 0 ? -$2 : $2; if (v > m) m = v } END { printf "%.2f
   "$D/res/validation/p1_1d_engine.tsv")
 rep1=$(awk -F'|' '$2 ~ /^ 228 $/ && $3 ~ /engine/ { gsub(/ /, "", $4); print $4 }' "$V")
 [ "$peak" = "$rep1" ] && t_pass || t_fail "history peak $peak mm, report $rep1 mm"
+# Section 7 carries make rockfloors' tables as written, or says how to make them.
+grep -q "^## 7. Rocking against physical floor motions" "$V" && t_pass || t_fail "section 7 missing"
+grep -q "is not in this output folder: .make rockfloors. makes it" "$V" && t_pass ||
+  t_fail "section 7 without the tables does not say how to make them"
+printf '| building | rows |\n|---|---|\n| carried-%s | 1 |\n' "$$" >"$D/res/validation/rocking_floors.md"
+t_run study --records "$R" -o "$D/res" --parts 1 --no-plots -q; t_expect_rc rerun 0
+sed -n '/^## 7/,$p' "$V" | grep -qx "| carried-$$ | 1 |" && t_pass ||
+  t_fail "section 7 does not carry validation/rocking_floors.md"
+grep -q "is not in this output folder" "$V" && t_fail "section 7 says the tables are missing" || t_pass
 t_end
