@@ -26,7 +26,11 @@
  *            -x (what else carries the tail, one change at a time: the two
  *            horizontals' intensities correlated as the physical motions'
  *            instead of one common factor; a shorter strong motion; the
- *            physical motions' near-peak cycles against their sliding)
+ *            physical motions' near-peak cycles against their sliding),
+ *            -m FILE (also the summary as one markdown table, a row per
+ *            building, to FILE: `make tailfloors` writes
+ *            docs/validation/tail_floors.md, which `seislide study`
+ *            carries into docs/validation.md, section 8)
  * Prints markdown tables and one "DATA" line per floor; exit 0, or 1 with
  * a message.
  */
@@ -75,6 +79,7 @@ typedef struct tf_opts {
     int ground_scatter; /* -g: how the records' spectra scatter at one PGA */
     double fixed; /* -R, NAN: none */
     FILE *dump;   /* -D: every mean and SD for offline fits */
+    FILE *md;     /* -m: the summary table */
     sl_building b[MAX_B];
     const char *bspec[MAX_B];
 } tf_opts;
@@ -84,6 +89,7 @@ typedef struct tf_sum {
     double lr_hi[NVAR], lr_lo[NVAR];  /* sums of ln R at mu g/ZPA >= 0.5 and < 0.5 */
     size_t n_hi, n_lo;
     double min_hi[NVAR];              /* smallest R at >= 0.5 where the physical SE <= SE_OK */
+    double sig_lo, sig_hi, fc_lo, fc_hi; /* the floors' rule sigma and f_c, Hz (R4)-(R5) */
 } tf_sum;
 
 static void die(const sl_error *e)
@@ -478,6 +484,11 @@ static void floor_case(const tf_opts *o, size_t ib, size_t fl, const sl_set *g, 
     double bw[2], fc[2], va[2];
     for (int c = 0; c < 2; c++)
         spectrum_more(flr, c, &bw[c], &fc[c], &va[c]);
+    double fc_floor = sl_scatter_floor_fc_hz(flr);
+    sum->sig_lo = fmin(sum->sig_lo, s_rule);
+    sum->sig_hi = fmax(sum->sig_hi, s_rule);
+    sum->fc_lo = fmin(sum->fc_lo, fc_floor);
+    sum->fc_hi = fmax(sum->fc_hi, fc_floor);
     if (o->dump)
         fprintf(o->dump, "E %s %zu %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.3f %.2f\n",
                 o->bspec[ib], fl, pz[0], fpk[0], pz[1], fpk[1], bw[0], bw[1], fc[0], fc[1],
@@ -644,6 +655,32 @@ static void ground_scatter(const sl_set *g, size_t nrec)
     free(ls);
 }
 
+/* -m: the summary as a markdown table; the ratios are synthesized / physical
+ * (geometric means over a building's floors and the mu g/ZPA named) */
+static void summary_head(FILE *md, size_t nrec, const char *rdir, size_t nsyn, uint64_t seed)
+{
+    fprintf(md, "Physical floor motions: %zu usable records of %s, larger horizontal PGA scaled "
+            "to %.1f g, through each building (storeys, first modes of H1 / H2, damping). "
+            "Synthesized: %zu sets per floor (seed %llu). Ratios: synthesized / physical mean "
+            "sliding, geometric means over the building's floors at mu g/ZPA 0.5, 0.6, ..., "
+            "1.0 (the threshold tail) or 0.1-0.4; the smallest point is over those at 0.5-1.0 "
+            "whose physical mean has a relative SE of at most %.0f %%.\n\n",
+            nrec, rdir, PGA_G, nsyn, (unsigned long long)seed, 100 * SE_OK);
+    fprintf(md, "| building | floors' f_c, Hz | sigma (R4) | at 0.5-1.0: no scatter | former "
+            "0.30 | **sigma (R4)** | its smallest point | at 0.1-0.4: 0.30 | sigma (R4) |\n"
+            "|---|---|---|---|---|---|---|---|---|\n");
+}
+
+static void summary_row(FILE *md, const sl_building *b, const tf_sum *s)
+{
+    double hi = (double)s->n_hi, lo = (double)s->n_lo;
+    fprintf(md, "| %zu, %.1f / %.1f Hz, %g %% | %.1f-%.1f | %.2f-%.2f | %.2f | %.2f | **%.2f** | "
+            "%.2f | %.2f | %.2f |\n",
+            b->storeys, b->f1_hz[0], b->f1_hz[1], 100 * b->damping, s->fc_lo, s->fc_hi,
+            s->sig_lo, s->sig_hi, exp(s->lr_hi[0] / hi), exp(s->lr_hi[1] / hi),
+            exp(s->lr_hi[3] / hi), s->min_hi[3], exp(s->lr_lo[1] / lo), exp(s->lr_lo[3] / lo));
+}
+
 static int parse_options(int argc, char **argv, tf_opts *o)
 {
     memset(o, 0, sizeof *o);
@@ -652,7 +689,7 @@ static int parse_options(int argc, char **argv, tf_opts *o)
     o->fixed = NAN;
     int opt;
     sl_error e;
-    while ((opt = getopt(argc, argv, "r:n:s:S:b:dgxR:D:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:n:s:S:b:dgxR:D:m:")) != -1) {
         switch (opt) {
         case 'r': o->records = optarg; break;
         case 'n': o->max_records = (size_t)atol(optarg); break;
@@ -668,6 +705,12 @@ static int parse_options(int argc, char **argv, tf_opts *o)
                 return 1;
             }
             break;
+        case 'm':
+            if (!(o->md = fopen(optarg, "w"))) {
+                fprintf(stderr, "tailfloors: cannot write %s\n", optarg);
+                return 1;
+            }
+            break;
         case 'b':
             if (o->nb == MAX_B) {
                 fprintf(stderr, "tailfloors: at most %d buildings\n", MAX_B);
@@ -679,7 +722,8 @@ static int parse_options(int argc, char **argv, tf_opts *o)
             break;
         default:
             fprintf(stderr, "usage: tailfloors [-r dir] [-n max] [-s nsyn] [-S seed] "
-                            "[-b N:f1_h1:f1_h2:f1_v:damping]... [-d] [-g] [-x] [-R sigma] [-D dumpfile]\n");
+                            "[-b N:f1_h1:f1_h2:f1_v:damping]... [-d] [-g] [-x] [-R sigma] [-D dumpfile] "
+                            "[-m summary.md]\n");
             return 1;
         }
     }
@@ -736,6 +780,8 @@ int main(int argc, char **argv)
     }
     printf("records: %zu of %s, scaled to %.1f g; %zu synthesized sets per floor, seed %llu\n",
            nrec, rdir, PGA_G, o.nsyn, (unsigned long long)o.seed);
+    if (o.md)
+        summary_head(o.md, nrec, rdir, o.nsyn, o.seed);
     if (o.ground_scatter)
         ground_scatter(g, nrec);
     for (size_t ib = 0; !o.ground_scatter && ib < o.nb; ib++) {
@@ -743,6 +789,8 @@ int main(int argc, char **argv)
         memset(&sum, 0, sizeof sum);
         for (int v = 0; v < NVAR; v++)
             sum.min_hi[v] = INFINITY;
+        sum.sig_lo = sum.fc_lo = INFINITY;
+        sum.sig_hi = sum.fc_hi = -INFINITY;
         for (size_t fl = 1; fl <= o.b[ib].storeys; fl++)
             floor_case(&o, ib, fl, g, nrec, &sum);
         if (o.descr_only)
@@ -756,6 +804,12 @@ int main(int argc, char **argv)
                 printf("  %-24s %.3f (%.3f), smallest %.2f\n", nm[v],
                        exp(sum.lr_hi[v] / (double)sum.n_hi), exp(sum.lr_lo[v] / (double)sum.n_lo),
                        sum.min_hi[v]);
+        if (o.md)
+            summary_row(o.md, &o.b[ib], &sum);
+    }
+    if (o.md && fclose(o.md)) {
+        fprintf(stderr, "tailfloors: cannot write the summary table\n");
+        return 1;
     }
     for (size_t r = 0; r < nrec; r++)
         sl_set_free_motions(&g[r]);

@@ -56,11 +56,14 @@ void study_report_claims(study_out *o, const sl_study_part1 *p1, const sl_study_
                          const sl_study_part3 *p3, const sl_study_part4 *p4);
 /* The report's opening paragraph. */
 void study_report_preamble(study_out *o);
-/* Section 7, rocking against physical floor motions: figdir/STUDY_ROCKING_MD
- * (written by `make rockfloors`, not by the study) carried as it is, or how
- * to make it where it is absent. 0 or -1 (message printed). */
+/* Sections 7 and 8, rocking and the intensity tail against physical floor
+ * motions: figdir/STUDY_ROCKING_MD and figdir/STUDY_TAIL_MD (written by
+ * `make rockfloors` and `make tailfloors`, which take longer than the
+ * study) carried as they are, or how to make them where they are absent.
+ * 0 or -1 (message printed). */
 #define STUDY_ROCKING_MD "rocking_floors.md"
-int study_report_rocking(study_out *o);
+#define STUDY_TAIL_MD "tail_floors.md"
+int study_report_carried(study_out *o);
 /* Compute (study/study_parts.h) and write the parts asked for (bit k = part
  * k+1), with progress on stderr unless quiet. 0 or -1 (message printed). */
 int study_report_run(study_out *o, const char *records, int parts, int quiet);

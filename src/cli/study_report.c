@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "method/asce.h"
 #include "method/design.h"
+#include "method/scatter.h"
 #include "rock/rock_floor.h"
 #include "study_out.h"
 
@@ -505,40 +506,28 @@ void study_report_claims(study_out *o, const sl_study_part1 *p1, const sl_study_
 void study_report_preamble(study_out *o)
 {
     fprintf(o->md,
-            "# Validation: seislide against the source study\n\n"
+            "# Validation: seislide against the source study and physical floor motions\n\n"
             "Made by `seislide study` (`make study`) from a collection of recorded motions\n"
             "(`--records DIR`; provenance in the collection's MANIFEST.tsv); every number\n"
-            "of sections 1-6 is recomputed by that command (section 7 carries the tables of\n"
-            "`make rockfloors`, which takes longer). The source study (a master's thesis\n"
-            "evaluating the ASCE/SEI 43-05 Appendix A.1 method for sliding components) and\n"
-            "its findings are restated with each comparison. Data and gnuplot scripts of every\n"
-            "figure are in `docs/" STUDY_FIGDIR "/`. Regression tests on the same\n"
-            "computations: tests/test_study.c.\n\n");
+            "of sections 1-6 is recomputed by that command (sections 7 and 8 carry the tables\n"
+            "of `make rockfloors` and `make tailfloors`, which take longer). The source study\n"
+            "(a master's thesis evaluating the ASCE/SEI 43-05 Appendix A.1 method for sliding\n"
+            "components) and its findings are restated with each comparison. Data and\n"
+            "gnuplot scripts of every figure are in `docs/" STUDY_FIGDIR "/`. Regression tests\n"
+            "on the same computations: tests/test_study.c.\n\n");
 }
 
-int study_report_rocking(study_out *o)
+/* figdir/name as it is, or how to make it (`make target`) where it is absent. */
+static int carry(study_out *o, const char *name, const char *target)
 {
-    char path[sizeof o->figdir + sizeof STUDY_ROCKING_MD + 1];
-    snprintf(path, sizeof path, "%s/" STUDY_ROCKING_MD, o->figdir);
-    fprintf(o->md,
-            "## 7. Rocking against physical floor motions\n\n"
-            "Beyond the source study, which treats sliding only: the probability that a slender\n"
-            "rigid block tips (docs/rocking.md, docs/model.md \"Rocking\") on the sets seislide\n"
-            "synthesizes from a floor's spectra, with the rocking intensity scatter, against the\n"
-            "fraction of the physical floor motions behind those spectra that tip it. The\n"
-            "physical floor motions are the records passed through linear three-storey buildings\n"
-            "(study/building.h); a floor's spectra are the mean spectra of its physical motions.\n"
-            "A row compares, for one block and level, the synthesized p_tip +- its SE with the\n"
-            "physical fraction +- its binomial SE: z = (synthesized - physical) / sqrt(SE_s^2 +\n"
-            "SE_p^2), within 2 SE where |z| <= 2. The rocking scatter (%.2f, SL_ROCKF_SCATTER)\n"
-            "was chosen on the first three buildings; the held-out three test it.\n\n"
-            "Not recomputed by `seislide study`: written by `make rockfloors`\n"
-            "(tools/rockfloors.c) to `docs/" STUDY_FIGDIR "/" STUDY_ROCKING_MD "` and carried\n"
-            "here as written.\n\n", SL_ROCKF_SCATTER);
+    char path[sizeof o->figdir + 64];
+    snprintf(path, sizeof path, "%s/%s", o->figdir, name);
+    fprintf(o->md, "Not recomputed by `seislide study`: written by `make %s` (tools/%s.c) to\n"
+            "`docs/" STUDY_FIGDIR "/%s` and carried here as written.\n\n", target, target, name);
     FILE *f = fopen(path, "r");
     if (!f && errno == ENOENT) {
-        fprintf(o->md, "(`" STUDY_FIGDIR "/" STUDY_ROCKING_MD "` is not in this output folder: "
-                "`make rockfloors` makes it.)\n\n");
+        fprintf(o->md, "(`" STUDY_FIGDIR "/%s` is not in this output folder: `make %s` makes "
+                "it.)\n\n", name, target);
         return 0;
     }
     if (!f) {
@@ -557,6 +546,43 @@ int study_report_rocking(study_out *o)
     }
     fprintf(o->md, "\n");
     return 0;
+}
+
+int study_report_carried(study_out *o)
+{
+    fprintf(o->md,
+            "## 7. Rocking against physical floor motions\n\n"
+            "Beyond the source study, which treats sliding only: the probability that a slender\n"
+            "rigid block tips (docs/rocking.md, docs/model.md \"Rocking\") on the sets seislide\n"
+            "synthesizes from a floor's spectra, with the rocking intensity scatter, against the\n"
+            "fraction of the physical floor motions behind those spectra that tip it. The\n"
+            "physical floor motions are the records passed through linear three-storey buildings\n"
+            "(study/building.h); a floor's spectra are the mean spectra of its physical motions.\n"
+            "A row compares, for one block and level, the synthesized p_tip +- its SE with the\n"
+            "physical fraction +- its binomial SE: z = (synthesized - physical) / sqrt(SE_s^2 +\n"
+            "SE_p^2), within 2 SE where |z| <= 2. The rocking scatter (%.2f, SL_ROCKF_SCATTER)\n"
+            "was chosen on the first three buildings; the held-out three test it.\n\n",
+            SL_ROCKF_SCATTER);
+    if (carry(o, STUDY_ROCKING_MD, "rockfloors"))
+        return -1;
+    fprintf(o->md,
+            "## 8. The intensity tail near the sliding threshold\n\n"
+            "A floor spectrum is the mean over floor motions whose intensity scatters; a set\n"
+            "matched to it carries none of that scatter, and near the sliding threshold (mu g/ZPA\n"
+            "0.5-1.0) it slides less than the physical motions. `seislide run` therefore slides\n"
+            "each set with a log-normal intensity factor whose log standard deviation is each\n"
+            "floor's own (src/method/scatter.h, (R4)-(R5); docs/run.md, \"Intensity scatter\"):\n\n"
+            "    sigma = min(sqrt(sigma_g(f_c)^2 + %.2f^2), %.1f)\n\n"
+            "with f_c the centroid, in ln f, of the floor's amplification over its ZPA (both\n"
+            "horizontals) and sigma_g(f) the log standard deviation of the records' 5 %% spectra\n"
+            "at one ground PGA (%.2f at 1 Hz, %.2f at 2.4 Hz, %.2f at 5.6 Hz). The table: synthesized\n"
+            "over physical mean sliding on records passed through shear buildings; the aim is a\n"
+            "geometric mean at 0.5-1.0 within 0.85-1.2 and no point below 0.6.\n"
+            "docs/synthesis.md section 11 gives 26 buildings (1-7 storeys, 0.9-10 Hz, 2-7 %%)\n"
+            "and the cost (sets and time), notes.md section 3.9 the fits behind the rule.\n\n",
+            SL_SCATTER_SIGMA_0, SL_SCATTER_SIGMA_MAX, sl_scatter_sigma_ground(1.0),
+            sl_scatter_sigma_ground(2.4), sl_scatter_sigma_ground(5.6));
+    return carry(o, STUDY_TAIL_MD, "tailfloors");
 }
 
 /* A progress line on stderr unless *ctx (quiet) is set. */
@@ -678,7 +704,7 @@ int study_report_run(study_out *o, const char *records, int parts, int quiet)
                                                                    : study_report_part5(o, &p5);
     }
     if (!rc)
-        rc = study_report_rocking(o);
+        rc = study_report_carried(o);
     if (rc == -2)
         cli_print_error(e);
     sl_study_part1_free(&p1);

@@ -44,13 +44,21 @@ peak=$(awk '!/^#/ { v = $2 < 0 ? -$2 : $2; if (v > m) m = v } END { printf "%.2f
   "$D/res/validation/p1_1d_engine.tsv")
 rep1=$(awk -F'|' '$2 ~ /^ 228 $/ && $3 ~ /engine/ { gsub(/ /, "", $4); print $4 }' "$V")
 [ "$peak" = "$rep1" ] && t_pass || t_fail "history peak $peak mm, report $rep1 mm"
-# Section 7 carries make rockfloors' tables as written, or says how to make them.
+# Sections 7 and 8 carry make rockfloors' and make tailfloors' tables as written,
+# each in its own section, or say how to make them.
 grep -q "^## 7. Rocking against physical floor motions" "$V" && t_pass || t_fail "section 7 missing"
-grep -q "is not in this output folder: .make rockfloors. makes it" "$V" && t_pass ||
-  t_fail "section 7 without the tables does not say how to make them"
-printf '| building | rows |\n|---|---|\n| carried-%s | 1 |\n' "$$" >"$D/res/validation/rocking_floors.md"
+grep -q "^## 8. The intensity tail near the sliding threshold" "$V" && t_pass ||
+  t_fail "section 8 missing"
+for t in rockfloors tailfloors; do
+  grep -q "is not in this output folder: .make $t. makes it" "$V" && t_pass ||
+    t_fail "without $t's tables validation.md does not say how to make them"
+done
+printf '| building | rows |\n|---|---|\n| rock-%s | 1 |\n' "$$" >"$D/res/validation/rocking_floors.md"
+printf '| building | ratio |\n|---|---|\n| tail-%s | 1 |\n' "$$" >"$D/res/validation/tail_floors.md"
 t_run study --records "$R" -o "$D/res" --parts 1 --no-plots -q; t_expect_rc rerun 0
-sed -n '/^## 7/,$p' "$V" | grep -qx "| carried-$$ | 1 |" && t_pass ||
+sed -n '/^## 7/,/^## 8/p' "$V" | grep -qx "| rock-$$ | 1 |" && t_pass ||
   t_fail "section 7 does not carry validation/rocking_floors.md"
-grep -q "is not in this output folder" "$V" && t_fail "section 7 says the tables are missing" || t_pass
+sed -n '/^## 8/,$p' "$V" | grep -qx "| tail-$$ | 1 |" && t_pass ||
+  t_fail "section 8 does not carry validation/tail_floors.md"
+grep -q "is not in this output folder" "$V" && t_fail "validation.md says carried tables are missing" || t_pass
 t_end
