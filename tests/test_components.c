@@ -122,6 +122,11 @@ static void test_table(void)
     for (size_t i = 0; i < 7; i++)
         CHECK(t.rows[i].verdict == v[i] && t.rows[i].line == line[i], "row %zu: verdict %d line "
               "%ld", i + 1, (int)t.rows[i].verdict, t.rows[i].line);
+    /* a slender row's own sliding verdict is rocking too (T3 inside the grid, T7 above
+     * it): the workbook caches it in the sliding-verdict cell, whose formula says so */
+    CHECK(t.rows[2].slide_verdict == SL_COMP_ROCKING && t.rows[6].slide_verdict == SL_COMP_ROCKING,
+          "sliding verdicts of the slender rows %d %d", (int)t.rows[2].slide_verdict,
+          (int)t.rows[6].slide_verdict);
     CHECK_CLOSE(t.rows[0].required_mm, 75.0, 0, 0);
     CHECK_CLOSE(t.rows[0].se_mm, 8.0, 0, 1e-15);
     CHECK_CLOSE(t.rows[0].asce_mm, 160.0, 0, 1e-15);
