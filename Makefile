@@ -1,4 +1,5 @@
-# seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate physfloors tailfloors.
+# seislide - see README.md. Targets: all test bench bench-plant study install clean asan mutate
+# physfloors tailfloors rockfloors plausfloors zpafloors source-id.
 CC      ?= cc
 PREFIX  ?= /usr/local
 LIBDIR  ?= $(PREFIX)/lib
