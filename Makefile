@@ -143,7 +143,7 @@ physfloors: $(BUILD)/tools/physfloors
 # Rocking (probability of tipping) on synthesized floor sets against the physical
 # floor motions behind their spectra, the six buildings (docs/rocking.md), into
 # docs/validation/rocking_floors.md, which `seislide study` carries into
-# docs/validation.md (section 7); about 25 min on 2 idle cores.
+# docs/validation.md (section 7); 17 min on 2 cores (measured with other work running).
 ROCKFLOORS_MD := docs/validation/rocking_floors.md
 rockfloors: $(BUILD)/tools/rockfloors
 	nice $(BUILD)/tools/rockfloors -b asfxyz > $(ROCKFLOORS_MD).new || { rm -f $(ROCKFLOORS_MD).new; exit 1; }
