@@ -868,29 +868,16 @@ int main(int argc, char **argv)
     if (parse_options(argc, argv, &o))
         return 1;
     char buf[1024];
-    const char *rdir = o.records;
-    if (!rdir) {
-        const char *sh = getenv("SEISLIDE_SHARED");
-        snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
-        rdir = buf;
-    }
+    const char *rdir = sl_pf_records_dir(o.records, buf, sizeof buf);
     sl_error e;
     if (sl_synth_params_check(&o.synth, &e))
         die(&e);
-    char **names;
-    size_t nd = sl_pf_list_dirs(rdir, &names, &e);
-    if (!nd)
+    sl_set *g;
+    size_t nrec, nd;
+    if (sl_pf_read_records(rdir, o.max_records, PGA_G * SL_G, &g, &nrec, &nd, &e))
         die(&e);
     sl_pf_rule rule;
     sl_pf_rule_default(&rule);
-    sl_set *g = calloc(nd, sizeof *g);
-    size_t nrec = 0;
-    for (size_t i = 0; i < nd && (!o.max_records || nrec < o.max_records); i++) {
-        char d[4096];
-        snprintf(d, sizeof d, "%s/%s", rdir, names[i]);
-        if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) == SL_OK)
-            nrec++;
-    }
     printf("records: %zu used of %zu directories in %s (rule: three components, larger H PGA "
            ">= %.2f g, duration >= %.0f s, dt <= %.2f s); scaled to %.1f g; %zu synthesized "
            "sets per case, seed %llu, pga_sigma %.2f, wavelet cycles %.1f, envelope hold %.2f, floor spectra to %g Hz, scatter %.2f (< 0: each floor's), "
@@ -909,9 +896,7 @@ int main(int argc, char **argv)
         ground(&o, g, nrec, syn);
     if (!o.ground_only)
         rc = floors(&o, g, nrec, syn);
-    free_tmp(g, nrec);
-    free(g);
+    sl_pf_sets_free(g, nrec);
     free(syn);
-    sl_pf_names_free(names, nd);
     return rc;
 }

@@ -216,11 +216,7 @@ int main(int argc, char **argv)
         }
     }
     char buf[1024], dir[] = "/tmp/seislide-plaus-XXXXXX";
-    if (!rdir) {
-        const char *sh = getenv("SEISLIDE_SHARED");
-        snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
-        rdir = buf;
-    }
+    rdir = sl_pf_records_dir(rdir, buf, sizeof buf);
     if (!mkdtemp(dir))
         return fprintf(stderr, "plausfloors: cannot make a temporary folder\n"), 1;
     sl_error e;

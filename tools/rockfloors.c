@@ -159,30 +159,16 @@ int main(int argc, char **argv)
             return 1;
         }
     char buf[1024];
-    if (!records) {
-        const char *sh = getenv("SEISLIDE_SHARED");
-        snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
-        records = buf;
-    }
+    records = sl_pf_records_dir(records, buf, sizeof buf);
     if (nsyn < 2 || !(sigma >= 0 && sigma <= 1)) {
         fprintf(stderr, "rockfloors: bad -s or -R\n");
         return 1;
     }
     sl_error e;
-    char **names;
-    size_t nd = sl_pf_list_dirs(records, &names, &e);
-    if (!nd)
+    sl_set *g;
+    size_t nrec, nd;
+    if (sl_pf_read_records(records, max_records, PGA_G * SL_G, &g, &nrec, &nd, &e))
         die(&e);
-    sl_pf_rule rule;
-    sl_pf_rule_default(&rule);
-    sl_set *g = calloc(nd, sizeof *g);
-    size_t nrec = 0;
-    for (size_t i = 0; i < nd && (!max_records || nrec < max_records); i++) {
-        char d[4096];
-        snprintf(d, sizeof d, "%s/%s", records, names[i]);
-        if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) == SL_OK)
-            nrec++;
-    }
     printf("Physical floor motions: %zu usable records of the %zu folders in %s, larger "
            "horizontal PGA scaled to %.1f g, through each building. Synthesized: %zu sets per "
            "floor (seed %llu) with the intensity scatter %.2f. Blocks: b/h %.2f-%.2f by h "
@@ -305,10 +291,7 @@ int main(int argc, char **argv)
     printf("\nPer floor: the rows where either fraction is in [0.02, 0.98].\n");
     fwrite(tab_buf, 1, tab_len, stdout);
     free(tab_buf);
-    for (size_t r = 0; r < nrec; r++)
-        sl_set_free_motions(&g[r]);
-    free(g);
+    sl_pf_sets_free(g, nrec);
     free(fm);
-    sl_pf_names_free(names, nd);
     return 0;
 }

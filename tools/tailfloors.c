@@ -752,28 +752,12 @@ int main(int argc, char **argv)
     if (parse_options(argc, argv, &o))
         return 1;
     char buf[1024];
-    const char *rdir = o.records;
-    if (!rdir) {
-        const char *sh = getenv("SEISLIDE_SHARED");
-        snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
-        rdir = buf;
-    }
+    const char *rdir = sl_pf_records_dir(o.records, buf, sizeof buf);
     sl_error e;
-    char **names;
-    size_t nd = sl_pf_list_dirs(rdir, &names, &e);
-    if (!nd)
+    sl_set *g;
+    size_t nrec;
+    if (sl_pf_read_records(rdir, o.max_records, PGA_G * SL_G, &g, &nrec, NULL, &e))
         die(&e);
-    sl_pf_rule rule;
-    sl_pf_rule_default(&rule);
-    sl_set *g = xcalloc(nd, sizeof *g);
-    size_t nrec = 0;
-    for (size_t i = 0; i < nd && (!o.max_records || nrec < o.max_records); i++) {
-        char d[4096];
-        snprintf(d, sizeof d, "%s/%s", rdir, names[i]);
-        if (sl_pf_read_record(d, &rule, PGA_G * SL_G, &g[nrec], &e) == SL_OK)
-            nrec++;
-    }
-    sl_pf_names_free(names, nd);
     if (nrec < 2) {
         fprintf(stderr, "tailfloors: fewer than 2 records of %s pass the rule\n", rdir);
         return 1;
@@ -811,8 +795,6 @@ int main(int argc, char **argv)
         fprintf(stderr, "tailfloors: cannot write the summary table\n");
         return 1;
     }
-    for (size_t r = 0; r < nrec; r++)
-        sl_set_free_motions(&g[r]);
-    free(g);
+    sl_pf_sets_free(g, nrec);
     return 0;
 }

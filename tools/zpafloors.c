@@ -103,11 +103,7 @@ int main(int argc, char **argv)
         }
     }
     char buf[1024];
-    if (!rdir) {
-        const char *sh = getenv("SEISLIDE_SHARED");
-        snprintf(buf, sizeof buf, "%s/records", sh && *sh ? sh : "../shared");
-        rdir = buf;
-    }
+    rdir = sl_pf_records_dir(rdir, buf, sizeof buf);
     sl_error e;
     char **names;
     size_t nd = sl_pf_list_dirs(rdir, &names, &e);

@@ -114,6 +114,56 @@ sl_status sl_pf_read_record(const char *dir, const sl_pf_rule *rule, double pga_
     return st;
 }
 
+
+const char *sl_pf_records_dir(const char *dir, char *buf, size_t n)
+{
+    if (dir)
+        return dir;
+    const char *sh = getenv("SEISLIDE_SHARED");
+    snprintf(buf, n, "%s/records", sh && *sh ? sh : "../shared");
+    return buf;
+}
+
+sl_status sl_pf_read_records(const char *dir, size_t max, double pga_ms2, sl_set **sets,
+                             size_t *n, size_t *n_dirs, sl_error *err)
+{
+    *sets = NULL;
+    *n = 0;
+    char **names;
+    sl_error_clear(err);
+    size_t nd = sl_pf_list_dirs(dir, &names, err);
+    if (n_dirs)
+        *n_dirs = nd;
+    if (err->code)
+        return err->code;
+    sl_set *g = calloc(nd ? nd : 1, sizeof *g);
+    if (!g) {
+        sl_pf_names_free(names, nd);
+        return sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
+    }
+    sl_pf_rule rule;
+    sl_pf_rule_default(&rule);
+    size_t k = 0;
+    for (size_t i = 0; i < nd && (!max || k < max); i++) {
+        char d[4096];
+        sl_error skip;
+        snprintf(d, sizeof d, "%s/%s", dir, names[i]);
+        if (sl_pf_read_record(d, &rule, pga_ms2, &g[k], &skip) == SL_OK)
+            k++;
+    }
+    sl_pf_names_free(names, nd);
+    *sets = g;
+    *n = k;
+    return SL_OK;
+}
+
+void sl_pf_sets_free(sl_set *sets, size_t n)
+{
+    for (size_t i = 0; sets && i < n; i++)
+        sl_set_free_motions(&sets[i]);
+    free(sets);
+}
+
 void sl_pf_mean_sd(const double *x, size_t n, size_t stride, double *mean, double *sd)
 {
     double m = 0, q = 0;

@@ -47,6 +47,19 @@ void sl_pf_rule_default(sl_pf_rule *r);
 size_t sl_pf_list_dirs(const char *dir, char ***names, sl_error *err);
 void sl_pf_names_free(char **names, size_t n);
 
+/* The records folder: dir when given, else $SEISLIDE_SHARED/records or
+ * ../shared/records, written into buf (n bytes). */
+const char *sl_pf_records_dir(const char *dir, char *buf, size_t n);
+
+/* Every sub-folder of dir (in name order) whose record passes the default
+ * rule, read by sl_pf_read_record at pga_ms2, at most max of them (0: all):
+ * *sets (malloc'd; free with sl_pf_sets_free) holds *n sets; *n_dirs (NULL:
+ * not wanted) counts the sub-folders. SL_OK, or the failure to list dir or
+ * to allocate (err set); records that fail the rule are skipped. */
+sl_status sl_pf_read_records(const char *dir, size_t max, double pga_ms2, sl_set **sets,
+                             size_t *n, size_t *n_dirs, sl_error *err);
+void sl_pf_sets_free(sl_set *sets, size_t n);
+
 /* Read record directory `dir` as a three-component set, apply the rule,
  * resample and scale to larger horizontal PGA pga_ms2 (> 0). Returns SL_OK
  * (out owns its motions: sl_set_free_motions), the failure of reading
