@@ -317,6 +317,22 @@ void sl_rpt_title_block(lxw_worksheet *ws, const sl_rpt_fmts *F, const sl_report
     }
 }
 
+void sl_rpt_warn_row(lxw_worksheet *ws, const sl_rpt_fmts *F, const char *ids,
+                     const char *where, const char *wl, lxw_col_t c_last, double width)
+{
+    char buf[2400];
+    if (ids[0])
+        snprintf(buf, sizeof buf, "CHECKS FAILED: motions of floor(s) %s failed their SRP 3.7.1 "
+                 "checks; their results were kept by --accept-failed-checks (%s)%s%s", ids,
+                 where, wl[0] ? ". " : "", wl);
+    else if (wl[0])
+        snprintf(buf, sizeof buf, "%s", wl);
+    else
+        return;
+    worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, c_last, buf, F->warn);
+    worksheet_set_row(ws, SL_RPT_WARN_ROW, sl_rpt_text_height(buf, width, 1), NULL);
+}
+
 void sl_rpt_col_name(size_t c, char *buf)
 {
     char tmp[8];

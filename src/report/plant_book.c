@@ -445,7 +445,7 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
     worksheet_set_column(ws, 1, 1, LK_W_B, NULL);
     sl_rpt_title_block(ws, F, rep, "Required clearance around a component: whole plant", 0, 1,
                        LK_W_B);
-    char failed[600] = "", warn[2200], wl[1200] = "";
+    char failed[600] = "", wl[1200] = "";
     size_t used = 0, wused = 0;
     for (size_t i = 0; i < b->n && used + 1 < sizeof failed; i++)
         if (b->rows[i].n_failed_motions) {
@@ -461,17 +461,8 @@ static void lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_plant_
                              b->rows[i].warnings);
             wused = w > 0 && wused + (size_t)w < sizeof wl ? wused + (size_t)w : sizeof wl - 1;
         }
-    if (failed[0] || wl[0]) { /* as the building Lookup says it (sheet_lookup.c) */
-        if (failed[0])
-            snprintf(warn, sizeof warn, "CHECKS FAILED: motions of floor(s) %s failed their SRP "
-                     "3.7.1 checks; their results were kept by --accept-failed-checks (sheet "
-                     "Plant, column Motion checks; each building's Motion quality sheet)%s%s",
-                     failed, wl[0] ? ". " : "", wl);
-        else
-            snprintf(warn, sizeof warn, "%s", wl);
-        worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, 1, warn, F->warn);
-        worksheet_set_row(ws, SL_RPT_WARN_ROW, sl_rpt_text_height(warn, LK_W_A + LK_W_B, 1), NULL);
-    }
+    sl_rpt_warn_row(ws, F, failed, "sheet Plant, column Motion checks; each building's Motion "
+                    "quality sheet", wl, 1, LK_W_A + LK_W_B);
     const char *b0 = b->lookup_building ? b->lookup_building : b->rows[0].building;
     const char *f0 = b->lookup_floor ? b->lookup_floor : floor_name(&b->rows[0]);
     double mu0 = b->lookup_mu;

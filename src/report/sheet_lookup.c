@@ -62,16 +62,7 @@ void sl_rpt_lookup_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_report
     sl_rpt_failed_ids(r, ids, sizeof ids);
     char wl[1200];
     sl_rpt_warnings_line(r, wl, sizeof wl); /* the run's warnings, also here */
-    if (ids[0] || wl[0]) {
-        if (ids[0])
-            snprintf(buf, sizeof buf, "CHECKS FAILED: motions of floor(s) %s failed their SRP "
-                     "3.7.1 checks; their results were kept by --accept-failed-checks (sheet "
-                     "Motion quality)%s%s", ids, wl[0] ? ". " : "", wl);
-        else
-            snprintf(buf, sizeof buf, "%s", wl);
-        worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, 1, buf, F->warn);
-        worksheet_set_row(ws, SL_RPT_WARN_ROW, sl_rpt_text_height(buf, W_A + W_B, 1), NULL);
-    }
+    sl_rpt_warn_row(ws, F, ids, "sheet Motion quality", wl, 1, W_A + W_B);
 
     /* the two inputs: unlocked, validated */
     const char *floor0 = r->lookup_floor ? r->lookup_floor : r->floors[0].name;

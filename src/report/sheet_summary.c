@@ -57,17 +57,8 @@ void sl_rpt_summary_sheet(lxw_workbook *wb, const sl_rpt_fmts *F, const sl_repor
     sl_rpt_failed_ids(r, ids, sizeof ids);
     char wl[1200];
     sl_rpt_warnings_line(r, wl, sizeof wl); /* the run's warnings, also here */
-    if (ids[0] || wl[0]) {
-        if (ids[0])
-            snprintf(buf, sizeof buf, "CHECKS FAILED: motions of floor(s) %s failed their SRP "
-                     "3.7.1 checks; their results were kept by --accept-failed-checks (below and "
-                     "Motion quality)%s%s", ids, wl[0] ? ". " : "", wl);
-        else
-            snprintf(buf, sizeof buf, "%s", wl);
-        worksheet_merge_range(ws, SL_RPT_WARN_ROW, 0, SL_RPT_WARN_ROW, last, buf, F->warn);
-        worksheet_set_row(ws, SL_RPT_WARN_ROW,
-                          sl_rpt_text_height(buf, W_LABEL + W_FLOOR * (double)last, 1), NULL);
-    }
+    sl_rpt_warn_row(ws, F, ids, "below and Motion quality", wl, last,
+                    W_LABEL + W_FLOOR * (double)last);
     /* Printed in this order, each part from a new page: the title block and
      * the chart of every floor; each floor's statements; the table, last,
      * so that its repeated header row is printed over table pages only

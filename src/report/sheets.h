@@ -226,6 +226,12 @@ void sl_rpt_protect(lxw_worksheet *ws);
  * c+1..c_last (together `width` characters wide); row heights fit. */
 void sl_rpt_title_block(lxw_worksheet *ws, const sl_rpt_fmts *F, const sl_report *r,
                         const char *title, lxw_col_t c, lxw_col_t c_last, double width);
+/* The warning row under the title block (SL_RPT_WARN_ROW, merged over
+ * columns 0..c_last, `width` characters wide): "CHECKS FAILED: motions of
+ * floor(s) IDS failed their SRP 3.7.1 checks; ... (WHERE)" when ids is not
+ * empty, then the run's warnings wl; no row when both are empty. */
+void sl_rpt_warn_row(lxw_worksheet *ws, const sl_rpt_fmts *F, const char *ids,
+                     const char *where, const char *wl, lxw_col_t c_last, double width);
 void sl_rpt_col_name(size_t c, char *buf);
 void sl_rpt_num_or_blank(lxw_worksheet *ws, lxw_row_t row, lxw_col_t col, double v,
                          lxw_format *f);
