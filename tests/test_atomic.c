@@ -29,20 +29,6 @@ static char ROOT[256], OUT[300];
 static const int ERRS[] = {EXDEV, EBUSY, ENOSPC, EACCES, ENAMETOOLONG};
 #define NERRS (sizeof ERRS / sizeof ERRS[0])
 
-/* Everything in ROOT removed (by the system's calls, no fault). */
-static void clean_root(void)
-{
-    const sl_fsops *was = sl_fsops_install(NULL);
-    int fd = open(ROOT, O_RDONLY | O_DIRECTORY);
-    DIR *d = fd >= 0 ? fdopendir(fd) : NULL;
-    for (struct dirent *e; d && (e = readdir(d)) != NULL;)
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, ".."))
-            fs_rm_at(fd, e->d_name);
-    if (d)
-        closedir(d);
-    sl_fsops_install(was);
-}
-
 /* dir/rel written (its folders made). */
 static void put(const char *dir, const char *rel, const char *text)
 {
@@ -62,7 +48,7 @@ static void put(const char *dir, const char *rel, const char *text)
  * and a symbolic link. */
 static void build_old(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     mkdir(OUT, 0755);
     put(OUT, SL_MANIFEST_NAME, SL_MANIFEST_HEAD "\n# test\n.seislide-cache/\nbldA/\n"
         "bldA/summary.csv\nbldB/\nbldB/summary.csv\nplant.csv\n");
@@ -659,7 +645,7 @@ int main(void)
     RUN(test_nested_deep);
     RUN(test_killed_runs);
     sl_fsops_install(NULL);
-    clean_root();
+    fs_empty_dir(ROOT);
     rmdir(ROOT);
     free(OLD_SNAP);
     free(NEW_SNAP);

@@ -21,19 +21,6 @@ static char ROOT[256];
 static const int ERRS[] = {EXDEV, EBUSY, ENOSPC, EACCES, ENAMETOOLONG};
 #define NERRS (sizeof ERRS / sizeof ERRS[0])
 
-static void clean_root(void)
-{
-    const sl_fsops *was = sl_fsops_install(NULL);
-    int fd = open(ROOT, O_RDONLY | O_DIRECTORY);
-    DIR *d = fd >= 0 ? fdopendir(fd) : NULL;
-    for (struct dirent *e; d && (e = readdir(d)) != NULL;)
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, ".."))
-            fs_rm_at(fd, e->d_name);
-    if (d)
-        closedir(d);
-    sl_fsops_install(was);
-}
-
 static const char *at(const char *rel)
 {
     static char p[8][1200];
@@ -72,7 +59,7 @@ static void replace_lock(int op, long n, const char *path)
 
 static void test_lock_recheck(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     mkdir(at("out"), 0755);
     snprintf(lock_file, sizeof lock_file, "%s", at(".out.lock"));
     fs_reset();
@@ -103,7 +90,7 @@ static void test_lock_recheck(void)
  * file left by a failure after it was written. */
 static void test_lock_faults(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     mkdir(at("out"), 0755);
     snprintf(lock_file, sizeof lock_file, "%s", at(".out.lock"));
     sl_error err;
@@ -137,7 +124,7 @@ static void test_lock_faults(void)
 
 static void test_resolve(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     mkdir(at("out"), 0755);
     mkdir(at("out/sub"), 0755);
     CHECK(symlink("out", at("link")) == 0, "symlink");
@@ -165,7 +152,7 @@ static void test_resolve(void)
 
 static void test_manifest_save_faults(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     mkdir(at("out"), 0755);
     put("out/" SL_MANIFEST_NAME, SL_MANIFEST_HEAD "\n# old\nplant.csv\n");
     put("out/plant.csv", "p");
@@ -259,7 +246,7 @@ static void replace_dir(int op, long n, const char *path)
 
 static void test_walk(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     put("t/b/x", "x");
     put("t/a", "a");
     put("t/b/c/y", "y");
@@ -306,7 +293,7 @@ static void test_walk(void)
 
 static void test_carry_refusals(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     put("out/" SL_MANIFEST_NAME, SL_MANIFEST_HEAD "\nplant.csv\n");
     put("out/plant.csv", "old");
     put("out/summary.csv", "the user's");
@@ -320,7 +307,7 @@ static void test_carry_refusals(void)
               strstr(err.file, "out/summary.csv") && strstr(err.msg, "seislide did not write this"),
           "%s: %s", err.file, err.msg);
     /* a pipe where hard links are refused: an error, not a silent loss */
-    clean_root();
+    fs_empty_dir(ROOT);
     put("out/" SL_MANIFEST_NAME, SL_MANIFEST_HEAD "\n");
     mkdir(at("fresh"), 0755);
     CHECK(mkfifo(at("out/pipe"), 0644) == 0, "mkfifo");
@@ -338,7 +325,7 @@ static void test_carry_refusals(void)
 
 static void test_drop_rules(void)
 {
-    clean_root();
+    fs_empty_dir(ROOT);
     put("x/" SL_MANIFEST_NAME, SL_MANIFEST_HEAD "\nout.csv\nbld/\nbld/s.csv\n.seislide-cache/\n");
     put("x/out.csv", "seislide's");
     put("x/bld/s.csv", "seislide's");
@@ -419,7 +406,7 @@ int main(void)
     RUN(test_drop_rules);
     RUN(test_mounts);
     sl_fsops_install(NULL);
-    clean_root();
+    fs_empty_dir(ROOT);
     rmdir(ROOT);
     return HARNESS_END("test_outguard");
 }
