@@ -1,6 +1,7 @@
 /* atomic_dir.c - an output folder replaced whole, or entry by entry where it
  * cannot be renamed; see atomic.h. */
 #define _GNU_SOURCE /* renameat2 flags, O_DIRECTORY, O_CLOEXEC */
+#include "core/compare.h"
 #include "io/atomic.h"
 #include "io/atomic_name.h"
 #include "io/fsops.h"
@@ -641,11 +642,6 @@ static int undo(int tmpfd, int dirfd, const step *s)
     return -1;
 }
 
-static int by_name(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
 /* The names at the top of the fresh folder to move in (all but its
  * manifest and seislide's temporaries), in byte order: *n of them into *out
  * (malloc'd).
@@ -695,7 +691,7 @@ static int fresh_names(int tmpfd, char ***out, size_t *n)
         return -1;
     }
     if (*n)
-        qsort(v, *n, sizeof *v, by_name);
+        qsort(v, *n, sizeof *v, sl_cmp_str);
     *out = v;
     return 0;
 }

@@ -1,6 +1,7 @@
 /* manifest.c - the manifest of an output folder: read, listed, written; see
  * outguard.h. */
 #define _GNU_SOURCE /* O_CLOEXEC, O_NOFOLLOW */
+#include "core/compare.h"
 #include "io/fsops.h"
 #include "io/outguard.h"
 #include "io/owner.h"
@@ -32,11 +33,6 @@ struct sl_manifest {
     size_t len;
 };
 
-static int by_bytes(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
 static int manifest_add(sl_manifest *m, const char *s, size_t k)
 {
     if (m->n == m->cap) {
@@ -66,7 +62,7 @@ void sl_manifest_free(sl_manifest *m)
 
 int sl_manifest_has(const sl_manifest *m, const char *rel)
 {
-    return m && m->n && bsearch(&rel, m->path, m->n, sizeof *m->path, by_bytes) != NULL;
+    return m && m->n && bsearch(&rel, m->path, m->n, sizeof *m->path, sl_cmp_str) != NULL;
 }
 
 /* A path the manifest may hold (outguard.h): relative, no empty, "." or
@@ -103,7 +99,7 @@ static void manifest_sort(sl_manifest *m)
 {
     if (!m->n)
         return;
-    qsort(m->path, m->n, sizeof *m->path, by_bytes);
+    qsort(m->path, m->n, sizeof *m->path, sl_cmp_str);
     size_t k = 1;
     for (size_t i = 1; i < m->n; i++) {
         if (!strcmp(m->path[i], m->path[k - 1]))

@@ -1,5 +1,6 @@
 /* walk.c - a folder tree walked iteratively; see walk.h. */
 #define _GNU_SOURCE /* O_DIRECTORY, O_NOFOLLOW, O_CLOEXEC */
+#include "core/compare.h"
 #include "io/walk.h"
 
 #include <dirent.h>
@@ -29,11 +30,6 @@ struct sl_walk {
     int enter;        /* the last entry is a folder to enter */
     char *where;      /* the path of an error */
 };
-
-static int by_name(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
 
 static void frame_free(frame *f)
 {
@@ -83,7 +79,7 @@ static int list(frame *f, int fd)
         return -1;
     }
     if (f->n)
-        qsort(f->names, f->n, sizeof *f->names, by_name);
+        qsort(f->names, f->n, sizeof *f->names, sl_cmp_str);
     return 0;
 }
 

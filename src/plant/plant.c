@@ -1,5 +1,6 @@
 /* plant.c - a plant's floors, keys, costs and shards; see plant.h. */
 #include "plant/plant.h"
+#include "core/compare.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -16,11 +17,6 @@
 #include "plant/intensity.h"
 #include "report/plant_book.h"
 #include "report/components.h"
-
-static int cmp_str(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
 
 /* The non-hidden sub-folders of dir, sorted (malloc'd names into sub[]). */
 static sl_status list_subdirs(const char *dir, char **sub, size_t *n, size_t max, sl_error *err)
@@ -51,7 +47,7 @@ static sl_status list_subdirs(const char *dir, char **sub, size_t *n, size_t max
         *n = 0;
         return st;
     }
-    qsort(sub, *n, sizeof *sub, cmp_str);
+    qsort(sub, *n, sizeof *sub, sl_cmp_str);
     return SL_OK;
 }
 

@@ -2,6 +2,7 @@
  * files (floors.csv, floor_<id>.csv; plant.csv and one folder per building
  * for a plant), with the run's record; see components.h. */
 #include "report/components.h"
+#include "core/compare.h"
 
 #include <dirent.h>
 #include <math.h>
@@ -282,11 +283,6 @@ static sl_status add_building(sl_comp_results *r, const char *name, const char *
     return SL_OK;
 }
 
-static int cmp_str(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
 /* A plant: the buildings of plant.csv, named as written there, in its
  * order (each in the folder its name makes, sl_report_file_name, as
  * plant/plant.c names it), then any other sub-folder holding floors.csv
@@ -332,7 +328,7 @@ static sl_status plant_buildings(sl_comp_results *r, const char *pcsv, sl_error 
     if (d)
         closedir(d);
     if (!st && r->n_buildings > n0) { /* here each name is its folder's */
-        qsort(r->buildings + n0, r->n_buildings - n0, sizeof *r->buildings, cmp_str);
+        qsort(r->buildings + n0, r->n_buildings - n0, sizeof *r->buildings, sl_cmp_str);
         for (size_t b = n0; b < r->n_buildings; b++) {
             char *c = dupstr(r->buildings[b]);
             if (!c)
