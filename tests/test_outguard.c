@@ -289,6 +289,30 @@ static void test_walk(void)
     CHECK(r < 0 && strstr(small, "error:File name too long:d/d/d"), "2100 deep: %s", small);
 }
 
+/* A folder looked up without making "rel/": against sl_manifest_has on the
+ * string it stands for, over names that sort next to "a/" ('-' and '.' before
+ * '/', a letter after it) and a file of the folder's name. */
+static void test_manifest_has_dir(void)
+{
+    fs_empty_dir(ROOT);
+    put("out/" SL_MANIFEST_NAME, SL_MANIFEST_HEAD "\na-b/\na.txt\na/\na/b\nab/\nc\nd/e/\n");
+    sl_manifest *m;
+    sl_error err;
+    CHECK(sl_manifest_read(at("out"), &m, &err) == SL_OK && m, "%s", err.msg);
+    const char *q[] = {"a", "a-b", "a.txt", "ab", "a/b", "b", "c", "d", "d/e", "", "a-", "ab/"};
+    for (size_t i = 0; m && i < sizeof q / sizeof *q; i++) {
+        char slash[16];
+        snprintf(slash, sizeof slash, "%s/", q[i]);
+        CHECK(!sl_manifest_has_dir(m, q[i]) == !sl_manifest_has(m, slash),
+              "'%s': as a folder %d, '%s' listed %d", q[i], sl_manifest_has_dir(m, q[i]), slash,
+              sl_manifest_has(m, slash));
+    }
+    CHECK(m && sl_manifest_has_dir(m, "a") && sl_manifest_has_dir(m, "d/e") &&
+              !sl_manifest_has_dir(m, "a.txt") && !sl_manifest_has_dir(m, "d"),
+          "folders a, d/e listed; a.txt, d not");
+    sl_manifest_free(m);
+}
+
 /* ---- carrying and dropping ------------------------------------------------------ */
 
 static void test_carry_refusals(void)
@@ -402,6 +426,7 @@ int main(void)
     RUN(test_resolve);
     RUN(test_manifest_save_faults);
     RUN(test_walk);
+    RUN(test_manifest_has_dir);
     RUN(test_carry_refusals);
     RUN(test_drop_rules);
     RUN(test_mounts);

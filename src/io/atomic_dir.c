@@ -37,12 +37,6 @@ static int is_placeholder(const char *name)
 }
 
 /* "a" + "/" + "b" into buf (n); -1 when it does not fit. */
-static int join(char *buf, size_t n, const char *a, const char *b)
-{
-    int w = snprintf(buf, n, "%s%s%s", a, (*a && a[strlen(a) - 1] != '/' && *b) ? "/" : "", b);
-    return w < 0 || (size_t)w >= n ? -1 : 0;
-}
-
 /* The parent folder of resolved path p into buf ("/" for "/x"). */
 static void parent_of(const char *p, char *buf, size_t n)
 {
@@ -206,7 +200,7 @@ static size_t list_runs(const char *dir, run_folder **out)
             }
             run_folder *f = &r[n];
             struct stat st;
-            if (join(f->full, sizeof f->full, where[k], e->d_name) || lstat(f->full, &st) != 0 ||
+            if (sl_path_join(f->full, sizeof f->full, where[k], e->d_name) || lstat(f->full, &st) != 0 ||
                 !(S_ISDIR(st.st_mode) || (k == 1 && S_ISREG(st.st_mode))))
                 continue;
             snprintf(f->name, sizeof f->name, "%s", e->d_name);
@@ -303,12 +297,12 @@ int sl_atomic_dir_salvage(const char *dir, const char *name, char *said, size_t 
     int moved = 0;
     if (said && nsaid)
         said[0] = '\0';
-    if (join(want, sizeof want, dir, name) || lstat(want, &st) == 0)
+    if (sl_path_join(want, sizeof want, dir, name) || lstat(want, &st) == 0)
         return 0;
     run_folder *r;
     size_t n = list_runs(dir, &r);
     for (size_t i = 0; !moved && i < n; i++) {
-        if (!r[i].is_dir || r[i].owner != OWNER_GONE || join(from, sizeof from, r[i].full, name) ||
+        if (!r[i].is_dir || r[i].owner != OWNER_GONE || sl_path_join(from, sizeof from, r[i].full, name) ||
             lstat(from, &st) != 0)
             continue;
         if (sl_fs->mkdir(AT_FDCWD, dir, 0777) != 0 && errno != EEXIST)
@@ -337,7 +331,7 @@ int sl_atomic_dir_recover(const char *dir, char *said, size_t nsaid)
     size_t n = list_runs(dir, &r);
     for (size_t i = 0; !done && i < n; i++) {
         if (!r[i].beside || !r[i].is_dir || r[i].owner != OWNER_GONE ||
-            join(mark, sizeof mark, r[i].full, SL_MANIFEST_NAME) || lstat(mark, &st) != 0 ||
+            sl_path_join(mark, sizeof mark, r[i].full, SL_MANIFEST_NAME) || lstat(mark, &st) != 0 ||
             sl_fs->rename(AT_FDCWD, r[i].full, AT_FDCWD, dir, 0) != 0)
             continue;
         done = 1;
@@ -405,7 +399,7 @@ sl_atomic_dir *sl_atomic_dir_open_how(const char *dir, const char *version, sl_a
         a->tmp = NULL;
         if (a->in_place) {
             sl_owner_tmp_name(name, sizeof name, SL_OUTDIR_TMP_INSIDE);
-            a->tmp = join(inside, sizeof inside, dir, name) ? NULL : strdup(inside);
+            a->tmp = sl_path_join(inside, sizeof inside, dir, name) ? NULL : strdup(inside);
         } else {
             a->tmp = sl_atomic_hidden_name(dir);
         }
@@ -438,7 +432,7 @@ sl_status sl_atomic_dir_take(sl_atomic_dir *d, const char *name, sl_error *err)
     struct stat st;
     if (!d)
         return sl_error_set(err, SL_EINVAL, NULL, 0, "no folder to commit");
-    if (join(from, sizeof from, d->path, name) || join(to, sizeof to, d->tmp, name))
+    if (sl_path_join(from, sizeof from, d->path, name) || sl_path_join(to, sizeof to, d->tmp, name))
         return sl_error_set(err, SL_EIO, d->path, 0, "path too long");
     if (lstat(from, &st) != 0)
         return SL_OK; /* nothing to take */
@@ -482,7 +476,7 @@ static size_t put_back(sl_atomic_dir *d)
     struct stat st;
     while (d->ntaken) {
         char *name = d->taken[--d->ntaken];
-        if (!join(from, sizeof from, d->tmp, name) && !join(to, sizeof to, d->path, name) &&
+        if (!sl_path_join(from, sizeof from, d->tmp, name) && !sl_path_join(to, sizeof to, d->path, name) &&
             lstat(from, &st) == 0 && rename_new(AT_FDCWD, from, AT_FDCWD, to) != 0)
             lost++;
         free(name);

@@ -20,12 +20,6 @@
 #define TMP_TRIES 100
 
 /* "a" + "/" + "b" into buf (n); -1 when it does not fit. */
-static int join(char *buf, size_t n, const char *a, const char *b)
-{
-    int w = snprintf(buf, n, "%s%s%s", a, (*a && a[strlen(a) - 1] != '/' && *b) ? "/" : "", b);
-    return w < 0 || (size_t)w >= n ? -1 : 0;
-}
-
 struct sl_manifest {
     size_t n, cap;
     char **path; /* sorted by strcmp */
@@ -63,6 +57,24 @@ void sl_manifest_free(sl_manifest *m)
 int sl_manifest_has(const sl_manifest *m, const char *rel)
 {
     return m && m->n && bsearch(&rel, m->path, m->n, sizeof *m->path, sl_cmp_str) != NULL;
+}
+
+/* strcmp(key "/", elem) without making key "/": the order of m->path */
+static int cmp_as_dir(const void *key, const void *elem)
+{
+    const char *r = *(const char *const *)key, *p = *(char *const *)elem;
+    size_t k = strlen(r);
+    int c = strncmp(r, p, k);
+    if (c)
+        return c;
+    if (p[k] != '/')
+        return (unsigned char)'/' - (unsigned char)p[k];
+    return p[k + 1] ? -1 : 0;
+}
+
+int sl_manifest_has_dir(const sl_manifest *m, const char *rel)
+{
+    return m && m->n && bsearch(&rel, m->path, m->n, sizeof *m->path, cmp_as_dir) != NULL;
 }
 
 /* A path the manifest may hold (outguard.h): relative, no empty, "." or
@@ -131,7 +143,7 @@ sl_manifest *sl_manifest_union(const sl_manifest *a, const sl_manifest *b)
 static int slurp(const char *dir, const char *name, long max, char **text, size_t *len)
 {
     char path[PATH_CAP];
-    if (join(path, sizeof path, dir, name)) {
+    if (sl_path_join(path, sizeof path, dir, name)) {
         errno = ENAMETOOLONG;
         return -1;
     }
@@ -176,7 +188,7 @@ sl_status sl_manifest_read(const char *dir, sl_manifest **out, sl_error *err)
 {
     char path[PATH_CAP];
     *out = NULL;
-    if (join(path, sizeof path, dir, SL_MANIFEST_NAME))
+    if (sl_path_join(path, sizeof path, dir, SL_MANIFEST_NAME))
         return sl_error_set(err, SL_EIO, dir, 0, "path too long");
     char *text = NULL;
     size_t len = 0;
@@ -270,7 +282,7 @@ sl_status sl_manifest_list(const char *dir, sl_manifest **out, sl_error *err)
     sl_status s = SL_OK;
     if (e) {
         char where[PATH_CAP];
-        if (join(where, sizeof where, dir, sl_walk_where(w)))
+        if (sl_path_join(where, sizeof where, dir, sl_walk_where(w)))
             snprintf(where, sizeof where, "%s", dir);
         s = sl_error_set(err, e == ENOMEM ? SL_ENOMEM : SL_EIO, where, 0, "cannot list: %s",
                          strerror(e));
@@ -306,12 +318,12 @@ static int write_all(int fd, const char *b, size_t n)
 static sl_status save_text(const char *dir, const char *text, size_t len, sl_error *err)
 {
     char path[PATH_CAP], tmp[PATH_CAP], name[256];
-    if (join(path, sizeof path, dir, SL_MANIFEST_NAME))
+    if (sl_path_join(path, sizeof path, dir, SL_MANIFEST_NAME))
         return sl_error_set(err, SL_EIO, dir, 0, "path too long");
     int fd = -1, e = 0;
     for (int t = 0; t < TMP_TRIES; t++) {
         sl_owner_tmp_name(name, sizeof name, SL_OUTDIR_TMP_INSIDE);
-        if (join(tmp, sizeof tmp, dir, name)) {
+        if (sl_path_join(tmp, sizeof tmp, dir, name)) {
             errno = ENAMETOOLONG;
             break;
         }
@@ -364,14 +376,4 @@ sl_status sl_manifest_restore(const char *dir, const sl_manifest *m, const char 
     if (m && m->text)
         return save_text(dir, m->text, m->len, err);
     return sl_manifest_save(dir, m, version, err);
-}
-
-sl_status sl_manifest_write(const char *fresh, const char *version, sl_error *err)
-{
-    sl_manifest *m;
-    sl_status s = sl_manifest_list(fresh, &m, err);
-    if (!s)
-        s = sl_manifest_save(fresh, m, version, err);
-    sl_manifest_free(m);
-    return s;
 }

@@ -82,12 +82,6 @@ static int carried_add(sl_carried *c, const char *rel, const sl_fstat *src, ino_
 /* ---- small steps ---------------------------------------------------------- */
 
 /* "a" + "/" + "b" into buf (n); -1 when it does not fit. */
-static int join(char *buf, size_t n, const char *a, const char *b)
-{
-    int w = snprintf(buf, n, "%s%s%s", a, (*a && a[strlen(a) - 1] != '/' && *b) ? "/" : "", b);
-    return w < 0 || (size_t)w >= n ? -1 : 0;
-}
-
 static int same_time(struct timespec a, struct timespec b)
 {
     return a.tv_sec == b.tv_sec && a.tv_nsec == b.tv_nsec;
@@ -233,7 +227,7 @@ typedef struct carry {
 static sl_status conflict(carry *c, const char *rel)
 {
     char p[PATH_CAP];
-    if (join(p, sizeof p, c->from, rel))
+    if (sl_path_join(p, sizeof p, c->from, rel))
         snprintf(p, sizeof p, "%s", c->from);
     return sl_error_set(c->err, SL_EINVAL, p, 0, "seislide did not write this (the folder's "
                         SL_MANIFEST_NAME " does not name it) and this run writes an entry of "
@@ -244,7 +238,7 @@ static sl_status conflict(carry *c, const char *rel)
 static sl_status failed(carry *c, const char *rel, const char *what, int e)
 {
     char p[PATH_CAP];
-    if (join(p, sizeof p, c->from, rel)) /* longer than a path may be: its start */
+    if (sl_path_join(p, sizeof p, c->from, rel)) /* longer than a path may be: its start */
         snprintf(p, sizeof p, "%s/%.300s...", c->from, rel);
     return sl_error_set(c->err, e == ENOMEM ? SL_ENOMEM : SL_EIO, p, 0, "%s: %s; the output "
                         "folder is unchanged%s", what, strerror(e),
@@ -291,17 +285,10 @@ static sl_status carry_entry(carry *c, sl_walk *w, const sl_walk_entry *e)
     if (!there && errno != ENOENT)
         return failed(c, rel, "cannot check the fresh folder", errno);
     if (S_ISDIR(e->st.mode)) {
-        size_t k = strlen(rel);
-        char *rs = malloc(k + 2);
-        if (!rs)
-            return failed(c, rel, "cannot carry", ENOMEM);
-        memcpy(rs, rel, k);
-        memcpy(rs + k, "/", 2);
-        int listed = sl_manifest_has(c->old, rs);
-        free(rs);
+        int listed = sl_manifest_has_dir(c->old, rel);
         if (e->mount) { /* a mount cannot move with the folder */
             char p[PATH_CAP];
-            if (join(p, sizeof p, c->from, rel))
+            if (sl_path_join(p, sizeof p, c->from, rel))
                 snprintf(p, sizeof p, "%s", c->from);
             return sl_error_set(c->err, SL_EINVAL, p, 0, "a file system is mounted here, inside "
                                 "the output folder: seislide replaces the folder as a whole and "
@@ -478,7 +465,7 @@ static void drop_entry(drop *d, sl_walk *w, const sl_walk_entry *e)
     if (dir && e->depth == 1 && !strcmp(e->name, SL_MANIFEST_CACHE) && (d->flags & SL_DROP_CACHE)) {
         sl_walk_prune(w);
         char p[PATH_CAP], sub[PATH_CAP];
-        if (join(p, sizeof p, d->x, rel) ||
+        if (sl_path_join(p, sizeof p, d->x, rel) ||
             sl_outdir_drop(p, NULL, NULL, SL_DROP_OURS | SL_DROP_CACHE, sub, sizeof sub)) {
             snprintf(reason, sizeof reason, "the cache could not be removed whole");
             keep(d, rel, reason);
@@ -486,16 +473,8 @@ static void drop_entry(drop *d, sl_walk *w, const sl_walk_entry *e)
         return;
     }
     int ours = (d->flags & SL_DROP_OURS) != 0;
-    if (!ours) {
-        size_t k = strlen(rel);
-        char *rs = malloc(k + 2);
-        if (rs) {
-            memcpy(rs, rel, k);
-            memcpy(rs + k, dir ? "/" : "", dir ? 2 : 1);
-            ours = sl_manifest_has(d->m, rs);
-            free(rs);
-        }
-    }
+    if (!ours)
+        ours = dir ? sl_manifest_has_dir(d->m, rel) : sl_manifest_has(d->m, rel);
     if (dir && e->depth == 1 && !strcmp(e->name, SL_MANIFEST_CACHE))
         ours = 0; /* the cache stays (no SL_DROP_CACHE): taken back to dest as a user's folder */
     if (ours) {

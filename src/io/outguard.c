@@ -26,7 +26,7 @@
 /* ---- paths -------------------------------------------------------------- */
 
 /* "a" + "/" + "b" into buf (n); -1 when it does not fit. */
-static int join(char *buf, size_t n, const char *a, const char *b)
+int sl_path_join(char *buf, size_t n, const char *a, const char *b)
 {
     int w = snprintf(buf, n, "%s%s%s", a, (*a && a[strlen(a) - 1] != '/' && *b) ? "/" : "", b);
     return w < 0 || (size_t)w >= n ? -1 : 0;
@@ -65,7 +65,7 @@ int sl_path_resolve(const char *path, char *buf, size_t n)
             continue;
         }
         struct stat st;
-        if (join(cand, sizeof cand, res, comp)) {
+        if (sl_path_join(cand, sizeof cand, res, comp)) {
             errno = ENAMETOOLONG;
             return -1;
         }
@@ -117,7 +117,7 @@ sl_overlap sl_path_overlap(const char *out, const char *input)
     char base[PATH_CAP];
     snprintf(parent, sizeof parent, "%.*s", (int)(cut ? cut : 1), cut ? input : ".");
     snprintf(base, sizeof base, "%.*s", (int)(n - cut), input + cut);
-    if (sl_path_resolve(parent, link, sizeof link) || join(i, sizeof i, link, base) != 0)
+    if (sl_path_resolve(parent, link, sizeof link) || sl_path_join(i, sizeof i, link, base) != 0)
         return SL_OVERLAP_NONE;
     return compare(o, i);
 }
@@ -239,7 +239,7 @@ int sl_path_is_mount(const char *real)
         return 0;
     if (a.mount_root || mountinfo_find(real, 1, NULL, 0))
         return 1;
-    if (join(parent, sizeof parent, real, "..") != 0 || sl_fs->stat(AT_FDCWD, parent, &b) != 0)
+    if (sl_path_join(parent, sizeof parent, real, "..") != 0 || sl_fs->stat(AT_FDCWD, parent, &b) != 0)
         return 0;
     return a.dev != b.dev;
 }

@@ -61,6 +61,10 @@
 
 /* ---- paths -------------------------------------------------------------- */
 
+/* a "/" b into buf of size n (no "/" added after an empty a or one ending in
+ * "/", nor before an empty b). 0, or -1 when it does not fit. */
+int sl_path_join(char *buf, size_t n, const char *a, const char *b);
+
 /* Absolute, symbolic links, "." and ".." resolved (above) into buf of size
  * n. 0, or -1 with errno (ENAMETOOLONG, or what realpath says). */
 int sl_path_resolve(const char *path, char *buf, size_t n);
@@ -134,6 +138,8 @@ typedef struct sl_manifest sl_manifest;
 sl_status sl_manifest_read(const char *dir, sl_manifest **m, sl_error *err);
 /* Nonzero when m names the relative path rel (a folder as "rel/"). */
 int sl_manifest_has(const sl_manifest *m, const char *rel);
+/* sl_manifest_has(m, rel "/"): does it list rel as a folder? */
+int sl_manifest_has_dir(const sl_manifest *m, const char *rel);
 /* The number of paths m names, and the i-th in byte order. */
 size_t sl_manifest_count(const sl_manifest *m);
 const char *sl_manifest_path(const sl_manifest *m, size_t i);
@@ -154,9 +160,6 @@ sl_status sl_manifest_save(const char *dir, const sl_manifest *m, const char *ve
  * (else as sl_manifest_save writes it): an in-place commit put back. */
 sl_status sl_manifest_restore(const char *dir, const sl_manifest *m, const char *version,
                               sl_error *err);
-/* sl_manifest_list + sl_manifest_save of the folder `fresh` (the outputs of
- * one run, before anything is carried into it). */
-sl_status sl_manifest_write(const char *fresh, const char *version, sl_error *err);
 
 /* ---- the user's entries, carried and kept -------------------------------- */
 

@@ -10,6 +10,7 @@
 #include "analysis.h"
 #include "core/version.h"
 #include "io/atomic.h"
+#include "plant/entry.h"
 #include "plant/identity.h"
 #include "plant/pbuf.h"
 
@@ -65,8 +66,7 @@ sl_status sl_rockc_key_make(const sl_floor *fl, uint64_t run_seed, size_t n_sets
     }
     k->text = w.b;
     k->len = w.n;
-    snprintf(k->hash, sizeof k->hash, "%016llx",
-             (unsigned long long)sl_fnv64(SL_FNV64_OFFSET, w.b, w.n));
+    sl_entry_key_hash((const char *)w.b, w.n, k->hash);
     return SL_OK;
 }
 
