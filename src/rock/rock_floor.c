@@ -199,8 +199,8 @@ static double screen_c(const double *ah, const double *av, size_t n, double leve
 /* Working memory of one thread: the weak-axis histories of the grid
  * orientations and one more, and their screens. */
 typedef struct work {
-    size_t n;
-    double *proj;            /* (n_orient + 1) x n */
+    size_t n;                /* samples a slot holds (the longest set so far) */
+    double *proj;            /* (n_orient + 1) slots, each the set's samples */
     double *c;               /* (n_orient + 1) x NLEVELS */
 } work;
 
@@ -209,19 +209,25 @@ static size_t cell(const sl_rockf_acc *a, size_t i, int l, size_t s, size_t j)
     return ((i * SL_ROCKF_NLEVELS + (size_t)l) * a->max_sets + s) * a->nz + j;
 }
 
+/* Slot k of the work: the horizontals projected on the weak axis at phi
+ * degrees from H1, and the screen value of each level. */
+static void fill_slot(const sl_rockf_acc *a, const sl_set *set, double phi, size_t k, work *wk)
+{
+    const size_t n = set->h1->n;
+    sl_rock_project(set->h1->acc_ms2, set->h2 ? set->h2->acc_ms2 : NULL, n, phi, wk->proj + k * n);
+    for (int l = 0; l < SL_ROCKF_NLEVELS; l++)
+        wk->c[k * SL_ROCKF_NLEVELS + (size_t)l] =
+            screen_c(wk->proj + k * n, set->v ? set->v->acc_ms2 : NULL, n, a->o.level[l]);
+}
+
 /* Set s (its index among the acc's sets): every item, level and intensity. */
 static sl_status one_set(sl_rockf_acc *a, const sl_set *set, size_t s, work *wk, sl_error *err)
 {
     const size_t n = set->h1->n, no = a->n_orient;
     const double dt = set->h1->dt_s;
-    const double *h1 = set->h1->acc_ms2, *h2 = set->h2 ? set->h2->acc_ms2 : NULL;
     const double *av = set->v ? set->v->acc_ms2 : NULL;
-    for (size_t k = 0; k < no; k++) {
-        sl_rock_project(h1, h2, n, a->orient_deg[k], wk->proj + k * n);
-        for (int l = 0; l < SL_ROCKF_NLEVELS; l++)
-            wk->c[k * SL_ROCKF_NLEVELS + (size_t)l] = screen_c(wk->proj + k * n, av, n,
-                                                               a->o.level[l]);
-    }
+    for (size_t k = 0; k < no; k++)
+        fill_slot(a, set, a->orient_deg[k], k, wk);
     for (size_t i = 0; i < a->n_items; i++) {
         if (!a->active[i])
             continue;
@@ -233,10 +239,7 @@ static sl_status one_set(sl_rockf_acc *a, const sl_set *set, size_t s, work *wk,
         if (!isnan(it->orientation_deg)) {
             k0 = no;
             k1 = no + 1;
-            sl_rock_project(h1, h2, n, it->orientation_deg, wk->proj + no * n);
-            for (int l = 0; l < SL_ROCKF_NLEVELS; l++)
-                wk->c[no * SL_ROCKF_NLEVELS + (size_t)l] =
-                    screen_c(wk->proj + no * n, av, n, a->o.level[l]);
+            fill_slot(a, set, it->orientation_deg, no, wk);
         }
         for (int l = 0; l < SL_ROCKF_NLEVELS; l++) {
             const double L = a->o.level[l];
@@ -296,17 +299,15 @@ sl_status sl_rockf_acc_add(sl_rockf_acc *a, const sl_set *sets, size_t count, sl
         for (size_t s = 0; s < count; s++) {
             const size_t n = sets[s].h1->n;
             sl_status my = SL_OK;
-            if (wk.n != n) {
+            if (wk.n < n) { /* grows to the longest set: n samples a slot */
                 free(wk.proj);
-                free(wk.c);
-                wk.n = n;
                 wk.proj = malloc((a->n_orient + 1) * n * sizeof *wk.proj);
-                wk.c = malloc((a->n_orient + 1) * SL_ROCKF_NLEVELS * sizeof *wk.c);
-                if (!wk.proj || !wk.c) {
-                    wk.n = 0;
-                    my = sl_error_set(&e, SL_ENOMEM, NULL, 0, "rocking: out of memory");
-                }
+                wk.n = wk.proj ? n : 0;
             }
+            if (!wk.c)
+                wk.c = malloc((a->n_orient + 1) * SL_ROCKF_NLEVELS * sizeof *wk.c);
+            if (!wk.proj || !wk.c)
+                my = sl_error_set(&e, SL_ENOMEM, NULL, 0, "rocking: out of memory");
             if (!my)
                 my = one_set(a, &sets[s], a->n_sets + s, &wk, &e);
             if (my) {
