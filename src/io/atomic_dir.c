@@ -66,20 +66,16 @@ sl_status sl_outdir_check(const char *dir, sl_error *err)
         if (errno != ENOENT)
             return sl_error_set(err, SL_EIO, dir, 0, "output folder: %s", strerror(errno));
         /* absent: its parent must be a writable folder */
-        char *parent = strdup(dir);
-        if (!parent)
-            return sl_error_set(err, SL_ENOMEM, dir, 0, "out of memory");
-        for (size_t n = strlen(parent); n > 1 && parent[n - 1] == '/'; n--)
-            parent[n - 1] = '\0'; /* "out/" names the folder "out" */
-        char *slash = strrchr(parent, '/');
-        if (slash == parent)
-            slash[1] = '\0';
-        else if (slash)
-            *slash = '\0';
-        else
-            strcpy(parent, ".");
+        char name[PATH_CAP], parent[PATH_CAP];
+        size_t n = strlen(dir);
+        while (n > 1 && dir[n - 1] == '/')
+            n--; /* "out/" names the folder "out" */
+        if (n >= sizeof name)
+            return sl_error_set(err, SL_EINVAL, dir, 0, "output folder: %s",
+                                strerror(ENAMETOOLONG));
+        snprintf(name, sizeof name, "%.*s", (int)n, dir);
+        parent_of(name, parent, sizeof parent);
         int ok = stat(parent, &st) == 0 && S_ISDIR(st.st_mode) && access(parent, W_OK | X_OK) == 0;
-        free(parent);
         if (!ok)
             return sl_error_set(err, SL_EIO, dir, 0,
                                 "cannot create the output folder: its parent is not a writable "
@@ -452,22 +448,6 @@ sl_status sl_atomic_dir_take(sl_atomic_dir *d, const char *name, sl_error *err)
     return SL_OK;
 }
 
-/* rename(from, to) without replacing an entry at `to` (where the file
- * system has no RENAME_NOREPLACE: checked, then renamed). */
-static int rename_new(int fromfd, const char *from, int tofd, const char *to)
-{
-    if (sl_fs->rename(fromfd, from, tofd, to, RENAME_NOREPLACE) == 0)
-        return 0;
-    if (errno != EINVAL && errno != ENOSYS)
-        return -1;
-    sl_fstat st;
-    if (sl_fs->stat(tofd, to, &st) == 0) {
-        errno = EEXIST;
-        return -1;
-    }
-    return sl_fs->rename(fromfd, from, tofd, to, 0);
-}
-
 /* The taken entries back into the final folder: 0, or how many could not be. */
 static size_t put_back(sl_atomic_dir *d)
 {
@@ -477,7 +457,7 @@ static size_t put_back(sl_atomic_dir *d)
     while (d->ntaken) {
         char *name = d->taken[--d->ntaken];
         if (!sl_path_join(from, sizeof from, d->tmp, name) && !sl_path_join(to, sizeof to, d->path, name) &&
-            lstat(from, &st) == 0 && rename_new(AT_FDCWD, from, AT_FDCWD, to) != 0)
+            lstat(from, &st) == 0 && sl_fs_rename_new(AT_FDCWD, from, AT_FDCWD, to) != 0)
             lost++;
         free(name);
     }
@@ -544,7 +524,7 @@ static sl_status commit_swap(sl_atomic_dir *d, sl_error *err)
 {
     struct stat st;
     if (lstat(d->path, &st) != 0) {
-        if (rename_new(AT_FDCWD, d->tmp, AT_FDCWD, d->path) != 0)
+        if (sl_fs_rename_new(AT_FDCWD, d->tmp, AT_FDCWD, d->path) != 0)
             return fail_back(d, sl_error_set(err, SL_EIO, d->path, 0, "cannot create: %s",
                                              strerror(errno)), err);
         atomic_dir_free(d);
@@ -563,7 +543,7 @@ static sl_status commit_swap(sl_atomic_dir *d, sl_error *err)
     int e = 0, back = 0;
     if (!old)
         e = ENOMEM;
-    else if (rename_new(AT_FDCWD, d->path, AT_FDCWD, old) != 0)
+    else if (sl_fs_rename_new(AT_FDCWD, d->path, AT_FDCWD, old) != 0)
         e = errno;
     else if (sl_fs->rename(AT_FDCWD, d->tmp, AT_FDCWD, d->path, 0) != 0) {
         e = errno;
@@ -604,7 +584,7 @@ static int exchange(int tmpfd, int dirfd, const char *name)
         return -1;
     char aside[NAME_MAX + 1];
     snprintf(aside, sizeof aside, SL_OUTDIR_TMP_INSIDE "aside-%s", name);
-    if (rename_new(dirfd, name, tmpfd, aside) != 0) /* the old entry aside */
+    if (sl_fs_rename_new(dirfd, name, tmpfd, aside) != 0) /* the old entry aside */
         return -1;
     int e;
     if (sl_fs->rename(tmpfd, name, dirfd, name, 0) != 0) { /* the new one in */
@@ -629,9 +609,9 @@ static int undo(int tmpfd, int dirfd, const step *s)
     case STEP_EXCHANGED:
         return exchange(tmpfd, dirfd, s->name);
     case STEP_MOVED_IN:
-        return rename_new(dirfd, s->name, tmpfd, s->name);
+        return sl_fs_rename_new(dirfd, s->name, tmpfd, s->name);
     case STEP_MOVED_OUT:
-        return rename_new(tmpfd, s->name, dirfd, s->name);
+        return sl_fs_rename_new(tmpfd, s->name, dirfd, s->name);
     }
     return -1;
 }
@@ -726,7 +706,7 @@ static sl_status commit_in_place(sl_atomic_dir *d, sl_error *err)
         sl_fstat st;
         int there = sl_fs->stat(dirfd, names[i], &st) == 0;
         step_kind k = there ? STEP_EXCHANGED : STEP_MOVED_IN;
-        int r = there ? exchange(tmpfd, dirfd, names[i]) : rename_new(tmpfd, names[i], dirfd, names[i]);
+        int r = there ? exchange(tmpfd, dirfd, names[i]) : sl_fs_rename_new(tmpfd, names[i], dirfd, names[i]);
         if (r) {
             broken += r == -2;
             s = sl_error_set(err, SL_EIO, d->path, 0, "cannot replace '%s': %s; the output folder "
@@ -749,7 +729,7 @@ static sl_status commit_in_place(sl_atomic_dir *d, sl_error *err)
             sl_fs->stat(dirfd, top, &st) != 0)
             continue;
         char *own = strdup(top);
-        if (!own || rename_new(dirfd, top, tmpfd, top) != 0) {
+        if (!own || sl_fs_rename_new(dirfd, top, tmpfd, top) != 0) {
             s = sl_error_set(err, SL_EIO, d->path, 0, "cannot move the old output '%s' aside: %s; "
                              "the output folder is unchanged", top, strerror(own ? errno : ENOMEM));
             free(own);

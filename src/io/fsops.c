@@ -79,6 +79,20 @@ const sl_fsops *sl_fs = &sys_ops;
 
 const sl_fsops *sl_fsops_system(void) { return &sys_ops; }
 
+int sl_fs_rename_new(int fromfd, const char *from, int tofd, const char *to)
+{
+    if (sl_fs->rename(fromfd, from, tofd, to, RENAME_NOREPLACE) == 0)
+        return 0;
+    if (errno != EINVAL && errno != ENOSYS)
+        return -1;
+    sl_fstat st;
+    if (sl_fs->stat(tofd, to, &st) == 0) {
+        errno = EEXIST;
+        return -1;
+    }
+    return sl_fs->rename(fromfd, from, tofd, to, 0);
+}
+
 const sl_fsops *sl_fsops_install(const sl_fsops *ops)
 {
     const sl_fsops *before = sl_fs;

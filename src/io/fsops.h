@@ -53,6 +53,11 @@ typedef struct sl_fsops {
     int (*ftruncate)(int fd, off_t len);
 } sl_fsops;
 
+/* rename(from, to) through sl_fs without replacing an entry at `to` (where
+ * the file system has no RENAME_NOREPLACE: checked, then renamed). 0, or -1
+ * with errno (EEXIST: `to` exists). */
+int sl_fs_rename_new(int fromfd, const char *from, int tofd, const char *to);
+
 /* The table in use (the system's unless a test installed its own). */
 extern const sl_fsops *sl_fs;
 /* The system's table. */

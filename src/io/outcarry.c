@@ -431,16 +431,7 @@ static int place(drop *d, const char *rel)
 {
     if (make_parents(d->dfd, rel) != 0)
         return -1;
-    if (sl_fs->rename(d->xfd, rel, d->dfd, rel, RENAME_NOREPLACE) == 0)
-        return 0;
-    if (errno != EINVAL && errno != ENOSYS)
-        return -1;
-    sl_fstat st; /* no RENAME_NOREPLACE on this file system: checked, then renamed */
-    if (sl_fs->stat(d->dfd, rel, &st) == 0) {
-        errno = EEXIST;
-        return -1;
-    }
-    return sl_fs->rename(d->xfd, rel, d->dfd, rel, 0);
+    return sl_fs_rename_new(d->xfd, rel, d->dfd, rel);
 }
 
 static void drop_entry(drop *d, sl_walk *w, const sl_walk_entry *e)
