@@ -79,6 +79,24 @@ const sl_fsops *sl_fs = &sys_ops;
 
 const sl_fsops *sl_fsops_system(void) { return &sys_ops; }
 
+int sl_fs_write_all(int fd, const void *buf, size_t n)
+{
+    const char *b = buf;
+    while (n) {
+        ssize_t w = sl_fs->write(fd, b, n);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0) {
+            if (w == 0)
+                errno = EIO;
+            return -1;
+        }
+        b += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
 int sl_fs_rename_new(int fromfd, const char *from, int tofd, const char *to)
 {
     if (sl_fs->rename(fromfd, from, tofd, to, RENAME_NOREPLACE) == 0)

@@ -53,6 +53,9 @@ typedef struct sl_fsops {
     int (*ftruncate)(int fd, off_t len);
 } sl_fsops;
 
+/* All n bytes of buf written to fd through sl_fs (again after EINTR or a
+ * short write). 0, or -1 with errno (EIO where write wrote nothing). */
+int sl_fs_write_all(int fd, const void *buf, size_t n);
 /* rename(from, to) through sl_fs without replacing an entry at `to` (where
  * the file system has no RENAME_NOREPLACE: checked, then renamed). 0, or -1
  * with errno (EEXIST: `to` exists). */

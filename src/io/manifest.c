@@ -297,23 +297,6 @@ sl_status sl_manifest_list(const char *dir, sl_manifest **out, sl_error *err)
     return s;
 }
 
-static int write_all(int fd, const char *b, size_t n)
-{
-    while (n) {
-        ssize_t w = sl_fs->write(fd, b, n);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0) {
-            if (w == 0)
-                errno = EIO;
-            return -1;
-        }
-        b += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
 /* text (len bytes) as dir's manifest, through a temporary file renamed over it. */
 static sl_status save_text(const char *dir, const char *text, size_t len, sl_error *err)
 {
@@ -334,7 +317,7 @@ static sl_status save_text(const char *dir, const char *text, size_t len, sl_err
     if (fd < 0)
         e = errno;
     else {
-        if (write_all(fd, text, len) != 0)
+        if (sl_fs_write_all(fd, text, len) != 0)
             e = errno;
         if (sl_fs->close(fd) != 0 && !e)
             e = errno;

@@ -154,15 +154,8 @@ static int copy_file(int fromfd, int tofd, const char *rel, mode_t mode)
             e = errno;
         if (k <= 0)
             break;
-        for (ssize_t done = 0; !e && done < k;) {
-            ssize_t w = sl_fs->write(out, buf + done, (size_t)(k - done));
-            if (w < 0 && errno == EINTR)
-                continue;
-            if (w <= 0)
-                e = w < 0 ? errno : EIO;
-            else
-                done += w;
-        }
+        if (sl_fs_write_all(out, buf, (size_t)k) != 0)
+            e = errno;
     }
     free(buf);
     if (!e && sl_fs->chmod(out, NULL, mode & 07777) != 0)
